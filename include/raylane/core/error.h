@@ -1,0 +1,71 @@
+// Locations and diagnostics for bad input, printed as `file:line:col: message`, and a small
+// Result<T> so library code reports errors without throwing across the API.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace raylane {
+
+struct FileLoc {
+  std::string file;
+  int line = 0;  // 1-based; 0 = the file as a whole
+  int col = 0;   // 1-based; 0 = the line as a whole
+};
+
+std::string to_string(const FileLoc& loc);
+
+enum class Severity { kWarning, kError };
+
+struct Diagnostic {
+  Severity severity = Severity::kError;
+  FileLoc loc;
+  std::string message;
+};
+
+// "file:line:col: message" for errors, "file:line:col: warning: message" for warnings.
+std::string to_string(const Diagnostic& d);
+
+struct Diagnostics {
+  std::vector<Diagnostic> items;
+
+  void error(FileLoc loc, std::string msg) {
+    items.push_back({Severity::kError, std::move(loc), std::move(msg)});
+  }
+  void warning(FileLoc loc, std::string msg) {
+    items.push_back({Severity::kWarning, std::move(loc), std::move(msg)});
+  }
+  int error_count() const;
+  int warning_count() const;
+};
+
+struct Error {
+  std::string message;
+};
+
+template <class T>
+class Result {
+ public:
+  Result(T value) : v_(std::move(value)) {}
+  Result(Error e) : v_(std::move(e)) {}
+
+  bool ok() const { return v_.index() == 0; }
+  explicit operator bool() const { return ok(); }
+  T& value() { return std::get<0>(v_); }
+  const T& value() const { return std::get<0>(v_); }
+  T& operator*() { return value(); }
+  T* operator->() { return &value(); }
+  const std::string& error() const { return std::get<1>(v_).message; }
+
+ private:
+  std::variant<T, Error> v_;
+};
+
+// For operations that produce nothing but may fail.
+struct Unit {};
+using Status = Result<Unit>;
+inline Status ok_status() { return Unit{}; }
+
+}  // namespace raylane

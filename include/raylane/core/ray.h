@@ -1,0 +1,29 @@
+// A ray o + t·d, valid for t in the open interval (tmin, tmax). Directions need not be
+// normalised for the kernels, but the camera and the renderer produce unit directions.
+#pragma once
+
+#include <limits>
+
+#include "raylane/core/vec3.h"
+
+namespace raylane {
+
+template <class T>
+struct Ray {
+  Vec3<T> o;
+  Vec3<T> d;
+  T tmin = T(0);
+  T tmax = std::numeric_limits<T>::infinity();
+
+  constexpr Vec3<T> at(T t) const { return o + d * t; }
+};
+
+using Rayf = Ray<float>;
+using Rayd = Ray<double>;
+
+template <class To, class From>
+constexpr Ray<To> ray_cast(const Ray<From>& r) {
+  return {Vec3<To>(r.o), Vec3<To>(r.d), To(r.tmin), To(r.tmax)};
+}
+
+}  // namespace raylane

@@ -1,0 +1,65 @@
+// The scene: one SoA table per primitive kind, materials, lights, camera and screen. Rows are
+// appended by Scene::command, one parsed line at a time (design.md, "Tables, not objects").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "raylane/core/error.h"
+#include "raylane/core/mat3.h"
+#include "raylane/prims/prim_list.h"
+#include "raylane/scene/material.h"
+
+namespace raylane {
+
+struct CameraSpec {
+  Vec3d eye;
+  double ry = 1.0;   // tan(half the vertical field of view)
+  Mat3d rotation;    // right = R·x, up = R·y, forward = R·(−z)
+};
+
+struct Token {
+  std::string_view text;
+  int col = 0;  // 1-based column of its first character
+};
+
+// One non-blank, non-comment line of a scene file, split into tokens.
+struct Line {
+  std::vector<Token> tokens;
+  FileLoc loc;  // file and line; col = 0
+  FileLoc at(std::size_t token) const;  // the location of a token (or of the line's end)
+};
+
+struct ParseState;
+
+struct Scene {
+  static constexpr uint32_t kDefaultWidth = 400, kDefaultHeight = 300;
+  static constexpr uint64_t kMaxPixels = uint64_t(1) << 28;
+
+  uint32_t width = kDefaultWidth, height = kDefaultHeight;
+  std::optional<CameraSpec> camera;
+  Vec3f ambient{0.0f, 0.0f, 0.0f};
+  std::vector<Material> materials;
+  PrimTables tables;
+  std::vector<PrimRef> lights;  // every primitive whose material emits
+
+  template <class Kind>
+  typename Kind::Table& table() {
+    return std::get<kind_index<Kind>()>(tables);
+  }
+  template <class Kind>
+  const typename Kind::Table& table() const {
+    return std::get<kind_index<Kind>()>(tables);
+  }
+  std::size_t primitive_count() const;
+  uint32_t material_of(PrimRef ref) const;
+
+  // Validates one line and applies it: a setting, a material, or rows appended to a table.
+  // Problems go to state.diagnostics; returns false if the line was rejected.
+  bool command(const Line& line, ParseState& state);
+};
+
+}  // namespace raylane

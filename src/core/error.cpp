@@ -1,0 +1,28 @@
+#include "raylane/core/error.h"
+
+#include <algorithm>
+
+namespace raylane {
+
+std::string to_string(const FileLoc& loc) {
+  std::string s = loc.file;
+  if (loc.line > 0) s.append(":").append(std::to_string(loc.line));
+  if (loc.line > 0 && loc.col > 0) s.append(":").append(std::to_string(loc.col));
+  return s;
+}
+
+std::string to_string(const Diagnostic& d) {
+  std::string s = to_string(d.loc);
+  s.append(": ");
+  if (d.severity == Severity::kWarning) s.append("warning: ");
+  return s.append(d.message);
+}
+
+int Diagnostics::error_count() const {
+  return int(std::count_if(items.begin(), items.end(),
+                           [](const Diagnostic& d) { return d.severity == Severity::kError; }));
+}
+
+int Diagnostics::warning_count() const { return int(items.size()) - error_count(); }
+
+}  // namespace raylane

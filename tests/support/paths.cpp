@@ -1,0 +1,45 @@
+#include "support/paths.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <unistd.h>
+#include <filesystem>
+#include <vector>
+
+namespace raylane::testing {
+
+namespace fs = std::filesystem;
+
+std::string source_path(const std::string& relative) {
+  return std::string(RAYLANE_SOURCE_DIR) + "/" + relative;
+}
+
+std::string cli_path() { return RAYLANE_CLI_PATH; }
+
+namespace {
+struct TempDirs {
+  std::vector<fs::path> dirs;
+  ~TempDirs() {
+    std::error_code ec;
+    for (auto& d : dirs) fs::remove_all(d, ec);
+  }
+};
+}  // namespace
+
+std::string temp_dir() {
+  static TempDirs all;
+  static std::atomic<int> counter{0};
+  std::string name = "raylane-test-";
+  if (auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    name += std::string(info->test_suite_name()) + "-" + info->name() + "-";
+  name += std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  all.dirs.push_back(dir);
+  return dir.string();
+}
+
+}  // namespace raylane::testing
