@@ -17,8 +17,8 @@ namespace raylane {
 
 struct CameraSpec {
   Vec3d eye;
-  double ry = 1.0;   // tan(half the vertical field of view)
-  Mat3d rotation;    // right = R·x, up = R·y, forward = R·(−z)
+  double ry = 1.0;  // tan(half the vertical field of view)
+  Mat3d rotation;   // right = R·x, up = R·y, forward = R·(−z)
 };
 
 struct Token {
@@ -29,7 +29,7 @@ struct Token {
 // One non-blank, non-comment line of a scene file, split into tokens.
 struct Line {
   std::vector<Token> tokens;
-  FileLoc loc;  // file and line; col = 0
+  FileLoc loc;                          // file and line; col = 0
   FileLoc at(std::size_t token) const;  // the location of a token (or of the line's end)
 };
 

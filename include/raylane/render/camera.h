@@ -1,0 +1,29 @@
+// The pinhole camera of the course (spec/scene-language.md, "Camera and image orientation").
+#pragma once
+
+#include <cstdint>
+
+#include "raylane/core/ray.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane {
+
+struct Camera {
+  Vec3d eye;
+  Vec3d right, up, forward;  // R·x, R·y, R·(−z)
+  double rx = 1, ry = 1;     // tan of the half fields of view; rx = ry·W/H
+  uint32_t width = 1, height = 1;
+
+  // Contract: scene.camera is set (the parser guarantees it for a scene without errors).
+  static Camera from_scene(const Scene& scene);
+
+  // The unit-direction ray through the point (x, y) of the pixel grid: x counts right from
+  // the left edge, y counts UP from the bottom edge; (i + 0.5, j + 0.5) is a pixel centre.
+  Rayd ray_through(double x, double y) const {
+    double dx = 2 * x / width - 1, dy = 2 * y / height - 1;
+    Vec3d d = normalize(right * (dx * rx) + up * (dy * ry) + forward);
+    return {eye, d};
+  }
+};
+
+}  // namespace raylane

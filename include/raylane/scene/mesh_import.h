@@ -1,0 +1,37 @@
+// Mesh files through Assimp: triangulated, smooth normals where missing, placed by
+// p → t + s·R·p (normals → R·n, renormalised).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "raylane/core/error.h"
+#include "raylane/core/mat3.h"
+#include "raylane/prims/triangle.h"
+#include "raylane/scene/parse_state.h"
+
+namespace raylane {
+
+struct MeshPlacement {
+  Vec3d translation;
+  double scale = 1.0;
+  Mat3d rotation;
+};
+
+struct MeshImportStats {
+  uint32_t triangles = 0;           // rows appended
+  uint32_t degenerate_dropped = 0;  // zero-area triangles (after placement, in float) skipped
+};
+
+inline constexpr uint64_t kMaxMeshTriangles = uint64_t(1) << 28;
+
+// Imports the mesh file at `path` and appends its triangles to `table` with `material`.
+// Nothing is appended on failure.
+Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlacement& placement,
+                                         uint32_t material, TriangleTable& table);
+// The same for a file held in memory; the extension of `name` tells the format.
+Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::string& name,
+                                           const MeshPlacement& placement, uint32_t material,
+                                           TriangleTable& table);
+
+}  // namespace raylane

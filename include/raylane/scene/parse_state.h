@@ -1,0 +1,48 @@
+// What Scene::command needs besides the line: options, where diagnostics go, and the state
+// that carries from line to line (the current material, settings already seen).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "raylane/core/error.h"
+
+namespace raylane {
+
+struct Line;
+struct Token;
+
+// Files that exist only in memory, by name (the built-in scene's meshes).
+using MemoryFiles = std::vector<std::pair<std::string, std::string>>;
+
+struct ParseOptions {
+  bool lenient = false;  // errors on a line become warnings and the line is skipped
+  const MemoryFiles* memory_files = nullptr;
+};
+
+struct ParseState {
+  ParseOptions options;
+  Diagnostics diagnostics;
+  std::string scene_dir;  // mesh paths are looked up here first, then in the working dir
+  std::optional<uint32_t> current_material;
+  int screen_line = 0, camera_line = 0, ambient_line = 0;  // 0 = not seen yet
+
+  // Reports a problem with the line: an error, or a warning under --lenient.
+  void problem(const FileLoc& loc, std::string message);
+};
+
+// Reads one token as a number: a complete decimal float that is finite and fits in a float
+// (spec/scene-language.md, "Lines and tokens"). Under --lenient a numeric prefix is taken
+// with a warning. Reports and returns nullopt otherwise.
+std::optional<double> parse_number(const Line& line, std::size_t token, ParseState& state);
+
+// Reads tokens [first, first + count) as numbers, after checking that the line holds exactly
+// that many more tokens (`exact`) or at least that many. Reports the first problem.
+std::optional<std::vector<double>> parse_numbers(const Line& line, std::size_t first,
+                                                 std::size_t count, bool exact, ParseState& state);
+
+}  // namespace raylane

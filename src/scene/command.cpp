@@ -1,0 +1,198 @@
+// Scene::command: one parsed line → a setting, a material, or rows in a table
+// (spec/scene-language.md, "Commands").
+#include <cmath>
+
+#include "raylane/core/strings.h"
+
+#include "raylane/scene/mesh_import.h"
+#include "raylane/scene/orientation.h"
+#include "raylane/scene/parse_state.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane {
+
+namespace {
+
+bool all_non_negative(const std::vector<double>& v, std::size_t first, std::size_t count) {
+  for (std::size_t i = first; i < first + count; ++i)
+    if (v[i] < 0) return false;
+  return true;
+}
+
+Vec3f vec3f(const std::vector<double>& v, std::size_t i) {
+  return {float(v[i]), float(v[i + 1]), float(v[i + 2])};
+}
+
+// "Several screen/camera/ambient lines: the last one wins, with a warning."
+void note_repeat(int& seen_line, const Line& line, ParseState& state) {
+  if (seen_line != 0)
+    state.diagnostics.warning(line.at(0), cat(line.tokens[0].text, " given again (first on line ",
+                                              seen_line, "): the last one wins"));
+  seen_line = line.loc.line;
+}
+
+bool screen_command(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, 2, true, state);
+  if (!v) return false;
+  for (int i = 0; i < 2; ++i) {
+    double x = (*v)[i];
+    if (x < 1 || x != std::floor(x) || x > double(Scene::kMaxPixels)) {
+      state.problem(line.at(1 + i), "screen size must be a whole number >= 1");
+      return false;
+    }
+  }
+  if ((*v)[0] * (*v)[1] > double(Scene::kMaxPixels)) {
+    state.problem(line.at(1), "screen has more than 2^28 pixels");
+    return false;
+  }
+  note_repeat(state.screen_line, line, state);
+  s.width = uint32_t((*v)[0]);
+  s.height = uint32_t((*v)[1]);
+  return true;
+}
+
+bool camera_command(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, 4, false, state);
+  if (!v) return false;
+  if (!((*v)[3] > 0)) {
+    state.problem(line.at(4), "camera ry must be > 0");
+    return false;
+  }
+  auto rot = parse_orientation(line, 5, state);
+  if (!rot) return false;
+  note_repeat(state.camera_line, line, state);
+  s.camera = CameraSpec{{(*v)[0], (*v)[1], (*v)[2]}, (*v)[3], *rot};
+  return true;
+}
+
+bool ambient_command(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, 3, true, state);
+  if (!v) return false;
+  note_repeat(state.ambient_line, line, state);
+  s.ambient = vec3f(*v, 0);
+  return true;
+}
+
+uint32_t add_material(Scene& s, const Material& m, ParseState& state) {
+  s.materials.push_back(m);
+  state.current_material = uint32_t(s.materials.size() - 1);
+  return *state.current_material;
+}
+
+bool brdf_command(Scene& s, const Line& line, ParseState& state) {
+  std::size_t found = line.tokens.size() - 1;
+  if (found != 7 && found != 11) {
+    state.problem(line.at(0), cat("brdf takes 7 or 11 numbers, found ", found));
+    return false;
+  }
+  auto v = parse_numbers(line, 1, found, true, state);
+  if (!v) return false;
+  if (!all_non_negative(*v, 0, 6) || (found == 11 && !all_non_negative(*v, 7, 3))) {
+    state.problem(line.at(1), "brdf colours (Kd, Ks, Kt) must be >= 0");
+    return false;
+  }
+  if ((*v)[6] < 0) {
+    state.problem(line.at(7), "brdf alpha must be >= 0");
+    return false;
+  }
+  Material m;
+  m.kd = vec3f(*v, 0);
+  m.ks = vec3f(*v, 3);
+  m.alpha = float((*v)[6]);
+  if (found == 11) {
+    if (!((*v)[10] > 0)) {
+      state.problem(line.at(11), "brdf ior must be > 0");
+      return false;
+    }
+    m.kt = vec3f(*v, 7);
+    m.ior = float((*v)[10]);
+  }
+  add_material(s, m, state);
+  return true;
+}
+
+bool light_command(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, 3, true, state);
+  if (!v) return false;
+  if (!all_non_negative(*v, 0, 3)) {
+    state.problem(line.at(1), "light radiance must be >= 0");
+    return false;
+  }
+  Material m;
+  m.kd = {0, 0, 0};
+  m.emission = vec3f(*v, 0);
+  m.is_light = true;
+  add_material(s, m, state);
+  return true;
+}
+
+// The current material; a shape before any material line gets the default grey one.
+uint32_t shape_material(Scene& s, const Line& line, ParseState& state) {
+  if (state.current_material) return *state.current_material;
+  state.diagnostics.warning(line.at(0), cat(line.tokens[0].text,
+                                            " before any material line: using grey diffuse "
+                                            "(Kd 0.5, no specular)"));
+  return add_material(s, Material::default_grey(), state);
+}
+
+template <class Kind>
+bool primitive(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, Kind::param_count, true, state);
+  if (!v) return false;
+  auto& table = s.table<Kind>();
+  if (table.size() >= PrimRef::kMaxRows) {
+    state.problem(line.at(0), cat("too many ", Kind::keyword, "s"));
+    return false;
+  }
+  // Checked before the material, so a rejected line leaves no default material behind.
+  typename Kind::Table scratch;
+  auto params = std::span<const double, Kind::param_count>(v->data(), Kind::param_count);
+  if (auto err = scratch.append(params, 0)) {
+    state.problem(line.at(1 + std::max(err->param, 0)), err->message);
+    return false;
+  }
+  uint32_t mat = shape_material(s, line, state);
+  table.append(params, mat);
+  if (s.materials[mat].is_light) s.lights.push_back(PrimRef(Kind::tag, uint32_t(table.size() - 1)));
+  return true;
+}
+
+}  // namespace
+
+bool mesh_command(Scene& s, const Line& line, ParseState& state);
+
+bool Scene::command(const Line& line, ParseState& state) {
+  std::string_view word = line.tokens[0].text;
+  if (word == "screen") return screen_command(*this, line, state);
+  if (word == "camera") return camera_command(*this, line, state);
+  if (word == "ambient") return ambient_command(*this, line, state);
+  if (word == "brdf") return brdf_command(*this, line, state);
+  if (word == "light") return light_command(*this, line, state);
+  if (word == "mesh") return mesh_command(*this, line, state);
+  bool handled = false, accepted = false;
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    if constexpr (Kind::param_count > 0) {
+      if (!handled && word == Kind::keyword) {
+        handled = true;
+        accepted = primitive<Kind>(*this, line, state);
+      }
+    }
+  });
+  if (!handled) state.problem(line.at(0), cat("unknown command ", in_quotes(word)));
+  return accepted;
+}
+
+std::size_t Scene::primitive_count() const {
+  std::size_t n = 0;
+  std::apply([&](const auto&... t) { n = (t.size() + ...); }, tables);
+  return n;
+}
+
+uint32_t Scene::material_of(PrimRef ref) const {
+  return dispatch(ref.tag(), [&](auto kind) -> uint32_t {
+    return table<decltype(kind)>().material[ref.row()];
+  });
+}
+
+}  // namespace raylane

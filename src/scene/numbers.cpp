@@ -1,0 +1,83 @@
+// Strict number reading for scene lines (spec/scene-language.md, "Lines and tokens").
+#include <cfloat>
+#include <charconv>
+#include <cmath>
+
+#include "raylane/core/strings.h"
+#include "raylane/scene/parse_state.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane {
+
+namespace {
+
+// from_chars refuses a leading '+', which people do write.
+std::from_chars_result read_double(std::string_view s, double& v) {
+  const char* b = s.data();
+  const char* e = b + s.size();
+  if (b != e && *b == '+' && b + 1 != e && b[1] != '-' && b[1] != '+') ++b;
+  return std::from_chars(b, e, v, std::chars_format::general);
+}
+
+}  // namespace
+
+void ParseState::problem(const FileLoc& loc, std::string message) {
+  if (options.lenient) {
+    diagnostics.warning(loc, cat(message, " (line skipped)"));
+  } else {
+    diagnostics.error(loc, std::move(message));
+  }
+}
+
+std::optional<double> parse_number(const Line& line, std::size_t token, ParseState& state) {
+  std::string_view text = line.tokens[token].text;
+  FileLoc loc = line.at(token);
+  double v = 0;
+  auto [end, ec] = read_double(text, v);
+  bool complete = ec == std::errc() && end == text.data() + text.size();
+  if (ec == std::errc::result_out_of_range) {
+    state.problem(loc, cat("number ", in_quotes(text), " is out of range"));
+    return std::nullopt;
+  }
+  if (ec != std::errc()) {
+    state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+    return std::nullopt;
+  }
+  if (!std::isfinite(v)) {
+    state.problem(loc, cat("expected a finite number, found ", in_quotes(text)));
+    return std::nullopt;
+  }
+  if (std::abs(v) > FLT_MAX) {
+    state.problem(loc, cat("number ", in_quotes(text), " does not fit in a float"));
+    return std::nullopt;
+  }
+  if (!complete) {
+    std::string_view prefix(text.data(), std::size_t(end - text.data()));
+    if (!state.options.lenient) {
+      state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+      return std::nullopt;
+    }
+    state.diagnostics.warning(loc, cat("took the number ", prefix, " from ", in_quotes(text)));
+  }
+  return v;
+}
+
+std::optional<std::vector<double>> parse_numbers(const Line& line, std::size_t first,
+                                                 std::size_t count, bool exact, ParseState& state) {
+  std::size_t available = line.tokens.size() - std::min(first, line.tokens.size());
+  if (available < count || (exact && available != count)) {
+    state.problem(line.at(0), cat(line.tokens[0].text, " takes ", exact ? "" : "at least ", count,
+                                  count == 1 ? " number" : " numbers", ", found ", available));
+    return std::nullopt;
+  }
+  std::vector<double> values;
+  values.reserve(count);
+  for (std::size_t i = first; i < first + count; ++i) {
+    auto v = parse_number(line, i, state);
+    if (!v) return std::nullopt;
+    values.push_back(*v);
+  }
+  return values;
+}
+
+}  // namespace raylane
