@@ -36,7 +36,7 @@ struct CylinderTable {
 
   // p = (bx, by, bz, ax, ay, az, r); |a| > 0 and r > 0 after rounding to float.
   std::optional<ParamError> append(std::span<const double, 7> p, uint32_t mat) {
-    Vec3f a(float(p[3]), float(p[4]), float(p[5]));
+    Vec3f a{float(p[3]), float(p[4]), float(p[5])};
     Vec3d ad(a);
     double len = length(ad);
     if (!(len > 0.0)) return ParamError{3, "cylinder axis must be non-zero"};
