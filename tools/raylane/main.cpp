@@ -1,1 +1,51 @@
-int main() { return 0; }
+// raylane: renders CS500 scenes. `raylane --help` lists the commands.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(raylane — a data-oriented SIMD ray tracer for CS500 scenes
+
+usage:
+  raylane render [SCENE] [options]   render SCENE (default: the built-in course test scene)
+  raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
+  raylane --help | --version
+
+render options:
+  -o, --output FILE   image to write; the extension picks the format: .hdr (Radiance RGBE),
+                      .pfm (float), .png (8-bit sRGB). Repeat to write several.
+                      Default: <scene name>.hdr in the working directory.
+  --mode MODE         normal | depth | albedo | id | lit        (default: lit)
+  --exposure E        PNG exposure in stops (pixel · 2^E)          (default: 0)
+  --threads N         worker threads, 0 = all cores                (default: 0)
+  --lenient           skip bad scene lines with a warning instead of failing
+  --quiet             print only errors and the written image paths
+
+exit status: 0 done, 1 failed while working (e.g. cannot write), 2 bad input or usage
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
+    std::fputs(kUsage, stdout);
+    return raylane::cli::kExitOk;
+  }
+  if (!args.empty() && args[0] == "--version") {
+    std::printf("raylane %s\n", RAYLANE_VERSION);
+    return raylane::cli::kExitOk;
+  }
+  if (args.empty()) return raylane::cli::render_command({});
+  std::string command = args[0];
+  std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (command == "render") return raylane::cli::render_command(rest);
+  if (command == "info") return raylane::cli::info_command(rest);
+  // `raylane scene.scn [options]` is short for `raylane render scene.scn [options]`.
+  if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
+    return raylane::cli::render_command(args);
+  return raylane::cli::usage_error("unknown command '" + command + "'");
+}

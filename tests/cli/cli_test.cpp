@@ -1,0 +1,132 @@
+// The `raylane` program as a user runs it: exit statuses, messages, files written or not.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::cli_path;
+using testing::source_path;
+using testing::temp_dir;
+
+struct Run {
+  int status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+// Runs the program with `args` (shell words) in `dir`.
+Run run(const std::string& args, const std::string& dir) {
+  std::string cmd = "cd '" + dir + "' && '" + cli_path() + "' " + args + " 2>&1";
+  Run r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Cli, HelpAndVersionExitZero) {
+  std::string dir = temp_dir();
+  Run help = run("--help", dir);
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("raylane render [SCENE]"), std::string::npos);
+  Run version = run("--version", dir);
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.out.rfind("raylane ", 0), 0u);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  std::string dir = temp_dir();
+  EXPECT_EQ(run("render --bogus", dir).status, 2);
+  EXPECT_EQ(run("frobnicate", dir).status, 2);
+  EXPECT_EQ(run("render --mode sideways", dir).status, 2);
+  EXPECT_EQ(run("render --threads -3", dir).status, 2);
+  EXPECT_EQ(run("render -o out.jpg", dir).status, 2);
+  Run r = run("render --threads", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("option --threads needs a value"), std::string::npos);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Cli, RendersTheBuiltInSceneByDefault) {
+  std::string dir = temp_dir();
+  Run r = run("render --mode id --quiet", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "testscene.hdr\n");
+  std::string hdr = read_file(dir + "/testscene.hdr");
+  EXPECT_EQ(hdr.rfind("#?RADIANCE\n", 0), 0u);
+  EXPECT_NE(hdr.find("-Y 300 +X 400\n"), std::string::npos);
+}
+
+TEST(Cli, BadSceneReportsEveryErrorAndWritesNothing) {
+  std::string dir = temp_dir();
+  fs::copy(source_path("scenes/testscene-damaged.scn"), dir + "/damaged.scn");
+  fs::copy(source_path("scenes/letterX.ply"), dir + "/letterX.ply");
+  fs::copy(source_path("scenes/letterY.ply"), dir + "/letterY.ply");
+  Run r = run("render damaged.scn -o out.hdr", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("damaged.scn:6:1: brdf takes 7 or 11 numbers, found 10"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("damaged.scn:31:1: cylinder takes 7 numbers, found 6"), std::string::npos);
+  EXPECT_NE(r.out.find("12 errors in the scene"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir + "/out.hdr"));
+  // --lenient renders it, reporting the skipped lines as warnings.
+  Run lenient = run("render damaged.scn --lenient --mode albedo -o out.hdr", dir);
+  EXPECT_EQ(lenient.status, 0) << lenient.out;
+  EXPECT_NE(lenient.out.find("warning: brdf takes 7 or 11 numbers, found 10 (line skipped)"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/out.hdr"));
+}
+
+TEST(Cli, UnwritableOutputFailsBeforeRenderingAndKeepsExistingFiles) {
+  std::string dir = temp_dir();
+  Run r = run("render --mode id -o no/such/dir/out.hdr", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("cannot write no/such/dir/out.hdr"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("rendered"), std::string::npos);  // failed before rendering
+  // An output that is a directory: an error, and the directory is untouched.
+  fs::create_directory(dir + "/taken.hdr");
+  EXPECT_EQ(run("render --mode id -o taken.hdr", dir).status, 2);
+  EXPECT_TRUE(fs::is_directory(dir + "/taken.hdr"));
+}
+
+TEST(Cli, WritesEveryRequestedFormat) {
+  std::string dir = temp_dir();
+  Run r = run("render " + source_path("scenes/sphere.scn") +
+                  " --mode normal -o a.hdr -o a.png -o a.pfm --quiet",
+              dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "a.hdr\na.png\na.pfm\n");
+  EXPECT_EQ(read_file(dir + "/a.png").substr(1, 3), "PNG");
+  EXPECT_EQ(read_file(dir + "/a.pfm").substr(0, 3), "PF\n");
+  for (const auto& e : fs::directory_iterator(dir))  // no temporary files left behind
+    EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+}
+
+TEST(Cli, InfoDescribesTheModel) {
+  std::string dir = temp_dir();
+  Run r = run("info " + source_path("scenes/testscene.scn"), dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("triangles"), std::string::npos);
+  EXPECT_NE(r.out.find("lights: 1 emitting primitives"), std::string::npos);
+  EXPECT_NE(r.out.find("screen: 400 x 300"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace raylane

@@ -1,0 +1,92 @@
+#include "args.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "raylane/core/strings.h"
+
+namespace raylane::cli {
+
+namespace {
+
+const OptionSpec* find_long(const std::vector<OptionSpec>& specs, const std::string& name) {
+  for (const auto& s : specs)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+const OptionSpec* find_short(const std::vector<OptionSpec>& specs, char c) {
+  for (const auto& s : specs)
+    if (s.short_name != 0 && s.short_name == c) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<std::string> ParsedArgs::last(const std::string& name) const {
+  auto it = values.find(name);
+  if (it == values.end() || it->second.empty()) return std::nullopt;
+  return it->second.back();
+}
+
+Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
+                              const std::vector<OptionSpec>& specs) {
+  ParsedArgs out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.size() < 2 || a[0] != '-' || a == "--") {
+      out.positional.push_back(a);
+      continue;
+    }
+    const OptionSpec* spec = nullptr;
+    std::optional<std::string> inline_value;
+    if (a[1] == '-') {
+      std::string name = a.substr(2);
+      if (auto eq = name.find('='); eq != std::string::npos) {
+        inline_value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+      }
+      spec = find_long(specs, name);
+    } else if (a.size() == 2) {
+      spec = find_short(specs, a[1]);
+    }
+    if (!spec) return Error{cat("unknown option ", in_quotes(a))};
+    std::string value;
+    if (spec->takes_value) {
+      if (inline_value) {
+        value = *inline_value;
+      } else if (i + 1 < args.size()) {
+        value = args[++i];
+      } else {
+        return Error{cat("option --", spec->name, " needs a value")};
+      }
+    } else if (inline_value) {
+      return Error{cat("option --", spec->name, " takes no value")};
+    }
+    auto& slot = out.values[spec->name];
+    if (!spec->repeatable && !slot.empty())
+      return Error{cat("option --", spec->name, " given more than once")};
+    slot.push_back(value);
+  }
+  return out;
+}
+
+Result<long> parse_int_option(const std::string& name, const std::string& value, long lo,
+                              long hi) {
+  long v = 0;
+  auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+  if (ec != std::errc() || end != value.data() + value.size() || v < lo || v > hi)
+    return Error{cat("--", name, " takes a whole number from ", lo, " to ", hi, ", found ",
+                     in_quotes(value))};
+  return v;
+}
+
+Result<double> parse_double_option(const std::string& name, const std::string& value) {
+  double v = 0;
+  auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+  if (ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v))
+    return Error{cat("--", name, " takes a number, found ", in_quotes(value))};
+  return v;
+}
+
+}  // namespace raylane::cli

@@ -1,0 +1,27 @@
+// The subcommands of the `raylane` program. Each returns the process exit status:
+// 0 success, 1 a failure while working (e.g. the image could not be written), 2 bad input
+// or usage.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "raylane/scene/parser.h"
+
+namespace raylane::cli {
+
+inline constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
+
+int render_command(const std::vector<std::string>& args);
+int info_command(const std::vector<std::string>& args);
+
+// Loads SCENE (or the built-in default when none is given), printing every diagnostic to
+// stderr. Returns nothing when the scene has errors.
+std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
+                                        bool quiet);
+
+// "raylane: message" on stderr, plus a hint to --help for usage errors.
+int usage_error(const std::string& message);
+
+}  // namespace raylane::cli

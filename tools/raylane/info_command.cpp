@@ -1,0 +1,67 @@
+// `raylane info`: what was modelled — rows and bytes per table, materials, lights, camera.
+#include <cstdio>
+
+#include "args.h"
+#include "commands.h"
+#include "raylane/prims/table_util.h"
+
+namespace raylane::cli {
+
+namespace {
+
+const char* kind_name(PrimTag tag) {
+  static const char* const kNames[] = {"spheres", "boxes", "cylinders", "triangles"};
+  return kNames[int(tag)];
+}
+
+void print_tables(Scene& s) {
+  std::printf("tables (rows, bytes):\n");
+  std::size_t total = 0;
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    auto& t = s.table<Kind>();
+    std::size_t bytes = table_bytes(t);
+    total += bytes;
+    if (t.size() > 0)
+      std::printf("  %-10s %10zu rows %12zu bytes\n", kind_name(Kind::tag), t.size(), bytes);
+  });
+  std::printf("  %-10s %10zu rows %12zu bytes\n", "total", s.primitive_count(), total);
+}
+
+void print_materials(const Scene& s) {
+  std::printf("materials: %zu\n", s.materials.size());
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    const Material& m = s.materials[i];
+    if (m.is_light) {
+      std::printf("  %2zu light  Le (%g %g %g)\n", i, m.emission.x, m.emission.y, m.emission.z);
+    } else {
+      std::printf("  %2zu brdf   Kd (%g %g %g) Ks (%g %g %g) alpha %g Kt (%g %g %g) ior %g\n", i,
+                  m.kd.x, m.kd.y, m.kd.z, m.ks.x, m.ks.y, m.ks.z, m.alpha, m.kt.x, m.kt.y,
+                  m.kt.z, m.ior);
+    }
+  }
+}
+
+}  // namespace
+
+int info_command(const std::vector<std::string>& args) {
+  auto parsed = parse_args(args, {{"lenient", 0, false, false}});
+  if (!parsed) return usage_error(parsed.error());
+  if (parsed->positional.size() > 1) return usage_error("info takes at most one scene file");
+  std::optional<std::string> path;
+  if (!parsed->positional.empty()) path = parsed->positional[0];
+  auto scene = load_scene_for_cli(path, parsed->has("lenient"), false);
+  if (!scene) return kExitUsage;
+  Scene& s = *scene;
+  std::printf("scene: %s\n", path ? path->c_str() : kBuiltinSceneName);
+  std::printf("screen: %u x %u\n", s.width, s.height);
+  const CameraSpec& c = *s.camera;
+  std::printf("camera: eye (%g %g %g), ry %g\n", c.eye.x, c.eye.y, c.eye.z, c.ry);
+  std::printf("ambient: (%g %g %g)\n", s.ambient.x, s.ambient.y, s.ambient.z);
+  print_tables(s);
+  print_materials(s);
+  std::printf("lights: %zu emitting primitives\n", s.lights.size());
+  return kExitOk;
+}
+
+}  // namespace raylane::cli

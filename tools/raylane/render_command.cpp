@@ -1,0 +1,119 @@
+// `raylane render`: parse options, load the scene, check the outputs, render, write.
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "args.h"
+#include "commands.h"
+#include "raylane/core/strings.h"
+#include "raylane/image/write_image.h"
+#include "raylane/render/raycast.h"
+
+namespace raylane::cli {
+
+namespace {
+
+struct RenderRequest {
+  std::optional<std::string> scene_path;
+  std::vector<std::string> outputs;
+  RaycastMode mode = RaycastMode::kLit;
+  double exposure = 0;
+  int threads = 0;
+  bool lenient = false, quiet = false;
+};
+
+const std::vector<OptionSpec> kRenderOptions = {
+    {"output", 'o', true, true}, {"mode", 0, true, false},    {"exposure", 0, true, false},
+    {"threads", 0, true, false}, {"lenient", 0, false, false}, {"quiet", 'q', false, false},
+};
+
+std::string default_output(const std::optional<std::string>& scene_path) {
+  std::string stem = scene_path ? std::filesystem::path(*scene_path).stem().string() : "testscene";
+  return stem + ".hdr";
+}
+
+Result<RenderRequest> read_request(const std::vector<std::string>& args) {
+  auto parsed = parse_args(args, kRenderOptions);
+  if (!parsed) return Error{parsed.error()};
+  RenderRequest r;
+  if (parsed->positional.size() > 1) return Error{"render takes at most one scene file"};
+  if (!parsed->positional.empty()) r.scene_path = parsed->positional[0];
+  if (auto m = parsed->last("mode")) {
+    auto mode = raycast_mode_from_name(*m);
+    if (!mode) return Error{cat("unknown --mode ", in_quotes(*m), " (normal, depth, albedo, id, lit)")};
+    r.mode = *mode;
+  }
+  if (auto e = parsed->last("exposure")) {
+    auto v = parse_double_option("exposure", *e);
+    if (!v) return Error{v.error()};
+    r.exposure = *v;
+  }
+  if (auto t = parsed->last("threads")) {
+    auto v = parse_int_option("threads", *t, 0, 4096);
+    if (!v) return Error{v.error()};
+    r.threads = int(*v);
+  }
+  r.lenient = parsed->has("lenient");
+  r.quiet = parsed->has("quiet");
+  if (parsed->has("output")) r.outputs = parsed->values.at("output");
+  if (r.outputs.empty()) r.outputs.push_back(default_output(r.scene_path));
+  for (const auto& out : r.outputs)
+    if (auto f = format_from_path(out); !f) return Error{f.error()};
+  return r;
+}
+
+// Every output is checked before rendering starts, so a long render is never lost to a typo.
+bool outputs_writable(const RenderRequest& r) {
+  bool ok = true;
+  for (const auto& out : r.outputs) {
+    if (Status s = check_writable(out); !s) {
+      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+}  // namespace
+
+int render_command(const std::vector<std::string>& args) {
+  auto request = read_request(args);
+  if (!request) return usage_error(request.error());
+  const RenderRequest& r = *request;
+  auto scene = load_scene_for_cli(r.scene_path, r.lenient, r.quiet);
+  if (!scene) return kExitUsage;
+  if (!outputs_writable(r)) return kExitUsage;
+  if (r.threads > 0) omp_set_num_threads(r.threads);
+
+  auto start = std::chrono::steady_clock::now();
+  RaycastStats stats;
+  Image image = render_raycast(*scene, ReferenceTracer{*scene}, r.mode, &stats);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  WriteOptions wopts;
+  wopts.exposure = r.exposure;
+  wopts.metadata.push_back(cat("RAYLANE_MODE=", raycast_mode_name(r.mode)));
+  int status = kExitOk;
+  for (const auto& out : r.outputs) {
+    if (Status s = write_image(out, image, wopts); !s) {
+      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
+      status = kExitFailure;
+      continue;
+    }
+    std::printf("%s\n", out.c_str());
+  }
+  if (!r.quiet) {
+    uint64_t rays = stats.camera_rays + stats.shadow_rays;
+    std::fprintf(stderr,
+                 "rendered %ux%u (%s) in %.2f s: %llu rays (%llu camera, %llu shadow), %.2f "
+                 "Mrays/s, %d threads\n",
+                 scene->width, scene->height, std::string(raycast_mode_name(r.mode)).c_str(),
+                 seconds, (unsigned long long)rays, (unsigned long long)stats.camera_rays,
+                 (unsigned long long)stats.shadow_rays, rays / seconds * 1e-6, omp_get_max_threads());
+  }
+  return status;
+}
+
+}  // namespace raylane::cli

@@ -1,0 +1,29 @@
+#include <cstdio>
+
+#include "commands.h"
+
+namespace raylane::cli {
+
+int usage_error(const std::string& message) {
+  std::fprintf(stderr, "raylane: %s\n(see raylane --help)\n", message.c_str());
+  return kExitUsage;
+}
+
+std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
+                                        bool quiet) {
+  ParseOptions opts;
+  opts.lenient = lenient;
+  ParsedScene parsed = path ? load_scene_file(*path, opts) : load_builtin_scene(opts);
+  for (const Diagnostic& d : parsed.diagnostics.items)
+    if (d.severity == Severity::kError || !quiet)
+      std::fprintf(stderr, "%s\n", to_string(d).c_str());
+  if (!parsed.ok()) {
+    std::fprintf(stderr, "raylane: %d error%s in the scene; nothing rendered\n",
+                 parsed.diagnostics.error_count(),
+                 parsed.diagnostics.error_count() == 1 ? "" : "s");
+    return std::nullopt;
+  }
+  return std::move(parsed.scene);
+}
+
+}  // namespace raylane::cli
