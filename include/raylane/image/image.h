@@ -1,0 +1,33 @@
+// An RGB float image. Row 0 is the TOP row of the picture (as image files store it); the
+// renderer, whose pixel grid counts y up from the bottom, flips when it stores.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raylane/core/vec3.h"
+
+namespace raylane {
+
+struct Image {
+  uint32_t width = 0, height = 0;
+  std::vector<float> rgb;  // 3 floats per pixel, row-major, top row first
+
+  Image() = default;
+  Image(uint32_t w, uint32_t h) : width(w), height(h), rgb(std::size_t(w) * h * 3, 0.0f) {}
+
+  std::size_t index(uint32_t x, uint32_t y) const { return (std::size_t(y) * width + x) * 3; }
+  Vec3f at(uint32_t x, uint32_t y) const {
+    std::size_t i = index(x, y);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+  void set(uint32_t x, uint32_t y, const Vec3f& c) {
+    std::size_t i = index(x, y);
+    rgb[i] = c.x, rgb[i + 1] = c.y, rgb[i + 2] = c.z;
+  }
+};
+
+// The largest image any reader accepts or the parser allows: 2^28 pixels.
+inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
+}  // namespace raylane

@@ -1,0 +1,21 @@
+// Differences between images, for tests, convergence reports and `raylane diff`.
+#pragma once
+
+#include "raylane/core/error.h"
+#include "raylane/image/image.h"
+
+namespace raylane {
+
+struct ImageDiff {
+  double rmse = 0;      // sqrt(mean over channels of (a − r)²)
+  double rel_mse = 0;   // mean over channels of (a − r)² / (r² + 1e-2)
+  double mean_abs = 0;  // mean over channels of |a − r|
+  double max_abs = 0;
+};
+
+// `ref` is the reference; the sizes must match. The 1e-2 in relMSE keeps dark pixels from
+// dominating (the same guard as pbrt's imgtool MRSE).
+Result<ImageDiff> compare(const Image& a, const Image& ref);
+Vec3d mean(const Image& image);
+
+}  // namespace raylane

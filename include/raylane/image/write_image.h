@@ -1,0 +1,31 @@
+// Writing and reading image files by extension, atomically: a file is written to a temporary
+// in the same directory and renamed into place, so a failed run never leaves a half-written
+// or clobbered file (spec/scene-language.md, "Output").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "raylane/core/error.h"
+#include "raylane/image/image.h"
+
+namespace raylane {
+
+enum class ImageFormat { kHdr, kPfm, kPng };
+
+// .hdr, .pfm or .png, case-insensitive.
+Result<ImageFormat> format_from_path(const std::string& path);
+
+// Can a file be created at `path`? The folder must exist and accept a new file, and `path`
+// must not be a directory. Call it before a long render.
+Status check_writable(const std::string& path);
+
+struct WriteOptions {
+  double exposure = 0;                // PNG: stops
+  std::vector<std::string> metadata;  // HDR: extra KEY=value header lines
+};
+
+Status write_image(const std::string& path, const Image& image, const WriteOptions& options = {});
+Result<Image> read_image(const std::string& path);  // .hdr and .pfm
+
+}  // namespace raylane

@@ -1,0 +1,34 @@
+#include "raylane/image/metrics.h"
+
+#include <cmath>
+
+namespace raylane {
+
+Result<ImageDiff> compare(const Image& a, const Image& ref) {
+  if (a.width != ref.width || a.height != ref.height) return Error{"images differ in size"};
+  ImageDiff d;
+  const std::size_t n = a.rgb.size();
+  if (n == 0) return d;
+  double se = 0, rel = 0, abs_sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double diff = double(a.rgb[i]) - ref.rgb[i];
+    se += diff * diff;
+    rel += diff * diff / (double(ref.rgb[i]) * ref.rgb[i] + 1e-2);
+    abs_sum += std::abs(diff);
+    d.max_abs = std::max(d.max_abs, std::abs(diff));
+  }
+  d.rmse = std::sqrt(se / n);
+  d.rel_mse = rel / n;
+  d.mean_abs = abs_sum / n;
+  return d;
+}
+
+Vec3d mean(const Image& image) {
+  Vec3d sum;
+  std::size_t pixels = std::size_t(image.width) * image.height;
+  for (std::size_t i = 0; i < pixels; ++i)
+    sum += Vec3d(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]);
+  return pixels ? sum / double(pixels) : sum;
+}
+
+}  // namespace raylane
