@@ -17,20 +17,21 @@ using testing::cli_path;
 using testing::source_path;
 using testing::temp_dir;
 
-struct Run {
+struct CliRun {
   int status = -1;
   std::string out;  // stdout and stderr together
 };
 
 // Runs the program with `args` (shell words) in `dir`.
-Run run(const std::string& args, const std::string& dir) {
+CliRun run(const std::string& args, const std::string& dir) {
   std::string cmd = "cd '" + dir + "' && '" + cli_path() + "' " + args + " 2>&1";
-  Run r;
+  CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
   std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
+    r.out.append(buf.data(), n);
   int st = pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
@@ -43,10 +44,10 @@ std::string read_file(const std::string& path) {
 
 TEST(Cli, HelpAndVersionExitZero) {
   std::string dir = temp_dir();
-  Run help = run("--help", dir);
+  CliRun help = run("--help", dir);
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("raylane render [SCENE]"), std::string::npos);
-  Run version = run("--version", dir);
+  CliRun version = run("--version", dir);
   EXPECT_EQ(version.status, 0);
   EXPECT_EQ(version.out.rfind("raylane ", 0), 0u);
 }
@@ -58,7 +59,7 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run("render --mode sideways", dir).status, 2);
   EXPECT_EQ(run("render --threads -3", dir).status, 2);
   EXPECT_EQ(run("render -o out.jpg", dir).status, 2);
-  Run r = run("render --threads", dir);
+  CliRun r = run("render --threads", dir);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("option --threads needs a value"), std::string::npos);
   EXPECT_TRUE(fs::is_empty(dir));
@@ -66,7 +67,7 @@ TEST(Cli, UsageErrorsExitTwo) {
 
 TEST(Cli, RendersTheBuiltInSceneByDefault) {
   std::string dir = temp_dir();
-  Run r = run("render --mode id --quiet", dir);
+  CliRun r = run("render --mode id --quiet", dir);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "testscene.hdr\n");
   std::string hdr = read_file(dir + "/testscene.hdr");
@@ -79,7 +80,7 @@ TEST(Cli, BadSceneReportsEveryErrorAndWritesNothing) {
   fs::copy(source_path("scenes/testscene-damaged.scn"), dir + "/damaged.scn");
   fs::copy(source_path("scenes/letterX.ply"), dir + "/letterX.ply");
   fs::copy(source_path("scenes/letterY.ply"), dir + "/letterY.ply");
-  Run r = run("render damaged.scn -o out.hdr", dir);
+  CliRun r = run("render damaged.scn -o out.hdr", dir);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("damaged.scn:6:1: brdf takes 7 or 11 numbers, found 10"), std::string::npos)
       << r.out;
@@ -87,7 +88,7 @@ TEST(Cli, BadSceneReportsEveryErrorAndWritesNothing) {
   EXPECT_NE(r.out.find("12 errors in the scene"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir + "/out.hdr"));
   // --lenient renders it, reporting the skipped lines as warnings.
-  Run lenient = run("render damaged.scn --lenient --mode albedo -o out.hdr", dir);
+  CliRun lenient = run("render damaged.scn --lenient --mode albedo -o out.hdr", dir);
   EXPECT_EQ(lenient.status, 0) << lenient.out;
   EXPECT_NE(lenient.out.find("warning: brdf takes 7 or 11 numbers, found 10 (line skipped)"),
             std::string::npos);
@@ -96,7 +97,7 @@ TEST(Cli, BadSceneReportsEveryErrorAndWritesNothing) {
 
 TEST(Cli, UnwritableOutputFailsBeforeRenderingAndKeepsExistingFiles) {
   std::string dir = temp_dir();
-  Run r = run("render --mode id -o no/such/dir/out.hdr", dir);
+  CliRun r = run("render --mode id -o no/such/dir/out.hdr", dir);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("cannot write no/such/dir/out.hdr"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("rendered"), std::string::npos);  // failed before rendering
@@ -108,9 +109,9 @@ TEST(Cli, UnwritableOutputFailsBeforeRenderingAndKeepsExistingFiles) {
 
 TEST(Cli, WritesEveryRequestedFormat) {
   std::string dir = temp_dir();
-  Run r = run("render " + source_path("scenes/sphere.scn") +
-                  " --mode normal -o a.hdr -o a.png -o a.pfm --quiet",
-              dir);
+  CliRun r = run("render " + source_path("scenes/sphere.scn") +
+                     " --mode normal -o a.hdr -o a.png -o a.pfm --quiet",
+                 dir);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "a.hdr\na.png\na.pfm\n");
   EXPECT_EQ(read_file(dir + "/a.png").substr(1, 3), "PNG");
@@ -121,7 +122,7 @@ TEST(Cli, WritesEveryRequestedFormat) {
 
 TEST(Cli, InfoDescribesTheModel) {
   std::string dir = temp_dir();
-  Run r = run("info " + source_path("scenes/testscene.scn"), dir);
+  CliRun r = run("info " + source_path("scenes/testscene.scn"), dir);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("triangles"), std::string::npos);
   EXPECT_NE(r.out.find("lights: 1 emitting primitives"), std::string::npos);

@@ -71,8 +71,7 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
   return out;
 }
 
-Result<long> parse_int_option(const std::string& name, const std::string& value, long lo,
-                              long hi) {
+Result<long> parse_int_option(const std::string& name, const std::string& value, long lo, long hi) {
   long v = 0;
   auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
   if (ec != std::errc() || end != value.data() + value.size() || v < lo || v > hi)

@@ -12,8 +12,8 @@
 namespace raylane::cli {
 
 struct OptionSpec {
-  std::string name;        // long name without dashes, e.g. "output"
-  char short_name = 0;     // e.g. 'o', or 0
+  std::string name;     // long name without dashes, e.g. "output"
+  char short_name = 0;  // e.g. 'o', or 0
   bool takes_value = false;
   bool repeatable = false;
 };
@@ -30,8 +30,7 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
                               const std::vector<OptionSpec>& specs);
 
 // Converts an option value, naming the option in the error.
-Result<long> parse_int_option(const std::string& name, const std::string& value, long lo,
-                              long hi);
+Result<long> parse_int_option(const std::string& name, const std::string& value, long lo, long hi);
 Result<double> parse_double_option(const std::string& name, const std::string& value);
 
 }  // namespace raylane::cli

@@ -36,8 +36,8 @@ void print_materials(const Scene& s) {
       std::printf("  %2zu light  Le (%g %g %g)\n", i, m.emission.x, m.emission.y, m.emission.z);
     } else {
       std::printf("  %2zu brdf   Kd (%g %g %g) Ks (%g %g %g) alpha %g Kt (%g %g %g) ior %g\n", i,
-                  m.kd.x, m.kd.y, m.kd.z, m.ks.x, m.ks.y, m.ks.z, m.alpha, m.kt.x, m.kt.y,
-                  m.kt.z, m.ior);
+                  m.kd.x, m.kd.y, m.kd.z, m.ks.x, m.ks.y, m.ks.z, m.alpha, m.kt.x, m.kt.y, m.kt.z,
+                  m.ior);
     }
   }
 }

@@ -25,7 +25,7 @@ struct RenderRequest {
 };
 
 const std::vector<OptionSpec> kRenderOptions = {
-    {"output", 'o', true, true}, {"mode", 0, true, false},    {"exposure", 0, true, false},
+    {"output", 'o', true, true}, {"mode", 0, true, false},     {"exposure", 0, true, false},
     {"threads", 0, true, false}, {"lenient", 0, false, false}, {"quiet", 'q', false, false},
 };
 
@@ -42,7 +42,8 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   if (!parsed->positional.empty()) r.scene_path = parsed->positional[0];
   if (auto m = parsed->last("mode")) {
     auto mode = raycast_mode_from_name(*m);
-    if (!mode) return Error{cat("unknown --mode ", in_quotes(*m), " (normal, depth, albedo, id, lit)")};
+    if (!mode)
+      return Error{cat("unknown --mode ", in_quotes(*m), " (normal, depth, albedo, id, lit)")};
     r.mode = *mode;
   }
   if (auto e = parsed->last("exposure")) {
@@ -111,7 +112,8 @@ int render_command(const std::vector<std::string>& args) {
                  "Mrays/s, %d threads\n",
                  scene->width, scene->height, std::string(raycast_mode_name(r.mode)).c_str(),
                  seconds, (unsigned long long)rays, (unsigned long long)stats.camera_rays,
-                 (unsigned long long)stats.shadow_rays, rays / seconds * 1e-6, omp_get_max_threads());
+                 (unsigned long long)stats.shadow_rays, rays / seconds * 1e-6,
+                 omp_get_max_threads());
   }
   return status;
 }

@@ -12,6 +12,7 @@
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
 #include "raylane/prims/prim_ref.h"
+#include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 
@@ -58,5 +59,57 @@ struct Box {
   static constexpr int param_count = 6;
   using Table = BoxTable;
 };
+
+namespace detail {
+// The slab intervals of one axis: near and far t, chosen by the sign bit of d so that +0 and
+// −0 agree (hard-cases B3). A ray lying in a slab plane gives 0·inf = NaN, which the callers'
+// comparisons skip: the closed-box answer (B4).
+inline void box_slab(double lo, double hi, double o, double d, double& tn, double& tf) {
+  double inv = 1.0 / d;
+  bool neg = std::signbit(d);
+  tn = ((neg ? hi : lo) - o) * inv;
+  tf = ((neg ? lo : hi) - o) * inv;
+}
+}  // namespace detail
+
+// The reference kernel: the slab method (Kay and Kajiya 1986) in double, closed box. The
+// running extrema keep their value when a slab value is NaN (`t0 = tn > t0 ? tn : t0`).
+inline double intersect_ref(const BoxTable& b, uint32_t i, const Rayd& ray) {
+  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
+  for (int k = 0; k < 3; ++k) {
+    double tn, tf;
+    detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn, tf);
+    t0 = tn > t0 ? tn : t0;
+    t1 = tf < t1 ? tf : t1;
+  }
+  if (!(t0 <= t1)) return std::numeric_limits<double>::infinity();
+  return first_in_range(t0, t1, ray);
+}
+
+// The face: at the entry, the axis whose near plane is last (the largest near t); at the
+// exit, the axis whose far plane is first; ties go to the lowest axis, so the normal is
+// always exactly one unit axis vector (hard-cases B5). The point is snapped onto that face.
+inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {
+  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  double tn[3], tf[3];
+  for (int k = 0; k < 3; ++k)
+    detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn[k], tf[k]);
+  double entry = -std::numeric_limits<double>::infinity();
+  int entry_axis = -1, exit_axis = -1;
+  double exit = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (tn[k] > entry) entry = tn[k], entry_axis = k;
+    if (tf[k] < exit) exit = tf[k], exit_axis = k;
+  }
+  bool entering = entry_axis >= 0 && t == entry;
+  int axis = entering ? entry_axis : (exit_axis >= 0 ? exit_axis : 0);
+  bool neg = std::signbit(ray.d[axis]);
+  Vec3d n(0, 0, 0), p = ray.at(t);
+  // Entering, the face looks back at the ray; leaving, it looks along it.
+  n[axis] = (entering == neg) ? 1.0 : -1.0;
+  p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];
+  return {p, n, n};
+}
 
 }  // namespace raylane

@@ -13,6 +13,7 @@
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
 #include "raylane/prims/prim_ref.h"
+#include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 
@@ -79,5 +80,68 @@ struct Cylinder {
   static constexpr int param_count = 7;
   using Table = CylinderTable;
 };
+
+namespace detail {
+// The interval of the ray inside a capped cylinder, in double: the infinite cylinder's
+// quadratic in the components perpendicular to the unit axis (Hearn–Baker discriminant, as for
+// spheres: hard-cases C5) intersected with the axial slab 0 ≤ (p − b)·u ≤ h. Rays parallel
+// to the axis and rays perpendicular to it are handled by their own branches, so no 0·inf
+// appears (C1, C4). Returns false when the line misses.
+inline bool cylinder_interval(const CylinderTable& c, uint32_t i, const Rayd& ray, double& t0,
+                              double& t1) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3d u = normalize(Vec3d(c.axis(i)));
+  double h = length(Vec3d(c.axis(i))), r = c.r[i];
+  Vec3d f = ray.o - Vec3d(c.base(i));
+  double fa = dot(f, u), da = dot(ray.d, u);
+  Vec3d fp = f - fa * u, dp = ray.d - da * u;
+  double a = dot(dp, dp), b = dot(fp, dp);
+  double s0 = -kInf, s1 = kInf;
+  if (a == 0) {
+    if (!(dot(fp, fp) <= r * r)) return false;  // parallel, outside
+  } else {
+    Vec3d l = fp - (b / a) * dp;
+    double disc = r * r - dot(l, l);
+    if (!(disc >= 0)) return false;
+    solve_quadratic(a, b, dot(fp, fp) - r * r, a * disc, s0, s1);
+  }
+  double z0 = -kInf, z1 = kInf;
+  if (da == 0) {
+    if (!(fa >= 0 && fa <= h)) return false;  // perpendicular, outside the slab
+  } else {
+    double ta = -fa / da, tb = (h - fa) / da;
+    z0 = std::min(ta, tb);
+    z1 = std::max(ta, tb);
+  }
+  t0 = std::max(s0, z0);
+  t1 = std::min(s1, z1);
+  return t0 <= t1;  // inclusive: a ray through the rim hits (C3)
+}
+}  // namespace detail
+
+inline double intersect_ref(const CylinderTable& c, uint32_t i, const Rayd& ray) {
+  double t0, t1;
+  if (!detail::cylinder_interval(c, i, ray, t0, t1)) return std::numeric_limits<double>::infinity();
+  return first_in_range(t0, t1, ray);
+}
+
+// The part hit is the one the point is nearest to: a cap (±axis) or the side (radial).
+inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, double t) {
+  Vec3d u = normalize(Vec3d(c.axis(i)));
+  double h = length(Vec3d(c.axis(i))), r = c.r[i];
+  Vec3d p = ray.at(t);
+  Vec3d q = p - Vec3d(c.base(i));
+  double z = dot(q, u);
+  Vec3d radial = q - z * u;
+  double rlen = length(radial);
+  double cap_dist = std::min(std::abs(z), std::abs(z - h));
+  Vec3d n;
+  if (cap_dist < std::abs(rlen - r) || !(rlen > 0)) {
+    n = z < h / 2 ? -u : u;
+  } else {
+    n = radial / rlen;
+  }
+  return {p, n, n};
+}
 
 }  // namespace raylane

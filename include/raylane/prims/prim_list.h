@@ -56,8 +56,8 @@ constexpr std::size_t kind_index() {
 }
 
 static_assert(PrimKinds::size == kPrimKindCount);
-static_assert(kind_index<Sphere>() == 0 && kind_index<Box>() == 1 &&
-              kind_index<Cylinder>() == 2 && kind_index<Triangle>() == 3,
+static_assert(kind_index<Sphere>() == 0 && kind_index<Box>() == 1 && kind_index<Cylinder>() == 2 &&
+                  kind_index<Triangle>() == 3,
               "PrimTag values must follow the order of PrimKinds");
 
 }  // namespace raylane

@@ -11,6 +11,7 @@
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
 #include "raylane/prims/prim_ref.h"
+#include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 
@@ -49,5 +50,30 @@ struct Sphere {
   static constexpr int param_count = 4;
   using Table = SphereTable;
 };
+
+// The reference kernel, in double on the table's floats. The discriminant is the squared
+// distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a far,
+// small sphere does not cancel to nothing (hard-cases S1).
+inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
+  constexpr double kMiss = std::numeric_limits<double>::infinity();
+  Vec3d c(s.center(i));
+  double r = s.r[i];
+  Vec3d f = ray.o - c;
+  double a = dot(ray.d, ray.d), b = dot(f, ray.d);
+  Vec3d l = f - (b / a) * ray.d;
+  double disc = r * r - dot(l, l);
+  if (!(disc >= 0)) return kMiss;
+  double t0, t1;
+  solve_quadratic(a, b, dot(f, f) - r * r, a * disc, t0, t1);
+  return first_in_range(t0, t1, ray);
+}
+
+// The hit point is projected back onto the sphere (pbrt-v4 Sphere::Intersect), so its error
+// is a few ulps of the radius, not of the distance travelled.
+inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, double t) {
+  Vec3d c(s.center(i));
+  Vec3d n = normalize(ray.at(t) - c);
+  return {c + n * double(s.r[i]), n, n};
+}
 
 }  // namespace raylane

@@ -17,7 +17,8 @@ std::size_t column_bytes(const std::vector<T>& c) {
 template <class T>
 void permute_column(std::vector<T>& c, std::span<const uint32_t> order) {
   std::vector<T> out(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) out[i] = c[order[i]];
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out[i] = c[order[i]];
   c.swap(out);
 }
 

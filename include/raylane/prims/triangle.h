@@ -9,8 +9,12 @@
 #include <string_view>
 #include <vector>
 
+#include <cmath>
+#include <utility>
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
+
+#include "raylane/core/float_util.h"
 #include "raylane/prims/prim_ref.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
@@ -25,8 +29,8 @@ struct TriangleTable {
   std::vector<uint32_t> material;
 
   auto columns() {
-    return std::tie(p0x, p0y, p0z, p1x, p1y, p1z, p2x, p2y, p2z, n0x, n0y, n0z, n1x, n1y, n1z,
-                    n2x, n2y, n2z, material);
+    return std::tie(p0x, p0y, p0z, p1x, p1y, p1z, p2x, p2y, p2z, n0x, n0y, n0z, n1x, n1y, n1z, n2x,
+                    n2y, n2z, material);
   }
   std::size_t size() const { return p0x.size(); }
   Vec3f p0(uint32_t i) const { return {p0x[i], p0y[i], p0z[i]}; }
@@ -62,5 +66,61 @@ struct Triangle {
   static constexpr int param_count = 0;
   using Table = TriangleTable;
 };
+
+namespace detail {
+// The watertight ray/triangle test of Woop, Benthin and Wald (2013, JCGT 2(1)), in double:
+// vertices relative to the origin, axes permuted so that the largest |d| component is z
+// (ties to the lowest axis; x and y swapped when d_z < 0 to keep the winding), sheared so the
+// ray is +z. Edge functions U, V, W with their exact sign (difference of products); the hit
+// needs all ≥ 0 or all ≤ 0 and det = U + V + W ≠ 0. Returns false on a miss.
+struct WoopRef {
+  double u, v, w, det, t;
+};
+inline bool woop_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, WoopRef& out) {
+  Vec3d p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
+  if (length_squared(cross(p1 - p0, p2 - p0)) == 0) return false;  // zero area (hard-cases T4)
+  int kz = max_dimension(abs(ray.d));
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (ray.d[kz] < 0) std::swap(kx, ky);
+  double sx = ray.d[kx] / ray.d[kz], sy = ray.d[ky] / ray.d[kz], sz = 1.0 / ray.d[kz];
+  Vec3d a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+  double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+  double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+  double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+  out.u = difference_of_products(cx, by, cy, bx);
+  out.v = difference_of_products(ax, cy, ay, cx);
+  out.w = difference_of_products(bx, ay, by, ax);
+  if ((out.u < 0 || out.v < 0 || out.w < 0) && (out.u > 0 || out.v > 0 || out.w > 0)) return false;
+  out.det = out.u + out.v + out.w;
+  if (out.det == 0) return false;
+  double t_scaled = out.u * sz * a[kz] + out.v * sz * b[kz] + out.w * sz * c[kz];
+  out.t = t_scaled / out.det;
+  return true;
+}
+}  // namespace detail
+
+inline double intersect_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray) {
+  detail::WoopRef w;
+  if (!detail::woop_ref(tri, i, ray, w) || !(w.t > ray.tmin && w.t < ray.tmax))
+    return std::numeric_limits<double>::infinity();
+  return w.t;
+}
+
+// The point from the barycentrics (pbrt-v4 Triangle::InteractionFromIntersection), the
+// geometric normal by the winding, the shading normal interpolated from the vertex normals.
+inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, double t) {
+  Vec3d p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
+  Vec3d ng = normalize(cross(p1 - p0, p2 - p0));
+  detail::WoopRef w;
+  Rayd unbounded = ray;
+  unbounded.tmin = -std::numeric_limits<double>::infinity();
+  unbounded.tmax = std::numeric_limits<double>::infinity();
+  if (!detail::woop_ref(tri, i, unbounded, w)) return {ray.at(t), ng, ng};
+  double b0 = w.u / w.det, b1 = w.v / w.det, b2 = w.w / w.det;
+  Vec3d p = b0 * p0 + b1 * p1 + b2 * p2;
+  Vec3d ns = b0 * Vec3d(tri.n0(i)) + b1 * Vec3d(tri.n1(i)) + b2 * Vec3d(tri.n2(i));
+  double len = length(ns);
+  return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
+}
 
 }  // namespace raylane
