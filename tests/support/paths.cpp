@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <atomic>
 #include <cstdlib>
-#include <unistd.h>
 #include <filesystem>
 #include <vector>
 
@@ -16,14 +16,17 @@ std::string source_path(const std::string& relative) {
   return std::string(RAYLANE_SOURCE_DIR) + "/" + relative;
 }
 
-std::string cli_path() { return RAYLANE_CLI_PATH; }
+std::string cli_path() {
+  return RAYLANE_CLI_PATH;
+}
 
 namespace {
 struct TempDirs {
   std::vector<fs::path> dirs;
   ~TempDirs() {
     std::error_code ec;
-    for (auto& d : dirs) fs::remove_all(d, ec);
+    for (auto& d : dirs)
+      fs::remove_all(d, ec);
   }
 };
 }  // namespace

@@ -1,0 +1,97 @@
+// The capped cylinder's reference kernel (hard-cases.md §3): base (0,0,0), axis (0,0,2),
+// r = 1 unless stated, also turned to a generic axis and moved far away.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "prims/prim_test_util.h"
+
+namespace raylane {
+namespace {
+
+using namespace testing;
+
+TEST(CylinderRef, SideHitFromOutsideAndInside) {
+  CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
+  Rayd r = ray({-3, 0, 1}, {1, 0, 0});  // C4: perpendicular to the axis
+  EXPECT_EQ(intersect_ref(c, 0, r), 2.0);
+  EXPECT_EQ(surface_ref(c, 0, r, 2.0).ng, Vec3d(-1, 0, 0));
+  Rayd in = ray({0, 0, 1}, {0, 1, 0});
+  EXPECT_EQ(intersect_ref(c, 0, in), 1.0);
+  EXPECT_EQ(surface_ref(c, 0, in, 1.0).ng, Vec3d(0, 1, 0));
+}
+
+// C1: parallel to the axis, inside: the bottom cap at exactly t = 1, normal −axis.
+TEST(CylinderRef, ParallelInsideHitsTheCap) {
+  CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
+  Rayd r = ray({0.3, 0.2, -1}, {0, 0, 1});
+  EXPECT_EQ(intersect_ref(c, 0, r), 1.0);
+  EXPECT_EQ(surface_ref(c, 0, r, 1.0).ng, Vec3d(0, 0, -1));
+  Rayd from_inside = ray({0.3, 0.2, 1}, {0, 0, 1});
+  EXPECT_EQ(intersect_ref(c, 0, from_inside), 1.0);
+  EXPECT_EQ(surface_ref(c, 0, from_inside, 1.0).ng, Vec3d(0, 0, 1));
+}
+
+// C2: parallel outside misses; parallel exactly on the surface is deterministic (inclusive:
+// the bottom rim at t = 1).
+TEST(CylinderRef, ParallelOutsideAndOnTheSurface) {
+  CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
+  EXPECT_EQ(intersect_ref(c, 0, ray({1.5, 0, -1}, {0, 0, 1})), kInf);
+  EXPECT_EQ(intersect_ref(c, 0, ray({1, 0, -1}, {0, 0, 1})), 1.0);
+  EXPECT_EQ(intersect_ref(c, 0, ray({1, 0, -1}, {-0.0, 0, 1})), 1.0);
+}
+
+// C3: through the rim: a hit at t = 2.
+TEST(CylinderRef, RimIsHit) {
+  CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
+  EXPECT_DOUBLE_EQ(intersect_ref(c, 0, ray({3, 0, 4}, {-1, 0, -1})), 2.0);
+}
+
+// C4: a ray lying in a cap plane: closed solid, the rim at t = 2; no NaN for ±0.
+TEST(CylinderRef, RayInACapPlane) {
+  CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
+  for (double z : {0.0, 2.0})
+    for (double zero : {0.0, -0.0})
+      EXPECT_EQ(intersect_ref(c, 0, ray({-3, 0, z}, {1, 0, zero})), 2.0);
+}
+
+// A generic axis, far away: rays aimed at random points inside hit within the S1-style
+// bound, and the hit point lies on the surface.
+TEST(CylinderRef, GenericAxisFarAway) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), s(0.05, 0.95);
+  for (double off : {0.0, 1e4, 1e5}) {
+    Vec3d base(off, -off, off), axis = Vec3d(1, 2, 3);
+    CylinderTable c = one_cylinder(base, axis, 0.5);
+    Vec3d b(c.base(0)), a(c.axis(0));
+    Vec3d ua = normalize(a);
+    Vec3d e1 = normalize(cross(ua, Vec3d(1, 0, 0))), e2 = cross(ua, e1);
+    for (int i = 0; i < 2000; ++i) {
+      Vec3d target = b + a * s(rng) + (e1 * u(rng) + e2 * u(rng)) * (0.35 * 0.5);
+      Vec3d o = target + Vec3d(u(rng), u(rng), u(rng)) * 10;
+      Rayd r = ray(o, normalize(target - o));
+      double t = intersect_ref(c, 0, r);
+      ASSERT_NE(t, kInf) << off << " " << i;
+      Vec3d p = r.at(t) - b;
+      double z = dot(p, ua);
+      double radial = length(p - z * ua);
+      double tol = 64 * 0x1p-53 * (length(o) + 10);
+      bool on_side = std::abs(radial - 0.5) <= tol && z >= -tol && z <= length(a) + tol;
+      bool on_cap = radial <= 0.5 + tol && (std::abs(z) <= tol || std::abs(z - length(a)) <= tol);
+      EXPECT_TRUE(on_side || on_cap) << off << " " << radial << " " << z;
+    }
+  }
+}
+
+// C5: thin and far: r = 1e-3 at distance 1e3, rays at 0.5 r from the axis.
+TEST(CylinderRef, ThinFarCylinderIsHit) {
+  CylinderTable c = one_cylinder({1000, 0, -5}, {0, 0, 10}, 1e-3);
+  Rayd r = ray({0, 0.5e-3, 0}, {1, 0, 0});
+  double t = intersect_ref(c, 0, r);
+  double r_f = c.r[0];  // the stored (float) radius is the geometry
+  double exact = 1000 - std::sqrt(r_f * r_f - 0.25e-6);
+  EXPECT_NEAR(t, exact, 8 * 0x1p-53 * 1001);
+}
+
+}  // namespace
+}  // namespace raylane

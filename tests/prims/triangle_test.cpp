@@ -1,0 +1,129 @@
+// The triangle's reference kernel (hard-cases.md §1).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "prims/prim_test_util.h"
+
+namespace raylane {
+namespace {
+
+using namespace testing;
+
+TEST(TriangleRef, AnalyticHitBarycentricsAndNormals) {
+  TriangleTable t;
+  Vec3f n0(0, 0, 1), n1(1, 0, 0), n2(0, 1, 0);
+  t.append({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {n0, n1, n2}, 0);
+  Rayd r = ray({0.25, 0.25, 2}, {0, 0, -1});
+  EXPECT_EQ(intersect_ref(t, 0, r), 2.0);
+  Surface s = surface_ref(t, 0, r, 2.0);
+  EXPECT_EQ(s.ng, Vec3d(0, 0, 1));
+  EXPECT_NEAR(s.p.x, 0.25, 1e-16);
+  // b = (0.5, 0.25, 0.25): interpolated normal (0.25, 0.25, 0.5), normalised.
+  EXPECT_NEAR(s.ns.z, 0.5 / std::sqrt(0.375), 1e-15);
+  // From below (back face): still a hit (no culling, T7).
+  EXPECT_EQ(intersect_ref(t, 0, ray({0.25, 0.25, -2}, {0, 0, 1})), 2.0);
+  EXPECT_EQ(intersect_ref(t, 0, ray({0.75, 0.75, 2}, {0, 0, -1})), kInf);
+}
+
+// T3: the quad's diagonal, hit exactly: at least one of the two triangles reports it.
+TEST(TriangleRef, SharedDiagonalIsWatertight) {
+  TriangleTable t;
+  add_triangle(t, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0});
+  add_triangle(t, {-5, -5, 0}, {5, 5, 0}, {-5, 5, 0});
+  Vec3d d(0.30458447, 0.30458447, -0.9024725);
+  Rayd r = ray({0, 0, 10}, Vec3d(Vec3f(d)));
+  EXPECT_TRUE(intersect_ref(t, 0, r) < kInf || intersect_ref(t, 1, r) < kInf);
+}
+
+// T3: a fan of 8 triangles around a vertex; rays through the shared vertex from many
+// directions hit at least one.
+TEST(TriangleRef, FanVertexIsWatertight) {
+  TriangleTable t;
+  Vec3d centre(0.1, 0.2, 0.3);
+  for (int k = 0; k < 8; ++k) {
+    double a0 = k * 2 * M_PI / 8, a1 = (k + 1) * 2 * M_PI / 8;
+    add_triangle(t, centre, centre + Vec3d(std::cos(a0), std::sin(a0), 0.1 * std::sin(3 * a0)),
+                 centre + Vec3d(std::cos(a1), std::sin(a1), 0.1 * std::sin(3 * a1)));
+  }
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g;
+  Vec3d v(Vec3f(t.p0(0)));
+  for (int i = 0; i < 20000; ++i) {
+    Vec3d o = v + Vec3d(g(rng), g(rng), std::abs(g(rng)) + 0.5) * 3;
+    Rayd r = ray(o, v - o);
+    bool hit = false;
+    for (uint32_t k = 0; k < t.size(); ++k)
+      hit |= intersect_ref(t, k, r) < kInf;
+    ASSERT_TRUE(hit) << i;
+  }
+}
+
+// T4: zero-area triangles are never hit, and give no NaN.
+TEST(TriangleRef, ZeroAreaTrianglesAreNeverHit) {
+  TriangleTable t;
+  add_triangle(t, {0, 0, 0}, {1, 1, 1}, {2, 2, 2});
+  add_triangle(t, {0, 0, 0}, {0, 0, 0}, {1, 0, 0});
+  add_triangle(t, {1, 1, 1}, {1, 1, 1}, {1, 1, 1});
+  std::mt19937 rng(8);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < 30000; ++i) {
+    Rayd r = ray({g(rng), g(rng), g(rng)}, {g(rng), g(rng), g(rng)});
+    if (i % 3 == 0) r = ray({-1, -1, -1}, {1, 1, 1});  // along the degenerate line
+    for (uint32_t k = 0; k < 3; ++k)
+      ASSERT_EQ(intersect_ref(t, k, r), kInf);
+  }
+}
+
+// T5: tiny triangles: no absolute epsilon anywhere, so s = 2e-4 … 1e-6 are hit at t = 1 —
+// unless rounding the vertices to float already collapsed the triangle (s below the float
+// spacing at the offset), which is then rejected as zero-area.
+TEST(TriangleRef, TinyTrianglesAreHit) {
+  for (double off : {0.0, 1e3})
+    for (double s : {1e-3, 2e-4, 1e-5, 1e-6}) {
+      TriangleTable t;
+      add_triangle(t, {off, off, 0}, {off + s, off, 0}, {off, off + s, 0});
+      Vec3d p0(t.p0(0)), p1(t.p1(0)), p2(t.p2(0));
+      Vec3d c = (p0 + p1 + p2) / 3.0;
+      double hit = intersect_ref(t, 0, ray({c.x, c.y, -1}, {0, 0, 1}));
+      if (length_squared(cross(p1 - p0, p2 - p0)) == 0) {
+        EXPECT_EQ(hit, kInf) << off << " " << s;
+        EXPECT_GT(off, 0);  // only the offset one may collapse
+      } else {
+        EXPECT_NEAR(hit, 1.0, 4 * 0x1p-52) << off << " " << s;
+      }
+    }
+}
+
+// T6: huge triangles: rays landing near the shared diagonal of a ±1e5 quad hit one of them.
+TEST(TriangleRef, HugeQuadHasNoGapsNearTheDiagonal) {
+  for (double big : {1e5, 1e6}) {
+    TriangleTable t;
+    add_triangle(t, {-big, 0, -big}, {big, 0, big}, {big, 0, -big});
+    add_triangle(t, {-big, 0, -big}, {-big, 0, big}, {big, 0, big});
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-10, 10), e(-1e-3, 1e-3);
+    for (int i = 0; i < 20000; ++i) {
+      double x = u(rng), z = x + e(rng);
+      Vec3d o(0, 1.7, 0);
+      Rayd r = ray(o, normalize(Vec3d(x, 0, z) - o));
+      double t0 = intersect_ref(t, 0, r), t1 = intersect_ref(t, 1, r);
+      ASSERT_TRUE(t0 < kInf || t1 < kInf) << big << " " << i;
+      double th = std::min(t0, t1);
+      EXPECT_NEAR(r.at(th).y, 0.0, 1e-9);
+    }
+  }
+}
+
+// T8: pbrt-v4's TEST(Triangle, BadCases): the ray stops short of the triangle's plane.
+TEST(TriangleRef, PbrtBadCaseIsNotHit) {
+  TriangleTable t;
+  add_triangle(t, {-1113.45459, -79.049614, -56.2431908}, {-1113.45459, -87.0922699, -56.2431908},
+               {-1113.45459, -79.2090149, -56.2431908});
+  Rayd r = ray({-1081.47925, 99.9999542, 87.7701111}, {-32.1072998, -183.355865, -144.607635});
+  r.tmax = 0.9999;
+  EXPECT_EQ(intersect_ref(t, 0, r), kInf);
+}
+
+}  // namespace
+}  // namespace raylane
