@@ -15,6 +15,7 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -110,6 +111,29 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
   n[axis] = (entering == neg) ? 1.0 : -1.0;
   p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];
   return {p, n, n};
+}
+
+// The packet kernel: slabs in float with the reference's policy — closed box, NaN-keeping
+// extrema, near/far by the sign of 1/d (hard-cases B3, B4). The box corners are exact floats,
+// and t is as exact as float allows, so no slack is added here (slack belongs to BVH nodes).
+template <class A>
+void intersect_packet(const BoxTable& b, uint32_t begin, uint32_t end, const RayPacket<A>& r,
+                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+  using F = simd::Floats<A>;
+  const auto neg_x = r.inv_dx < F(0.0f), neg_y = r.inv_dy < F(0.0f), neg_z = r.inv_dz < F(0.0f);
+  const F inf(std::numeric_limits<float>::infinity());
+  for (uint32_t i = begin; i < end; ++i) {
+    F t0 = -inf, t1 = inf;
+    auto slab = [&](float lo, float hi, const F& o, const F& inv, const simd::Mask<A>& neg) {
+      F tlo = (F(lo) - o) * inv, thi = (F(hi) - o) * inv;
+      t0 = simd::max_keep<A>(simd::select<A>(neg, thi, tlo), t0);
+      t1 = simd::min_keep<A>(simd::select<A>(neg, tlo, thi), t1);
+    };
+    slab(b.lox[i], b.hix[i], r.ox, r.inv_dx, neg_x);
+    slab(b.loy[i], b.hiy[i], r.oy, r.inv_dy, neg_y);
+    slab(b.loz[i], b.hiz[i], r.oz, r.inv_dz, neg_z);
+    commit_solid_hit<A>(t0, t1, r, lanes & (t0 <= t1), prim_bits(PrimTag::kBox, i), h);
+  }
 }
 
 }  // namespace raylane

@@ -16,6 +16,7 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -142,6 +143,45 @@ inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, 
     n = radial / rlen;
   }
   return {p, n, n};
+}
+
+// The packet kernel, in float: the side interval from the quadratic in the components
+// perpendicular to the unit axis (Hearn–Baker discriminant, Press roots, as for spheres),
+// intersected with the axial slab [0, h] (hard-cases §3). A ray parallel to the axis
+// (|d⊥|² = 0) has the whole line inside the side when |f⊥| ≤ r; a ray perpendicular to the
+// axis has the whole line inside the slab when 0 ≤ f·u ≤ h (NaN-keeping extrema).
+template <class A>
+void intersect_packet(const CylinderTable& c, uint32_t begin, uint32_t end, const RayPacket<A>& r,
+                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+  using F = simd::Floats<A>;
+  const F inf(std::numeric_limits<float>::infinity()), zero(0.0f);
+  for (uint32_t i = begin; i < end; ++i) {
+    F ux(c.ux[i]), uy(c.uy[i]), uz(c.uz[i]);
+    F fx = r.ox - F(c.bx[i]), fy = r.oy - F(c.by[i]), fz = r.oz - F(c.bz[i]);
+    F fa = fx * ux + fy * uy + fz * uz, da = r.dx * ux + r.dy * uy + r.dz * uz;
+    F px = fx - fa * ux, py = fy - fa * uy, pz = fz - fa * uz;        // f⊥
+    F qx = r.dx - da * ux, qy = r.dy - da * uy, qz = r.dz - da * uz;  // d⊥
+    F a = qx * qx + qy * qy + qz * qz;
+    F b = px * qx + py * qy + pz * qz;
+    F rr = F(c.r[i]) * F(c.r[i]);
+    F pp = px * px + py * py + pz * pz;
+    F k = b / a;
+    F lx = px - k * qx, ly = py - k * qy, lz = pz - k * qz;
+    F disc = rr - (lx * lx + ly * ly + lz * lz);
+    auto parallel = a == zero;
+    auto side_ok = (parallel & (pp <= rr)) | ((!parallel) & (disc >= zero));
+    F sq = xsimd::sqrt(a * disc);
+    F q = -(b + simd::select<A>(b < zero, -sq, sq));
+    F s0 = (pp - rr) / q, s1 = q / a;
+    F side_n = simd::select<A>(parallel, -inf, simd::select<A>(s0 < s1, s0, s1));
+    F side_f = simd::select<A>(parallel, inf, simd::select<A>(s0 < s1, s1, s0));
+    F inv = F(1.0f) / da;
+    F ta = (zero - fa) * inv, tb = (F(c.h[i]) - fa) * inv;
+    F t0 = simd::max_keep<A>(side_n, simd::max_keep<A>(simd::select<A>(inv < zero, tb, ta), -inf));
+    F t1 = simd::min_keep<A>(side_f, simd::min_keep<A>(simd::select<A>(inv < zero, ta, tb), inf));
+    commit_solid_hit<A>(t0, t1, r, lanes & side_ok & (t0 <= t1), prim_bits(PrimTag::kCylinder, i),
+                        h);
+  }
 }
 
 }  // namespace raylane

@@ -14,6 +14,7 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -74,6 +75,32 @@ inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, do
   Vec3d c(s.center(i));
   Vec3d n = normalize(ray.at(t) - c);
   return {c + n * double(s.r[i]), n, n};
+}
+
+// The packet kernel: W rays against rows [begin, end), in float. Discriminant in the
+// Hearn–Baker form r² − |f − (f·d/d·d)·d|² and roots by the Press form, as in the reference
+// (Haines et al. 2019, Ray Tracing Gems ch. 7). Updates h where a lane finds a nearer hit.
+template <class A>
+void intersect_packet(const SphereTable& s, uint32_t begin, uint32_t end, const RayPacket<A>& r,
+                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+  using F = simd::Floats<A>;
+  const F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
+  for (uint32_t i = begin; i < end; ++i) {
+    F fx = r.ox - F(s.cx[i]), fy = r.oy - F(s.cy[i]), fz = r.oz - F(s.cz[i]);
+    F b = fx * r.dx + fy * r.dy + fz * r.dz;
+    F k = b / dd;
+    F lx = fx - k * r.dx, ly = fy - k * r.dy, lz = fz - k * r.dz;
+    F rr = F(s.r[i]) * F(s.r[i]);
+    F disc = rr - (lx * lx + ly * ly + lz * lz);
+    simd::Mask<A> hit = lanes & (disc >= F(0.0f));
+    if (simd::none<A>(hit)) continue;
+    F sq = xsimd::sqrt(dd * disc);
+    F q = -(b + simd::select<A>(b < F(0.0f), -sq, sq));
+    F c = fx * fx + fy * fy + fz * fz - rr;
+    F t0 = c / q, t1 = q / dd;
+    F tn = simd::select<A>(t0 < t1, t0, t1), tf = simd::select<A>(t0 < t1, t1, t0);
+    commit_solid_hit<A>(tn, tf, r, hit, prim_bits(PrimTag::kSphere, i), h);
+  }
 }
 
 }  // namespace raylane

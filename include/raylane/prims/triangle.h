@@ -18,6 +18,7 @@
 #include "raylane/prims/prim_ref.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -121,6 +122,88 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   Vec3d ns = b0 * Vec3d(tri.n0(i)) + b1 * Vec3d(tri.n1(i)) + b2 * Vec3d(tri.n2(i));
   double len = length(ns);
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
+}
+
+// Per-lane setup of the watertight test: the axis of largest |d| becomes z, x and y follow
+// cyclically (swapped when d_z < 0, to keep the winding), and the shear that maps d to +z
+// (Woop, Benthin and Wald 2013, §3). Computed once per run of triangles.
+template <class A>
+struct WoopSetup {
+  using F = simd::Floats<A>;
+  simd::Mask<A> x_is[3], y_is[3], z_is[3];  // which world axis each sheared axis reads
+  F sx, sy, sz;
+
+  static F pick(const simd::Mask<A>* is, const F& x, const F& y, const F& z) {
+    return simd::select<A>(is[0], x, simd::select<A>(is[1], y, z));
+  }
+
+  explicit WoopSetup(const RayPacket<A>& r) {
+    F ax = xsimd::abs(r.dx), ay = xsimd::abs(r.dy), az = xsimd::abs(r.dz);
+    // kz = argmax |d|, ties to the lowest axis, as in the reference.
+    z_is[0] = (ax >= ay) & (ax >= az);
+    z_is[1] = (!z_is[0]) & (ay >= az);
+    z_is[2] = (!z_is[0]) & (!z_is[1]);
+    // kx = kz + 1, ky = kz + 2 (mod 3); swapped when d[kz] < 0.
+    simd::Mask<A> kx_base[3] = {z_is[2], z_is[0], z_is[1]};
+    simd::Mask<A> ky_base[3] = {z_is[1], z_is[2], z_is[0]};
+    F dz = pick(z_is, r.dx, r.dy, r.dz);
+    auto flip = dz < F(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      x_is[k] = (kx_base[k] & (!flip)) | (ky_base[k] & flip);
+      y_is[k] = (ky_base[k] & (!flip)) | (kx_base[k] & flip);
+    }
+    F dx = pick(x_is, r.dx, r.dy, r.dz), dy = pick(y_is, r.dx, r.dy, r.dz);
+    sz = F(1.0f) / dz;
+    sx = dx * sz;
+    sy = dy * sz;
+  }
+};
+
+// a·b − c·d with the exact sign in every lane (Kahan; see difference_of_products): the
+// shared edge of two triangles gets opposite signs from both, so nothing leaks between them
+// (hard-cases T2).
+template <class A>
+inline simd::Floats<A> difference_of_products_lanes(const simd::Floats<A>& a,
+                                                    const simd::Floats<A>& b,
+                                                    const simd::Floats<A>& c,
+                                                    const simd::Floats<A>& d) {
+  simd::Floats<A> cd = c * d;
+  simd::Floats<A> err = simd::fma<A>(-c, d, cd);
+  return simd::fma<A>(a, b, -cd) + err;
+}
+
+// The packet kernel: the watertight test in float, per lane (Woop et al. 2013): vertices
+// relative to the origin, permuted and sheared; edge functions U, V, W with their exact sign;
+// accept all ≥ 0 or all ≤ 0 with det ≠ 0; t = T/det.
+template <class A>
+void intersect_packet(const TriangleTable& tri, uint32_t begin, uint32_t end, const RayPacket<A>& r,
+                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+  using F = simd::Floats<A>;
+  const WoopSetup<A> w(r);
+  const F zero(0.0f);
+  auto sheared = [&](float px, float py, float pz, F& x, F& y, F& z) {
+    F ax = F(px) - r.ox, ay = F(py) - r.oy, az = F(pz) - r.oz;
+    F kz = WoopSetup<A>::pick(w.z_is, ax, ay, az);
+    x = simd::fma<A>(-w.sx, kz, WoopSetup<A>::pick(w.x_is, ax, ay, az));
+    y = simd::fma<A>(-w.sy, kz, WoopSetup<A>::pick(w.y_is, ax, ay, az));
+    z = w.sz * kz;
+  };
+  for (uint32_t i = begin; i < end; ++i) {
+    F ax, ay, az, bx, by, bz, cx, cy, cz;
+    sheared(tri.p0x[i], tri.p0y[i], tri.p0z[i], ax, ay, az);
+    sheared(tri.p1x[i], tri.p1y[i], tri.p1z[i], bx, by, bz);
+    sheared(tri.p2x[i], tri.p2y[i], tri.p2z[i], cx, cy, cz);
+    F u = difference_of_products_lanes<A>(cx, by, cy, bx);
+    F v = difference_of_products_lanes<A>(ax, cy, ay, cx);
+    F e = difference_of_products_lanes<A>(bx, ay, by, ax);
+    auto has_neg = (u < zero) | (v < zero) | (e < zero);
+    auto has_pos = (u > zero) | (v > zero) | (e > zero);
+    F det = u + v + e;
+    simd::Mask<A> hit = lanes & (!(has_neg & has_pos)) & (det != zero);
+    if (simd::none<A>(hit)) continue;
+    F t = (u * az + v * bz + e * cz) / det;
+    commit_hit<A>(t, hit & (t > r.tmin) & (t < h.t), prim_bits(PrimTag::kTriangle, i), h);
+  }
 }
 
 }  // namespace raylane

@@ -1,0 +1,68 @@
+// The BVH: a binary tree of boxes over the PrimRefs of every kind at once, built top-down
+// with the binned surface area heuristic (Wald 2007, "On fast Construction of SAH-based
+// Bounding Volume Hierarchies"). Leaves hold refs sorted by kind, and the scene's tables are
+// permuted into leaf order, so each leaf is a few runs of contiguous rows of one kind
+// (design.md, "BVH"). The BVH never names a primitive kind.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raylane/core/bounds3.h"
+#include "raylane/prims/prim_ref.h"
+
+namespace raylane {
+
+struct Scene;
+
+// 32 bytes. Siblings are adjacent: an inner node's children are nodes[index] and
+// nodes[index + 1].
+struct BvhNode {
+  float lo[3];
+  float hi[3];
+  uint32_t index;  // inner: first child; leaf: first ref in Bvh::refs
+  uint16_t count;  // 0 for an inner node; a leaf's number of refs
+  uint8_t axis;    // inner: the split axis (children ordered along it); leaf: unused
+  uint8_t pad = 0;
+
+  bool is_leaf() const { return count > 0; }
+  Bounds3f bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+// Traversal stacks hold this many entries; the builder keeps the depth below it by splitting
+// at the object median below kMedianSplitDepth (median splits add at most log2(n) ≤ 29 more).
+inline constexpr int kBvhStackSize = 64;
+inline constexpr uint32_t kMedianSplitDepth = 32;
+
+struct BvhConfig {
+  int bins = 16;
+  int max_leaf = 4;                // a leaf may be made when it has at most this many refs...
+  int forced_leaf = 32;            // ...and must be split above this many, whatever the SAH says
+  double traversal_cost = 1.0;     // SAH cost of visiting an inner node
+  double intersection_cost = 1.0;  // SAH cost of one primitive test
+};
+
+struct BvhStats {
+  double build_seconds = 0;
+  uint32_t inner_nodes = 0, leaves = 0, depth = 0;
+  double sah_cost = 0;  // expected cost of a random ray, relative to the root box
+  std::vector<uint32_t> leaf_size_histogram;  // [n] = number of leaves with n refs
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;  // nodes[0] is the root (a leaf if the scene is tiny)
+  std::vector<PrimRef> refs;   // leaf contents; rows are the scene's rows after permutation
+  BvhStats stats;
+
+  bool empty() const { return refs.empty(); }
+  std::size_t bytes() const {
+    return nodes.size() * sizeof(BvhNode) + refs.size() * sizeof(PrimRef);
+  }
+};
+
+// Builds the BVH over every primitive of `scene` and permutes the scene's tables (and its
+// list of lights) into leaf order. A scene without primitives gives an empty BVH.
+Bvh build_bvh(Scene& scene, const BvhConfig& config = {});
+
+}  // namespace raylane

@@ -1,0 +1,20 @@
+// The instruction sets raylane's packet tracer is compiled for, and the choice among them at
+// run time. Baseline code includes this, never lanes.h.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace raylane {
+
+enum class Isa { kSse42, kAvx2, kAvx512 };
+
+std::string_view isa_name(Isa isa);                  // "sse4.2", "avx2", "avx512"
+std::optional<Isa> isa_from_name(std::string_view);  // the names above
+int isa_width(Isa isa);                              // float lanes: 4, 8, 16
+bool isa_supported(Isa isa);                         // by this CPU (cpuid)
+Isa best_isa();                                      // the widest supported
+std::vector<Isa> supported_isas();                   // narrowest first
+
+}  // namespace raylane

@@ -1,0 +1,105 @@
+// The only header that includes xsimd: lane types for float and int32 and the few operations
+// the kernels need, for any instruction set A (SSE4.2: 4 lanes, AVX2: 8, AVX-512: 16).
+// Include it only from the per-ISA translation units (src/simd/isa_*.cpp) and the templates
+// they instantiate; baseline code talks to them through simd/isa.h.
+#pragma once
+
+#include <immintrin.h>
+
+#include <cstdint>
+#include <xsimd/xsimd.hpp>
+
+namespace raylane::simd {
+
+template <class A>
+using Floats = xsimd::batch<float, A>;
+template <class A>
+using Ints = xsimd::batch<int32_t, A>;
+template <class A>
+using Mask = xsimd::batch_bool<float, A>;
+template <class A>
+inline constexpr int kWidth = int(Floats<A>::size);
+
+// Lane i of the mask as bit i.
+template <class A>
+inline uint32_t bits(const Mask<A>& m) {
+  if constexpr (kWidth<A> == 16) {
+    return uint32_t(__mmask16(m));
+  } else if constexpr (kWidth<A> == 8) {
+    return uint32_t(_mm256_movemask_ps(__m256(m)));
+  } else {
+    return uint32_t(_mm_movemask_ps(__m128(m)));
+  }
+}
+
+template <class A>
+inline bool any(const Mask<A>& m) {
+  return xsimd::any(m);
+}
+template <class A>
+inline bool none(const Mask<A>& m) {
+  return !xsimd::any(m);
+}
+template <class A>
+inline Floats<A> select(const Mask<A>& m, const Floats<A>& a, const Floats<A>& b) {
+  return xsimd::select(m, a, b);
+}
+template <class A>
+inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
+  return xsimd::select(xsimd::bool_cast(m), a, b);
+}
+
+// NaN-keeping running extrema: where x is NaN (or not better), the accumulator is kept. The
+// operand order is the contract (hard-cases.md N2), so it is spelled out with a compare and
+// a blend rather than left to min/max instruction semantics.
+template <class A>
+inline Floats<A> max_keep(const Floats<A>& x, const Floats<A>& acc) {
+  return xsimd::select(x > acc, x, acc);
+}
+template <class A>
+inline Floats<A> min_keep(const Floats<A>& x, const Floats<A>& acc) {
+  return xsimd::select(x < acc, x, acc);
+}
+
+template <class A>
+inline Floats<A> load(const float* p) {
+  return Floats<A>::load_unaligned(p);
+}
+template <class A>
+inline Ints<A> load(const int32_t* p) {
+  return Ints<A>::load_unaligned(p);
+}
+template <class A>
+inline void store(float* p, const Floats<A>& v) {
+  v.store_unaligned(p);
+}
+template <class A>
+inline void store(int32_t* p, const Ints<A>& v) {
+  v.store_unaligned(p);
+}
+
+// Lanes whose index is below n: the active mask of a partly filled packet.
+template <class A>
+inline Mask<A> first_lanes(int n) {
+  alignas(64) float idx[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+  return load<A>(idx) < Floats<A>(float(n));
+}
+
+// a·b + c with ONE rounding where the hardware has FMA. xsimd 8.1 has no fused fma for
+// AVX-512 (it falls back to a·b + c, which GCC contracts in some places and not others), and
+// a half-fused difference of products loses its exact sign and opens cracks between triangles
+// (hard-cases.md T2; found by the leak test). So the instruction is named here. SSE4.2 has no
+// FMA: there a·b + c is two roundings, and the difference of products becomes the plain
+// a·b − c·d, which is exactly antisymmetric, hence watertight too.
+template <class A>
+inline Floats<A> fma(const Floats<A>& a, const Floats<A>& b, const Floats<A>& c) {
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_fmadd_ps(__m512(a), __m512(b), __m512(c)));
+  } else if constexpr (kWidth<A> == 8) {
+    return Floats<A>(_mm256_fmadd_ps(__m256(a), __m256(b), __m256(c)));
+  } else {
+    return a * b + c;
+  }
+}
+
+}  // namespace raylane::simd

@@ -1,0 +1,46 @@
+// The packet tracer: traces ray streams through the BVH in SIMD packets, with the kernels of
+// the instruction set chosen at run time (SSE4.2, AVX2+FMA or AVX-512). Baseline code uses
+// this; only the per-ISA translation units see xsimd.
+#pragma once
+
+#include <cstddef>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/scene/scene.h"
+#include "raylane/simd/isa.h"
+#include "raylane/trace/ray_stream.h"
+
+namespace raylane {
+
+class PacketTracer {
+ public:
+  // Contract: isa_supported(isa).
+  explicit PacketTracer(Isa isa = best_isa()) : isa_(isa) {}
+  Isa isa() const { return isa_; }
+  int width() const { return isa_width(isa_); }
+
+  // Closest hit of every ray: hits.t (+inf for a miss) and hits.prim. Rays with NaN or inf
+  // components, a zero direction or tmin > tmax miss without traversal (hard-cases N1).
+  // Parallel over chunks of the stream with OpenMP.
+  void closest(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
+  // Occlusion: hits.prim = 0 where something lies in (tmin, tmax), kInvalidBits elsewhere.
+  void occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
+
+ private:
+  void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits,
+             bool any_hit) const;
+  Isa isa_;
+};
+
+namespace detail {
+// Defined in src/simd/isa_<name>.cpp, each compiled for its instruction set. Trace rays
+// [begin, end) of the stream.
+void trace_sse42(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
+                 bool any_hit);
+void trace_avx2(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
+                bool any_hit);
+void trace_avx512(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
+                  bool any_hit);
+}  // namespace detail
+
+}  // namespace raylane

@@ -1,0 +1,43 @@
+// Rays and answers as plain structure-of-arrays streams: what crosses from baseline code into
+// the per-ISA packet tracers (only pointers and scalars cross that boundary, toolchain.md §5).
+// The tracer takes W consecutive rays as one packet, so camera rays stored in small tiles
+// make coherent packets.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raylane/core/ray.h"
+#include "raylane/prims/prim_ref.h"
+
+namespace raylane {
+
+struct RayStream {
+  std::vector<float> ox, oy, oz, dx, dy, dz, tmin, tmax;
+
+  std::size_t size() const { return ox.size(); }
+  void resize(std::size_t n) {
+    for (auto* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax})
+      c->resize(n);
+  }
+  void set(std::size_t i, const Rayf& r) {
+    ox[i] = r.o.x, oy[i] = r.o.y, oz[i] = r.o.z;
+    dx[i] = r.d.x, dy[i] = r.d.y, dz[i] = r.d.z;
+    tmin[i] = r.tmin, tmax[i] = r.tmax;
+  }
+  Rayf get(std::size_t i) const {
+    return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
+  }
+};
+
+struct HitStream {
+  std::vector<float> t;        // +inf for a miss
+  std::vector<uint32_t> prim;  // PrimRef bits; PrimRef::kInvalidBits for a miss
+
+  void resize(std::size_t n) {
+    t.resize(n);
+    prim.resize(n);
+  }
+};
+
+}  // namespace raylane

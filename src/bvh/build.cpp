@@ -1,0 +1,239 @@
+// Binned SAH build (Wald 2007), top-down, parallel over subtrees with OpenMP tasks.
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane {
+
+namespace {
+
+struct BuildPrim {
+  Bounds3f box;
+  Vec3f centroid;
+  PrimRef ref;
+};
+
+struct Split {
+  int axis = -1;
+  int bin = 0;  // prims in bins [0, bin] go left
+  double cost = std::numeric_limits<double>::infinity();
+};
+
+// Surface area in double: float extents up to FLT_MAX would overflow a float product.
+double half_area(const Bounds3f& b) {
+  if (b.empty()) return 0;
+  Vec3d d = Vec3d(b.hi) - Vec3d(b.lo);
+  double a = d.x * d.y + d.y * d.z + d.z * d.x;
+  return std::isfinite(a) ? a : std::numeric_limits<double>::max();
+}
+
+// A finite stand-in for a centroid component (a huge primitive's centroid can be inf − inf).
+float finite_or_zero(float v) {
+  return std::isfinite(v) ? v : 0.0f;
+}
+
+int bin_of(float c, float lo, double scale, int bins) {
+  double x = (double(c) - lo) * scale;
+  if (!(x > 0)) return 0;  // also catches NaN
+  return std::min(bins - 1, int(x));
+}
+
+class Builder {
+ public:
+  Builder(std::vector<BuildPrim>& prims, const BvhConfig& cfg, std::vector<BvhNode>& nodes)
+      : prims_(prims), cfg_(cfg), nodes_(nodes) {}
+
+  void build(uint32_t node, uint32_t begin, uint32_t end, uint32_t depth) {
+    Bounds3f box, centroids;
+    for (uint32_t i = begin; i < end; ++i) {
+      box.extend(prims_[i].box);
+      centroids.extend(prims_[i].centroid);
+    }
+    BvhNode& n = nodes_[node];
+    for (int k = 0; k < 3; ++k)
+      n.lo[k] = box.lo[k], n.hi[k] = box.hi[k];
+    for (uint32_t d = max_depth_.load();
+         d < depth && !max_depth_.compare_exchange_weak(d, depth);) {
+    }
+    uint32_t count = end - begin;
+    // Deep in the tree, split at the object median so traversal stacks cannot overflow.
+    bool median_only = depth >= kMedianSplitDepth;
+    Split split = count > 1 && !median_only ? find_split(begin, end, box, centroids) : Split{};
+    double leaf_cost = cfg_.intersection_cost * count;
+    bool may_leaf = count <= uint32_t(cfg_.max_leaf) ||
+                    (split.axis < 0 && !median_only && count <= uint32_t(cfg_.forced_leaf));
+    if (count == 1 || (may_leaf && leaf_cost <= split.cost)) return make_leaf(n, begin, end);
+    uint32_t mid = split.axis >= 0 ? partition(begin, end, split, centroids) : begin + count / 2;
+    if (mid == begin || mid == end) mid = begin + count / 2;  // every centroid in one bin
+    uint32_t child = next_node_.fetch_add(2);
+    n.index = child;
+    n.count = 0;
+    n.axis = uint8_t(std::max(split.axis, 0));
+    if (count > 4096) {
+#pragma omp task default(shared) firstprivate(child, begin, mid, depth)
+      build(child, begin, mid, depth + 1);
+      build(child + 1, mid, end, depth + 1);
+#pragma omp taskwait
+    } else {
+      build(child, begin, mid, depth + 1);
+      build(child + 1, mid, end, depth + 1);
+    }
+  }
+
+  uint32_t node_count() const {
+    return next_node_.load();
+  }
+  uint32_t depth() const {
+    return max_depth_.load();
+  }
+
+ private:
+  Split find_split(uint32_t begin, uint32_t end, const Bounds3f& box, const Bounds3f& centroids) {
+    Split best;
+    const int bins = cfg_.bins;
+    double parent_area = half_area(box);
+    for (int axis = 0; axis < 3; ++axis) {
+      double extent = double(centroids.hi[axis]) - centroids.lo[axis];
+      if (!(extent > 0)) continue;
+      double scale = bins / extent;
+      std::vector<Bounds3f> bin_box(bins);
+      std::vector<uint32_t> bin_count(bins, 0);
+      for (uint32_t i = begin; i < end; ++i) {
+        int b = bin_of(prims_[i].centroid[axis], centroids.lo[axis], scale, bins);
+        bin_box[b].extend(prims_[i].box);
+        ++bin_count[b];
+      }
+      // Sweep from the right to get the cost of every "bins [0, b] left" split.
+      std::vector<double> right_cost(bins, 0);
+      Bounds3f acc;
+      uint32_t n = 0;
+      for (int b = bins - 1; b > 0; --b) {
+        acc.extend(bin_box[b]);
+        n += bin_count[b];
+        right_cost[b - 1] = half_area(acc) * n;
+      }
+      acc = Bounds3f();
+      n = 0;
+      for (int b = 0; b < bins - 1; ++b) {
+        acc.extend(bin_box[b]);
+        n += bin_count[b];
+        double cost = cfg_.traversal_cost + cfg_.intersection_cost *
+                                                (half_area(acc) * n + right_cost[b]) /
+                                                std::max(parent_area, 1e-300);
+        if (n > 0 && n < end - begin && cost < best.cost) best = {axis, b, cost};
+      }
+    }
+    return best;
+  }
+
+  uint32_t partition(uint32_t begin, uint32_t end, const Split& s, const Bounds3f& centroids) {
+    double extent = double(centroids.hi[s.axis]) - centroids.lo[s.axis];
+    double scale = cfg_.bins / extent;
+    auto it = std::partition(prims_.begin() + begin, prims_.begin() + end, [&](const BuildPrim& p) {
+      return bin_of(p.centroid[s.axis], centroids.lo[s.axis], scale, cfg_.bins) <= s.bin;
+    });
+    return uint32_t(it - prims_.begin());
+  }
+
+  // Refs in a leaf are sorted by kind (then row), so the leaf is a few runs of one kind.
+  void make_leaf(BvhNode& n, uint32_t begin, uint32_t end) {
+    std::sort(prims_.begin() + begin, prims_.begin() + end,
+              [](const BuildPrim& a, const BuildPrim& b) { return a.ref < b.ref; });
+    n.index = begin;
+    n.count = uint16_t(end - begin);
+    n.axis = 0;
+  }
+
+  std::vector<BuildPrim>& prims_;
+  const BvhConfig& cfg_;
+  std::vector<BvhNode>& nodes_;
+  std::atomic<uint32_t> next_node_{1};
+  std::atomic<uint32_t> max_depth_{0};
+};
+
+std::vector<BuildPrim> gather(const Scene& scene) {
+  std::vector<BuildPrim> prims;
+  prims.reserve(scene.primitive_count());
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    const auto& table = scene.table<Kind>();
+    for (uint32_t row = 0; row < table.size(); ++row) {
+      Bounds3f b = table.bounds(row);
+      Vec3f c = b.centroid();
+      prims.push_back({b,
+                       {finite_or_zero(c.x), finite_or_zero(c.y), finite_or_zero(c.z)},
+                       PrimRef(Kind::tag, row)});
+    }
+  });
+  return prims;
+}
+
+// Reorders every table into leaf order and rewrites refs and lights to the new rows.
+void permute_scene(Scene& scene, std::vector<PrimRef>& refs) {
+  std::vector<std::vector<uint32_t>> order(kPrimKindCount);
+  for (PrimRef r : refs)
+    order[uint32_t(r.tag())].push_back(r.row());
+  std::vector<std::vector<uint32_t>> new_row(kPrimKindCount);
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    auto& o = order[uint32_t(Kind::tag)];
+    auto& nr = new_row[uint32_t(Kind::tag)];
+    nr.resize(o.size());
+    for (uint32_t i = 0; i < o.size(); ++i)
+      nr[o[i]] = i;
+    table_permute(scene.table<Kind>(), o);
+  });
+  for (PrimRef& r : refs)
+    r = PrimRef(r.tag(), new_row[uint32_t(r.tag())][r.row()]);
+  for (PrimRef& l : scene.lights)
+    l = PrimRef(l.tag(), new_row[uint32_t(l.tag())][l.row()]);
+  std::sort(scene.lights.begin(), scene.lights.end());
+}
+
+void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
+  double root_area = std::max(half_area(bvh.nodes[0].bounds()), 1e-300);
+  for (const BvhNode& n : bvh.nodes) {
+    double rel = half_area(n.bounds()) / root_area;
+    if (n.is_leaf()) {
+      ++s.leaves;
+      s.sah_cost += rel * cfg.intersection_cost * n.count;
+      if (s.leaf_size_histogram.size() <= n.count) s.leaf_size_histogram.resize(n.count + 1);
+      ++s.leaf_size_histogram[n.count];
+    } else {
+      ++s.inner_nodes;
+      s.sah_cost += rel * cfg.traversal_cost;
+    }
+  }
+}
+
+}  // namespace
+
+Bvh build_bvh(Scene& scene, const BvhConfig& config) {
+  auto start = std::chrono::steady_clock::now();
+  Bvh bvh;
+  std::vector<BuildPrim> prims = gather(scene);
+  if (prims.empty()) return bvh;
+  bvh.nodes.resize(2 * prims.size());
+  Builder builder(prims, config, bvh.nodes);
+#pragma omp parallel
+#pragma omp single
+  builder.build(0, 0, uint32_t(prims.size()), 0);
+  bvh.nodes.resize(builder.node_count());
+  bvh.refs.reserve(prims.size());
+  for (const BuildPrim& p : prims)
+    bvh.refs.push_back(p.ref);
+  permute_scene(scene, bvh.refs);
+  bvh.stats.depth = builder.depth();
+  collect_stats(bvh, config, bvh.stats);
+  bvh.stats.build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
+
+}  // namespace raylane

@@ -1,0 +1,14 @@
+// The packet tracer compiled for one instruction set (flags set in CMakeLists.txt).
+#include "simd/packet_tracer_impl.h"
+
+static_assert(XSIMD_WITH_AVX512BW,
+              "this file must be compiled with the flags of its instruction set");
+
+namespace raylane::detail {
+
+void trace_avx512(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
+                  std::size_t end, HitStream& hits, bool any_hit) {
+  trace_range<xsimd::avx512bw>(scene, bvh, rays, begin, end, hits, any_hit);
+}
+
+}  // namespace raylane::detail

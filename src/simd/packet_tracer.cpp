@@ -1,0 +1,32 @@
+#include "raylane/trace/packet_tracer.h"
+
+#include <algorithm>
+
+namespace raylane {
+
+void PacketTracer::closest(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                           HitStream& hits) const {
+  trace(scene, bvh, rays, hits, false);
+}
+
+void PacketTracer::occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                            HitStream& hits) const {
+  trace(scene, bvh, rays, hits, true);
+}
+
+void PacketTracer::trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits,
+                         bool any_hit) const {
+  auto* fn = isa_ == Isa::kAvx512 ? detail::trace_avx512
+             : isa_ == Isa::kAvx2 ? detail::trace_avx2
+                                  : detail::trace_sse42;
+  hits.resize(rays.size());
+  // Chunks of whole packets (a multiple of 16 rays) keep camera tiles together.
+  constexpr std::ptrdiff_t kChunk = 256;
+  const std::ptrdiff_t n = std::ptrdiff_t(rays.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t begin = 0; begin < n; begin += kChunk)
+    fn(scene, bvh, rays, std::size_t(begin), std::size_t(std::min(n, begin + kChunk)), hits,
+       any_hit);
+}
+
+}  // namespace raylane

@@ -1,0 +1,193 @@
+// The BVH: structural invariants, the permutation of the tables, degenerate inputs, and
+// traversal with the reference kernels against the brute-force oracle.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/bvh/traverse_ref.h"
+#include "raylane/scene/parser.h"
+#include "raylane/trace/brute_force.h"
+#include "support/paths.h"
+#include "support/random_scene.h"
+
+namespace raylane {
+namespace {
+
+using testing::random_rays;
+using testing::random_scene;
+
+Bounds3f row_bounds(const Scene& s, PrimRef r) {
+  return dispatch(r.tag(), [&](auto k) { return s.table<decltype(k)>().bounds(r.row()); });
+}
+
+void expect_invariants(const Scene& s, const Bvh& bvh) {
+  ASSERT_EQ(bvh.refs.size(), s.primitive_count());
+  std::set<uint32_t> seen;
+  for (PrimRef r : bvh.refs)
+    EXPECT_TRUE(seen.insert(r.bits()).second) << "ref twice";
+  std::vector<int> reached(bvh.nodes.size(), 0);
+  std::vector<uint32_t> stack = {0};
+  uint32_t refs_in_leaves = 0;
+  reached[0] = 1;
+  while (!stack.empty()) {
+    const BvhNode& n = bvh.nodes[stack.back()];
+    stack.pop_back();
+    Bounds3f box = n.bounds();
+    if (n.is_leaf()) {
+      refs_in_leaves += n.count;
+      for (uint32_t i = n.index; i < n.index + n.count; ++i) {
+        EXPECT_TRUE(box.contains(row_bounds(s, bvh.refs[i])));
+        if (i > n.index) {
+          PrimRef a = bvh.refs[i - 1], b = bvh.refs[i];
+          EXPECT_LE(uint32_t(a.tag()), uint32_t(b.tag())) << "leaf not sorted by kind";
+          // Same kind: consecutive rows (the tables were permuted into leaf order).
+          if (a.tag() == b.tag()) {
+            EXPECT_EQ(a.row() + 1, b.row());
+          }
+        }
+      }
+      continue;
+    }
+    for (uint32_t c : {n.index, n.index + 1}) {
+      ASSERT_LT(c, bvh.nodes.size());
+      EXPECT_TRUE(box.contains(bvh.nodes[c].bounds())) << "child outside parent";
+      EXPECT_EQ(reached[c]++, 0) << "node reached twice";
+      stack.push_back(c);
+    }
+  }
+  EXPECT_EQ(refs_in_leaves, bvh.refs.size());
+  EXPECT_LE(bvh.stats.depth, uint32_t(kBvhStackSize - 2));
+}
+
+TEST(Bvh, InvariantsOnAMixedScene) {
+  Scene s = random_scene(1, 500);
+  Bvh bvh = build_bvh(s);
+  expect_invariants(s, bvh);
+  EXPECT_EQ(bvh.stats.leaves + bvh.stats.inner_nodes, bvh.nodes.size());
+  EXPECT_GT(bvh.stats.sah_cost, 0);
+}
+
+TEST(Bvh, PermutationKeepsEveryRowAndRemapsLights) {
+  Scene s = random_scene(2, 300);
+  std::multiset<float> radii(s.table<Sphere>().r.begin(), s.table<Sphere>().r.end());
+  std::multiset<float> light_radii;
+  for (PrimRef l : s.lights)
+    light_radii.insert(s.table<Sphere>().r[l.row()]);
+  build_bvh(s);
+  EXPECT_EQ(radii, std::multiset<float>(s.table<Sphere>().r.begin(), s.table<Sphere>().r.end()));
+  std::multiset<float> after;
+  for (PrimRef l : s.lights) {
+    EXPECT_TRUE(s.materials[s.material_of(l)].is_light);
+    after.insert(s.table<Sphere>().r[l.row()]);
+  }
+  EXPECT_EQ(light_radii, after);
+}
+
+TEST(Bvh, EmptySceneGivesEmptyBvh) {
+  Scene s;
+  Bvh bvh = build_bvh(s);
+  EXPECT_TRUE(bvh.empty());
+  EXPECT_FALSE(closest_hit_bvh_ref(s, bvh, {{0, 0, 0}, {0, 0, 1}}).hit());
+}
+
+// hard-cases / issue 6: all primitives at one point; huge coordinates.
+TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
+  Scene s;
+  s.materials.push_back(Material{});
+  std::array<Vec3f, 3> p = {Vec3f(1, 1, 1), Vec3f(1.5f, 1, 1), Vec3f(1, 1.5f, 1)};
+  std::array<Vec3f, 3> n = {Vec3f(0, 0, 1), Vec3f(0, 0, 1), Vec3f(0, 0, 1)};
+  for (int i = 0; i < 20000; ++i)
+    s.table<Triangle>().append(p, n, 0);
+  for (int i = 0; i < 200; ++i)
+    s.table<Sphere>().append(std::array<double, 4>{1e30 * (i % 3 - 1), 1e30, -1e30, 1e29}, 0);
+  Bvh bvh = build_bvh(s);
+  expect_invariants(s, bvh);
+  Hit h = closest_hit_bvh_ref(s, bvh, {{1.1, 1.1, 5}, {0, 0, -1}});
+  ASSERT_TRUE(h.hit());
+  EXPECT_NEAR(h.t, 4.0, 1e-12);
+}
+
+// Exponentially spaced primitives make the SAH split off one at a time; the median rule
+// must keep the depth within the traversal stack.
+TEST(Bvh, ExponentialSpacingKeepsDepthBounded) {
+  Scene s;
+  s.materials.push_back(Material{});
+  for (int i = 0; i < 120; ++i) {
+    double x = std::ldexp(1.0, i);
+    s.table<Sphere>().append(std::array<double, 4>{x, 0, 0, x * 0.1}, 0);
+  }
+  Bvh bvh = build_bvh(s);
+  expect_invariants(s, bvh);
+}
+
+void expect_bvh_equals_brute_force(const Scene& s, const Bvh& bvh, const std::vector<Rayd>& rays) {
+  int hits = 0;
+  for (const Rayd& r : rays) {
+    Hit a = closest_hit_bvh_ref(s, bvh, r);
+    Hit b = closest_hit_ref(s, r);
+    ASSERT_EQ(a.prim, b.prim) << "ray " << r.o.x << " " << r.o.y << " " << r.o.z;
+    if (b.hit()) {
+      ++hits;
+      ASSERT_EQ(a.t, b.t);  // the same kernels: bit-identical t
+    }
+    ASSERT_EQ(any_hit_bvh_ref(s, bvh, r), any_hit_ref(s, r));
+  }
+  EXPECT_GT(hits, int(rays.size()) / 20) << "too few hits to test anything";
+}
+
+TEST(BvhTraversal, EqualsBruteForceOnRandomScenes) {
+  for (double offset : {0.0, 1e4, 1e5}) {
+    Scene s = random_scene(3, 200, 10, 0.6, {offset, -offset, offset});
+    Bvh bvh = build_bvh(s);
+    expect_bvh_equals_brute_force(s, bvh, random_rays(4, 20000, 12, {offset, -offset, offset}));
+  }
+}
+
+TEST(BvhTraversal, EqualsBruteForceOnEveryShippedScene) {
+  for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
+    auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
+    ASSERT_TRUE(p.ok()) << name;
+    Bvh bvh = build_bvh(p.scene);
+    expect_invariants(p.scene, bvh);
+    // Rays from the camera's eye towards the scene, and from random points inside it.
+    std::vector<Rayd> rays = random_rays(6, 20000, 3);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (int i = 0; i < 20000; ++i) {
+      Vec3d target(u(rng), u(rng), u(rng));
+      rays.push_back({p.scene.camera->eye, normalize(target - p.scene.camera->eye)});
+    }
+    expect_bvh_equals_brute_force(p.scene, bvh, rays);
+  }
+}
+
+// Axis-parallel rays and ±0 direction components over flat, axis-aligned geometry
+// (hard-cases B2, B3): the node test must not lose hits the brute force finds.
+TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
+  Scene s;
+  s.materials.push_back(Material{});
+  Vec3f n(0, 1, 0);
+  for (int i = -10; i < 10; ++i)
+    for (int j = -10; j < 10; ++j) {
+      Vec3f a(float(i), 0, float(j)), b(float(i + 1), 0, float(j)), c(float(i), 0, float(j + 1)),
+          d(float(i + 1), 0, float(j + 1));
+      s.table<Triangle>().append({a, c, b}, {n, n, n}, 0);
+      s.table<Triangle>().append({b, c, d}, {n, n, n}, 0);
+    }
+  Bvh bvh = build_bvh(s);
+  std::vector<Rayd> rays;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 20000; ++i) {
+    double x = u(rng), z = u(rng);
+    if (i % 4 == 0) x = std::round(x), z = std::round(z);  // through grid vertices
+    double zero = i % 2 ? 0.0 : -0.0;
+    rays.push_back({{x, 5, z}, {zero, -1, -zero}});
+  }
+  expect_bvh_equals_brute_force(s, bvh, rays);
+}
+
+}  // namespace
+}  // namespace raylane

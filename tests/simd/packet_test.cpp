@@ -1,0 +1,199 @@
+// The packet tracer at every instruction set this CPU has, against the double-precision
+// brute-force oracle, on the same float rays.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/scene/parser.h"
+#include "raylane/trace/brute_force.h"
+#include "raylane/trace/packet_tracer.h"
+#include "support/paths.h"
+#include "support/random_scene.h"
+
+namespace raylane {
+namespace {
+
+using testing::random_rays;
+using testing::random_scene;
+using testing::round_to_float;
+
+RayStream to_stream(const std::vector<Rayd>& rays) {
+  RayStream s;
+  s.resize(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    s.set(i, ray_cast<float>(rays[i]));
+  return s;
+}
+
+struct Agreement {
+  int rays = 0, hits = 0, disagreements = 0;
+};
+
+// Agreement as in spec/ray-sets.md: the same hit/miss status and t within a relative 1e-4,
+// or the same primitive. The reference runs on the float rays, converted exactly.
+Agreement compare(const Scene& s, const Bvh& bvh, Isa isa, const std::vector<Rayd>& rays) {
+  RayStream stream = to_stream(rays);
+  HitStream hits;
+  PacketTracer(isa).closest(s, bvh, stream, hits);
+  Agreement a;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    Hit ref = closest_hit_ref(s, round_to_float(rays[i]));
+    ++a.rays;
+    bool hit = hits.prim[i] != PrimRef::kInvalidBits;
+    EXPECT_FALSE(std::isnan(hits.t[i]));
+    if (ref.hit()) ++a.hits;
+    bool same = hit == ref.hit() && (!hit || hits.prim[i] == ref.prim.bits() ||
+                                     std::abs(hits.t[i] - ref.t) <= 1e-4 * std::max(1.0, ref.t));
+    if (!same) ++a.disagreements;
+  }
+  return a;
+}
+
+class PacketTracerTest : public ::testing::TestWithParam<Isa> {
+ protected:
+  void SetUp() override {
+    if (!isa_supported(GetParam())) GTEST_SKIP() << "this CPU lacks " << isa_name(GetParam());
+  }
+};
+
+TEST_P(PacketTracerTest, AgreesWithReferenceOnRandomScenes) {
+  for (double offset : {0.0, 1e2, 1e4}) {
+    Scene s = random_scene(11, 300, 10, 0.6, {offset, offset, -offset});
+    Bvh bvh = build_bvh(s);
+    // 10001 rays: the last packet is partly filled.
+    Agreement a =
+        compare(s, bvh, GetParam(), random_rays(12, 10001, 12, {offset, offset, -offset}));
+    EXPECT_GT(a.hits, a.rays / 10);
+    // Grazing rays may legitimately differ between float and double; allow 1 in 10^3.
+    EXPECT_LE(a.disagreements, a.rays / 1000) << "offset " << offset;
+  }
+}
+
+TEST_P(PacketTracerTest, AgreesWithReferenceOnShippedScenes) {
+  for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
+    auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
+    ASSERT_TRUE(p.ok());
+    Bvh bvh = build_bvh(p.scene);
+    Agreement a = compare(p.scene, bvh, GetParam(), random_rays(13, 20000, 3));
+    EXPECT_LE(a.disagreements, a.rays / 1000) << name;
+    EXPECT_GT(a.hits, 0) << name;
+  }
+}
+
+// hard-cases N1: invalid rays miss without a NaN, and do not disturb their packet mates.
+TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
+  Scene s = random_scene(14, 50, 3);
+  Bvh bvh = build_bvh(s);
+  std::vector<Rayd> rays = random_rays(15, 64, 3);
+  const double nan = std::nan(""), inf = INFINITY;
+  rays[1].o.x = nan;
+  rays[2].d.y = inf;
+  rays[3].d = {0, 0, 0};
+  rays[4].tmax = nan;
+  rays[5].tmin = 2, rays[5].tmax = 1;
+  rays[6].o.z = 1e39;  // inf after rounding to float
+  RayStream stream = to_stream(rays);
+  HitStream hits;
+  PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+  for (int i = 1; i <= 6; ++i) {
+    EXPECT_EQ(hits.prim[i], PrimRef::kInvalidBits) << i;
+    EXPECT_FALSE(std::isnan(hits.t[i])) << i;
+  }
+  for (int i = 7; i < 64; ++i) {
+    Hit ref = closest_hit_ref(s, round_to_float(rays[i]));
+    EXPECT_EQ(hits.prim[i] != PrimRef::kInvalidBits, ref.hit()) << i;
+  }
+}
+
+// hard-cases B3, B4: ±0 components and rays in a box's face planes, edges and corners.
+TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.table<Box>().append(std::array<double, 6>{0, 0, 0, 1, 1, 1}, 0);
+  Bvh bvh = build_bvh(s);
+  std::vector<Rayd> rays;
+  for (double x : {0.0, 0.5, 1.0})
+    for (double y : {0.0, 0.5, 1.0})
+      for (double zx : {0.0, -0.0})
+        for (double zy : {0.0, -0.0})
+          rays.push_back({{x, y, -1}, {zx, zy, 1}});
+  RayStream stream = to_stream(rays);
+  HitStream hits;
+  PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    Hit ref = closest_hit_ref(s, rays[i]);
+    ASSERT_TRUE(ref.hit()) << i;  // closed box: face, edge and corner rays hit
+    EXPECT_EQ(hits.prim[i], ref.prim.bits()) << i;
+    EXPECT_EQ(hits.t[i], 1.0f) << i;
+  }
+}
+
+// hard-cases T1: rays from inside a closed mesh, random and aimed exactly at vertices and at
+// points on edges, through the BVH, at offsets 0, 1e4 and 1e5: no ray escapes.
+TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
+  for (double offset : {0.0, 1e4, 1e5}) {
+    Scene s;
+    Vec3d c(offset, -offset, offset);
+    testing::add_closed_uv_sphere(s, 16, 24, 48, c);
+    Bvh bvh = build_bvh(s);
+    const auto& t = s.table<Triangle>();
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(-0.25, 0.25), w(0, 1);
+    std::vector<Rayd> rays;
+    for (int i = 0; i < 60000; ++i) {
+      Vec3f o(c + Vec3d(u(rng), u(rng), u(rng)));
+      uint32_t row = uint32_t(rng() % t.size());
+      Vec3f target;
+      if (i % 3 == 0) {
+        target = t.p0(row);  // a vertex
+      } else if (i % 3 == 1) {
+        float a = float(w(rng));  // a float point on an edge
+        target = Vec3f(Vec3d(t.p0(row)) * (1 - a) + Vec3d(t.p1(row)) * a);
+      } else {
+        target = Vec3f(Vec3d(o) + Vec3d(u(rng), u(rng), u(rng)));
+      }
+      Vec3d d = Vec3d(target) - Vec3d(o);
+      if (length_squared(d) == 0) continue;
+      rays.push_back({Vec3d(o), normalize(d)});
+    }
+    RayStream stream = to_stream(rays);
+    HitStream hits;
+    PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+    int escapes = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      escapes += hits.prim[i] == PrimRef::kInvalidBits;
+    EXPECT_EQ(escapes, 0) << "offset " << offset << " of " << rays.size() << " rays";
+  }
+}
+
+TEST_P(PacketTracerTest, OcclusionMatchesReference) {
+  Scene s = random_scene(18, 300, 10);
+  Bvh bvh = build_bvh(s);
+  std::vector<Rayd> rays = random_rays(19, 5000, 12);
+  for (auto& r : rays)
+    r.tmax = 4.0;
+  RayStream stream = to_stream(rays);
+  HitStream hits;
+  PacketTracer(GetParam()).occluded(s, bvh, stream, hits);
+  int disagreements = 0, occluded = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    bool ref = any_hit_ref(s, round_to_float(rays[i]));
+    occluded += ref;
+    disagreements += ref != (hits.prim[i] == 0);
+  }
+  EXPECT_GT(occluded, 100);
+  EXPECT_LE(disagreements, int(rays.size()) / 1000);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryIsa, PacketTracerTest,
+                         ::testing::Values(Isa::kSse42, Isa::kAvx2, Isa::kAvx512),
+                         [](const auto& info) {
+                           std::string n(isa_name(info.param));
+                           n.erase(std::remove(n.begin(), n.end(), '.'), n.end());
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace raylane
