@@ -60,6 +60,19 @@ TEST(BoxRef, CornerHitHasOneAxisNormal) {
   EXPECT_EQ(surface_ref(b, 0, r, t).ng, Vec3d(-1, 0, 0));
 }
 
+// The packet kernels report t in float: the face must follow the nearer end of the
+// interval, not an exact match with the double entry t (a float t once flipped the face).
+TEST(BoxRef, SurfaceFromAnInexactTIsStillTheEntryFace) {
+  BoxTable b = one_box({0, 0, 0}, {1, 1, 1});
+  Rayd r = ray({0.3, 0.4, -1}, normalize(Vec3d(0.1, 0.2, 1)));
+  double t = intersect_ref(b, 0, r);
+  for (double tt : {t, double(float(t)), std::nextafter(t, 0.0), std::nextafter(t, 9.0)}) {
+    Surface s = surface_ref(b, 0, r, tt);
+    EXPECT_EQ(s.ng, Vec3d(0, 0, -1));
+    EXPECT_EQ(s.p.z, 0.0);
+  }
+}
+
 TEST(BoxRef, LargeOffsetsStayExact) {
   for (double off : {1e2, 1e4, 1e5, 1e6}) {
     BoxTable b = one_box({off, off, off}, {1, 1, 1});

@@ -3,7 +3,9 @@
 
 #include "args.h"
 #include "commands.h"
+#include "raylane/bvh/bvh.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/simd/isa.h"
 
 namespace raylane::cli {
 
@@ -61,6 +63,20 @@ int info_command(const std::vector<std::string>& args) {
   print_tables(s);
   print_materials(s);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
+  Bvh bvh = build_bvh(s);
+  const BvhStats& b = bvh.stats;
+  std::printf(
+      "bvh: %u inner nodes, %u leaves, depth %u, SAH cost %.2f, %zu bytes, built in "
+      "%.3f s\n",
+      b.inner_nodes, b.leaves, b.depth, b.sah_cost, bvh.bytes(), b.build_seconds);
+  std::printf("bvh leaf sizes:");
+  for (std::size_t n = 1; n < b.leaf_size_histogram.size(); ++n)
+    if (b.leaf_size_histogram[n]) std::printf(" %zu:%u", n, b.leaf_size_histogram[n]);
+  std::printf("\npacket kernels: %s (%d lanes); this CPU has",
+              std::string(isa_name(best_isa())).c_str(), isa_width(best_isa()));
+  for (Isa isa : supported_isas())
+    std::printf(" %s", std::string(isa_name(isa)).c_str());
+  std::printf("\n");
   return kExitOk;
 }
 

@@ -21,6 +21,10 @@ render options:
   --mode MODE         normal | depth | albedo | id | lit        (default: lit)
   --exposure E        PNG exposure in stops (pixel · 2^E)          (default: 0)
   --threads N         worker threads, 0 = all cores                (default: 0)
+  --tracer T          packet (SIMD packets through the BVH) | bvh (single rays, double
+                      kernels) | scalar (brute force, double kernels)  (default: packet)
+  --isa I             sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set
+                                                                   (default: auto, the widest)
   --lenient           skip bad scene lines with a warning instead of failing
   --quiet             print only errors and the written image paths
 

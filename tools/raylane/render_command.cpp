@@ -19,6 +19,8 @@ struct RenderRequest {
   std::optional<std::string> scene_path;
   std::vector<std::string> outputs;
   RaycastMode mode = RaycastMode::kLit;
+  TracerKind tracer = TracerKind::kPacket;
+  Isa isa = best_isa();
   double exposure = 0;
   int threads = 0;
   bool lenient = false, quiet = false;
@@ -27,6 +29,7 @@ struct RenderRequest {
 const std::vector<OptionSpec> kRenderOptions = {
     {"output", 'o', true, true}, {"mode", 0, true, false},     {"exposure", 0, true, false},
     {"threads", 0, true, false}, {"lenient", 0, false, false}, {"quiet", 'q', false, false},
+    {"tracer", 0, true, false},  {"isa", 0, true, false},
 };
 
 std::string default_output(const std::optional<std::string>& scene_path) {
@@ -45,6 +48,17 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     if (!mode)
       return Error{cat("unknown --mode ", in_quotes(*m), " (normal, depth, albedo, id, lit)")};
     r.mode = *mode;
+  }
+  if (auto t = parsed->last("tracer")) {
+    auto kind = tracer_kind_from_name(*t);
+    if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
+    r.tracer = *kind;
+  }
+  if (auto i = parsed->last("isa"); i && *i != "auto") {
+    auto isa = isa_from_name(*i);
+    if (!isa) return Error{cat("unknown --isa ", in_quotes(*i), " (sse4.2, avx2, avx512, auto)")};
+    if (!isa_supported(*isa)) return Error{cat("this CPU cannot run --isa ", *i)};
+    r.isa = *isa;
   }
   if (auto e = parsed->last("exposure")) {
     auto v = parse_double_option("exposure", *e);
@@ -88,9 +102,13 @@ int render_command(const std::vector<std::string>& args) {
   if (!outputs_writable(r)) return kExitUsage;
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
+  // The BVH is built for every tracer: it permutes the tables, so all tracers name the same
+  // primitive by the same row (and `--mode id` images compare across tracers).
+  Bvh bvh = build_bvh(*scene);
+  Tracer tracer(*scene, bvh, r.tracer, r.isa);
   auto start = std::chrono::steady_clock::now();
   RaycastStats stats;
-  Image image = render_raycast(*scene, ReferenceTracer{*scene}, r.mode, &stats);
+  Image image = render_raycast(tracer, r.mode, &stats);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   WriteOptions wopts;
@@ -108,12 +126,14 @@ int render_command(const std::vector<std::string>& args) {
   if (!r.quiet) {
     uint64_t rays = stats.camera_rays + stats.shadow_rays;
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.2f s: %llu rays (%llu camera, %llu shadow), %.2f "
-                 "Mrays/s, %d threads\n",
+                 "rendered %ux%u (%s) in %.3f s: %llu rays (%llu camera, %llu shadow), %.2f "
+                 "Mrays/s; %s tracer, %s, %d threads; BVH of %zu nodes built in %.3f s\n",
                  scene->width, scene->height, std::string(raycast_mode_name(r.mode)).c_str(),
                  seconds, (unsigned long long)rays, (unsigned long long)stats.camera_rays,
                  (unsigned long long)stats.shadow_rays, rays / seconds * 1e-6,
-                 omp_get_max_threads());
+                 std::string(tracer_kind_name(r.tracer)).c_str(),
+                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
+                 bvh.stats.build_seconds);
   }
   return status;
 }

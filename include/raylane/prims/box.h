@@ -103,7 +103,8 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
     if (tn[k] > entry) entry = tn[k], entry_axis = k;
     if (tf[k] < exit) exit = tf[k], exit_axis = k;
   }
-  bool entering = entry_axis >= 0 && t == entry;
+  // The nearer end of the interval: t may come from a float kernel, so never compare exactly.
+  bool entering = entry_axis >= 0 && (exit_axis < 0 || std::abs(t - entry) <= std::abs(t - exit));
   int axis = entering ? entry_axis : (exit_axis >= 0 ? exit_axis : 0);
   bool neg = std::signbit(ray.d[axis]);
   Vec3d n(0, 0, 0), p = ray.at(t);

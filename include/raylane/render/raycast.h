@@ -7,8 +7,8 @@
 
 #include "raylane/image/image.h"
 #include "raylane/render/camera.h"
+#include "raylane/render/tracer.h"
 #include "raylane/scene/scene.h"
-#include "raylane/trace/hit.h"
 
 namespace raylane {
 
@@ -23,25 +23,14 @@ enum class RaycastMode {
 std::optional<RaycastMode> raycast_mode_from_name(std::string_view name);
 std::string_view raycast_mode_name(RaycastMode mode);
 
-// What a ray caster needs of a tracer: the closest hit and an occlusion test.
-struct ReferenceTracer {
-  const Scene& scene;
-  Hit closest(const Rayd& ray) const;
-  bool occluded(const Rayd& ray) const;
-};
-
 struct RaycastStats {
   uint64_t camera_rays = 0;
   uint64_t shadow_rays = 0;
 };
 
-// Renders every pixel; rows are written top row first (Image's convention).
-Image render_raycast(const Scene& scene, const ReferenceTracer& tracer, RaycastMode mode,
-                     RaycastStats* stats = nullptr);
-
-// The colour of one camera ray under a mode (exposed for tests).
-Vec3d shade_raycast(const Scene& scene, const ReferenceTracer& tracer, RaycastMode mode,
-                    const Rayd& ray, uint64_t* shadow_rays = nullptr);
+// Renders every pixel; camera rays go out in 4×4-pixel tiles (coherent packets), rows are
+// stored top row first (Image's convention).
+Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr);
 
 // The origin of a ray leaving surface point p: moved along the geometric normal, to the
 // side `toward` points to, by a bound on p's own rounding error (pbrt-v4 `OffsetRayOrigin`;
@@ -49,8 +38,8 @@ Vec3d shade_raycast(const Scene& scene, const ReferenceTracer& tracer, RaycastMo
 // on. `p_error` is a componentwise bound on |p − exact p|.
 Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng, const Vec3d& toward);
 
-// A componentwise bound on the error of a reference hit point o + t·d computed in double:
-// the kernels' t carries a few roundings, so allow 2^6 units of roundoff of |o| + |t·d|.
-Vec3d reference_point_error(const Rayd& ray, double t);
+// A componentwise bound on the error of a hit point o + t·d whose t came from a float
+// kernel: a float t is within a few ulps, so allow 2^5 float roundoffs of |o| + |t·d|.
+Vec3d hit_point_error(const Rayd& ray, double t);
 
 }  // namespace raylane

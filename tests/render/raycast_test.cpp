@@ -1,0 +1,98 @@
+// Ray-casting views: every tracer and instruction set renders the same picture.
+#include <gtest/gtest.h>
+
+#include "raylane/image/metrics.h"
+#include "raylane/render/raycast.h"
+#include "raylane/scene/parser.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+struct Rendered {
+  Image image;
+  RaycastStats stats;
+};
+
+Rendered render(const std::string& scene_name, RaycastMode mode, TracerKind kind, Isa isa) {
+  auto p = load_scene_file(testing::source_path("scenes/" + scene_name));
+  EXPECT_TRUE(p.ok());
+  Bvh bvh = build_bvh(p.scene);
+  Tracer tracer(p.scene, bvh, kind, isa);
+  Rendered r;
+  r.image = render_raycast(tracer, mode, &r.stats);
+  return r;
+}
+
+int differing_pixels(const Image& a, const Image& b) {
+  int n = 0;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x)
+      n += a.at(x, y) != b.at(x, y);
+  return n;
+}
+
+// Pixels whose channels differ by more than 1 % of the pixel's value (plus 1e-3).
+int visibly_differing_pixels(const Image& a, const Image& b) {
+  int n = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); i += 3) {
+    bool differ = false;
+    for (int k = 0; k < 3; ++k)
+      differ |= std::abs(a.rgb[i + k] - b.rgb[i + k]) > 0.01f * std::abs(b.rgb[i + k]) + 1e-3f;
+    n += differ;
+  }
+  return n;
+}
+
+// `--mode id`: the same primitive in every pixel for every tracer and ISA, except where two
+// coplanar triangles overlap (letter X's two quads cross in one plane: either is right,
+// and float and double t break the tie differently). Bound: 1 pixel in 10^4.
+TEST(Raycast, IdImageIsTheSameForEveryTracerAndIsa) {
+  Image ref = render("testscene.scn", RaycastMode::kId, TracerKind::kScalar, Isa::kSse42).image;
+  EXPECT_EQ(
+      differing_pixels(
+          ref, render("testscene.scn", RaycastMode::kId, TracerKind::kBvh, Isa::kSse42).image),
+      0);
+  for (Isa isa : supported_isas()) {
+    Image img = render("testscene.scn", RaycastMode::kId, TracerKind::kPacket, isa).image;
+    EXPECT_LE(differing_pixels(ref, img), 12) << isa_name(isa);
+  }
+}
+
+// The lit view traces shadow rays through the same tracer; packet and scalar agree.
+TEST(Raycast, LitImageAgreesAcrossTracers) {
+  Rendered scalar = render("testscene.scn", RaycastMode::kLit, TracerKind::kScalar, Isa::kSse42);
+  Rendered packet = render("testscene.scn", RaycastMode::kLit, TracerKind::kPacket, best_isa());
+  EXPECT_GT(scalar.stats.shadow_rays, 100000u);
+  EXPECT_EQ(scalar.stats.shadow_rays, packet.stats.shadow_rays);
+  auto d = compare(packet.image, scalar.image);
+  ASSERT_TRUE(d);
+  // Float and double hit points differ in their last bits everywhere; visibly, only at
+  // shadow and silhouette edges: at most 0.05 % of the pixels.
+  EXPECT_LE(visibly_differing_pixels(packet.image, scalar.image), 60);
+  EXPECT_LT(d->rmse, 0.02);
+  // Direct light reaches the floor: the lit mean is far above the ambient-only level.
+  EXPECT_GT(mean(scalar.image).x, 0.5);
+}
+
+TEST(Raycast, ImageIsUpright) {
+  // The test scene's floor fills the bottom rows, the walls the top rows: in the normal view
+  // the floor's +z normal is (0.5, 0.5, 1).
+  Image img = render("testscene.scn", RaycastMode::kNormal, TracerKind::kPacket, best_isa()).image;
+  Vec3f bottom = img.at(10, img.height - 2);
+  EXPECT_NEAR(bottom.z, 1.0f, 1e-3f);
+  EXPECT_NEAR(bottom.x, 0.5f, 1e-3f);
+  Vec3f top = img.at(10, 1);
+  EXPECT_LT(top.z, 0.9f);  // a wall
+}
+
+TEST(Raycast, DepthIsTheHitDistance) {
+  Image img = render("sphere.scn", RaycastMode::kDepth, TracerKind::kPacket, best_isa()).image;
+  // The centre pixel looks along +y at the unit sphere at the origin from (0, −6, 0).
+  Vec3f c = img.at(img.width / 2, img.height / 2);
+  EXPECT_NEAR(c.x, 5.0f, 1e-3f);
+  EXPECT_EQ(img.at(0, 0), Vec3f(0, 0, 0));  // a miss
+}
+
+}  // namespace
+}  // namespace raylane
