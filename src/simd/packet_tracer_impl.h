@@ -35,25 +35,34 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   return r;
 }
 
+// One packet, closest hit or any hit, counted or not.
+template <class A>
+void traverse(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h, bool any_hit,
+              TraversalCounters* c) {
+  if (c) {
+    ++c->packets;
+    c->rays += uint64_t(__builtin_popcount(simd::bits<A>(r.active)));
+    if (any_hit) return traverse_packet<A, true, true>(scene, bvh, r, h, c);
+    return traverse_packet<A, false, true>(scene, bvh, r, h, c);
+  }
+  if (any_hit) return traverse_packet<A, true>(scene, bvh, r, h);
+  traverse_packet<A, false>(scene, bvh, r, h);
+}
+
 template <class A>
 void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
-                 std::size_t end, HitStream& hits, bool any_hit) {
+                 std::size_t end, HitStream& hits, bool any_hit, TraversalCounters* counters) {
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
   const F inf(std::numeric_limits<float>::infinity());
+  if (counters) counters->width = W;
   for (std::size_t i = begin; i < end; i += W) {
     int n = int(std::min<std::size_t>(W, end - i));
     HitPacket<A> h;
     RayPacket<A> r = load_packet<A>(rays, i, n, h.t);
     h.prim = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
     h.found = F(0.0f) != F(0.0f);
-    if (simd::any<A>(r.active)) {
-      if (any_hit) {
-        traverse_packet<A, true>(scene, bvh, r, h);
-      } else {
-        traverse_packet<A, false>(scene, bvh, r, h);
-      }
-    }
+    if (simd::any<A>(r.active)) traverse<A>(scene, bvh, r, h, any_hit, counters);
     alignas(64) float t[W];
     alignas(64) int32_t prim[W];
     simd::Ints<A> occluded_bits(0);

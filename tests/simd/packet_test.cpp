@@ -187,6 +187,39 @@ TEST_P(PacketTracerTest, OcclusionMatchesReference) {
   EXPECT_LE(disagreements, int(rays.size()) / 1000);
 }
 
+// The counting traversal gives the same answers as the production one, and its counts add
+// up: on a one-sphere scene the root is the only node, a leaf with one primitive.
+TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
+  Scene s = random_scene(7, 40);
+  Bvh bvh = build_bvh(s);
+  RayStream stream = to_stream(random_rays(8, 1000, 12));
+  PacketTracer tracer(GetParam());
+  HitStream plain, counted;
+  for (bool any_hit : {false, true}) {
+    any_hit ? tracer.occluded(s, bvh, stream, plain) : tracer.closest(s, bvh, stream, plain);
+    TraversalCounters c = tracer.trace_counted(s, bvh, stream, counted, any_hit);
+    EXPECT_EQ(plain.prim, counted.prim);
+    EXPECT_EQ(plain.t, counted.t);
+    EXPECT_EQ(c.rays, 1000u);
+    EXPECT_EQ(c.width, tracer.width());
+    EXPECT_GE(c.node_tests, c.packets);
+    EXPECT_LE(c.lanes_overlap, c.lanes_active);
+    EXPECT_LE(c.lanes_active, c.node_tests * uint64_t(c.width));
+  }
+  Scene one = parse_scene("camera 0 0 5 1\nsphere 0 0 0 1\n", "one.scn").scene;
+  Bvh one_bvh = build_bvh(one);
+  std::vector<Rayd> down(37, Rayd{{0, 0, 5}, {0, 0, -1}});
+  TraversalCounters c =
+      tracer.trace_counted(one, one_bvh, to_stream(down), counted, /*any_hit=*/false);
+  uint64_t packets = (37 + c.width - 1) / c.width;
+  EXPECT_EQ(c.packets, packets);
+  EXPECT_EQ(c.node_tests, packets);
+  EXPECT_EQ(c.leaf_visits, packets);
+  EXPECT_EQ(c.prim_tests, packets);
+  EXPECT_EQ(c.lanes_overlap, 37u);
+  EXPECT_FLOAT_EQ(counted.t[36], 4.0f);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryIsa, PacketTracerTest,
                          ::testing::Values(Isa::kSse42, Isa::kAvx2, Isa::kAvx512),
                          [](const auto& info) {

@@ -9,6 +9,7 @@
 #include "raylane/scene/scene.h"
 #include "raylane/simd/isa.h"
 #include "raylane/trace/ray_stream.h"
+#include "raylane/trace/traversal_counters.h"
 
 namespace raylane {
 
@@ -25,22 +26,26 @@ class PacketTracer {
   void closest(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
   // Occlusion: hits.prim = 0 where something lies in (tmin, tmax), kInvalidBits elsewhere.
   void occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
+  // closest() or occluded() through the instrumented traversal: the same answers, plus what
+  // the traversal did (for benchmarks; slower).
+  TraversalCounters trace_counted(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                                  HitStream& hits, bool any_hit) const;
 
  private:
   void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits,
-             bool any_hit) const;
+             bool any_hit, TraversalCounters* counters) const;
   Isa isa_;
 };
 
 namespace detail {
 // Defined in src/simd/isa_<name>.cpp, each compiled for its instruction set. Trace rays
-// [begin, end) of the stream.
+// [begin, end) of the stream; count what the traversal does into `counters` unless null.
 void trace_sse42(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                 bool any_hit);
+                 bool any_hit, TraversalCounters* counters);
 void trace_avx2(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                bool any_hit);
+                bool any_hit, TraversalCounters* counters);
 void trace_avx512(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                  bool any_hit);
+                  bool any_hit, TraversalCounters* counters);
 }  // namespace detail
 
 }  // namespace raylane

@@ -10,6 +10,7 @@
 #include "raylane/prims/prim_list.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/packet.h"
+#include "raylane/trace/traversal_counters.h"
 
 namespace raylane {
 
@@ -63,8 +64,10 @@ inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& le
 }
 
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
-template <class A, bool kAnyHit>
-inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h) {
+// kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
+template <class A, bool kAnyHit, bool kCount = false>
+inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h,
+                            TraversalCounters* c = nullptr) {
   using F = simd::Floats<A>;
   if (bvh.empty()) return;
   uint32_t stack[kBvhStackSize];
@@ -74,8 +77,14 @@ inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r,
     const BvhNode& n = bvh.nodes[stack[--top]];
     F tnear;
     simd::Mask<A> lanes = node_overlap<A>(n, r, h.t, &tnear);
+    if constexpr (kCount) {
+      ++c->node_tests;
+      c->lanes_active += uint64_t(__builtin_popcount(simd::bits<A>(r.active)));
+      c->lanes_overlap += uint64_t(__builtin_popcount(simd::bits<A>(lanes)));
+    }
     if (simd::none<A>(lanes)) continue;
     if (n.is_leaf()) {
+      if constexpr (kCount) ++c->leaf_visits, c->prim_tests += n.count;
       intersect_leaf<A>(scene, bvh, n, r, lanes, h);
       if constexpr (kAnyHit) {
         r.active = r.active & !h.found;
