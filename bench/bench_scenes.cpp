@@ -1,0 +1,176 @@
+#include "bench_scenes.h"
+
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "icosphere.h"
+#include "raylane/scene/mesh_import.h"
+#include "raylane/scene/parser.h"
+
+namespace raylane::bench {
+
+namespace {
+
+constexpr uint32_t kWidth = 1024, kHeight = 768;  // perf-notes.md: 1024×768 primary rays
+constexpr const char* kEnginePath =
+    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+Bounds3d scene_bounds(const Scene& s) {
+  Bounds3d b;
+  PrimKinds::for_each([&](auto kind) {
+    const auto& t = s.table<decltype(kind)>();
+    for (uint32_t i = 0; i < t.size(); ++i) {
+      Bounds3f f = t.bounds(i);
+      b.extend(Vec3d(f.lo));
+      b.extend(Vec3d(f.hi));
+    }
+  });
+  return b;
+}
+
+// Frames the whole scene from the direction `view` (pointing from the scene to the eye) and
+// puts the shadow-ray light above and to the side.
+void frame(BenchScene& b, Vec3d view) {
+  Bounds3d box = scene_bounds(b.scene);
+  Vec3d c = (box.lo + box.hi) * 0.5;
+  double radius = length(box.hi - box.lo) * 0.5;
+  b.scene.width = kWidth, b.scene.height = kHeight;
+  // Close enough that the model fills most of the frame (the bounding sphere overfills it).
+  b.scene.camera = look_at(c + normalize(view) * (radius * 1.45), c, 0.5);
+  b.light = c + Vec3d(0.4, -0.3, 1.5) * radius;
+}
+
+ParsedScene parse_text(const std::string& text, const std::string& name) {
+  return parse_scene(text, name + ".scn");
+}
+
+// Haines's sphereflake (1987, "A Proposal for Standard Graphics Environments"): nine children
+// of a third of the radius around each sphere, six on its equator and three above.
+void sphereflake(std::ostringstream& out, Vec3d c, double r, Vec3d up, int depth) {
+  out << "sphere " << c.x << ' ' << c.y << ' ' << c.z << ' ' << r << '\n';
+  if (depth == 0) return;
+  Vec3d a = std::abs(up.x) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
+  Vec3d u = normalize(cross(up, a)), v = cross(up, u);
+  for (int k = 0; k < 9; ++k) {
+    double phi = (k < 6 ? k / 6.0 : (k - 6) / 3.0 + 1 / 12.0) * 2 * M_PI;
+    double lat = k < 6 ? 0.0 : M_PI / 4;
+    Vec3d dir =
+        normalize((u * std::cos(phi) + v * std::sin(phi)) * std::cos(lat) + up * std::sin(lat));
+    sphereflake(out, c + dir * (r * 4 / 3), r / 3, dir, depth - 1);
+  }
+}
+
+std::optional<BenchScene> make_sphereflake() {
+  std::ostringstream out;
+  out << "camera 0 0 0 1\nbrdf 0.7 0.7 0.7 0 0 0 1\n";
+  sphereflake(out, {0, 0, 0}, 1.0, {0, 0, 1}, 5);
+  ParsedScene p = parse_text(out.str(), "sphereflake");
+  if (!p.ok()) return std::nullopt;
+  BenchScene b{"sphereflake", std::move(p.scene), {}, {}, 0};
+  frame(b, {1.0, -1.6, 0.9});
+  return b;
+}
+
+// A cubic lattice: a box at each of 16³ nodes, a cylinder along each edge between them.
+std::optional<BenchScene> make_lattice() {
+  constexpr int n = 16;
+  std::ostringstream out;
+  out << "camera 0 0 0 1\nbrdf 0.7 0.7 0.7 0 0 0 1\n";
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        out << "box " << i - 0.15 << ' ' << j - 0.15 << ' ' << k - 0.15 << " 0.3 0.3 0.3\n";
+        if (i + 1 < n) out << "cylinder " << i << ' ' << j << ' ' << k << " 1 0 0 0.06\n";
+        if (j + 1 < n) out << "cylinder " << i << ' ' << j << ' ' << k << " 0 1 0 0.06\n";
+        if (k + 1 < n) out << "cylinder " << i << ' ' << j << ' ' << k << " 0 0 1 0.06\n";
+      }
+  ParsedScene p = parse_text(out.str(), "lattice");
+  if (!p.ok()) return std::nullopt;
+  BenchScene b{"lattice", std::move(p.scene), {}, {}, 0};
+  frame(b, {1.0, -1.4, 0.8});
+  return b;
+}
+
+std::optional<BenchScene> make_engine(std::string* why) {
+  BenchScene b;
+  b.name = "engine";
+  b.scene.materials.push_back(Material::default_grey());
+  auto r = import_mesh_file(kEnginePath, MeshPlacement{}, 0, b.scene.table<Triangle>());
+  if (!r.ok()) {
+    if (why) *why = "needs Debian's assimp-testmodels: " + r.error();
+    return std::nullopt;
+  }
+  frame(b, {1.0, -1.3, 0.7});
+  return b;
+}
+
+std::optional<BenchScene> make_testscene() {
+  ParsedScene p = load_builtin_scene();
+  if (!p.ok()) return std::nullopt;
+  BenchScene b{"testscene", std::move(p.scene), {}, {}, 0};
+  b.scene.width = kWidth, b.scene.height = kHeight;
+  // Shadow rays aim at the first light sphere's centre and stop at its surface.
+  for (PrimRef l : b.scene.lights)
+    if (l.tag() == PrimTag::kSphere) {
+      b.light = Vec3d(b.scene.table<Sphere>().center(l.row()));
+      b.light_gap = b.scene.table<Sphere>().r[l.row()] * 1.01;
+      break;
+    }
+  return b;
+}
+
+std::optional<BenchScene> make_icosphere() {
+  BenchScene b;
+  b.name = "icosphere";
+  b.scene.materials.push_back(Material::default_grey());
+  add_displaced_icosphere(b.scene.table<Triangle>(), 8, 0);
+  frame(b, {1.0, -1.5, 0.6});
+  return b;
+}
+
+}  // namespace
+
+std::vector<std::string> bench_scene_names() {
+  return {"testscene", "engine", "icosphere", "sphereflake", "lattice"};
+}
+
+CameraSpec look_at(const Vec3d& eye, const Vec3d& target, double ry) {
+  Vec3d forward = normalize(target - eye);
+  Vec3d right = normalize(cross(forward, Vec3d(0, 0, 1)));
+  Vec3d up = cross(right, forward);
+  CameraSpec c;
+  c.eye = eye;
+  c.ry = ry;
+  // Columns: R·x = right, R·y = up, R·(−z) = forward.
+  for (int i = 0; i < 3; ++i) {
+    c.rotation.m[i][0] = right[i];
+    c.rotation.m[i][1] = up[i];
+    c.rotation.m[i][2] = -forward[i];
+  }
+  return c;
+}
+
+const BenchScene* bench_scene(const std::string& name, std::string* why) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = cache.find(name); it != cache.end()) return it->second.get();
+  std::optional<BenchScene> b;
+  if (name == "testscene") b = make_testscene();
+  if (name == "engine") b = make_engine(why);
+  if (name == "icosphere") b = make_icosphere();
+  if (name == "sphereflake") b = make_sphereflake();
+  if (name == "lattice") b = make_lattice();
+  if (!b) {
+    if (why && why->empty()) *why = "no such scene or it failed to build: " + name;
+    return nullptr;
+  }
+  b->bvh = build_bvh(b->scene);
+  auto& slot = cache[name];
+  slot = std::make_unique<BenchScene>(std::move(*b));
+  return slot.get();
+}
+
+}  // namespace raylane::bench

@@ -1,0 +1,35 @@
+// The benchmark scenes (issue 5): made by raylane's own code at bench time, so nothing large
+// is committed and nothing is downloaded except through the package manager.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane::bench {
+
+struct BenchScene {
+  std::string name;
+  Scene scene;
+  Bvh bvh;
+  Vec3d light;           // the point shadow rays aim at
+  double light_gap = 0;  // shadow rays stop this far short of it (a light sphere's radius)
+};
+
+// testscene (the course's, built in), engine (2CylinderEngine.glb of Debian's
+// assimp-testmodels, ~110k triangles), icosphere (a displaced icosphere of 1.31M triangles),
+// sphereflake (66k spheres), lattice (4096 boxes joined by 11520 cylinders).
+std::vector<std::string> bench_scene_names();
+
+// Builds the scene (and its BVH), or says why it cannot (e.g. a package is not installed).
+// Cached: the same object is returned for the same name.
+const BenchScene* bench_scene(const std::string& name, std::string* why = nullptr);
+
+// A camera at `eye` looking at `target`, z up, vertical half-angle tangent `ry`.
+CameraSpec look_at(const Vec3d& eye, const Vec3d& target, double ry);
+
+}  // namespace raylane::bench

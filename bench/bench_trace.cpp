@@ -1,0 +1,142 @@
+// raylane's benchmark suite (issue 5): rays per second of every tracer on identical ray sets
+// of every benchmark scene, at 1 thread and at all threads, after checking each tracer's
+// answers against the double-precision reference; and BVH build time and memory next to
+// Embree's. `tools/bench_table` runs it with repetitions and prints the median table.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+
+#include <string>
+
+#include "bench_scenes.h"
+#include "embree_tracer.h"
+#include "ray_sets.h"
+#include "raylane/prims/table_util.h"
+#include "tracers.h"
+
+namespace raylane::bench {
+namespace {
+
+// Agreement is checked on at most this many rays per set (every k-th ray).
+constexpr std::size_t kCheckedRays = 1 << 15;
+// A tracer whose answers differ from the reference on more rays than this fails: rays in
+// the ambiguous band (silhouettes, shared edges at float precision) are a few in 10^5.
+constexpr double kMaxDisagreement = 1e-3;
+
+// Flush denormals to zero on every worker thread, for every tracer alike (Embree's API
+// documentation recommends it; toolchain.md §2 item 8).
+void use_threads(int threads) {
+  omp_set_num_threads(threads);
+#pragma omp parallel
+  {
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+  }
+}
+
+void trace_rays(benchmark::State& state, const std::string& scene, RayKind kind,
+                const std::string& tracer, int threads) {
+  std::string why;
+  const BenchScene* b = bench_scene(scene, &why);
+  if (!b) return state.SkipWithError(why.c_str());
+  const RaySet& set = bench_rays(*b, kind);
+  BenchTracer t = bench_tracer(*b, tracer);
+  use_threads(threads);
+  HitStream hits;
+  t.trace(set.rays, set.occlusion, hits);
+  std::size_t stride = std::max<std::size_t>(1, set.rays.size() / kCheckedRays);
+  Agreement a = check_against_reference(*b, set.rays, set.occlusion, hits, stride);
+  state.counters["disagree"] = a.rate();
+  if (a.rate() > kMaxDisagreement)
+    return state.SkipWithError(("answers disagree with the reference on " +
+                                std::to_string(a.disagree) + " of " + std::to_string(a.checked) +
+                                " rays")
+                                   .c_str());
+  if (t.count) {
+    TraversalCounters c = t.count(set.rays, set.occlusion, hits);
+    state.counters["nodes/ray"] = c.per_ray(c.node_tests);
+    state.counters["prims/ray"] = c.per_ray(c.prim_tests);
+    state.counters["lanes_used"] = c.lane_utilisation();
+  }
+  for (auto _ : state) {
+    t.trace(set.rays, set.occlusion, hits);
+    benchmark::DoNotOptimize(hits.t.data());
+  }
+  state.counters["rays"] = double(set.rays.size());
+  state.counters["rays/s"] = benchmark::Counter(
+      double(set.rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+std::size_t table_bytes_of(Scene& s) {
+  std::size_t bytes = 0;
+  PrimKinds::for_each([&](auto kind) { bytes += table_bytes(s.table<decltype(kind)>()); });
+  return bytes;
+}
+
+void build_raylane(benchmark::State& state, const std::string& scene) {
+  std::string why;
+  const BenchScene* b = bench_scene(scene, &why);
+  if (!b) return state.SkipWithError(why.c_str());
+  use_threads(omp_get_num_procs());
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Scene copy = b->scene;
+    state.ResumeTiming();
+    Bvh bvh = build_bvh(copy);
+    bytes = bvh.bytes() + table_bytes_of(copy);
+  }
+  double prims = double(b->scene.primitive_count());
+  state.counters["prims"] = prims;
+  state.counters["bytes/prim"] = double(bytes) / prims;
+}
+
+void build_embree(benchmark::State& state, const std::string& scene) {
+  std::string why;
+  const BenchScene* b = bench_scene(scene, &why);
+  if (!b) return state.SkipWithError(why.c_str());
+  EmbreeBuild last;
+  for (auto _ : state) {
+    last = embree_build_once(*b);
+    state.SetIterationTime(last.seconds);
+  }
+  double prims = double(b->scene.primitive_count());
+  state.counters["prims"] = prims;
+  state.counters["bytes/prim"] = double(last.bytes) / prims;
+}
+
+void register_all() {
+  const int all = omp_get_num_procs();
+  for (const std::string& scene : bench_scene_names()) {
+    for (RayKind kind : {RayKind::kPrimary, RayKind::kShadow, RayKind::kDiffuse})
+      for (const std::string& tracer : bench_tracer_names())
+        for (int threads : {1, all}) {
+          std::string name = "trace/" + scene + "/" + ray_kind_name(kind) + "/" + tracer +
+                             "/threads:" + std::to_string(threads);
+          benchmark::RegisterBenchmark(name.c_str(), trace_rays, scene, kind, tracer, threads)
+              ->UseRealTime()
+              ->Unit(benchmark::kMillisecond);
+          if (all == 1) break;
+        }
+    benchmark::RegisterBenchmark(("build/" + scene + "/raylane").c_str(), build_raylane, scene)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+    if (embree_available())
+      benchmark::RegisterBenchmark(("build/" + scene + "/embree").c_str(), build_embree, scene)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+  }
+}
+
+}  // namespace
+}  // namespace raylane::bench
+
+int main(int argc, char** argv) {
+  raylane::bench::register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,88 @@
+#include "icosphere.h"
+
+#include <array>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
+
+namespace raylane::bench {
+
+namespace {
+
+using Tri = std::array<uint32_t, 3>;
+
+struct Mesh {
+  std::vector<Vec3d> v;
+  std::vector<Tri> f;
+};
+
+Mesh icosahedron() {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  Mesh m;
+  for (double a : {-1.0, 1.0})
+    for (double b : {-g, g}) {
+      m.v.push_back(normalize(Vec3d(0, a, b)));
+      m.v.push_back(normalize(Vec3d(a, b, 0)));
+      m.v.push_back(normalize(Vec3d(b, 0, a)));
+    }
+  // Faces: every triple of mutually nearest neighbours, wound outward.
+  double e0 = 1e9;
+  for (uint32_t j = 1; j < 12; ++j)
+    e0 = std::min(e0, length(m.v[0] - m.v[j]));
+  auto near = [&](uint32_t i, uint32_t j) { return length(m.v[i] - m.v[j]) < e0 * 1.01; };
+  for (uint32_t i = 0; i < 12; ++i)
+    for (uint32_t j = i + 1; j < 12; ++j)
+      for (uint32_t k = j + 1; k < 12; ++k)
+        if (near(i, j) && near(j, k) && near(i, k)) {
+          Tri t{i, j, k};
+          if (dot(cross(m.v[j] - m.v[i], m.v[k] - m.v[i]), m.v[i]) < 0) std::swap(t[1], t[2]);
+          m.f.push_back(t);
+        }
+  return m;
+}
+
+// Splits every triangle into four; midpoints are shared through an edge → vertex map.
+void subdivide(Mesh& m) {
+  std::unordered_map<uint64_t, uint32_t> mid;
+  mid.reserve(m.f.size() * 2);
+  auto midpoint = [&](uint32_t a, uint32_t b) {
+    uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+    auto [it, fresh] = mid.try_emplace(key, uint32_t(m.v.size()));
+    if (fresh) m.v.push_back(normalize(m.v[a] + m.v[b]));
+    return it->second;
+  };
+  std::vector<Tri> out;
+  out.reserve(m.f.size() * 4);
+  for (const Tri& t : m.f) {
+    uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    out.push_back({t[0], ab, ca});
+    out.push_back({ab, t[1], bc});
+    out.push_back({ca, bc, t[2]});
+    out.push_back({ab, bc, ca});
+  }
+  m.f.swap(out);
+}
+
+// Smooth bumps of a few wavelengths: enough relief that rays graze and shadow each other.
+double displacement(const Vec3d& p) {
+  return 1 + 0.06 * std::sin(9 * p.x) * std::sin(7 * p.y) * std::sin(8 * p.z) +
+         0.02 * std::sin(31 * p.x + 17 * p.z) * std::cos(23 * p.y);
+}
+
+}  // namespace
+
+void add_displaced_icosphere(TriangleTable& table, int levels, uint32_t material) {
+  Mesh m = icosahedron();
+  for (int l = 0; l < levels; ++l)
+    subdivide(m);
+  std::vector<Vec3f> p(m.v.size()), n(m.v.size());
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    p[i] = Vec3f(m.v[i] * displacement(m.v[i]));
+    n[i] = Vec3f(m.v[i]);
+  }
+  table_reserve(table, table.size() + m.f.size());
+  for (const Tri& t : m.f)
+    table.append({p[t[0]], p[t[1]], p[t[2]]}, {n[t[0]], n[t[1]], n[t[2]]}, material);
+}
+
+}  // namespace raylane::bench

@@ -1,0 +1,109 @@
+#include "tracers.h"
+
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "embree_tracer.h"
+#include "raylane/bvh/traverse_ref.h"
+#include "raylane/simd/isa.h"
+#include "raylane/trace/packet_tracer.h"
+
+namespace raylane::bench {
+
+namespace {
+
+BenchTracer packet_tracer(const BenchScene& b, Isa isa) {
+  PacketTracer t(isa);
+  return {std::string("raylane-") + std::string(isa_name(isa)),
+          [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
+            if (occlusion) {
+              t.occluded(b.scene, b.bvh, rays, hits);
+            } else {
+              t.closest(b.scene, b.bvh, rays, hits);
+            }
+          },
+          [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
+            return t.trace_counted(b.scene, b.bvh, rays, hits, occlusion);
+          }};
+}
+
+void trace_scalar(const BenchScene& b, const RayStream& rays, bool occlusion, HitStream& hits) {
+  hits.resize(rays.size());
+  const std::ptrdiff_t n = std::ptrdiff_t(rays.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    Rayd r = ray_cast<double>(rays.get(std::size_t(i)));
+    if (occlusion) {
+      bool o = any_hit_bvh_ref(b.scene, b.bvh, r);
+      hits.t[i] = 0, hits.prim[i] = o ? 0u : PrimRef::kInvalidBits;
+    } else {
+      Hit h = closest_hit_bvh_ref(b.scene, b.bvh, r);
+      hits.t[i] = float(h.t), hits.prim[i] = h.prim.bits();
+    }
+  }
+}
+
+// The reference answers, cached per ray stream (they take as long as a scalar trace).
+const HitStream& reference(const BenchScene& b, const RayStream& rays, bool occlusion,
+                           std::size_t stride) {
+  static std::mutex mutex;
+  static std::map<std::pair<const RayStream*, std::size_t>, HitStream> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto key = std::make_pair(&rays, stride);
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  RayStream sample;
+  sample.resize((rays.size() + stride - 1) / stride);
+  for (std::size_t i = 0, k = 0; i < rays.size(); i += stride, ++k)
+    sample.set(k, rays.get(i));
+  HitStream ref;
+  trace_scalar(b, sample, occlusion, ref);
+  return cache.emplace(key, std::move(ref)).first->second;
+}
+
+}  // namespace
+
+std::vector<std::string> bench_tracer_names() {
+  std::vector<std::string> names;
+  for (Isa isa : supported_isas())
+    names.push_back("raylane-" + std::string(isa_name(isa)));
+  names.push_back("raylane-scalar");
+  if (embree_available()) {
+    names.push_back("embree-1");
+    names.push_back("embree-16");
+  }
+  return names;
+}
+
+BenchTracer bench_tracer(const BenchScene& b, const std::string& name) {
+  for (Isa isa : supported_isas())
+    if (name == "raylane-" + std::string(isa_name(isa))) return packet_tracer(b, isa);
+  if (name == "raylane-scalar")
+    return {name, [&b](const RayStream& r, bool o, HitStream& h) { trace_scalar(b, r, o, h); },
+            nullptr};
+  if (name == "embree-1" || name == "embree-16") {
+    int width = name == "embree-1" ? 1 : 16;
+    const EmbreeScene* e = embree_scene(b);
+    return {name,
+            [e, width](const RayStream& r, bool o, HitStream& h) { e->trace(r, o, width, h); },
+            nullptr};
+  }
+  return {name, nullptr, nullptr};
+}
+
+Agreement check_against_reference(const BenchScene& b, const RayStream& rays, bool occlusion,
+                                  const HitStream& hits, std::size_t stride) {
+  const HitStream& ref = reference(b, rays, occlusion, stride);
+  Agreement a;
+  for (std::size_t i = 0, k = 0; i < rays.size(); i += stride, ++k) {
+    ++a.checked;
+    bool hit = hits.prim[i] != PrimRef::kInvalidBits,
+         ref_hit = ref.prim[k] != PrimRef::kInvalidBits;
+    bool same =
+        hit == ref_hit && (occlusion || !hit || std::abs(hits.t[i] - ref.t[k]) <= 1e-4f * ref.t[k]);
+    a.disagree += !same;
+  }
+  return a;
+}
+
+}  // namespace raylane::bench
