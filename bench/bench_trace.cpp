@@ -1,7 +1,8 @@
 // raylane's benchmark suite (issue 5): rays per second of every tracer on identical ray sets
 // of every benchmark scene, at 1 thread and at all threads, after checking each tracer's
 // answers against the double-precision reference; and BVH build time and memory next to
-// Embree's. `tools/bench_table` runs it with repetitions and prints the median table.
+// Embree's. `tools/bench_table` runs it with repetitions and prints the median table;
+// `bench_trace --export=DIR` writes the triangle scenes and their ray sets as files.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 #include <pmmintrin.h>
@@ -13,6 +14,7 @@
 #include "embree_tracer.h"
 #include "ray_sets.h"
 #include "raylane/prims/table_util.h"
+#include "raylane/trace/ray_set_io.h"
 #include "tracers.h"
 
 namespace raylane::bench {
@@ -129,10 +131,40 @@ void register_all() {
   }
 }
 
+// --export DIR: writes every triangle scene as DIR/<scene>.tris and its ray sets as
+// DIR/<scene>-<rays>.rays (spec/ray-sets.md), for other tracers to run the identical rays.
+int export_sets(const std::string& dir) {
+  for (const std::string& name : bench_scene_names()) {
+    std::string why;
+    const BenchScene* b = bench_scene(name, &why);
+    if (!b) {
+      std::fprintf(stderr, "skipping %s: %s\n", name.c_str(), why.c_str());
+      continue;
+    }
+    if (b->scene.primitive_count() != b->scene.table<Triangle>().size()) continue;
+    std::vector<Status> done = {
+        write_triangle_soup(dir + "/" + name + ".tris", b->scene.table<Triangle>())};
+    for (RayKind kind : {RayKind::kPrimary, RayKind::kShadow, RayKind::kDiffuse}) {
+      const RaySet& set = bench_rays(*b, kind);
+      RaySetFile file{set.rays, set.occlusion ? kRaySetOcclusionFlag : 0, 0, 0};
+      if (kind == RayKind::kPrimary) file.width = b->scene.width, file.height = b->scene.height;
+      done.push_back(write_ray_set(dir + "/" + name + "-" + ray_kind_name(kind) + ".rays", file));
+    }
+    for (const Status& st : done)
+      if (!st) return std::fprintf(stderr, "%s\n", st.error().c_str()), 1;
+    std::printf("wrote %s/%s.tris and its ray sets\n", dir.c_str(), name.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 }  // namespace raylane::bench
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--export=", 0) == 0) return raylane::bench::export_sets(a.substr(9));
+  }
   raylane::bench::register_all();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

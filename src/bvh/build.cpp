@@ -174,8 +174,9 @@ std::vector<BuildPrim> gather(const Scene& scene) {
   return prims;
 }
 
-// Reorders every table into leaf order and rewrites refs and lights to the new rows.
-void permute_scene(Scene& scene, std::vector<PrimRef>& refs) {
+// Reorders every table into leaf order and rewrites refs and lights to the new rows;
+// returns, per kind, the old row of each new row.
+std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimRef>& refs) {
   std::vector<std::vector<uint32_t>> order(kPrimKindCount);
   for (PrimRef r : refs)
     order[uint32_t(r.tag())].push_back(r.row());
@@ -194,6 +195,7 @@ void permute_scene(Scene& scene, std::vector<PrimRef>& refs) {
   for (PrimRef& l : scene.lights)
     l = PrimRef(l.tag(), new_row[uint32_t(l.tag())][l.row()]);
   std::sort(scene.lights.begin(), scene.lights.end());
+  return order;
 }
 
 void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
@@ -228,7 +230,7 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   bvh.refs.reserve(prims.size());
   for (const BuildPrim& p : prims)
     bvh.refs.push_back(p.ref);
-  permute_scene(scene, bvh.refs);
+  bvh.source_rows = permute_scene(scene, bvh.refs);
   bvh.stats.depth = builder.depth();
   collect_stats(bvh, config, bvh.stats);
   bvh.stats.build_seconds =

@@ -61,6 +61,24 @@ void expect_invariants(const Scene& s, const Bvh& bvh) {
   EXPECT_LE(bvh.stats.depth, uint32_t(kBvhStackSize - 2));
 }
 
+// The permutation is recorded: row r of each table after the build is the row
+// source_rows[k][r] of the table before it.
+TEST(Bvh, RecordsWhereEveryRowCameFrom) {
+  Scene before = random_scene(5, 60);
+  Scene after = before;
+  Bvh bvh = build_bvh(after);
+  ASSERT_EQ(bvh.source_rows.size(), kPrimKindCount);
+  EXPECT_EQ(bvh.source_rows[uint32_t(PrimTag::kSphere)].size(), before.table<Sphere>().size());
+  for (uint32_t r = 0; r < after.table<Sphere>().size(); ++r) {
+    uint32_t old = bvh.source_rows[uint32_t(PrimTag::kSphere)][r];
+    EXPECT_EQ(after.table<Sphere>().center(r), before.table<Sphere>().center(old));
+  }
+  for (uint32_t r = 0; r < after.table<Triangle>().size(); ++r) {
+    uint32_t old = bvh.source_rows[uint32_t(PrimTag::kTriangle)][r];
+    EXPECT_EQ(after.table<Triangle>().p1(r), before.table<Triangle>().p1(old));
+  }
+}
+
 TEST(Bvh, InvariantsOnAMixedScene) {
   Scene s = random_scene(1, 500);
   Bvh bvh = build_bvh(s);

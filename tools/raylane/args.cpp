@@ -88,4 +88,12 @@ Result<double> parse_double_option(const std::string& name, const std::string& v
   return v;
 }
 
+Result<Isa> parse_isa_option(const std::string& value) {
+  if (value == "auto") return best_isa();
+  auto isa = isa_from_name(value);
+  if (!isa) return Error{cat("unknown --isa ", in_quotes(value), " (sse4.2, avx2, avx512, auto)")};
+  if (!isa_supported(*isa)) return Error{cat("this CPU cannot run --isa ", value)};
+  return *isa;
+}
+
 }  // namespace raylane::cli

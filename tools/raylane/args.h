@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
+#include "raylane/simd/isa.h"
 
 namespace raylane::cli {
 
@@ -32,5 +33,7 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
 // Converts an option value, naming the option in the error.
 Result<long> parse_int_option(const std::string& name, const std::string& value, long lo, long hi);
 Result<double> parse_double_option(const std::string& name, const std::string& value);
+// --isa: sse4.2 | avx2 | avx512 | auto (the widest this CPU has); one the CPU lacks is an error.
+Result<Isa> parse_isa_option(const std::string& value);
 
 }  // namespace raylane::cli

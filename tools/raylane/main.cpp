@@ -12,6 +12,8 @@ constexpr const char* kUsage = R"(raylane — a data-oriented SIMD ray tracer fo
 usage:
   raylane render [SCENE] [options]   render SCENE (default: the built-in course test scene)
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
+  raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
+                                     or any mesh file), print the median Mrays/s, write .hits
   raylane --help | --version
 
 render options:
@@ -27,6 +29,11 @@ render options:
                                                                    (default: auto, the widest)
   --lenient           skip bad scene lines with a warning instead of failing
   --quiet             print only errors and the written image paths
+
+trace options (file formats: spec/ray-sets.md of the project's shared folder):
+  -o, --output FILE   the answers (default: the ray set's name with .hits, here)
+  --repeat N          runs to take the median of                   (default: 5)
+  --isa I, --threads N, --quiet   as for render
 
 exit status: 0 done, 1 failed while working (e.g. cannot write), 2 bad input or usage
 )";
@@ -48,6 +55,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "render") return raylane::cli::render_command(rest);
   if (command == "info") return raylane::cli::info_command(rest);
+  if (command == "trace") return raylane::cli::trace_command(rest);
   // `raylane scene.scn [options]` is short for `raylane render scene.scn [options]`.
   if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
     return raylane::cli::render_command(args);

@@ -53,6 +53,10 @@ struct BvhStats {
 struct Bvh {
   std::vector<BvhNode> nodes;  // nodes[0] is the root (a leaf if the scene is tiny)
   std::vector<PrimRef> refs;   // leaf contents; rows are the scene's rows after permutation
+  // source_rows[k][r]: the row that row r of kind k's table had before the build permuted it
+  // (to report results in the input's order, e.g. triangle indices of a soup). Not used by
+  // traversal, so not counted in bytes().
+  std::vector<std::vector<uint32_t>> source_rows;
   BvhStats stats;
 
   bool empty() const { return refs.empty(); }

@@ -1,0 +1,125 @@
+// The ray-set exchange files (spec/ray-sets.md): exact layout, round trips, hostile headers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "raylane/trace/ray_set_io.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+std::string write_bytes(const std::string& name, const std::string& bytes) {
+  std::string path = testing::temp_dir() + "/" + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+template <class T>
+void append(std::string& s, T v) {
+  s.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+// A file built byte by byte from the spec, independent of our writer.
+TEST(RaySetIo, ReadsTheSpecLayout) {
+  std::string b("RAYSET1\0", 8);
+  for (uint32_t w : {1u, 1u, 4u, 4u, 0u, 0u})
+    append(b, w);  // count, flags, width, height
+  for (float v : {1.f, 2.f, 3.f, 0.f, 0.f, -1.f, 0.f, 1e30f})
+    append(b, v);
+  auto set = read_ray_set(write_bytes("one.rays", b));
+  ASSERT_TRUE(set.ok()) << set.error();
+  EXPECT_TRUE(set->occlusion());
+  EXPECT_EQ(set->width, 4u);
+  ASSERT_EQ(set->rays.size(), 1u);
+  Rayf r = set->rays.get(0);
+  EXPECT_EQ(r.o, Vec3f(1, 2, 3));
+  EXPECT_EQ(r.d, Vec3f(0, 0, -1));
+  EXPECT_EQ(r.tmax, 1e30f);
+}
+
+TEST(RaySetIo, RoundTripsRaysTrianglesAndHits) {
+  std::string dir = testing::temp_dir();
+  RaySetFile set;
+  set.rays.resize(3);
+  for (uint32_t i = 0; i < 3; ++i)
+    set.rays.set(i, Rayf{{float(i), 0, 0}, {0, 1, 0}, 0, 5});
+  ASSERT_TRUE(write_ray_set(dir + "/a.rays", set).ok());
+  auto back = read_ray_set(dir + "/a.rays");
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->rays.ox, set.rays.ox);
+  EXPECT_EQ(back->rays.tmax, set.rays.tmax);
+
+  TriangleTable soup;
+  Vec3f n(0, 0, 1);
+  soup.append({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {n, n, n}, 0);
+  soup.append({Vec3f(0, 0, 1), Vec3f(0, 1, 1), Vec3f(1, 0, 1)}, {n, n, n}, 0);
+  ASSERT_TRUE(write_triangle_soup(dir + "/a.tris", soup).ok());
+  TriangleTable read;
+  auto count = read_triangle_soup(dir + "/a.tris", 7, read);
+  ASSERT_TRUE(count.ok()) << count.error();
+  EXPECT_EQ(*count, 2u);
+  EXPECT_EQ(read.p2(1), Vec3f(1, 0, 1));
+  EXPECT_EQ(read.n0(1), Vec3f(0, 0, -1));  // the face normal by the winding
+  EXPECT_EQ(read.material[0], 7u);
+
+  std::vector<HitRecord> hits = {{1.5f, 0}, {INFINITY, kNoHit}};
+  ASSERT_TRUE(write_hits(dir + "/a.hits", hits, 0).ok());
+  uint32_t flags = 9;
+  auto hb = read_hits(dir + "/a.hits", &flags);
+  ASSERT_TRUE(hb.ok()) << hb.error();
+  EXPECT_EQ(flags, 0u);
+  ASSERT_EQ(hb->size(), 2u);
+  EXPECT_EQ((*hb)[0].t, 1.5f);
+  EXPECT_EQ((*hb)[1].prim, kNoHit);
+}
+
+// A header may announce anything: nothing is allocated for it before the file's size
+// confirms it, and each problem is named.
+TEST(RaySetIo, HostileHeadersAreErrors) {
+  std::string b("RAYSET1\0", 8);
+  append(b, 0x7fffffffu);  // announces 2^31 − 1 rays
+  b.resize(32, '\0');
+  auto huge = read_ray_set(write_bytes("huge.rays", b));
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.error().find("limit"), std::string::npos) << huge.error();
+
+  std::string c("RAYSET1\0", 8);
+  append(c, 2u);
+  c.resize(32 + 40, '\0');  // two records need 64 bytes
+  auto short_file = read_ray_set(write_bytes("short.rays", c));
+  ASSERT_FALSE(short_file.ok());
+  EXPECT_NE(short_file.error().find("announces 2 records (96 bytes), the file has 72"),
+            std::string::npos)
+      << short_file.error();
+
+  auto magic = read_ray_set(write_bytes("wrong.rays", std::string(40, 'x')));
+  ASSERT_FALSE(magic.ok());
+  EXPECT_NE(magic.error().find("expected the magic 'RAYSET1'"), std::string::npos) << magic.error();
+
+  auto tiny = read_hits(write_bytes("tiny.hits", "HITS"));
+  ASSERT_FALSE(tiny.ok());
+  EXPECT_NE(tiny.error().find("16-byte header"), std::string::npos) << tiny.error();
+
+  EXPECT_FALSE(read_ray_set(testing::temp_dir() + "/missing.rays").ok());
+}
+
+TEST(RaySetIo, NonFiniteVerticesAreAnErrorAndAppendNothing) {
+  std::string b("TRISOUP1", 8);
+  append(b, 2u);
+  append(b, 0u);
+  for (int i = 0; i < 9; ++i)
+    append(b, float(i));
+  for (int i = 0; i < 9; ++i)
+    append(b, i == 4 ? NAN : float(i));
+  TriangleTable t;
+  auto r = read_triangle_soup(write_bytes("nan.tris", b), 0, t);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("triangle 1"), std::string::npos) << r.error();
+  EXPECT_EQ(t.size(), 0u);
+}
+
+}  // namespace
+}  // namespace raylane
