@@ -76,19 +76,22 @@ std::size_t table_bytes_of(Scene& s) {
   return bytes;
 }
 
-void build_raylane(benchmark::State& state, const std::string& scene) {
+void build_raylane(benchmark::State& state, const std::string& scene, int threads) {
   std::string why;
   const BenchScene* b = bench_scene(scene, &why);
   if (!b) return state.SkipWithError(why.c_str());
-  use_threads(omp_get_num_procs());
+  use_threads(threads);
   std::size_t bytes = 0;
+  double sah = 0;
   for (auto _ : state) {
     state.PauseTiming();
     Scene copy = b->scene;
     state.ResumeTiming();
     Bvh bvh = build_bvh(copy);
     bytes = bvh.bytes() + table_bytes_of(copy);
+    sah = bvh.stats.sah_cost;
   }
+  state.counters["sah_cost"] = sah;
   double prims = double(b->scene.primitive_count());
   state.counters["prims"] = prims;
   state.counters["bytes/prim"] = double(bytes) / prims;
@@ -121,11 +124,16 @@ void register_all() {
               ->Unit(benchmark::kMillisecond);
           if (all == 1) break;
         }
-    benchmark::RegisterBenchmark(("build/" + scene + "/raylane").c_str(), build_raylane, scene)
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
+    for (int threads : {1, all}) {
+      std::string name = "build/" + scene + "/raylane/threads:" + std::to_string(threads);
+      benchmark::RegisterBenchmark(name.c_str(), build_raylane, scene, threads)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+      if (all == 1) break;
+    }
     if (embree_available())
-      benchmark::RegisterBenchmark(("build/" + scene + "/embree").c_str(), build_embree, scene)
+      benchmark::RegisterBenchmark(("build/" + scene + "/embree/threads:all").c_str(), build_embree,
+                                   scene)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
   }

@@ -21,7 +21,8 @@ struct BuildPrim {
 
 struct Split {
   int axis = -1;
-  int bin = 0;  // prims in bins [0, bin] go left
+  int bins = 0;  // the number of bins the node was binned into
+  int bin = 0;   // prims in bins [0, bin] go left
   double cost = std::numeric_limits<double>::infinity();
 };
 
@@ -44,8 +45,34 @@ int bin_of(float c, float lo, double scale, int bins) {
   return std::min(bins - 1, int(x));
 }
 
+// A bin of the SAH build: a box and a count, with no default initialisation (clearing
+// unused bins was the build's largest cost).
+struct Bin {
+  float lo[3], hi[3];
+  uint32_t count;
+
+  void clear() {
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::numeric_limits<float>::infinity(), hi[k] = -lo[k];
+    count = 0;
+  }
+  void add(const Bounds3f& b) {
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], b.lo[k]), hi[k] = std::max(hi[k], b.hi[k]);
+    ++count;
+  }
+  Bounds3f box() const {
+    Bounds3f b;
+    if (count) b = Bounds3f(Vec3f(lo[0], lo[1], lo[2]), Vec3f(hi[0], hi[1], hi[2]));
+    return b;
+  }
+};
+
 class Builder {
  public:
+  static constexpr int kMaxBins = 64;
+
+  // Contract: 2 ≤ cfg.bins ≤ kMaxBins.
   Builder(std::vector<BuildPrim>& prims, const BvhConfig& cfg, std::vector<BvhNode>& nodes)
       : prims_(prims), cfg_(cfg), nodes_(nodes) {}
 
@@ -94,39 +121,48 @@ class Builder {
   }
 
  private:
+  // One pass over the prims bins all three axes at once (bins live on the stack); then a
+  // sweep per axis evaluates every "bins [0, b] go left" split by the SAH.
+  // A small node gets as many bins as it has prims: the bins' fixed cost (clearing and
+  // sweeping them) dominated the build, paid at every one of the many small nodes.
   Split find_split(uint32_t begin, uint32_t end, const Bounds3f& box, const Bounds3f& centroids) {
-    Split best;
-    const int bins = cfg_.bins;
-    double parent_area = half_area(box);
+    const int bins = std::clamp(int(end - begin), 2, cfg_.bins);
+    Bin bin[3][kMaxBins];  // uninitialised: only the first `bins` are cleared and used
+    for (int axis = 0; axis < 3; ++axis)
+      for (int b = 0; b < bins; ++b)
+        bin[axis][b].clear();
+    double scale[3];
     for (int axis = 0; axis < 3; ++axis) {
       double extent = double(centroids.hi[axis]) - centroids.lo[axis];
-      if (!(extent > 0)) continue;
-      double scale = bins / extent;
-      std::vector<Bounds3f> bin_box(bins);
-      std::vector<uint32_t> bin_count(bins, 0);
-      for (uint32_t i = begin; i < end; ++i) {
-        int b = bin_of(prims_[i].centroid[axis], centroids.lo[axis], scale, bins);
-        bin_box[b].extend(prims_[i].box);
-        ++bin_count[b];
+      scale[axis] = extent > 0 ? bins / extent : 0.0;
+    }
+    for (uint32_t i = begin; i < end; ++i) {
+      const BuildPrim& p = prims_[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        int b = bin_of(p.centroid[axis], centroids.lo[axis], scale[axis], bins);
+        bin[axis][b].add(p.box);
       }
-      // Sweep from the right to get the cost of every "bins [0, b] left" split.
-      std::vector<double> right_cost(bins, 0);
+    }
+    Split best;
+    double parent_area = std::max(half_area(box), 1e-300);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(scale[axis] > 0)) continue;  // all centroids in one plane: no split on this axis
+      double right_cost[kMaxBins] = {};
       Bounds3f acc;
       uint32_t n = 0;
       for (int b = bins - 1; b > 0; --b) {
-        acc.extend(bin_box[b]);
-        n += bin_count[b];
+        acc.extend(bin[axis][b].box());
+        n += bin[axis][b].count;
         right_cost[b - 1] = half_area(acc) * n;
       }
       acc = Bounds3f();
       n = 0;
       for (int b = 0; b < bins - 1; ++b) {
-        acc.extend(bin_box[b]);
-        n += bin_count[b];
-        double cost = cfg_.traversal_cost + cfg_.intersection_cost *
-                                                (half_area(acc) * n + right_cost[b]) /
-                                                std::max(parent_area, 1e-300);
-        if (n > 0 && n < end - begin && cost < best.cost) best = {axis, b, cost};
+        acc.extend(bin[axis][b].box());
+        n += bin[axis][b].count;
+        double cost = cfg_.traversal_cost +
+                      cfg_.intersection_cost * (half_area(acc) * n + right_cost[b]) / parent_area;
+        if (n > 0 && n < end - begin && cost < best.cost) best = {axis, bins, b, cost};
       }
     }
     return best;
@@ -134,9 +170,9 @@ class Builder {
 
   uint32_t partition(uint32_t begin, uint32_t end, const Split& s, const Bounds3f& centroids) {
     double extent = double(centroids.hi[s.axis]) - centroids.lo[s.axis];
-    double scale = cfg_.bins / extent;
+    double scale = s.bins / extent;
     auto it = std::partition(prims_.begin() + begin, prims_.begin() + end, [&](const BuildPrim& p) {
-      return bin_of(p.centroid[s.axis], centroids.lo[s.axis], scale, cfg_.bins) <= s.bin;
+      return bin_of(p.centroid[s.axis], centroids.lo[s.axis], scale, s.bins) <= s.bin;
     });
     return uint32_t(it - prims_.begin());
   }
@@ -222,7 +258,9 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   std::vector<BuildPrim> prims = gather(scene);
   if (prims.empty()) return bvh;
   bvh.nodes.resize(2 * prims.size());
-  Builder builder(prims, config, bvh.nodes);
+  BvhConfig cfg = config;
+  cfg.bins = std::clamp(cfg.bins, 2, Builder::kMaxBins);
+  Builder builder(prims, cfg, bvh.nodes);
 #pragma omp parallel
 #pragma omp single
   builder.build(0, 0, uint32_t(prims.size()), 0);
@@ -232,7 +270,7 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
     bvh.refs.push_back(p.ref);
   bvh.source_rows = permute_scene(scene, bvh.refs);
   bvh.stats.depth = builder.depth();
-  collect_stats(bvh, config, bvh.stats);
+  collect_stats(bvh, cfg, bvh.stats);
   bvh.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;

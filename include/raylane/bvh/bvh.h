@@ -36,7 +36,7 @@ inline constexpr int kBvhStackSize = 64;
 inline constexpr uint32_t kMedianSplitDepth = 32;
 
 struct BvhConfig {
-  int bins = 16;
+  int bins = 16;                   // 2 … 64
   int max_leaf = 4;                // a leaf may be made when it has at most this many refs...
   int forced_leaf = 32;            // ...and must be split above this many, whatever the SAH says
   double traversal_cost = 1.0;     // SAH cost of visiting an inner node
