@@ -142,10 +142,7 @@ double percentile(std::vector<double>& v, double p) {
 
 Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
             const std::vector<Hit>& ref, Isa isa) {
-  RayStream stream;
-  stream.resize(rays.size());
-  for (std::size_t i = 0; i < rays.size(); ++i)
-    stream.set(i, ray_cast<float>(rays[i]));
+  RayStream stream = RayStream::from(rays);
   PacketTracer tracer(isa);
   HitStream hits;
   std::vector<double> seconds;

@@ -57,19 +57,11 @@ Vec3d cosine_direction(const Vec3d& n, double u1, double u2) {
                    n * std::sqrt(std::max(0.0, 1 - u1)));
 }
 
-RayStream to_stream(const std::vector<Rayd>& rays) {
-  RayStream s;
-  s.resize(rays.size());
-  for (std::size_t i = 0; i < rays.size(); ++i)
-    s.set(i, ray_cast<float>(rays[i]));
-  return s;
-}
-
 RaySet make_set(const BenchScene& b, RayKind kind) {
   RaySet set;
   set.occlusion = kind == RayKind::kShadow;
   if (kind == RayKind::kPrimary) {
-    set.rays = to_stream(primary_rays(b.scene));
+    set.rays = RayStream::from(primary_rays(b.scene));
     return set;
   }
   PrimaryHits p = primary_hits(b);
@@ -87,7 +79,7 @@ RaySet make_set(const BenchScene& b, RayKind kind) {
                                            : std::numeric_limits<double>::infinity();
     rays.push_back({o, dir, 0.0, tmax});
   }
-  set.rays = to_stream(rays);
+  set.rays = RayStream::from(rays);
   return set;
 }
 

@@ -19,14 +19,6 @@ using testing::random_rays;
 using testing::random_scene;
 using testing::round_to_float;
 
-RayStream to_stream(const std::vector<Rayd>& rays) {
-  RayStream s;
-  s.resize(rays.size());
-  for (std::size_t i = 0; i < rays.size(); ++i)
-    s.set(i, ray_cast<float>(rays[i]));
-  return s;
-}
-
 struct Agreement {
   int rays = 0, hits = 0, disagreements = 0;
 };
@@ -34,7 +26,7 @@ struct Agreement {
 // Agreement as in spec/ray-sets.md: the same hit/miss status and t within a relative 1e-4,
 // or the same primitive. The reference runs on the float rays, converted exactly.
 Agreement compare(const Scene& s, const Bvh& bvh, Isa isa, const std::vector<Rayd>& rays) {
-  RayStream stream = to_stream(rays);
+  RayStream stream = RayStream::from(rays);
   HitStream hits;
   PacketTracer(isa).closest(s, bvh, stream, hits);
   Agreement a;
@@ -95,7 +87,7 @@ TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   rays[4].tmax = nan;
   rays[5].tmin = 2, rays[5].tmax = 1;
   rays[6].o.z = 1e39;  // inf after rounding to float
-  RayStream stream = to_stream(rays);
+  RayStream stream = RayStream::from(rays);
   HitStream hits;
   PacketTracer(GetParam()).closest(s, bvh, stream, hits);
   for (int i = 1; i <= 6; ++i) {
@@ -120,7 +112,7 @@ TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
       for (double zx : {0.0, -0.0})
         for (double zy : {0.0, -0.0})
           rays.push_back({{x, y, -1}, {zx, zy, 1}});
-  RayStream stream = to_stream(rays);
+  RayStream stream = RayStream::from(rays);
   HitStream hits;
   PacketTracer(GetParam()).closest(s, bvh, stream, hits);
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -159,7 +151,7 @@ TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
       if (length_squared(d) == 0) continue;
       rays.push_back({Vec3d(o), normalize(d)});
     }
-    RayStream stream = to_stream(rays);
+    RayStream stream = RayStream::from(rays);
     HitStream hits;
     PacketTracer(GetParam()).closest(s, bvh, stream, hits);
     int escapes = 0;
@@ -175,7 +167,7 @@ TEST_P(PacketTracerTest, OcclusionMatchesReference) {
   std::vector<Rayd> rays = random_rays(19, 5000, 12);
   for (auto& r : rays)
     r.tmax = 4.0;
-  RayStream stream = to_stream(rays);
+  RayStream stream = RayStream::from(rays);
   HitStream hits;
   PacketTracer(GetParam()).occluded(s, bvh, stream, hits);
   int disagreements = 0, occluded = 0;
@@ -193,7 +185,7 @@ TEST_P(PacketTracerTest, OcclusionMatchesReference) {
 TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   Scene s = random_scene(7, 40);
   Bvh bvh = build_bvh(s);
-  RayStream stream = to_stream(random_rays(8, 1000, 12));
+  RayStream stream = RayStream::from(random_rays(8, 1000, 12));
   PacketTracer tracer(GetParam());
   HitStream plain, counted;
   for (bool any_hit : {false, true}) {
@@ -211,7 +203,7 @@ TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   Bvh one_bvh = build_bvh(one);
   std::vector<Rayd> down(37, Rayd{{0, 0, 5}, {0, 0, -1}});
   TraversalCounters c =
-      tracer.trace_counted(one, one_bvh, to_stream(down), counted, /*any_hit=*/false);
+      tracer.trace_counted(one, one_bvh, RayStream::from(down), counted, /*any_hit=*/false);
   uint64_t packets = (37 + c.width - 1) / c.width;
   EXPECT_EQ(c.packets, packets);
   EXPECT_EQ(c.node_tests, packets);

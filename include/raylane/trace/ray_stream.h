@@ -25,6 +25,14 @@ struct RayStream {
     dx[i] = r.d.x, dy[i] = r.d.y, dz[i] = r.d.z;
     tmin[i] = r.tmin, tmax[i] = r.tmax;
   }
+  // The stream of `rays`, each rounded to float (what the packet tracer is given).
+  static RayStream from(const std::vector<Rayd>& rays) {
+    RayStream s;
+    s.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      s.set(i, ray_cast<float>(rays[i]));
+    return s;
+  }
   Rayf get(std::size_t i) const {
     return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
   }
