@@ -1,8 +1,5 @@
 #include "raylane/image/write_image.h"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -26,15 +23,6 @@ std::string lower_extension(const std::string& path) {
   for (char& c : ext)
     c = char(std::tolower(static_cast<unsigned char>(c)));
   return ext;
-}
-
-// A unique name beside `path`: `.name.tmp-<pid>-<n>`.
-std::string temp_path_for(const std::string& path) {
-  static std::atomic<unsigned> counter{0};
-  fs::path p(path);
-  return (p.parent_path() /
-          cat(".", p.filename().string(), ".tmp-", ::getpid(), "-", counter.fetch_add(1)))
-      .string();
 }
 
 std::string errno_text() {
@@ -62,37 +50,11 @@ Result<ImageFormat> format_from_path(const std::string& path) {
       cat("cannot tell the image format of ", in_quotes(path), " (use .hdr, .pfm or .png)")};
 }
 
-Status check_writable(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) return Error{"it is a directory"};
-  fs::path dir = fs::path(path).parent_path();
-  if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir, ec))
-    return Error{cat("folder ", in_quotes(dir.string()), " does not exist")};
-  std::string probe = temp_path_for(path);
-  std::FILE* f = std::fopen(probe.c_str(), "wbx");
-  if (!f)
-    return Error{cat("cannot create a file in ", in_quotes(dir.string()), ": ", errno_text())};
-  std::fclose(f);
-  std::remove(probe.c_str());
-  return ok_status();
-}
-
 Status write_image(const std::string& path, const Image& image, const WriteOptions& options) {
   auto format = format_from_path(path);
   if (!format) return Error{format.error()};
-  if (Status s = check_writable(path); !s) return s;
-  std::string temp = temp_path_for(path);
-  std::FILE* f = std::fopen(temp.c_str(), "wbx");
-  if (!f) return Error{cat("cannot create ", in_quotes(temp), ": ", errno_text())};
-  Status s = write_contents(f, *format, image, options);
-  bool flushed = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  bool closed = std::fclose(f) == 0;
-  if (s && !(flushed && closed)) s = Error{cat("write failed: ", errno_text())};
-  if (s && std::rename(temp.c_str(), path.c_str()) != 0)
-    s = Error{cat("rename failed: ", errno_text())};
-  if (!s) std::remove(temp.c_str());
-  return s;
+  return write_file_atomically(
+      path, [&](std::FILE* f) { return write_contents(f, *format, image, options); });
 }
 
 Result<Image> read_image(const std::string& path) {

@@ -1,7 +1,5 @@
 #include "raylane/trace/ray_set_io.h"
 
-#include <unistd.h>
-
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "raylane/core/atomic_file.h"
 #include "raylane/core/strings.h"
 
 namespace raylane {
@@ -68,19 +67,6 @@ void put(std::string& out, const void* p, std::size_t n) {
   out.append(static_cast<const char*>(p), n);
 }
 
-// Written beside `path` and renamed into place: an existing file is never left half-written.
-Status write_atomically(const std::string& path, const std::string& bytes) {
-  std::string tmp = cat(path, ".tmp-", ::getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) return Error{cat(path, ": cannot write: ", std::strerror(errno))};
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-  ok = std::fclose(f) == 0 && ok;
-  if (ok && std::rename(tmp.c_str(), path.c_str()) == 0) return ok_status();
-  std::string why = std::strerror(errno);
-  std::remove(tmp.c_str());
-  return Error{cat(path, ": write failed: ", why)};
-}
-
 std::string header(const char (&magic)[8], std::initializer_list<uint32_t> words,
                    std::size_t size) {
   std::string out(magic, 8);
@@ -116,7 +102,7 @@ Status write_ray_set(const std::string& path, const RaySetFile& set) {
     float v[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
     put(out, v, kRayRecord);
   }
-  return write_atomically(path, out);
+  return write_file_atomically(path, out);
 }
 
 Result<uint32_t> read_triangle_soup(const std::string& path, uint32_t material,
@@ -151,7 +137,7 @@ Status write_triangle_soup(const std::string& path, const TriangleTable& table) 
   for (uint32_t i = 0; i < table.size(); ++i)
     for (Vec3f p : {table.p0(i), table.p1(i), table.p2(i)})
       put(out, &p.x, 4), put(out, &p.y, 4), put(out, &p.z, 4);
-  return write_atomically(path, out);
+  return write_file_atomically(path, out);
 }
 
 Result<std::vector<HitRecord>> read_hits(const std::string& path, uint32_t* flags) {
@@ -167,7 +153,7 @@ Status write_hits(const std::string& path, const std::vector<HitRecord>& hits, u
   static_assert(sizeof(HitRecord) == kHitRecord);
   std::string out = header(kHitsMagic, {uint32_t(hits.size()), flags}, kHitsHeader);
   put(out, hits.data(), hits.size() * kHitRecord);
-  return write_atomically(path, out);
+  return write_file_atomically(path, out);
 }
 
 }  // namespace raylane

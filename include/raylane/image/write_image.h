@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "raylane/core/atomic_file.h"  // check_writable
 #include "raylane/core/error.h"
 #include "raylane/image/image.h"
 
@@ -15,10 +16,6 @@ enum class ImageFormat { kHdr, kPfm, kPng };
 
 // .hdr, .pfm or .png, case-insensitive.
 Result<ImageFormat> format_from_path(const std::string& path);
-
-// Can a file be created at `path`? The folder must exist and accept a new file, and `path`
-// must not be a directory. Call it before a long render.
-Status check_writable(const std::string& path);
 
 struct WriteOptions {
   double exposure = 0;                // PNG: stops

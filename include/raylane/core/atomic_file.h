@@ -1,0 +1,24 @@
+// Files written atomically: to a temporary file beside the target, flushed and synced, then
+// renamed into place, so a failed run never leaves a half-written or clobbered file
+// (spec/scene-language.md, "Output").
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "raylane/core/error.h"
+
+namespace raylane {
+
+// Can a file be created at `path`? The folder must exist and accept a new file, and `path`
+// must not be a directory. Call it before long work whose result goes there.
+Status check_writable(const std::string& path);
+
+// Writes `path` through `write`, which gets the temporary file; on any failure the
+// temporary is removed and an existing `path` is left as it was.
+Status write_file_atomically(const std::string& path,
+                             const std::function<Status(std::FILE*)>& write);
+Status write_file_atomically(const std::string& path, const std::string& bytes);
+
+}  // namespace raylane
