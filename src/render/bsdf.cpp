@@ -101,10 +101,10 @@ double Bsdf::pdf(const Vec3d& wi) const {
     double p = pd_ * cos_i / kPi;
     Vec3d m = normalize(wi + wo_);
     double im = dot(wi, m);
-    double pm = phong_d(dot(m, n_), alpha_) * dot(m, n_);
+    double pm = phong_normal_pdf(dot(m, n_), alpha_);
     double lobe = pm > 0 && im > 0 ? pm / (4 * im) : 0.0;  // Walter eq. 14
     double w = pr_ + (pt_ > 0 && !refracts(dot(wo_, m)) ? pt_ : 0.0);
-    return p + w * lobe;
+    return p + w * lobe;  // the warp's density of m, Jacobian 1/(4|wi·m|)
   }
   if (!(cos_i < 0) || pt_ == 0) return 0;
   Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
@@ -116,7 +116,7 @@ double Bsdf::pdf(const Vec3d& wi) const {
   if (!(om > 0 && im < 0) || !refracts(om)) return 0;
   double den = eta_o_ * om + eta_i_ * im;
   if (den == 0) return 0;
-  double pm = phong_d(dot(m, n_), alpha_) * dot(m, n_);
+  double pm = phong_normal_pdf(dot(m, n_), alpha_);
   return pt_ * pm * eta_i_ * eta_i_ * std::abs(im) / (den * den);  // Walter eq. 17
 }
 

@@ -31,6 +31,11 @@ Vec3d sample_phong_normal(double u1, double u2, double alpha) {
   return {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t};
 }
 
+double phong_normal_pdf(double cos_theta_m, double alpha) {
+  if (!(cos_theta_m > 0)) return 0.0;
+  return (alpha + 1) / (2 * kPi) * std::pow(cos_theta_m, alpha);
+}
+
 Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
   // 1 − cos θ = u1·(1 − cos θmax) and sin²θ = (1 − cos θ)(1 + cos θ): no cancellation.
   double one_minus_cos = u1 * one_minus_cos_max;

@@ -26,10 +26,13 @@ inline double cosine_hemisphere_pdf(double cos_theta) {
 
 // The course's Phong microfacet distribution D(m) = (α+2)/(2π)·cos^α θm for cos θm > 0.
 double phong_d(double cos_theta_m, double alpha);
-// A microfacet normal around +z with density D(m)·cos θm = (α+1)/(2π)·cos^(α+1) θm, by
-// cos θm = u1^(1/(α+1)) (Walter et al. 2007, "Microfacet Models for Refraction through
-// Rough Surfaces", §5.2 with the Phong lobe).
+// A microfacet normal around +z by the course's warp cos θm = u1^(1/(α+1)). Its density is
+// (α+1)/(2π)·cos^α θm (P(cos θm ≤ c) = c^(α+1)), which is NOT D(m)·cos θm: that density
+// needs the exponent 1/(α+2) (Walter et al. 2007, "Microfacet Models for Refraction through
+// Rough Surfaces", eq. 35). Keeping the course's warp, the pdf must be this one; pairing the
+// warp with D·cos θm biases the estimate (the chi-square test in sampling_test.cpp sees it).
 Vec3d sample_phong_normal(double u1, double u2, double alpha);
+double phong_normal_pdf(double cos_theta_m, double alpha);
 
 // A direction uniformly inside the cone around +z of half-angle θmax, given
 // one_minus_cos_max = 1 − cos θmax (computed by the caller without cancellation for narrow
