@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
@@ -30,11 +31,14 @@ struct RenderRequest {
   bool lenient = false, quiet = false;
 };
 
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+
 const std::vector<OptionSpec> kRenderOptions = {
     {"output", 'o', true, true}, {"mode", 0, true, false},       {"exposure", 0, true, false},
     {"threads", 0, true, false}, {"lenient", 0, false, false},   {"quiet", 'q', false, false},
     {"tracer", 0, true, false},  {"isa", 0, true, false},        {"spp", 0, true, false},
     {"seed", 0, true, false},    {"integrator", 0, true, false}, {"max-depth", 0, true, false},
+    {"time", 0, true, false},    {"png", 0, false, false},
 };
 
 std::string default_output(const std::optional<std::string>& scene_path) {
@@ -62,6 +66,12 @@ Status read_path_settings(const ParsedArgs& parsed, PathSettings& p) {
     auto n = parse_int_option("max-depth", *v, 0, 1 << 16);
     if (!n) return Error{n.error()};
     p.max_depth = int(*n);
+  }
+  if (auto v = parsed.last("time")) {
+    auto t = parse_double_option("time", *v);
+    if (!t) return Error{t.error()};
+    if (!(*t > 0)) return Error{cat("--time takes a number of seconds > 0, found ", *v)};
+    p.time_limit = *t;
   }
   return ok_status();
 }
@@ -106,6 +116,11 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   r.quiet = parsed->has("quiet");
   if (parsed->has("output")) r.outputs = parsed->values.at("output");
   if (r.outputs.empty()) r.outputs.push_back(default_output(r.scene_path));
+  bool has_png = false;
+  for (const auto& out : r.outputs)
+    has_png |= format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
+  if (parsed->has("png") && !has_png)
+    r.outputs.push_back(std::filesystem::path(r.outputs[0]).replace_extension(".png").string());
   for (const auto& out : r.outputs)
     if (auto f = format_from_path(out); !f) return Error{f.error()};
   return r;
@@ -142,11 +157,20 @@ int render_command(const std::vector<std::string>& args) {
   uint64_t rays = 0;
   std::string what;
   Image image;
+  int spp = 1;
   if (r.path) {
     PathStats stats;
-    image = render_path(tracer, r.path_settings, &stats);
+    Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
+    PathSettings settings = r.path_settings;
+    settings.stop = interrupt_flag();
+    settings.on_pass = [&](int done) { progress.update(done); };
+    install_interrupt_handler();
+    image = render_path(tracer, settings, &stats);
+    progress.finish();
     rays = stats.rays();
-    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", stats.passes, " spp");
+    spp = stats.passes;
+    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", stats.passes, " spp",
+               interrupted() ? ", interrupted" : "");
   } else {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);
@@ -159,6 +183,7 @@ int render_command(const std::vector<std::string>& args) {
   wopts.exposure = r.exposure;
   wopts.metadata.push_back(
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
+  wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
   int status = kExitOk;
   for (const auto& out : r.outputs) {
     if (Status s = write_image(out, image, wopts); !s) {
@@ -177,6 +202,7 @@ int render_command(const std::vector<std::string>& args) {
                  std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
                  bvh.stats.build_seconds);
   }
+  if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
   return status;
 }
 
