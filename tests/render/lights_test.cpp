@@ -110,6 +110,13 @@ TEST(Lights, EveryKindSamplesItsEmittingSurface) {
   // one plane, so next-event sampling counts the overlap twice where a ray sees it once.)
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2 x 10", ref, n);
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2 x 190", ref, n);
+  // Close to the surface, where cos/pdf varies strongly over the light: a warp that is not
+  // uniform in area shows here.
+  Vec3d up(0, 0, 1);
+  Vec3d cap = Vec3d(0.5, 0.2, 1) - normalize(Vec3d(-0.6, 0.3, 0.9)) * 0.05;
+  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", cap, normalize(Vec3d(-0.6, 0.3, 0.9)));
+  check_light("box -0.5 -0.4 1 1.2 0.8 0.6", Vec3d(0.1, 0.1, 0.95), up);
+  check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", Vec3d(0.1, 0.1, 0.55), up);
 }
 
 }  // namespace
