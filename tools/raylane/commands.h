@@ -16,6 +16,7 @@ inline constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
 int render_command(const std::vector<std::string>& args);
 int info_command(const std::vector<std::string>& args);
 int trace_command(const std::vector<std::string>& args);
+int convert_command(const std::vector<std::string>& args);
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
 // stderr. Returns nothing when the scene has errors.

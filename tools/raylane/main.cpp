@@ -14,13 +14,21 @@ usage:
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
+  raylane convert IN OUT [--exposure E]  turn an .hdr/.pfm image into .hdr, .pfm or .png
   raylane --help | --version
 
 render options:
   -o, --output FILE   image to write; the extension picks the format: .hdr (Radiance RGBE),
                       .pfm (float), .png (8-bit sRGB). Repeat to write several.
                       Default: <scene name>.hdr in the working directory.
-  --mode MODE         normal | depth | albedo | id | lit        (default: lit)
+  --mode MODE         path | normal | depth | albedo | id | lit  (default: path)
+  --spp N             path: samples per pixel, in progressive passes   (default: 16)
+  --integrator I      path: brdf (BSDF sampling only) | nee (light sampling only) | mis
+                      (both, power heuristic)                          (default: mis)
+  --seed S            path: image seed; the image is the same for any --threads (default: 0)
+  --max-depth D       path: at most D bounces (Russian roulette after 3)  (default: 64)
+  --time SECONDS      path: stop after the pass that ends past this budget
+  --png               also write a PNG beside the first output
   --exposure E        PNG exposure in stops (pixel · 2^E)          (default: 0)
   --threads N         worker threads, 0 = all cores                (default: 0)
   --tracer T          packet (SIMD packets through the BVH) | bvh (single rays, double
@@ -28,14 +36,19 @@ render options:
   --isa I             sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set
                                                                    (default: auto, the widest)
   --lenient           skip bad scene lines with a warning instead of failing
-  --quiet             print only errors and the written image paths
+  --quiet             print only errors and the written image paths (no progress bar)
 
 trace options (file formats: spec/ray-sets.md of the project's shared folder):
   -o, --output FILE   the answers (default: the ray set's name with .hits, here)
   --repeat N          runs to take the median of                   (default: 5)
   --isa I, --threads N, --quiet   as for render
 
-exit status: 0 done, 1 failed while working (e.g. cannot write), 2 bad input or usage
+A path render shows a progress bar (on a terminal) and ends with a summary. The first Ctrl-C
+finishes the pass in flight and writes the image converged so far (RAYLANE_SPP in the HDR
+header), exit status 130; a second Ctrl-C exits at once.
+
+exit status: 0 done, 1 failed while working (e.g. cannot write), 2 bad input or usage,
+             130 interrupted (image written)
 )";
 
 }  // namespace
@@ -56,6 +69,7 @@ int main(int argc, char** argv) {
   if (command == "render") return raylane::cli::render_command(rest);
   if (command == "info") return raylane::cli::info_command(rest);
   if (command == "trace") return raylane::cli::trace_command(rest);
+  if (command == "convert") return raylane::cli::convert_command(rest);
   // `raylane scene.scn [options]` is short for `raylane render scene.scn [options]`.
   if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
     return raylane::cli::render_command(args);

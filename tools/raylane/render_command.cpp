@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "args.h"
 #include "commands.h"
+#include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_image.h"
+#include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
 
 namespace raylane::cli {
@@ -18,7 +21,9 @@ namespace {
 struct RenderRequest {
   std::optional<std::string> scene_path;
   std::vector<std::string> outputs;
+  bool path = true;  // --mode path (the default); otherwise a ray-casting mode
   RaycastMode mode = RaycastMode::kLit;
+  PathSettings path_settings;
   TracerKind tracer = TracerKind::kPacket;
   Isa isa = best_isa();
   double exposure = 0;
@@ -26,15 +31,49 @@ struct RenderRequest {
   bool lenient = false, quiet = false;
 };
 
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+
 const std::vector<OptionSpec> kRenderOptions = {
-    {"output", 'o', true, true}, {"mode", 0, true, false},     {"exposure", 0, true, false},
-    {"threads", 0, true, false}, {"lenient", 0, false, false}, {"quiet", 'q', false, false},
-    {"tracer", 0, true, false},  {"isa", 0, true, false},
+    {"output", 'o', true, true}, {"mode", 0, true, false},       {"exposure", 0, true, false},
+    {"threads", 0, true, false}, {"lenient", 0, false, false},   {"quiet", 'q', false, false},
+    {"tracer", 0, true, false},  {"isa", 0, true, false},        {"spp", 0, true, false},
+    {"seed", 0, true, false},    {"integrator", 0, true, false}, {"max-depth", 0, true, false},
+    {"time", 0, true, false},    {"png", 0, false, false},
 };
 
 std::string default_output(const std::optional<std::string>& scene_path) {
   std::string stem = scene_path ? std::filesystem::path(*scene_path).stem().string() : "testscene";
   return stem + ".hdr";
+}
+
+Status read_path_settings(const ParsedArgs& parsed, PathSettings& p) {
+  if (auto v = parsed.last("integrator")) {
+    auto i = integrator_from_name(*v);
+    if (!i) return Error{cat("unknown --integrator ", in_quotes(*v), " (brdf, nee, mis)")};
+    p.integrator = *i;
+  }
+  if (auto v = parsed.last("spp")) {
+    auto n = parse_int_option("spp", *v, 1, 1 << 24);
+    if (!n) return Error{n.error()};
+    p.spp = int(*n);
+  }
+  if (auto v = parsed.last("seed")) {
+    auto n = parse_int_option("seed", *v, 0, std::numeric_limits<long>::max());
+    if (!n) return Error{n.error()};
+    p.seed = uint64_t(*n);
+  }
+  if (auto v = parsed.last("max-depth")) {
+    auto n = parse_int_option("max-depth", *v, 0, 1 << 16);
+    if (!n) return Error{n.error()};
+    p.max_depth = int(*n);
+  }
+  if (auto v = parsed.last("time")) {
+    auto t = parse_double_option("time", *v);
+    if (!t) return Error{t.error()};
+    if (!(*t > 0)) return Error{cat("--time takes a number of seconds > 0, found ", *v)};
+    p.time_limit = *t;
+  }
+  return ok_status();
 }
 
 Result<RenderRequest> read_request(const std::vector<std::string>& args) {
@@ -43,12 +82,15 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   RenderRequest r;
   if (parsed->positional.size() > 1) return Error{"render takes at most one scene file"};
   if (!parsed->positional.empty()) r.scene_path = parsed->positional[0];
-  if (auto m = parsed->last("mode")) {
+  if (auto m = parsed->last("mode"); m && *m != "path") {
     auto mode = raycast_mode_from_name(*m);
     if (!mode)
-      return Error{cat("unknown --mode ", in_quotes(*m), " (normal, depth, albedo, id, lit)")};
+      return Error{
+          cat("unknown --mode ", in_quotes(*m), " (path, normal, depth, albedo, id, lit)")};
     r.mode = *mode;
+    r.path = false;
   }
+  if (Status s = read_path_settings(*parsed, r.path_settings); !s) return Error{s.error()};
   if (auto t = parsed->last("tracer")) {
     auto kind = tracer_kind_from_name(*t);
     if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
@@ -74,6 +116,11 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   r.quiet = parsed->has("quiet");
   if (parsed->has("output")) r.outputs = parsed->values.at("output");
   if (r.outputs.empty()) r.outputs.push_back(default_output(r.scene_path));
+  bool has_png = false;
+  for (const auto& out : r.outputs)
+    has_png |= format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
+  if (parsed->has("png") && !has_png)
+    r.outputs.push_back(std::filesystem::path(r.outputs[0]).replace_extension(".png").string());
   for (const auto& out : r.outputs)
     if (auto f = format_from_path(out); !f) return Error{f.error()};
   return r;
@@ -107,13 +154,36 @@ int render_command(const std::vector<std::string>& args) {
   Bvh bvh = build_bvh(*scene);
   Tracer tracer(*scene, bvh, r.tracer, r.isa);
   auto start = std::chrono::steady_clock::now();
-  RaycastStats stats;
-  Image image = render_raycast(tracer, r.mode, &stats);
+  uint64_t rays = 0;
+  std::string what;
+  Image image;
+  int spp = 1;
+  if (r.path) {
+    PathStats stats;
+    Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
+    PathSettings settings = r.path_settings;
+    settings.stop = interrupt_flag();
+    settings.on_pass = [&](int done) { progress.update(done); };
+    install_interrupt_handler();
+    image = render_path(tracer, settings, &stats);
+    progress.finish();
+    rays = stats.rays();
+    spp = stats.passes;
+    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", stats.passes, " spp",
+               interrupted() ? ", interrupted" : "");
+  } else {
+    RaycastStats stats;
+    image = render_raycast(tracer, r.mode, &stats);
+    rays = stats.camera_rays + stats.shadow_rays;
+    what = std::string(raycast_mode_name(r.mode));
+  }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   WriteOptions wopts;
   wopts.exposure = r.exposure;
-  wopts.metadata.push_back(cat("RAYLANE_MODE=", raycast_mode_name(r.mode)));
+  wopts.metadata.push_back(
+      cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
+  wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
   int status = kExitOk;
   for (const auto& out : r.outputs) {
     if (Status s = write_image(out, image, wopts); !s) {
@@ -124,17 +194,15 @@ int render_command(const std::vector<std::string>& args) {
     std::printf("%s\n", out.c_str());
   }
   if (!r.quiet) {
-    uint64_t rays = stats.camera_rays + stats.shadow_rays;
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.3f s: %llu rays (%llu camera, %llu shadow), %.2f "
-                 "Mrays/s; %s tracer, %s, %d threads; BVH of %zu nodes built in %.3f s\n",
-                 scene->width, scene->height, std::string(raycast_mode_name(r.mode)).c_str(),
-                 seconds, (unsigned long long)rays, (unsigned long long)stats.camera_rays,
-                 (unsigned long long)stats.shadow_rays, rays / seconds * 1e-6,
-                 std::string(tracer_kind_name(r.tracer)).c_str(),
+                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %d "
+                 "threads; BVH of %zu nodes built in %.3f s\n",
+                 scene->width, scene->height, what.c_str(), seconds, (unsigned long long)rays,
+                 rays / seconds * 1e-6, std::string(tracer_kind_name(r.tracer)).c_str(),
                  std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
                  bvh.stats.build_seconds);
   }
+  if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
   return status;
 }
 

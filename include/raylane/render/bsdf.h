@@ -1,0 +1,49 @@
+// The course's reflection model at one surface point (design.md, "The course's rendering
+// model"): a mixture of a Lambertian lobe, a Phong-distribution microfacet reflection lobe and
+// a microfacet transmission lobe, chosen by the lengths of Kd, Ks and Kt. Directions point
+// away from the surface; wo is towards the viewer. eval() returns f(wo, wi)·|cos θi| and pdf()
+// the density of sample() in solid angle, so value/pdf is a sample's weight; the three agree
+// by construction (sample() returns eval() and pdf() of the direction it drew).
+#pragma once
+
+#include "raylane/core/vec3.h"
+#include "raylane/scene/material.h"
+
+namespace raylane {
+
+struct BsdfSample {
+  Vec3d wi;
+  Vec3d value;  // f(wo, wi)·|cos θi|
+  double pdf = 0;
+  bool valid() const { return pdf > 0; }
+};
+
+class Bsdf {
+ public:
+  // `ns` is the unit shading normal pointing out of the solid (or by the triangle's winding):
+  // its side tells entering (wo·ns > 0: from outside, η = 1/ior) from leaving.
+  Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo);
+
+  Vec3d eval(const Vec3d& wi) const;
+  double pdf(const Vec3d& wi) const;
+  // u0 picks the lobe, (u1, u2) warp the direction. An invalid sample (pdf 0) must be skipped.
+  BsdfSample sample(double u0, double u1, double u2) const;
+
+  bool black() const { return sum_ == 0; }  // no lobe at all (e.g. wo in the surface plane)
+
+ private:
+  Vec3d reflection(const Vec3d& m, const Vec3d& wi, double fresnel_scale) const;
+  Vec3d schlick(double cos_om) const;
+  double smith_g(const Vec3d& wi, const Vec3d& m) const;
+  bool refracts(double cos_om) const;  // no total internal reflection through m
+
+  Vec3d kd_, ks_;
+  double alpha_ = 0;
+  Vec3d n_;   // shading normal turned to wo's side
+  Vec3d wo_;  // unit
+  double cos_o_ = 0;
+  double eta_o_ = 1, eta_i_ = 1;  // indices on wo's side and on the other side
+  double pd_ = 0, pr_ = 0, pt_ = 0, sum_ = 0;
+};
+
+}  // namespace raylane

@@ -1,0 +1,51 @@
+// Next-event estimation: picking an emitting primitive and a point on it, and the density of
+// having done so for a direction found by BSDF sampling (for MIS). Spheres seen from outside
+// are sampled by solid angle (the cone they subtend); boxes, cylinders, triangles and the
+// inside of spheres by area, converted to solid angle. A light is picked with probability
+// proportional to its power (mean of Le's channels × area), so a scene's dim lamps do not take
+// samples from its bright ones.
+//
+// Emission model: solids (spheres, boxes, cylinders) emit from their outside only; triangles
+// emit from both sides. Emitters reflect nothing.
+#pragma once
+
+#include <unordered_map>
+#include <vector>
+
+#include "raylane/scene/scene.h"
+#include "raylane/trace/hit.h"
+
+namespace raylane {
+
+struct LightSample {
+  PrimRef light = PrimRef::invalid();
+  Vec3d p;          // the point on the light
+  Vec3d wi;         // unit direction from the reference point to p
+  double dist = 0;  // |p − reference point|
+  Vec3d le;         // the radiance arriving along −wi
+  double pdf = 0;   // solid-angle density, including the choice of the light
+  bool valid() const { return pdf > 0; }
+};
+
+class LightSampler {
+ public:
+  explicit LightSampler(const Scene& scene);
+  bool empty() const { return lights_.empty(); }
+
+  // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
+  LightSample sample(const Vec3d& ref, double u_light, double u_part, double u1, double u2) const;
+
+  // The density sample() would have had for direction wi from ref, hitting `hit` on a light.
+  double pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const;
+
+  // The radiance a ray sees where it hits an emitter (0 from behind a solid emitter).
+  Vec3d emitted(const Hit& hit) const;
+
+ private:
+  const Scene& scene_;
+  std::vector<PrimRef> lights_;
+  std::vector<double> cdf_;                      // cumulative choice probabilities
+  std::unordered_map<uint32_t, double> choice_;  // PrimRef bits → choice probability
+};
+
+}  // namespace raylane

@@ -1,0 +1,51 @@
+// The course's Monte Carlo path tracer (design.md, "The course's rendering model"): next-event
+// estimation toward emitting primitives, BSDF sampling, MIS with the power heuristic, Russian
+// roulette. Each tile of 16×16 pixels traces its paths as wavefronts: all of a bounce's
+// continuation and shadow rays go through the Tracer in one batch (so through the packet
+// tracer), camera rays in 4×4 blocks. Passes of one sample per pixel run over the whole image
+// (OpenMP over tiles); tile t of pass k draws from its own MT19937-64 stream seeded from
+// (seed, t, k), so an image is bit-identical for any number of threads.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string_view>
+
+#include "raylane/image/image.h"
+#include "raylane/render/tracer.h"
+
+namespace raylane {
+
+enum class Integrator {
+  kBrdf,  // BSDF sampling only; emitters count where a path hits them
+  kNee,   // light sampling only for direct light; emitters hit by bounces count nothing
+  kMis,   // both, weighted by the power heuristic
+};
+
+std::optional<Integrator> integrator_from_name(std::string_view name);  // brdf, nee, mis
+std::string_view integrator_name(Integrator integrator);
+
+struct PathSettings {
+  Integrator integrator = Integrator::kMis;
+  int spp = 16;
+  uint64_t seed = 0;
+  int max_depth = 64;     // bounces; Russian roulette ends nearly every path long before
+  int rr_depth = 3;       // roulette from this bounce on, survival 0.8 (the course's rule)
+  double time_limit = 0;  // seconds; 0 = none. Checked between passes.
+  const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
+  std::function<void(int passes_done)> on_pass;  // progress, called after each pass
+};
+
+struct PathStats {
+  uint64_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
+  uint64_t nonfinite_samples = 0;  // samples dropped for NaN/inf radiance (should stay 0)
+  int passes = 0;                  // samples per pixel actually taken
+  uint64_t rays() const { return camera_rays + bounce_rays + shadow_rays; }
+};
+
+// Renders tracer.scene(); the image is the mean over the passes taken (top row first).
+Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats = nullptr);
+
+}  // namespace raylane

@@ -1,0 +1,33 @@
+// Random numbers for the path tracer: MT19937-64 (the course's generator), one stream per
+// (image seed, tile, pass), so an image does not depend on which thread renders which tile.
+#pragma once
+
+#include <cstdint>
+#include <random>
+
+namespace raylane {
+
+// SplitMix64's finaliser (Steele, Lea and Flood 2014, "Fast splittable pseudorandom number
+// generators"): a bijective mix whose output bits each depend on every input bit, so nearby
+// (tile, pass) keys give unrelated seeds.
+constexpr uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+class Rng {
+ public:
+  explicit Rng(uint64_t seed) : engine_(seed) {}
+  static Rng for_tile(uint64_t image_seed, uint64_t tile, uint64_t pass) {
+    return Rng(mix64(mix64(mix64(image_seed) ^ tile) ^ (pass * 0x632be59bd9b4e019ull)));
+  }
+  // Uniform in [0, 1): the top 53 bits as a double's mantissa, so 1 is never returned.
+  double uniform() { return double(engine_() >> 11) * 0x1p-53; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+}  // namespace raylane

@@ -1,0 +1,156 @@
+#include "raylane/render/bsdf.h"
+
+#include <cmath>
+
+#include "raylane/render/sampling.h"
+
+namespace raylane {
+
+namespace {
+
+Vec3d reflect(const Vec3d& wo, const Vec3d& m) {
+  return 2 * dot(wo, m) * m - wo;
+}
+
+// Walter et al. 2007, eq. 27: the rational approximation of the Smith G1 of the Beckmann
+// lobe, used for the Phong lobe through the substitution a = √(α/2 + 1)/tan θv.
+double g1(double cos_v, double cos_vm, double alpha) {
+  if (!(cos_vm * cos_v > 0)) return 0.0;  // the microfacet is back-facing from v
+  double sin_v = std::sqrt(std::max(0.0, 1 - cos_v * cos_v));
+  if (sin_v == 0) return 1.0;
+  double a = std::sqrt(0.5 * alpha + 1) * std::abs(cos_v) / sin_v;
+  if (a > 1.6) return 1.0;
+  return (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
+}
+
+}  // namespace
+
+Bsdf::Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo)
+    : kd_(m.kd), ks_(m.ks), alpha_(m.alpha), wo_(wo) {
+  double c = dot(ns, wo);
+  if (c == 0 || !std::isfinite(c)) return;  // sum_ = 0: black
+  bool entering = c > 0;
+  n_ = entering ? ns : -ns;
+  cos_o_ = std::abs(c);
+  eta_o_ = entering ? 1.0 : double(m.ior);
+  eta_i_ = entering ? double(m.ior) : 1.0;
+  pd_ = length(Vec3d(m.kd));
+  pr_ = length(Vec3d(m.ks));
+  pt_ = length(Vec3d(m.kt));
+  sum_ = pd_ + pr_ + pt_;
+  if (sum_ > 0) pd_ /= sum_, pr_ /= sum_, pt_ /= sum_;
+}
+
+Vec3d Bsdf::schlick(double cos_om) const {
+  double c = std::pow(1 - std::min(1.0, std::abs(cos_om)), 5);
+  return ks_ + (Vec3d(1, 1, 1) - ks_) * c;
+}
+
+double Bsdf::smith_g(const Vec3d& wi, const Vec3d& m) const {
+  return g1(dot(wi, n_), dot(wi, m), alpha_) * g1(cos_o_, dot(wo_, m), alpha_);
+}
+
+bool Bsdf::refracts(double cos_om) const {
+  double eta = eta_o_ / eta_i_;
+  return 1 - eta * eta * (1 - cos_om * cos_om) >= 0;
+}
+
+// D·G·F/(4|cos θi||cos θo|)·|cos θi|, with F scaled per channel by fresnel_scale's choice:
+// +1 gives F (the reflection lobe), −1 gives 1 − F (light the transmission lobe would have
+// refracted, reflected instead by total internal reflection, so the two lobes sum to one).
+Vec3d Bsdf::reflection(const Vec3d& m, const Vec3d& wi, double fresnel_scale) const {
+  double d = phong_d(dot(m, n_), alpha_);
+  if (d == 0) return {0, 0, 0};
+  Vec3d f = schlick(dot(wo_, m));
+  if (fresnel_scale < 0) f = Vec3d(1, 1, 1) - f;
+  return f * (d * smith_g(wi, m) / (4 * cos_o_));
+}
+
+Vec3d Bsdf::eval(const Vec3d& wi) const {
+  Vec3d out(0, 0, 0);
+  if (sum_ == 0) return out;
+  double cos_i = dot(wi, n_);
+  if (cos_i > 0) {
+    if (pd_ > 0) out += kd_ * (cos_i / kPi);
+    Vec3d m = normalize(wi + wo_);
+    if (pr_ > 0) out += reflection(m, wi, 1);
+    if (pt_ > 0 && !refracts(dot(wo_, m))) out += reflection(m, wi, -1);
+    return out;
+  }
+  if (!(cos_i < 0) || pt_ == 0) return out;
+  // Walter et al. 2007, eqs. 16 and 21: the generalised half vector and the BTDF, radiance
+  // scaled by η_o² (the viewer's side).
+  Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
+  double len = length(m);
+  if (!(len > 0)) return out;
+  m = m / len;
+  if (dot(m, n_) < 0) m = -m;
+  double om = dot(wo_, m), im = dot(wi, m);
+  if (!(om > 0 && im < 0) || !refracts(om)) return out;
+  double d = phong_d(dot(m, n_), alpha_);
+  double den = eta_o_ * om + eta_i_ * im;
+  if (d == 0 || den == 0) return out;
+  double s = d * smith_g(wi, m) * std::abs(im) * om * eta_o_ * eta_o_ / (cos_o_ * den * den);
+  return (Vec3d(1, 1, 1) - schlick(om)) * s;
+}
+
+double Bsdf::pdf(const Vec3d& wi) const {
+  if (sum_ == 0) return 0;
+  double cos_i = dot(wi, n_);
+  if (cos_i > 0) {
+    double p = pd_ * cos_i / kPi;
+    Vec3d m = normalize(wi + wo_);
+    double im = dot(wi, m);
+    double pm = phong_normal_pdf(dot(m, n_), alpha_);
+    double lobe = pm > 0 && im > 0 ? pm / (4 * im) : 0.0;  // Walter eq. 14
+    double w = pr_ + (pt_ > 0 && !refracts(dot(wo_, m)) ? pt_ : 0.0);
+    return p + w * lobe;  // the warp's density of m, Jacobian 1/(4|wi·m|)
+  }
+  if (!(cos_i < 0) || pt_ == 0) return 0;
+  Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
+  double len = length(m);
+  if (!(len > 0)) return 0;
+  m = m / len;
+  if (dot(m, n_) < 0) m = -m;
+  double om = dot(wo_, m), im = dot(wi, m);
+  if (!(om > 0 && im < 0) || !refracts(om)) return 0;
+  double den = eta_o_ * om + eta_i_ * im;
+  if (den == 0) return 0;
+  double pm = phong_normal_pdf(dot(m, n_), alpha_);
+  return pt_ * pm * eta_i_ * eta_i_ * std::abs(im) / (den * den);  // Walter eq. 17
+}
+
+BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
+  BsdfSample s;
+  if (sum_ == 0) return s;
+  Frame frame(n_);
+  if (u0 < pd_) {
+    s.wi = frame.to_world(sample_cosine_hemisphere(u1, u2));
+  } else {
+    Vec3d m = frame.to_world(sample_phong_normal(u1, u2, alpha_));
+    double om = dot(wo_, m);
+    if (!(om > 0)) return s;
+    s.wi = reflect(wo_, m);
+    if (u0 >= pd_ + pr_ && refracts(om)) {
+      // Refraction through m (Walter eq. 40), η = η_o/η_i.
+      double eta = eta_o_ / eta_i_;
+      double k = 1 - eta * eta * (1 - om * om);
+      s.wi = m * (eta * om - std::sqrt(k)) - wo_ * eta;
+      if (!(dot(s.wi, n_) < 0)) return s;
+    } else if (!(dot(s.wi, n_) > 0)) {
+      return s;  // reflected below the horizon: absorbed, never another lobe's direction
+    }
+  }
+  double len = length(s.wi);
+  if (!(len > 0) || !std::isfinite(len)) return s;
+  s.wi = s.wi / len;
+  s.pdf = pdf(s.wi);
+  if (!(s.pdf > 0) || !std::isfinite(s.pdf)) {
+    s.pdf = 0;
+    return s;
+  }
+  s.value = eval(s.wi);
+  return s;
+}
+
+}  // namespace raylane

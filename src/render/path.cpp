@@ -1,0 +1,245 @@
+#include "raylane/render/path.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "raylane/render/bsdf.h"
+#include "raylane/render/camera.h"
+#include "raylane/render/lights.h"
+#include "raylane/render/raycast.h"
+#include "raylane/render/rng.h"
+#include "raylane/render/sampling.h"
+
+namespace raylane {
+
+namespace {
+
+constexpr std::string_view kIntegratorNames[] = {"brdf", "nee", "mis"};
+constexpr uint32_t kTile = 16;  // pixels per tile side: 256 paths per wavefront
+constexpr uint32_t kBlock = 4;  // camera rays in 4×4 blocks: one coherent packet
+constexpr double kRouletteSurvival = 0.8;
+
+struct PathState {
+  Rayd ray;
+  Vec3d beta{1, 1, 1};  // throughput
+  Vec3d radiance{0, 0, 0};
+  Vec3d prev_p;         // the vertex the ray left (for the light pdf of MIS)
+  double prev_pdf = 0;  // the BSDF density of the ray's direction
+  std::size_t pixel = 0;
+};
+
+struct ShadowQuery {
+  uint32_t path;
+  PrimRef light;
+  Vec3d contribution;  // added to the path's radiance if the light is the first thing hit
+};
+
+struct TileContext {
+  const Tracer& tracer;
+  const LightSampler& lights;
+  const PathSettings& settings;
+  Rng rng;
+  PathStats stats;
+};
+
+const Material& material_of(const Scene& scene, const Hit& hit) {
+  return scene.materials[scene.material_of(hit.prim)];
+}
+
+// Beer's law inside a transmissive solid (the course: exp(t·ln Kt) per channel, applied to the
+// segment that ends on the inside of a surface). A material with Kt = 0 has no interior.
+Vec3d beer(const Material& m, const Hit& hit) {
+  Vec3d kt(m.kt);
+  if (hit.front_face || kt == Vec3d(0, 0, 0)) return {1, 1, 1};
+  Vec3d a;
+  for (int k = 0; k < 3; ++k)
+    a[k] = kt[k] > 0 ? std::exp(hit.t * std::log(kt[k])) : 0.0;
+  return a;
+}
+
+// Jittered camera rays for one tile, 4×4 blocks at a time (y counts up in the pixel grid).
+void tile_camera_rays(const Camera& cam, uint32_t x0, uint32_t y0, Rng& rng,
+                      std::vector<PathState>& paths) {
+  paths.clear();
+  uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
+  for (uint32_t by = y0; by < y1; by += kBlock)
+    for (uint32_t bx = x0; bx < x1; bx += kBlock)
+      for (uint32_t y = by; y < std::min(by + kBlock, y1); ++y)
+        for (uint32_t x = bx; x < std::min(bx + kBlock, x1); ++x) {
+          PathState p;
+          double jx = rng.uniform(), jy = rng.uniform();
+          p.ray = cam.ray_through(x + jx, y + jy);
+          p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
+          paths.push_back(p);
+        }
+}
+
+// What a path gains where it hits an emitter: all of it for a camera ray or for BSDF
+// sampling alone, the MIS share after a bounce, nothing for NEE alone (light sampling
+// counted it already).
+void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
+  Vec3d le = ctx.lights.emitted(hit);
+  if (le == Vec3d(0, 0, 0)) return;
+  double w = 1;
+  if (depth > 0 && ctx.settings.integrator == Integrator::kNee) w = 0;
+  if (depth > 0 && ctx.settings.integrator == Integrator::kMis)
+    w = power_heuristic(p.prev_pdf, ctx.lights.pdf(p.prev_p, p.ray.d, hit));
+  p.radiance += p.beta * le * w;
+}
+
+// Next-event estimation from one vertex: a shadow ray toward a sampled light point.
+void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
+                  const Hit& hit, std::vector<Rayd>& rays, std::vector<ShadowQuery>& queries) {
+  Rng& rng = ctx.rng;
+  double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  LightSample ls = ctx.lights.sample(hit.surface.p, u0, u1, u2, u3);
+  if (!ls.valid()) return;
+  Vec3d f = bsdf.eval(ls.wi);
+  if (f == Vec3d(0, 0, 0)) return;
+  double w =
+      ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, bsdf.pdf(ls.wi)) : 1.0;
+  Vec3d c = p.beta * f * ls.le * (w / ls.pdf);
+  if (!is_finite(c)) return;
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
+  rays.push_back({o, ls.wi});
+  queries.push_back({path, ls.light, c});
+}
+
+// One vertex of a path: emission, absorption, light sampling, then the next direction.
+// Returns false when the path ends here.
+bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit, int depth,
+                  std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
+  if (!hit.hit()) return false;
+  const Material& m = material_of(ctx.tracer.scene(), hit);
+  if (m.is_light) {
+    add_emission(ctx, p, hit, depth);
+    return false;  // emitters reflect nothing
+  }
+  p.beta = p.beta * beer(m, hit);
+  Vec3d wo = -p.ray.d;
+  Bsdf bsdf(m, hit.surface.ns, wo);
+  if (bsdf.black() || depth >= ctx.settings.max_depth) return false;
+  if (ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty())
+    sample_light(ctx, path, p, bsdf, hit, shadow_rays, queries);
+  Rng& rng = ctx.rng;
+  double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+  BsdfSample s = bsdf.sample(u0, u1, u2);
+  if (!s.valid()) return false;
+  p.beta = p.beta * s.value / s.pdf;
+  if (depth + 1 >= ctx.settings.rr_depth) {
+    if (rng.uniform() >= kRouletteSurvival) return false;
+    p.beta = p.beta / kRouletteSurvival;
+  }
+  if (!is_finite(p.beta) || p.beta == Vec3d(0, 0, 0)) return false;
+  p.prev_p = hit.surface.p;
+  p.prev_pdf = s.pdf;
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, s.wi);
+  p.ray = {o, s.wi};
+  return true;
+}
+
+// One sample for every pixel of a tile, bounce by bounce. Each wavefront holds the
+// continuation rays of the live paths and the shadow rays of the previous vertices.
+void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<double>& film) {
+  std::vector<uint32_t> live(paths.size()), next_live;
+  for (uint32_t i = 0; i < live.size(); ++i)
+    live[i] = i;
+  std::vector<Rayd> batch, shadow_rays;
+  std::vector<ShadowQuery> queries, next_queries;
+  std::vector<Hit> hits;
+  ctx.stats.camera_rays += paths.size();
+  for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
+    batch.clear();
+    for (uint32_t i : live)
+      batch.push_back(paths[i].ray);
+    batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
+    ctx.tracer.closest(batch, hits);
+    if (depth > 0) ctx.stats.bounce_rays += live.size();
+    ctx.stats.shadow_rays += queries.size();
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+      const Hit& h = hits[live.size() + q];
+      // Visible when the first thing met is the light's emitting side (convex solids are
+      // sampled on faces toward the vertex only, so no other face of theirs is in between).
+      bool seen = h.hit() && h.prim == queries[q].light &&
+                  (h.front_face || h.prim.tag() == PrimTag::kTriangle);
+      if (seen) paths[queries[q].path].radiance += queries[q].contribution;
+    }
+    shadow_rays.clear();
+    next_queries.clear();
+    next_live.clear();
+    for (std::size_t k = 0; k < live.size(); ++k)
+      if (shade_vertex(ctx, live[k], paths[live[k]], hits[k], depth, shadow_rays, next_queries))
+        next_live.push_back(live[k]);
+    live.swap(next_live);
+    queries.swap(next_queries);
+  }
+  for (const PathState& p : paths) {
+    if (!is_finite(p.radiance)) {
+      ++ctx.stats.nonfinite_samples;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+      film[p.pixel * 3 + k] += p.radiance[k];
+  }
+}
+
+void add_stats(PathStats& into, const PathStats& s) {
+  into.camera_rays += s.camera_rays;
+  into.bounce_rays += s.bounce_rays;
+  into.shadow_rays += s.shadow_rays;
+  into.nonfinite_samples += s.nonfinite_samples;
+}
+
+}  // namespace
+
+std::optional<Integrator> integrator_from_name(std::string_view name) {
+  for (int i = 0; i < 3; ++i)
+    if (name == kIntegratorNames[i]) return Integrator(i);
+  return std::nullopt;
+}
+
+std::string_view integrator_name(Integrator integrator) {
+  return kIntegratorNames[int(integrator)];
+}
+
+Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats) {
+  const Scene& scene = tracer.scene();
+  Camera cam = Camera::from_scene(scene);
+  LightSampler lights(scene);
+  uint32_t tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
+  const std::ptrdiff_t tiles = std::ptrdiff_t(tiles_x) * tiles_y;
+  std::vector<double> film(std::size_t(cam.width) * cam.height * 3, 0.0);
+  PathStats total;
+  auto start = std::chrono::steady_clock::now();
+  for (int pass = 0; pass < settings.spp; ++pass) {
+#pragma omp parallel
+    {
+      PathStats local;
+      std::vector<PathState> paths;
+#pragma omp for schedule(dynamic, 1)
+      for (std::ptrdiff_t t = 0; t < tiles; ++t) {
+        TileContext ctx{tracer, lights, settings, Rng::for_tile(settings.seed, t, pass), {}};
+        tile_camera_rays(cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile, ctx.rng,
+                         paths);
+        render_tile(ctx, paths, film);
+        add_stats(local, ctx.stats);
+      }
+#pragma omp critical
+      add_stats(total, local);
+    }
+    total.passes = pass + 1;
+    if (settings.on_pass) settings.on_pass(total.passes);
+    if (settings.stop && settings.stop->load()) break;
+    double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (settings.time_limit > 0 && elapsed >= settings.time_limit) break;
+  }
+  Image image(cam.width, cam.height);
+  double scale = total.passes > 0 ? 1.0 / total.passes : 0.0;
+  for (std::size_t i = 0; i < film.size(); ++i)
+    image.rgb[i] = float(film[i] * scale);
+  if (stats) *stats = total;
+  return image;
+}
+
+}  // namespace raylane

@@ -1,0 +1,153 @@
+// The path tracer against analytic answers (hard-cases.md M1, M3): a furnace with a known
+// radiance, direct light from a sphere on a plane; and determinism across thread counts.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/render/path.h"
+#include "raylane/scene/parser.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+struct PixelStats {
+  double mean = 0, sigma = 0;  // mean of the pixels (channel 0) and its standard error
+};
+
+// Pixels whose expectation is the same number are independent estimates of it, so the
+// spread of the pixel values gives the estimate's own standard error.
+PixelStats pixel_stats(const Image& img) {
+  double s = 0, s2 = 0;
+  std::size_t n = std::size_t(img.width) * img.height;
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = img.rgb[i * 3];
+    s += v, s2 += v * v;
+  }
+  double mean = s / n;
+  return {mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1))};
+}
+
+Image render(Scene& scene, const PathSettings& settings, PathStats* stats = nullptr) {
+  Bvh bvh = build_bvh(scene);
+  Tracer tracer(scene, bvh, TracerKind::kPacket);
+  return render_path(tracer, settings, stats);
+}
+
+Scene parse(const std::string& text) {
+  auto p = parse_scene(text, "test.scn");
+  EXPECT_TRUE(p.ok());
+  return std::move(p.scene);
+}
+
+// A closed diffuse sphere (radius R = 1, Kd = ρ = 0.5, not emitting, seen from inside) around
+// a sphere light of radius a = 0.5 and radiance Le = 5 at its centre. By symmetry every wall
+// point leaves the same radiance L, and a wall point sees the light at normal incidence with
+// projected solid angle π·s², s = a/R, and the wall elsewhere (the light reflects nothing):
+//   L = (ρ/π)·(π·Le·s² + π·L·(1 − s²))  ⇒  L = ρ·Le·s² / (1 − ρ·(1 − s²)) = 0.625/0.625 = 1.
+// The camera sits between light and wall, looking away from the light.
+constexpr const char* kFurnace =
+    "screen 16 16\ncamera 0 0 0.7 0.3 x 180\n"
+    "brdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 0 0 1\nlight 5 5 5\nsphere 0 0 0 0.5\n";
+
+TEST(PathTracer, FurnaceConvergesToTheAnalyticRadiance) {
+  for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
+    Scene scene = parse(kFurnace);
+    PathSettings s;
+    s.integrator = integrator;
+    s.spp = 64;
+    s.seed = 5;
+    PathStats stats;
+    PixelStats p = pixel_stats(render(scene, s, &stats));
+    SCOPED_TRACE(std::string(integrator_name(integrator)));
+    std::printf("furnace %s: %.5f ± %.5f (expected 1)\n",
+                std::string(integrator_name(integrator)).c_str(), p.mean, p.sigma);
+    EXPECT_NEAR(p.mean, 1.0, 4 * p.sigma);
+    EXPECT_LT(p.sigma, 0.02);  // the test has power: 4σ well under the quantity tested
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+    EXPECT_EQ(stats.passes, 64);
+  }
+}
+
+// A diffuse plane (ρ = 0.5) under a sphere light of radius r = 0.5 and Le = 2 centred d = 3
+// above the foot point: E = π·Le·(r/d)² (the sphere subtends sin²θmax = (r/d)² and sits on the
+// normal), so the plane leaves L = ρ·E/π = ρ·Le·(r/d)² = 1/36 there. The camera looks
+// straight down at the foot point through a tiny field of view.
+constexpr const char* kDirect =
+    "screen 16 16\ncamera 0 0 1 0.001\nbrdf 0.5 0.5 0.5 0 0 0 1\nbox -50 -50 -1 100 100 1\n"
+    "light 2 2 2\nsphere 0 0 3 0.5\n";
+
+TEST(PathTracer, DirectLightMatchesTheAnalyticIrradiance) {
+  const double expected = 0.5 * 2 * (0.5 / 3) * (0.5 / 3);
+  for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
+    Scene scene = parse(kDirect);
+    PathSettings s;
+    s.integrator = integrator;
+    s.spp = integrator == Integrator::kBrdf ? 256 : 16;
+    s.seed = 9;
+    PathStats stats;
+    PixelStats p = pixel_stats(render(scene, s, &stats));
+    std::printf("direct %s: %.6f ± %.6f (expected %.6f)\n",
+                std::string(integrator_name(integrator)).c_str(), p.mean, p.sigma, expected);
+    SCOPED_TRACE(std::string(integrator_name(integrator)));
+    EXPECT_NEAR(p.mean, expected, 4 * p.sigma);
+    EXPECT_LT(p.sigma, 0.03 * expected);
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+  }
+}
+
+Image render_testscene(int threads, uint64_t seed) {
+  auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
+  EXPECT_TRUE(p.ok());
+  p.scene.width = 48, p.scene.height = 36;
+  PathSettings s;
+  s.spp = 2;
+  s.seed = seed;
+  int before = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  Image img = render(p.scene, s);
+  omp_set_num_threads(before);
+  return img;
+}
+
+TEST(PathTracer, ImageIsTheSameForAnyThreadCount) {
+  Image one = render_testscene(1, 42), two = render_testscene(2, 42),
+        three = render_testscene(3, 42);
+  ASSERT_EQ(one.rgb.size(), two.rgb.size());
+  EXPECT_EQ(std::memcmp(one.rgb.data(), two.rgb.data(), one.rgb.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(one.rgb.data(), three.rgb.data(), one.rgb.size() * sizeof(float)), 0);
+  Image other = render_testscene(2, 43);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < one.rgb.size(); ++i)
+    differ += one.rgb[i] != other.rgb[i];
+  EXPECT_GT(differ, one.rgb.size() / 2);  // another seed: most lit channels change
+}
+
+// The later course projects' materials (glass with absorption, mirror, glossy table) on the
+// test scene: no NaN or inf sample, and light gets through the glass.
+TEST(PathTracer, GlassAndMirrorRenderFinite) {
+  auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
+  ASSERT_TRUE(p.ok());
+  Scene& scene = p.scene;
+  scene.width = 40, scene.height = 30;
+  for (Material& m : scene.materials) {
+    if (m.alpha == 2000)
+      m.kd = {0, 0, 0}, m.ks = {0.03f, 0.03f, 0.03f}, m.alpha = 10000, m.kt = {0.9f, 0.4f, 0.9f},
+      m.ior = 1.25f;
+    if (m.alpha == 200) m.ks = {0.255f, 0.24f, 0.09f};  // the glossy table
+  }
+  PathSettings s;
+  s.spp = 4;
+  PathStats stats;
+  Image img = render(scene, s, &stats);
+  EXPECT_EQ(stats.nonfinite_samples, 0u);
+  for (float v : img.rgb)
+    ASSERT_TRUE(std::isfinite(v) && v >= 0);
+  EXPECT_GT(stats.bounce_rays, stats.camera_rays);
+}
+
+}  // namespace
+}  // namespace raylane

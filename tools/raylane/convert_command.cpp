@@ -1,0 +1,37 @@
+// `raylane convert IN OUT [--exposure E]`: any image raylane writes (HDR, PFM) into another
+// of its formats, chosen by OUT's extension (the course's users viewed HDR files this way).
+#include <cstdio>
+
+#include "args.h"
+#include "commands.h"
+#include "raylane/image/write_image.h"
+
+namespace raylane::cli {
+
+int convert_command(const std::vector<std::string>& args) {
+  auto parsed = parse_args(args, {{"exposure", 0, true, false}});
+  if (!parsed) return usage_error(parsed.error());
+  if (parsed->positional.size() != 2) return usage_error("convert takes IN and OUT");
+  const std::string& in = parsed->positional[0];
+  const std::string& out = parsed->positional[1];
+  WriteOptions opts;
+  if (auto e = parsed->last("exposure")) {
+    auto v = parse_double_option("exposure", *e);
+    if (!v) return usage_error(v.error());
+    opts.exposure = *v;
+  }
+  if (auto f = format_from_path(out); !f) return usage_error(f.error());
+  auto image = read_image(in);
+  if (!image) {
+    std::fprintf(stderr, "raylane: cannot read %s: %s\n", in.c_str(), image.error().c_str());
+    return kExitUsage;
+  }
+  if (Status s = write_image(out, *image, opts); !s) {
+    std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
+    return kExitFailure;
+  }
+  std::printf("%s\n", out.c_str());
+  return kExitOk;
+}
+
+}  // namespace raylane::cli

@@ -1,0 +1,89 @@
+#include "progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+
+namespace raylane::cli {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the flag is set in a signal handler");
+
+extern "C" void on_sigint(int) {
+  if (g_interrupted.exchange(true)) _exit(130);  // the second Ctrl-C: leave at once
+}
+
+void print_time(char* out, std::size_t n, double s) {
+  if (s >= 3600)
+    std::snprintf(out, n, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(out, n, "%dm%02ds", int(s / 60), int(s) % 60);
+  else
+    std::snprintf(out, n, "%.1fs", s);
+}
+
+}  // namespace
+
+Progress::Progress(int total_passes, double time_limit, bool quiet)
+    : total_(std::max(1, total_passes)),
+      time_limit_(time_limit),
+      quiet_(quiet),
+      tty_(isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()) {}
+
+double Progress::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Progress::update(int done) {
+  if (quiet_) return;
+  double t = elapsed();
+  double eta = done > 0 ? t / done * (total_ - done) : 0;
+  if (time_limit_ > 0) eta = std::min(eta, std::max(0.0, time_limit_ - t));
+  double frac = std::min(1.0, time_limit_ > 0 ? std::max(double(done) / total_, t / time_limit_)
+                                              : double(done) / total_);
+  char el[32], et[32];
+  print_time(el, sizeof el, t);
+  print_time(et, sizeof et, eta);
+  if (tty_) {
+    constexpr int kWidth = 30;
+    char bar[kWidth + 1];
+    int fill = int(frac * kWidth);
+    for (int i = 0; i < kWidth; ++i)
+      bar[i] = i < fill ? '#' : '.';
+    bar[kWidth] = 0;
+    std::fprintf(stderr, "\r[%s] %d/%d spp  %s elapsed  ETA %s ", bar, done, total_, el, et);
+    drawn_ = true;
+  } else if (t - last_report_ >= 10 || done == total_) {  // plain lines at most every 10 s
+    std::fprintf(stderr, "%d/%d spp, %s elapsed, ETA %s\n", done, total_, el, et);
+    last_report_ = t;
+  }
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (drawn_) std::fputc('\n', stderr);
+  drawn_ = false;
+}
+
+void install_interrupt_handler() {
+  struct sigaction sa = {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+bool interrupted() {
+  return g_interrupted.load();
+}
+
+const std::atomic<bool>* interrupt_flag() {
+  return &g_interrupted;
+}
+
+}  // namespace raylane::cli

@@ -1,0 +1,34 @@
+// What a long render tells its user: a progress bar with elapsed time and ETA on a terminal,
+// an occasional plain line otherwise (logs, pipes), nothing with --quiet.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+
+namespace raylane::cli {
+
+class Progress {
+ public:
+  // total_passes: the requested spp; time_limit: seconds (0 = none), which caps the ETA.
+  Progress(int total_passes, double time_limit, bool quiet);
+  void update(int passes_done);  // called after each pass, from the rendering thread
+  void finish();                 // ends the bar's line
+  double elapsed() const;
+
+ private:
+  int total_;
+  double time_limit_;
+  bool quiet_, tty_;
+  double last_report_ = 0;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// SIGINT handling for renders: the first Ctrl-C sets the flag (the renderer finishes the
+// passes in flight and the image converged so far is written); a second exits at once with
+// status 130 without writing.
+void install_interrupt_handler();
+bool interrupted();
+const std::atomic<bool>* interrupt_flag();  // for PathSettings::stop
+
+}  // namespace raylane::cli
