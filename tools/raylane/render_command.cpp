@@ -96,10 +96,9 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
     r.tracer = *kind;
   }
-  if (auto i = parsed->last("isa"); i && *i != "auto") {
-    auto isa = isa_from_name(*i);
-    if (!isa) return Error{cat("unknown --isa ", in_quotes(*i), " (sse4.2, avx2, avx512, auto)")};
-    if (!isa_supported(*isa)) return Error{cat("this CPU cannot run --isa ", *i)};
+  if (auto i = parsed->last("isa")) {
+    auto isa = parse_isa_option(*i);
+    if (!isa) return Error{isa.error()};
     r.isa = *isa;
   }
   if (auto e = parsed->last("exposure")) {
