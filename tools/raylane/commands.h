@@ -17,6 +17,7 @@ int render_command(const std::vector<std::string>& args);
 int info_command(const std::vector<std::string>& args);
 int trace_command(const std::vector<std::string>& args);
 int convert_command(const std::vector<std::string>& args);
+int diff_command(const std::vector<std::string>& args);
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
 // stderr. Returns nothing when the scene has errors.

@@ -15,6 +15,8 @@ usage:
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
   raylane convert IN OUT [--exposure E]  turn an .hdr/.pfm image into .hdr, .pfm or .png
+  raylane diff IMAGE REF [--tol T]   RMSE, relMSE, mean and max difference of two .hdr/.pfm
+                                     images; exit 1 when the RMSE is over T (default 0)
   raylane --help | --version
 
 render options:
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
   if (command == "info") return raylane::cli::info_command(rest);
   if (command == "trace") return raylane::cli::trace_command(rest);
   if (command == "convert") return raylane::cli::convert_command(rest);
+  if (command == "diff") return raylane::cli::diff_command(rest);
   // `raylane scene.scn [options]` is short for `raylane render scene.scn [options]`.
   if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
     return raylane::cli::render_command(args);
