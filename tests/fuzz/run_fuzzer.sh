@@ -15,7 +15,8 @@ status=0
 "$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$work/" "$work/corpus" "$@" >"$work/log" 2>&1 || status=$?
 runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/log" | grep -o '[0-9]*$' || true)
-echo "$(basename "$fuzzer"): ${runs:-?} executions in ${seconds} s, exit status $status"
+echo "$(basename "$fuzzer"): ${runs:-?} executions in ${seconds} s, exit status $status" |
+  tee "$work/summary"
 if [ "$status" -ne 0 ]; then
   tail -n 60 "$work/log"
   ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* 2>/dev/null || true
