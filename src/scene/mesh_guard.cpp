@@ -105,11 +105,31 @@ Status read_ply_header(std::string_view head, std::vector<PlyElement>& elements,
   }
 }
 
+char lower(char c) {
+  return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c;
+}
+
+bool starts_with_ignoring_case(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i)
+    if (lower(s[i]) != prefix[i]) return false;
+  return true;
+}
+
+// Assimp picks its PLY reader by the extension or by a case-insensitive "ply" in the first
+// bytes, so both send a file through the strict check (found by fuzz_mesh: a header starting
+// `Ply` slipped past a case-sensitive test and hung Assimp's reader).
+bool may_be_read_as_ply(std::string_view head, const std::string& name) {
+  std::string_view n = name;
+  return starts_with_ignoring_case(head, "ply") ||
+         (n.size() >= 4 && starts_with_ignoring_case(n.substr(n.size() - 4), ".ply"));
+}
+
 }  // namespace
 
 Status check_mesh_plausible(std::string_view head, uint64_t file_size, const std::string& name) {
   if (file_size > kMaxMeshFileBytes) return Error{cat("mesh ", in_quotes(name), " is over 4 GiB")};
-  if (head.substr(0, 3) != "ply") return ok_status();
+  if (!may_be_read_as_ply(head, name)) return ok_status();
   std::vector<PlyElement> elements;
   uint64_t header_bytes = 0;
   if (Status s = read_ply_header(head, elements, header_bytes, name); !s) return s;

@@ -72,6 +72,24 @@ TEST(MeshFuzzRegression, TruncatedAsciiPlyIsAnError) {
   EXPECT_EQ(table.size(), 0u);
 }
 
+// `Ply` in any case is PLY to Assimp, which looped for minutes on this header (no vertex
+// element, a list property without types); the guard used to look for lowercase `ply` only.
+TEST(MeshFuzzRegression, PlyInOtherCaseIsCheckedToo) {
+  std::string ply =
+      "Ply\nformat ascii 1.0\ncomment letterX of the CS50rty float x\nproperty float y\n"
+      "property float z\nelement face 2\nproperty list43985 0\n4 3 2 1 0\n4 7 6 5 4\n";
+  for (const char* name : {"timeout.ply", "timeout.obj"}) {
+    TriangleTable table;
+    auto r = import_mesh_memory(ply, name, identity(), 0, table);
+    ASSERT_FALSE(r) << name;
+    EXPECT_NE(r.error().find("PLY header line 1"), std::string::npos) << r.error();
+  }
+  // A .ply name without a PLY header is not left to Assimp's guesses either.
+  std::string not_ply = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_FALSE(check_mesh_plausible(not_ply, not_ply.size(), "x.PLY"));
+  EXPECT_TRUE(check_mesh_plausible(not_ply, not_ply.size(), "x.obj"));
+}
+
 TEST(MeshGuard, AcceptsTheFullPlyGrammar) {
   std::string header =
       "ply\r\nformat binary_big_endian 1.0\r\ncomment made by hand\nobj_info x\n"
