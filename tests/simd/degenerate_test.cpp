@@ -55,11 +55,15 @@ int expect_agreement(const Scene& s, const Bvh& bvh, const std::vector<Rayd>& ra
     EXPECT_FALSE(std::isnan(hits.t[i])) << "ray " << i;
     misses += hit != ref.hit() || (hit && std::abs(hits.t[i] - ref.t) > 1e-4 * ref.t);
     if (!exact) {  // a hit nearer than the true closest one would be false
-      if (hit) EXPECT_GE(hits.t[i], ref.t * (1 - 1e-4)) << "ray " << i;
+      if (hit) {
+        EXPECT_GE(hits.t[i], ref.t * (1 - 1e-4)) << "ray " << i;
+      }
       continue;
     }
     EXPECT_EQ(hit, ref.hit()) << "ray " << i;
-    if (hit) EXPECT_NEAR(hits.t[i], ref.t, 1e-4 * std::max(1.0, ref.t)) << "ray " << i;
+    if (hit) {
+      EXPECT_NEAR(hits.t[i], ref.t, 1e-4 * std::max(1.0, ref.t)) << "ray " << i;
+    }
   }
   return misses;
 }
