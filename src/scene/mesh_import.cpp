@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <utility>
 
 #include "raylane/core/strings.h"
 #include "raylane/scene/mesh_guard.h"
@@ -23,6 +24,35 @@ void configure(Assimp::Importer& importer) {
   // Points and lines are not surfaces: drop them rather than fail.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+}
+
+// Drops faces without indices before post-processing: Debian's Assimp 5.2.5 is built with its
+// assertions on, and its triangulation step aborts the process on such a face (found by
+// fuzz_mesh: a binary PLY whose face list count reads 0). The importer owns the scene; it is
+// edited in place between reading and post-processing, which Assimp's API allows.
+void drop_empty_faces(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh& mesh = *scene.mMeshes[m];
+    unsigned kept = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices == 0) continue;
+      if (kept != f) {  // move the index array down; the source keeps none
+        std::swap(mesh.mFaces[kept].mIndices, face.mIndices);
+        std::swap(mesh.mFaces[kept].mNumIndices, face.mNumIndices);
+      }
+      ++kept;
+    }
+    mesh.mNumFaces = kept;
+  }
+}
+
+// Reads without post-processing, removes what Assimp's own steps do not survive, then runs
+// the steps. Returns null with the importer's error string set on failure.
+const aiScene* read_checked(Assimp::Importer& importer, const aiScene* raw) {
+  if (!raw) return nullptr;
+  drop_empty_faces(*raw);
+  return importer.ApplyPostProcessing(kImportFlags);
 }
 
 Vec3d to_vec(const aiVector3D& v) {
@@ -108,7 +138,7 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
     if (Status s = check_mesh_plausible(read_head(path), size, path); !s) return Error{s.error()};
     Assimp::Importer importer;
     configure(importer);
-    const aiScene* scene = importer.ReadFile(path, kImportFlags);
+    const aiScene* scene = read_checked(importer, importer.ReadFile(path, 0));
     return convert(scene, importer, path, placement, material, table);
   } catch (const std::bad_alloc&) {
     return Error{cat("out of memory reading mesh ", in_quotes(path))};
@@ -126,8 +156,8 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
     configure(importer);
     std::string hint = std::filesystem::path(name).extension().string();
     if (!hint.empty()) hint.erase(0, 1);
-    const aiScene* scene =
-        importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, hint.c_str());
+    const aiScene* scene = read_checked(
+        importer, importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str()));
     return convert(scene, importer, name, placement, material, table);
   } catch (const std::bad_alloc&) {
     return Error{cat("out of memory reading mesh ", in_quotes(name))};

@@ -65,8 +65,11 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
     std::string_view content = text.substr(pos, end - pos);
     pos = end + 1;
     line.loc = {filename, ++number, 0};
-    if (content.size() > kMaxLineBytes) {
-      state.problem(line.loc, cat("line is longer than ", kMaxLineBytes, " bytes"));
+    if (content.size() > kMaxLineBytes) {  // located at the first byte past the limit
+      FileLoc at = line.loc;
+      at.col = int(kMaxLineBytes) + 1;
+      state.problem(at, cat("expected a line of at most ", kMaxLineBytes, " bytes, found ",
+                            content.size(), " bytes"));
       continue;
     }
     split_tokens(content, line.tokens);

@@ -107,6 +107,24 @@ TEST(Cli, UnwritableOutputFailsBeforeRenderingAndKeepsExistingFiles) {
   EXPECT_TRUE(fs::is_directory(dir + "/taken.hdr"));
 }
 
+// Failures that hold for root too (the tests run as root in CI, where permissions do not
+// stop anything): a folder that is a regular file, and a file name longer than NAME_MAX.
+// Each is an error before rendering, and the existing file is untouched.
+TEST(Cli, OutputThatFailsEvenForRootIsAnErrorBeforeRendering) {
+  std::string dir = temp_dir();
+  std::ofstream(dir + "/plain.hdr") << "precious";
+  CliRun r = run("render --mode id -o plain.hdr/out.hdr", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("cannot write plain.hdr/out.hdr"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("rendered"), std::string::npos);
+  std::string long_name(300, 'n');
+  r = run("render --mode id -o " + long_name + ".hdr", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("cannot write " + long_name), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("rendered"), std::string::npos);
+  EXPECT_EQ(read_file(dir + "/plain.hdr"), "precious");
+}
+
 TEST(Cli, WritesEveryRequestedFormat) {
   std::string dir = temp_dir();
   CliRun r = run("render " + source_path("scenes/sphere.scn") +

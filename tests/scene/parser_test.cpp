@@ -249,7 +249,8 @@ TEST(Parser, OverlongLineIsAnError) {
   std::string text =
       std::string(kCameraLine) + "sphere 0 0 0 1 " + std::string(kMaxLineBytes, ' ') + "\n";
   auto p = parse(text);
-  EXPECT_THAT(errors(p), ElementsAre("t.scn:2: line is longer than 65536 bytes"));
+  EXPECT_THAT(errors(p), ElementsAre("t.scn:2:65537: expected a line of at most 65536 bytes, "
+                                     "found 65551 bytes"));
 }
 
 TEST(Parser, BinaryGarbageGivesErrorsNotACrash) {

@@ -35,10 +35,11 @@ template <class F, class... Kinds>
 constexpr decltype(auto) dispatch_impl(PrimTag tag, F&& f, KindList<Kinds...>) {
   using R = std::invoke_result_t<F, Sphere>;
   if constexpr (std::is_void_v<R>) {
-    ((tag == Kinds::tag ? (f(Kinds{}), true) : false) || ...);
+    // (void): the fold is evaluated for its short-circuit, not its value (clang warns).
+    (void)((tag == Kinds::tag ? (f(Kinds{}), true) : false) || ...);
   } else {
     R result{};
-    ((tag == Kinds::tag ? (result = f(Kinds{}), true) : false) || ...);
+    (void)((tag == Kinds::tag ? (result = f(Kinds{}), true) : false) || ...);
     return result;
   }
 }

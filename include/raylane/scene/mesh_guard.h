@@ -15,7 +15,9 @@ inline constexpr uint64_t kMaxMeshFileBytes = uint64_t(4) << 30;
 // that declares far more elements than the file holds (found by a test: `element vertex
 // 99999999999` and no data). Every property of every element takes at least one byte, so a
 // file whose declared elements need more bytes than it has is rejected here. `head` is the
-// start of the file (at least its header, if it has one); other formats pass.
+// start of the file (at least its header, if it has one). A file named .ply or starting with
+// "ply" in any case must have a header that follows the PLY grammar exactly; other formats
+// pass.
 Status check_mesh_plausible(std::string_view head, uint64_t file_size, const std::string& name);
 
 }  // namespace raylane

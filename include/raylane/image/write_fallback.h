@@ -1,0 +1,29 @@
+// Writing the result of a long render so it is never lost: if the requested file cannot be
+// written (a folder removed, a disk full, a permission changed while rendering), the image
+// goes to a fallback file whose path the caller prints (issue 6, "Nothing lost").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "raylane/core/error.h"
+#include "raylane/image/image.h"
+#include "raylane/image/write_image.h"
+
+namespace raylane {
+
+struct SavedImage {
+  std::string path;          // where the image is now
+  bool is_fallback = false;  // true if `path` is a fallback file, not the one asked for
+  std::string first_error;   // why the requested file could not be written (when fallback)
+};
+
+// Writes `image` to `path` (atomically, as write_image). If that fails, writes it losslessly
+// as PFM to a new file `raylane-rescue-<stem>-<pid>-<n>.pfm` in the first of `fallback_dirs`
+// that takes it (default: the working directory, then the system's temporary folder), never
+// replacing an existing file. An error only if nothing could be written anywhere.
+Result<SavedImage> write_image_or_fallback(const std::string& path, const Image& image,
+                                           const WriteOptions& options = {},
+                                           std::vector<std::string> fallback_dirs = {});
+
+}  // namespace raylane

@@ -1,0 +1,64 @@
+// Sizes that come from input (issue 6, "Limits"): big files parse completely and correctly,
+// and every size is checked before anything is allocated for it.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "raylane/core/strings.h"
+#include "scene/scene_test_util.h"
+
+namespace raylane {
+namespace {
+
+using testing::errors;
+using testing::parse;
+
+// A million lines parse completely: every row lands, in order. (How fast is in the
+// README's note, not asserted: no timed unit tests.)
+TEST(Limits, MillionLineScene) {
+  constexpr int kLines = 1000000;
+  std::string text = testing::kCameraLine;
+  text.reserve(std::size_t(kLines) * 24);
+  for (int i = 0; i < kLines; ++i) {
+    if (i % 1000 == 0) text += "brdf 0.5 0.5 0.5 0 0 0 1  # a material now and then\r\n";
+    text += cat("sphere ", i % 977, " ", i / 977, " 0 0.25\n");
+  }
+  auto p = parse(text);
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  const auto& t = p.scene.table<Sphere>();
+  ASSERT_EQ(t.size(), std::size_t(kLines));
+  EXPECT_EQ(p.scene.materials.size(), std::size_t(kLines / 1000));
+  EXPECT_EQ(t.material[kLines - 1], uint32_t(kLines / 1000 - 1));
+}
+
+// The orientation list is bounded by the line length only; a long one is still exact
+// rotation algebra: 10^4 turns of 36° about x is 1000 full turns.
+TEST(Limits, LongOrientationList) {
+  std::string line = "camera 0 0 5 0.5";
+  for (int i = 0; i < 10000; ++i)
+    line += " x 36";
+  auto p = parse(line + "\n");
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  const Mat3d& r = p.scene.camera->rotation;
+  Vec3d y = r * Vec3d(0, 1, 0);
+  EXPECT_NEAR(y.x, 0, 1e-9);
+  EXPECT_NEAR(y.y, 1, 1e-9);
+  EXPECT_NEAR(y.z, 0, 1e-9);
+}
+
+// Sizes past a limit are errors with a location, before any allocation: a screen of 2^32
+// pixels per side, a line over the limit, a line with a NUL and a very long word.
+TEST(Limits, OversizedInputsAreErrors) {
+  auto p = parse(std::string(testing::kCameraLine) + "screen 4294967296 1\n");
+  ASSERT_EQ(errors(p).size(), 1u);
+  EXPECT_EQ(errors(p)[0], "t.scn:2:8: screen size must be a whole number >= 1");
+  std::string word(kMaxLineBytes - 100, 'a');
+  p = parse(std::string(testing::kCameraLine) + "sphere " + word + " 0 0 1\n");
+  ASSERT_EQ(errors(p).size(), 1u);
+  EXPECT_NE(errors(p)[0].find("t.scn:2:8: "), std::string::npos) << errors(p)[0];
+  p = parse(std::string(testing::kCameraLine) + std::string("sphere 0 0\0 0 1\n", 16));
+  EXPECT_EQ(errors(p).size(), 1u);
+}
+
+}  // namespace
+}  // namespace raylane
