@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/write_fallback.h"
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -184,13 +185,21 @@ int render_command(const std::vector<std::string>& args) {
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
   wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
   int status = kExitOk;
+  // A render is never dropped: an output that fails now (the folder was removed, the disk
+  // filled up) goes to a rescue file instead, whose path is printed; the status says so.
   for (const auto& out : r.outputs) {
-    if (Status s = write_image(out, image, wopts); !s) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
+    auto saved = write_image_or_fallback(out, image, wopts);
+    if (!saved) {
+      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
       status = kExitFailure;
       continue;
     }
-    std::printf("%s\n", out.c_str());
+    if (saved->is_fallback) {
+      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n",
+                   out.c_str(), saved->first_error.c_str(), saved->path.c_str());
+      status = kExitFailure;
+    }
+    std::printf("%s\n", saved->path.c_str());
   }
   if (!r.quiet) {
     std::fprintf(stderr,
