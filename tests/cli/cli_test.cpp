@@ -1,12 +1,11 @@
 // The `raylane` program as a user runs it: exit statuses, messages, files written or not.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "support/cli_run.h"
 #include "support/paths.h"
 
 namespace raylane {
@@ -14,27 +13,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::cli_path;
+using testing::CliRun;
 using testing::source_path;
 using testing::temp_dir;
 
-struct CliRun {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
-
 // Runs the program with `args` (shell words) in `dir`.
 CliRun run(const std::string& args, const std::string& dir) {
-  std::string cmd = "cd '" + dir + "' && '" + cli_path() + "' " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
-    r.out.append(buf.data(), n);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return testing::run_cli(args, dir);
 }
 
 std::string read_file(const std::string& path) {
