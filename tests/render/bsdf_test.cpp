@@ -7,6 +7,7 @@
 #include "raylane/render/bsdf.h"
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
+#include "support/estimate.h"
 
 namespace raylane {
 namespace {
@@ -24,21 +25,8 @@ Vec3d direction_at(double cos_theta, double phi = 0.7) {
   return {s * std::cos(phi), s * std::sin(phi), cos_theta};
 }
 
-struct Estimate {
-  double mean = 0, sigma = 0;  // the mean and its standard error
-};
-
-// Mean and standard error of g over n draws.
-template <class G>
-Estimate estimate(int n, G&& g) {
-  double s = 0, s2 = 0;
-  for (int i = 0; i < n; ++i) {
-    double v = g();
-    s += v, s2 += v * v;
-  }
-  double mean = s / n, var = std::max(0.0, s2 / n - mean * mean);
-  return {mean, std::sqrt(var / (n - 1))};
-}
+using testing::Estimate;
+using testing::estimate;
 
 // Albedo (channel 0) of f·cos/pdf by importance sampling, and the same integral of eval() by
 // uniform sphere sampling: two estimators of one number, which agree only if sample, eval and

@@ -12,25 +12,14 @@
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
 #include "raylane/scene/parser.h"
+#include "support/estimate.h"
 #include "support/paths.h"
 
 namespace raylane {
 namespace {
 
-struct Estimate {
-  double mean = 0, sigma = 0;
-};
-
-template <class G>
-Estimate estimate(int n, G&& g) {
-  double s = 0, s2 = 0;
-  for (int i = 0; i < n; ++i) {
-    double v = g();
-    s += v, s2 += v * v;
-  }
-  double mean = s / n;
-  return {mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1))};
-}
+using testing::Estimate;
+using testing::estimate;
 
 // The nearest light hit by a ray, with the double reference kernels (the scene holds only
 // lights).
