@@ -106,6 +106,21 @@ std::optional<BenchScene> make_engine(std::string* why) {
   return b;
 }
 
+// The Stanford bunny of npm's `bunny` package, written as PLY by tools/make_bunny.
+std::optional<BenchScene> make_bunny(std::string* why) {
+  BenchScene b;
+  b.name = "bunny";
+  b.scene.materials.push_back(Material::default_grey());
+  std::string path = std::string(RAYLANE_BENCH_DATA) + "/bunny.ply";
+  auto r = import_mesh_file(path, MeshPlacement{}, 0, b.scene.table<Triangle>());
+  if (!r.ok()) {
+    if (why) *why = "run tools/make_bunny first (" + r.error() + ")";
+    return std::nullopt;
+  }
+  frame(b, {0.3, -1.0, 0.4});
+  return b;
+}
+
 std::optional<BenchScene> make_testscene() {
   ParsedScene p = load_builtin_scene();
   if (!p.ok()) return std::nullopt;
@@ -133,7 +148,7 @@ std::optional<BenchScene> make_icosphere() {
 }  // namespace
 
 std::vector<std::string> bench_scene_names() {
-  return {"testscene", "engine", "icosphere", "sphereflake", "lattice"};
+  return {"testscene", "bunny", "engine", "icosphere", "sphereflake", "lattice"};
 }
 
 CameraSpec look_at(const Vec3d& eye, const Vec3d& target, double ry) {
@@ -159,6 +174,7 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
   if (auto it = cache.find(name); it != cache.end()) return it->second.get();
   std::optional<BenchScene> b;
   if (name == "testscene") b = make_testscene();
+  if (name == "bunny") b = make_bunny(why);
   if (name == "engine") b = make_engine(why);
   if (name == "icosphere") b = make_icosphere();
   if (name == "sphereflake") b = make_sphereflake();

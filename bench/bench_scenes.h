@@ -20,7 +20,8 @@ struct BenchScene {
   double light_gap = 0;  // shadow rays stop this far short of it (a light sphere's radius)
 };
 
-// testscene (the course's, built in), engine (2CylinderEngine.glb of Debian's
+// testscene (the course's, built in), bunny (the Stanford bunny of npm's `bunny` package,
+// 3,674 triangles, written by tools/make_bunny), engine (2CylinderEngine.glb of Debian's
 // assimp-testmodels, ~110k triangles), icosphere (a displaced icosphere of 1.31M triangles),
 // sphereflake (66k spheres), lattice (4096 boxes joined by 11520 cylinders).
 std::vector<std::string> bench_scene_names();
