@@ -23,6 +23,8 @@ int Diagnostics::error_count() const {
                            [](const Diagnostic& d) { return d.severity == Severity::kError; }));
 }
 
-int Diagnostics::warning_count() const { return int(items.size()) - error_count(); }
+int Diagnostics::warning_count() const {
+  return int(items.size()) - error_count();
+}
 
 }  // namespace raylane

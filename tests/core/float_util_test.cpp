@@ -52,7 +52,9 @@ TEST(UlpDistance, CountsFloatsAcrossZero) {
   EXPECT_EQ(ulp_distance(std::nanf(""), 1.0f), std::numeric_limits<uint64_t>::max());
 }
 
-int sign(double v) { return (v > 0) - (v < 0); }
+int sign(double v) {
+  return (v > 0) - (v < 0);
+}
 
 TEST(DifferenceOfProducts, HasTheExactSignAndIsAccurate) {
   std::mt19937 rng(11);

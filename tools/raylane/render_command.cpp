@@ -195,8 +195,8 @@ int render_command(const std::vector<std::string>& args) {
       continue;
     }
     if (saved->is_fallback) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n",
-                   out.c_str(), saved->first_error.c_str(), saved->path.c_str());
+      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
+                   saved->first_error.c_str(), saved->path.c_str());
       status = kExitFailure;
     }
     std::printf("%s\n", saved->path.c_str());

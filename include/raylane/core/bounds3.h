@@ -35,8 +35,7 @@ struct Bounds3 {
     return d.x * d.y + d.y * d.z + d.z * d.x;
   }
   constexpr bool contains(const Vec3<T>& p) const {
-    return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z &&
-           p.z <= hi.z;
+    return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
   }
   constexpr bool contains(const Bounds3& b) const {
     return b.empty() || (contains(b.lo) && contains(b.hi));

@@ -19,7 +19,8 @@ struct Mat3d {
   friend Mat3d operator*(const Mat3d& a, const Mat3d& b) {
     Mat3d r;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) r.m[i][j] = dot(a.row(i), b.col(j));
+      for (int j = 0; j < 3; ++j)
+        r.m[i][j] = dot(a.row(i), b.col(j));
     return r;
   }
 };
