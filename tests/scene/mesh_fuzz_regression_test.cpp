@@ -111,5 +111,40 @@ TEST(MeshGuard, RejectsWhatIsNotPlyGrammar) {
   }
 }
 
+// A 297-byte ASCII PLY whose vertex element was named otherwise made Assimp 5.2.5 request
+// 22.9 GB (out of memory under the fuzzer's 2 GiB limit); so did the same file with its
+// faces declared before the vertices. The guard requires a `vertex` element first.
+TEST(MeshFuzzRegression, PlyWithoutAVertexElementIsAnError) {
+  const std::string body = "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  const std::string vertices =
+      "element %s 4\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+  auto ply = [&](const std::string& first, const std::string& second) {
+    return "ply\nformat ascii 1.0\n" + first + second + body;
+  };
+  auto named = [&](const std::string& n) {
+    std::string v = vertices;
+    return v.replace(v.find("%s"), 2, n);
+  };
+  struct Case {
+    std::string bytes, error;
+  } cases[] = {
+      {ply(named("vertexNSt6locale5"), faces), "expected a PLY 'vertex' element, found none"},
+      {ply(named("points"), faces), "expected a PLY 'vertex' element, found none"},
+      {ply(faces, named("vertex")), "expected the PLY 'vertex' element before 'face'"},
+  };
+  for (const Case& c : cases) {
+    TriangleTable table;
+    auto r = import_mesh_memory(c.bytes, "oom.ply", identity(), 0, table);
+    ASSERT_FALSE(r) << c.bytes;
+    EXPECT_NE(r.error().find(c.error), std::string::npos) << r.error();
+    EXPECT_EQ(table.size(), 0u);
+  }
+  TriangleTable table;  // the same file with its vertices named `vertex` imports: 2 triangles
+  auto good = import_mesh_memory(ply(named("vertex"), faces), "good.ply", identity(), 0, table);
+  ASSERT_TRUE(good) << good.error();
+  EXPECT_EQ(table.size(), 2u);
+}
+
 }  // namespace
 }  // namespace raylane
