@@ -12,7 +12,11 @@ mkdir -p "$work/corpus" "$work/cwd"
 # An empty working directory: a fuzzed `mesh` line finds no file here.
 cd "$work/cwd"
 status=0
-"$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+# A fixed seed (RAYLANE_FUZZ_SEED, default 1) makes a run a prefix of one reproducible
+# sequence: CI explores what a longer run on a developer's machine already explored, so what
+# lands is what was checked. RAYLANE_FUZZ_SEED=0 lets libFuzzer pick one (new ground).
+"$fuzzer" -seed="${RAYLANE_FUZZ_SEED:-1}" -max_total_time="$seconds" -timeout=10 \
+  -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$work/" "$work/corpus" "$@" >"$work/log" 2>&1 || status=$?
 runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/log" | grep -o '[0-9]*$' || true)
 echo "$(basename "$fuzzer"): ${runs:-?} executions in ${seconds} s, exit status $status" |
