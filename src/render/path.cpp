@@ -1,5 +1,7 @@
 #include "raylane/render/path.h"
 
+#include "raylane/render/film.h"
+
 #include <chrono>
 #include <cmath>
 
@@ -202,16 +204,24 @@ std::string_view integrator_name(Integrator integrator) {
   return kIntegratorNames[int(integrator)];
 }
 
-Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats) {
+Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats,
+                  Film* film) {
   const Scene& scene = tracer.scene();
   Camera cam = Camera::from_scene(scene);
   LightSampler lights(scene);
   uint32_t tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
   const std::ptrdiff_t tiles = std::ptrdiff_t(tiles_x) * tiles_y;
-  std::vector<double> film(std::size_t(cam.width) * cam.height * 3, 0.0);
+  Film own;
+  Film& f = film ? *film : own;
+  if (f.sum.empty()) {
+    f.width = cam.width, f.height = cam.height, f.passes = 0;
+    f.sum.assign(std::size_t(cam.width) * cam.height * 3, 0.0);
+    f.fingerprint = film_fingerprint(scene, settings);
+  }
   PathStats total;
+  total.passes = f.passes;
   auto start = std::chrono::steady_clock::now();
-  for (int pass = 0; pass < settings.spp; ++pass) {
+  for (int pass = f.passes; pass < settings.spp; ++pass) {
 #pragma omp parallel
     {
       PathStats local;
@@ -221,25 +231,21 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
         TileContext ctx{tracer, lights, settings, Rng::for_tile(settings.seed, t, pass), {}};
         tile_camera_rays(cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile, ctx.rng,
                          paths);
-        render_tile(ctx, paths, film);
+        render_tile(ctx, paths, f.sum);
         add_stats(local, ctx.stats);
       }
 #pragma omp critical
       add_stats(total, local);
     }
-    total.passes = pass + 1;
+    total.passes = f.passes = pass + 1;
     if (settings.on_pass) settings.on_pass(total.passes);
     if (settings.stop && settings.stop->load()) break;
     double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (settings.time_limit > 0 && elapsed >= settings.time_limit) break;
   }
-  Image image(cam.width, cam.height);
-  double scale = total.passes > 0 ? 1.0 / total.passes : 0.0;
-  for (std::size_t i = 0; i < film.size(); ++i)
-    image.rgb[i] = float(film[i] * scale);
   if (stats) *stats = total;
-  return image;
+  return f.image();
 }
 
 }  // namespace raylane

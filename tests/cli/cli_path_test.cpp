@@ -1,5 +1,6 @@
 // `raylane render` in path mode and `raylane convert`, as a user runs them: flags, identical
-// files for any thread count, Ctrl-C writing the image so far with exit status 130.
+// files for any thread count, Ctrl-C writing the image (and checkpoint) so far with exit
+// status 130, resuming a checkpoint.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -62,11 +63,23 @@ TEST(CliPath, FilesAreIdenticalForAnyThreadCountAndConvert) {
 }
 
 // The first SIGINT ends the render after the pass in flight: a valid image with the samples
-// taken so far in its header, and exit status 130.
-TEST(CliPath, SigintWritesTheImageSoFarAndExits130) {
+// taken so far in its header, and exit status 130; the --checkpoint film is saved then too,
+// and resuming it gives exactly the file of an uninterrupted render (issue 6).
+TEST(CliPath, SigintWritesTheImageAndCheckpointSoFarAndExits130) {
   std::string dir = temp_dir(), out = dir + "/int.hdr", exe = cli_path();
-  std::string scene = source_path("scenes/testscene.scn");
-  std::vector<std::string> args = {exe, "render", scene, "--spp", "1000000", "--quiet", "-o", out};
+  std::string scene = source_path("scenes/testscene.scn"), film = dir + "/int.film";
+  std::vector<std::string> args = {exe,
+                                   "render",
+                                   scene,
+                                   "--spp",
+                                   "1000000",
+                                   "--quiet",
+                                   "-o",
+                                   out,
+                                   "--checkpoint",
+                                   film,
+                                   "--checkpoint-every",
+                                   "1000"};
   std::vector<char*> argv;
   for (auto& a : args)
     argv.push_back(a.data());
@@ -88,6 +101,21 @@ TEST(CliPath, SigintWritesTheImageSoFarAndExits130) {
   int spp = std::atoi(text.c_str() + at + 12);
   EXPECT_GE(spp, 1);
   EXPECT_LT(spp, 1000000);
+
+  // The film holds those passes; two more from it equal one uninterrupted render.
+  std::string more = std::to_string(spp + 2);
+  ASSERT_EQ(run_status("render " + scene + " --spp " + more + " --resume " + film + " -o " + dir +
+                       "/resumed.hdr"),
+            0);
+  ASSERT_EQ(run_status("render " + scene + " --spp " + more + " -o " + dir + "/whole.hdr"), 0);
+  std::string resumed = read_file(dir + "/resumed.hdr");
+  EXPECT_NE(resumed.find("RAYLANE_SPP=" + more), std::string::npos);
+  EXPECT_EQ(resumed, read_file(dir + "/whole.hdr"));
+  // A film is only continued with the settings that made it.
+  EXPECT_EQ(run_status("render " + scene + " --spp " + more + " --seed 9 --resume " + film +
+                       " -o " + dir + "/other.hdr"),
+            2);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/other.hdr"));
 }
 
 }  // namespace

@@ -30,6 +30,10 @@ render options:
   --seed S            path: image seed; the image is the same for any --threads (default: 0)
   --max-depth D       path: at most D bounces (Russian roulette after 3)  (default: 64)
   --time SECONDS      path: stop after the pass that ends past this budget
+  --checkpoint FILE   path: save the film to FILE every --checkpoint-every seconds (default
+                      60) and when the render stops (done, --time, Ctrl-C)
+  --resume FILE       path: continue a saved film up to --spp; same scene, --seed,
+                      --integrator and --max-depth give the uninterrupted run's image
   --png               also write a PNG beside the first output
   --exposure E        PNG exposure in stops (pixel · 2^E)          (default: 0)
   --threads N         worker threads, 0 = all cores                (default: 0)

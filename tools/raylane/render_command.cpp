@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "args.h"
+#include "checkpoint.h"
 #include "commands.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
@@ -25,6 +26,7 @@ struct RenderRequest {
   bool path = true;  // --mode path (the default); otherwise a ray-casting mode
   RaycastMode mode = RaycastMode::kLit;
   PathSettings path_settings;
+  CheckpointOptions checkpoints;
   TracerKind tracer = TracerKind::kPacket;
   Isa isa = best_isa();
   double exposure = 0;
@@ -35,11 +37,23 @@ struct RenderRequest {
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
 const std::vector<OptionSpec> kRenderOptions = {
-    {"output", 'o', true, true}, {"mode", 0, true, false},       {"exposure", 0, true, false},
-    {"threads", 0, true, false}, {"lenient", 0, false, false},   {"quiet", 'q', false, false},
-    {"tracer", 0, true, false},  {"isa", 0, true, false},        {"spp", 0, true, false},
-    {"seed", 0, true, false},    {"integrator", 0, true, false}, {"max-depth", 0, true, false},
-    {"time", 0, true, false},    {"png", 0, false, false},
+    {"output", 'o', true, true},
+    {"mode", 0, true, false},
+    {"exposure", 0, true, false},
+    {"threads", 0, true, false},
+    {"lenient", 0, false, false},
+    {"quiet", 'q', false, false},
+    {"tracer", 0, true, false},
+    {"isa", 0, true, false},
+    {"spp", 0, true, false},
+    {"seed", 0, true, false},
+    {"integrator", 0, true, false},
+    {"max-depth", 0, true, false},
+    {"time", 0, true, false},
+    {"png", 0, false, false},
+    {"checkpoint", 0, true, false},
+    {"resume", 0, true, false},
+    {"checkpoint-every", 0, true, false},
 };
 
 std::string default_output(const std::optional<std::string>& scene_path) {
@@ -92,6 +106,7 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     r.path = false;
   }
   if (Status s = read_path_settings(*parsed, r.path_settings); !s) return Error{s.error()};
+  if (Status s = read_checkpoint_options(*parsed, r.checkpoints); !s) return Error{s.error()};
   if (auto t = parsed->last("tracer")) {
     auto kind = tracer_kind_from_name(*t);
     if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
@@ -159,13 +174,20 @@ int render_command(const std::vector<std::string>& args) {
   Image image;
   int spp = 1;
   if (r.path) {
+    auto film = starting_film(r.checkpoints, *scene, r.path_settings);
+    if (!film) return std::fprintf(stderr, "raylane: %s\n", film.error().c_str()), kExitUsage;
     PathStats stats;
     Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
+    Checkpointer checkpointer(r.checkpoints);
     PathSettings settings = r.path_settings;
     settings.stop = interrupt_flag();
-    settings.on_pass = [&](int done) { progress.update(done); };
+    settings.on_pass = [&](int done) {
+      progress.update(done);
+      checkpointer.after_pass(*film);
+    };
     install_interrupt_handler();
-    image = render_path(tracer, settings, &stats);
+    image = render_path(tracer, settings, &stats, &*film);
+    checkpointer.after_pass(*film, /*final=*/true);
     progress.finish();
     rays = stats.rays();
     spp = stats.passes;

@@ -45,7 +45,14 @@ struct PathStats {
   uint64_t rays() const { return camera_rays + bounce_rays + shadow_rays; }
 };
 
-// Renders tracer.scene(); the image is the mean over the passes taken (top row first).
-Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats = nullptr);
+struct Film;
+
+// Renders tracer.scene(); the image is the mean over the passes taken (top row first). With
+// a `film`, the sums accumulate there (for checkpoints, which on_pass may save) and a film that
+// already holds passes is continued from its next pass up to settings.spp — the same image
+// an uninterrupted run gives. Contract: a non-empty film matches the scene's size and
+// film_fingerprint(scene, settings).
+Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats = nullptr,
+                  Film* film = nullptr);
 
 }  // namespace raylane

@@ -1,0 +1,105 @@
+// Checkpoints of the path tracer's film: a render continued from a saved film is the render
+// an uninterrupted run gives, bit for bit; films are refused for another scene or settings.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "raylane/image/metrics.h"
+#include "raylane/render/film.h"
+#include "raylane/scene/parser.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+struct Rendered {
+  Scene scene;
+  Bvh bvh;
+};
+
+Rendered load(const char* name) {
+  auto p = load_scene_file(testing::source_path(std::string("scenes/") + name));
+  EXPECT_TRUE(p.ok());
+  Rendered r{std::move(p.scene), {}};
+  r.bvh = build_bvh(r.scene);
+  return r;
+}
+
+PathSettings settings(int spp) {
+  PathSettings s;
+  s.spp = spp;
+  s.seed = 7;
+  return s;
+}
+
+TEST(Film, ResumedRenderIsTheUninterruptedRender) {
+  Rendered r = load("sphere.scn");
+  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Image whole = render_path(tracer, settings(5));
+
+  Film film;
+  render_path(tracer, settings(2), nullptr, &film);
+  EXPECT_EQ(film.passes, 2);
+  std::string path = testing::temp_dir() + "/a.film";
+  ASSERT_TRUE(save_film(path, film).ok());
+  auto loaded = load_film(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.error();
+  EXPECT_EQ(loaded->fingerprint, film_fingerprint(r.scene, settings(5)));
+  PathStats stats;
+  Image resumed = render_path(tracer, settings(5), &stats, &*loaded);
+  EXPECT_EQ(stats.passes, 5);
+  EXPECT_EQ(loaded->passes, 5);
+  EXPECT_EQ(resumed.rgb, whole.rgb);  // bit for bit
+  EXPECT_GT(mean(resumed).x, 0.0);    // not a black image
+}
+
+TEST(Film, FingerprintFollowsWhatShapesTheSamples) {
+  Rendered r = load("sphere.scn");
+  uint64_t base = film_fingerprint(r.scene, settings(4));
+  EXPECT_EQ(film_fingerprint(r.scene, settings(400)), base);  // spp only counts passes
+  PathSettings s = settings(4);
+  s.time_limit = 3;
+  EXPECT_EQ(film_fingerprint(r.scene, s), base);
+  for (auto change : {+[](PathSettings& p) { p.seed = 8; },
+                      +[](PathSettings& p) { p.integrator = Integrator::kNee; },
+                      +[](PathSettings& p) { p.max_depth = 5; }}) {
+    PathSettings t = settings(4);
+    change(t);
+    EXPECT_NE(film_fingerprint(r.scene, t), base);
+  }
+  Rendered other = load("box.scn");
+  EXPECT_NE(film_fingerprint(other.scene, settings(4)), base);
+  r.scene.materials[0].kd.x += 0.125f;
+  EXPECT_NE(film_fingerprint(r.scene, settings(4)), base);
+}
+
+TEST(Film, HostileFilmFilesAreErrors) {
+  std::string dir = testing::temp_dir();
+  Film f{2, 1, 3, std::vector<double>(6, 0.5), 42};
+  ASSERT_TRUE(save_film(dir + "/ok.film", f).ok());
+  auto ok = load_film(dir + "/ok.film");
+  ASSERT_TRUE(ok.ok()) << ok.error();
+  EXPECT_EQ(ok->sum, f.sum);
+  EXPECT_EQ(ok->passes, 3);
+
+  std::filesystem::copy_file(dir + "/ok.film", dir + "/short.film");
+  std::filesystem::resize_file(dir + "/short.film", 40);
+  auto short_file = load_film(dir + "/short.film");
+  ASSERT_FALSE(short_file.ok());
+  EXPECT_NE(short_file.error().find("a 2x1 film has 80 bytes, the file has 40"), std::string::npos)
+      << short_file.error();
+
+  Film huge{1u << 20, 1u << 20, 1, {}, 0};  // 2^40 pixels announced, 32 bytes present
+  ASSERT_TRUE(save_film(dir + "/huge.film", huge).ok());
+  auto h = load_film(dir + "/huge.film");
+  ASSERT_FALSE(h.ok());
+  EXPECT_NE(h.error().find("1 … 2^28 pixels"), std::string::npos) << h.error();
+
+  std::ofstream(dir + "/text.film") << "this is not a film, but it is long enough to have a header";
+  EXPECT_FALSE(load_film(dir + "/text.film").ok());
+  EXPECT_FALSE(load_film(dir + "/missing.film").ok());
+}
+
+}  // namespace
+}  // namespace raylane

@@ -1,0 +1,50 @@
+#include "checkpoint.h"
+
+#include <cstdio>
+
+#include "raylane/core/atomic_file.h"
+#include "raylane/core/strings.h"
+
+namespace raylane::cli {
+
+Status read_checkpoint_options(const ParsedArgs& parsed, CheckpointOptions& c) {
+  c.checkpoint = parsed.last("checkpoint");
+  c.resume = parsed.last("resume");
+  if (auto v = parsed.last("checkpoint-every")) {
+    auto s = parse_double_option("checkpoint-every", *v);
+    if (!s) return Error{s.error()};
+    if (!(*s >= 0)) return Error{cat("--checkpoint-every takes seconds ≥ 0, found ", *v)};
+    c.every = *s;
+  }
+  if (c.checkpoint) {
+    if (Status s = check_writable(*c.checkpoint); !s)
+      return Error{cat("cannot write --checkpoint ", *c.checkpoint, ": ", s.error())};
+  }
+  return ok_status();
+}
+
+Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
+                           const PathSettings& settings) {
+  if (!c.resume) return Film{};
+  auto film = load_film(*c.resume);
+  if (!film) return Error{film.error()};
+  if (film->width != scene.width || film->height != scene.height)
+    return Error{cat(*c.resume, ": expected a ", scene.width, "x", scene.height,
+                     " film for this scene, found ", film->width, "x", film->height)};
+  if (film->fingerprint != film_fingerprint(scene, settings))
+    return Error{cat(*c.resume,
+                     ": the film was rendered from another scene or with other --seed, "
+                     "--integrator or --max-depth; resume with the same ones")};
+  return film;
+}
+
+void Checkpointer::after_pass(const Film& film, bool final) {
+  if (!options_.checkpoint) return;
+  auto now = std::chrono::steady_clock::now();
+  if (!final && std::chrono::duration<double>(now - last_).count() < options_.every) return;
+  last_ = now;
+  if (Status s = save_film(*options_.checkpoint, film); !s)
+    std::fprintf(stderr, "raylane: checkpoint not saved: %s\n", s.error().c_str());
+}
+
+}  // namespace raylane::cli

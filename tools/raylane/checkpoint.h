@@ -1,0 +1,40 @@
+// `--checkpoint FILE` and `--resume FILE` of path renders: the film is saved every
+// `--checkpoint-every` seconds and whenever the render stops (done, time budget, Ctrl-C), and a
+// saved film continues to the image an uninterrupted run gives.
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "args.h"
+#include "raylane/render/film.h"
+
+namespace raylane::cli {
+
+struct CheckpointOptions {
+  std::optional<std::string> checkpoint, resume;
+  double every = 60;  // seconds between saves
+};
+
+// Reads --checkpoint, --resume and --checkpoint-every.
+Status read_checkpoint_options(const ParsedArgs& parsed, CheckpointOptions& c);
+
+// The film to render into: empty, or the --resume film once it is known to belong to this
+// scene and these settings.
+Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
+                           const PathSettings& settings);
+
+// Saves the film to --checkpoint after a pass when `every` seconds have passed, or always
+// with `final`. Prints failures; a failed checkpoint never stops the render.
+class Checkpointer {
+ public:
+  explicit Checkpointer(const CheckpointOptions& c) : options_(c) {}
+  void after_pass(const Film& film, bool final = false);
+
+ private:
+  CheckpointOptions options_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace raylane::cli
