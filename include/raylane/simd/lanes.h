@@ -49,16 +49,31 @@ inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
   return xsimd::select(xsimd::bool_cast(m), a, b);
 }
 
-// NaN-keeping running extrema: where x is NaN (or not better), the accumulator is kept. The
-// operand order is the contract (hard-cases.md N2), so it is spelled out with a compare and
-// a blend rather than left to min/max instruction semantics.
+// NaN-keeping running extrema: x > acc ? x : acc (and x < acc ? x : acc), so where x is NaN
+// (or not better) the accumulator is kept. The operand order is the contract (hard-cases.md
+// N2). x86's MAXPS/MINPS compute exactly this, returning the second operand when either is
+// NaN or both are zeros (Intel SDM vol. 2, MAXPS), so the instruction is named here rather
+// than left to xsimd::max, whose operand order is unspecified: one instruction instead of a
+// compare and a blend, on the critical path of every node test.
 template <class A>
 inline Floats<A> max_keep(const Floats<A>& x, const Floats<A>& acc) {
-  return xsimd::select(x > acc, x, acc);
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_max_ps(__m512(x), __m512(acc)));
+  } else if constexpr (kWidth<A> == 8) {
+    return Floats<A>(_mm256_max_ps(__m256(x), __m256(acc)));
+  } else {
+    return Floats<A>(_mm_max_ps(__m128(x), __m128(acc)));
+  }
 }
 template <class A>
 inline Floats<A> min_keep(const Floats<A>& x, const Floats<A>& acc) {
-  return xsimd::select(x < acc, x, acc);
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_min_ps(__m512(x), __m512(acc)));
+  } else if constexpr (kWidth<A> == 8) {
+    return Floats<A>(_mm256_min_ps(__m256(x), __m256(acc)));
+  } else {
+    return Floats<A>(_mm_min_ps(__m128(x), __m128(acc)));
+  }
 }
 
 template <class A>
@@ -83,6 +98,13 @@ template <class A>
 inline Mask<A> first_lanes(int n) {
   alignas(64) float idx[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
   return load<A>(idx) < Floats<A>(float(n));
+}
+
+// 0, 1, …, W − 1.
+template <class A>
+inline Ints<A> lane_index() {
+  alignas(64) int32_t idx[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+  return load<A>(idx);
 }
 
 // a·b + c with ONE rounding where the hardware has FMA. xsimd 8.1 has no fused fma for
