@@ -271,6 +271,7 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   bvh.source_rows = permute_scene(scene, bvh.refs);
   bvh.stats.depth = builder.depth();
   collect_stats(bvh, cfg, bvh.stats);
+  if (cfg.wide_nodes) bvh.wide = collapse_to_wide(bvh);
   bvh.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;

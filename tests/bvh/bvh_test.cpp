@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "raylane/bvh/bvh.h"
@@ -20,6 +21,75 @@ using testing::random_scene;
 
 Bounds3f row_bounds(const Scene& s, PrimRef r) {
   return dispatch(r.tag(), [&](auto k) { return s.table<decltype(k)>().bounds(r.row()); });
+}
+
+// Slot k's box as stored (not through the two-corner constructor, which would reorder an
+// empty box's corners).
+Bounds3f slot_bounds(const WideNode& w, int k) {
+  Bounds3f b;
+  b.lo = {w.box[0][0][k], w.box[1][0][k], w.box[2][0][k]};
+  b.hi = {w.box[0][1][k], w.box[1][1][k], w.box[2][1][k]};
+  return b;
+}
+
+// The 8-wide tree: every binary leaf (ref range and box) is a leaf slot of exactly one wide
+// node, every wide node is reached once, children lie inside their parent's slot box, only
+// the root may have one child, and unused slots are empty boxes.
+void expect_wide_invariants(const Bvh& bvh) {
+  std::multiset<std::pair<uint32_t, uint32_t>> binary_leaves, wide_leaves;
+  for (const BvhNode& n : bvh.nodes)
+    if (n.is_leaf()) binary_leaves.insert({n.index, n.count});
+  std::map<uint32_t, uint32_t> ref_index;  // PrimRef bits → position in bvh.refs
+  for (uint32_t i = 0; i < bvh.refs.size(); ++i)
+    ref_index[bvh.refs[i].bits()] = i;
+  auto kinds_in = [&](uint32_t first, uint32_t count) {
+    std::set<PrimTag> tags;
+    for (uint32_t i = first; i < first + count; ++i)
+      tags.insert(bvh.refs[i].tag());
+    return tags.size();
+  };
+  ASSERT_FALSE(bvh.wide.empty());
+  std::vector<int> reached(bvh.wide.nodes.size(), 0);
+  struct Visit {
+    uint32_t node;
+    Bounds3f box;
+  };
+  std::vector<Visit> stack = {{0, bvh.nodes[0].bounds()}};
+  reached[0] = 1;
+  while (!stack.empty()) {
+    Visit v = stack.back();
+    stack.pop_back();
+    const WideNode& w = bvh.wide.nodes[v.node];
+    ASSERT_GE(w.arity, 1);
+    ASSERT_LE(w.arity, kWideArity);
+    if (v.node != 0) {
+      EXPECT_GE(w.arity, 2);
+    }
+    for (int k = 0; k < kWideArity; ++k) {
+      Bounds3f b = slot_bounds(w, k);
+      if (k >= w.arity) {
+        EXPECT_TRUE(b.empty()) << "unused slot with a box";
+        continue;
+      }
+      EXPECT_TRUE(v.box.contains(b)) << "child outside parent";
+      if (w.is_leaf(k)) {
+        // A leaf of one kind names its first row; a mixed one, its first ref.
+        uint32_t first = w.child[k];
+        if (w.is_one_kind(k)) {
+          ASSERT_TRUE(ref_index.count(first)) << "one-kind leaf names no primitive";
+          first = ref_index[first];
+        }
+        EXPECT_EQ(kinds_in(first, w.count[k]) == 1, w.is_one_kind(k));
+        wide_leaves.insert({first, w.count[k]});
+        continue;
+      }
+      ASSERT_LT(w.child[k], bvh.wide.nodes.size());
+      EXPECT_EQ(reached[w.child[k]]++, 0) << "wide node reached twice";
+      stack.push_back({w.child[k], b});
+    }
+  }
+  EXPECT_EQ(binary_leaves, wide_leaves);
+  EXPECT_EQ(std::count(reached.begin(), reached.end(), 1), std::ptrdiff_t(reached.size()));
 }
 
 void expect_invariants(const Scene& s, const Bvh& bvh) {
@@ -59,6 +129,7 @@ void expect_invariants(const Scene& s, const Bvh& bvh) {
   }
   EXPECT_EQ(refs_in_leaves, bvh.refs.size());
   EXPECT_LE(bvh.stats.depth, uint32_t(kBvhStackSize - 2));
+  if (!bvh.wide.empty()) expect_wide_invariants(bvh);
 }
 
 // The permutation is recorded: row r of each table after the build is the row
@@ -81,7 +152,7 @@ TEST(Bvh, RecordsWhereEveryRowCameFrom) {
 
 TEST(Bvh, InvariantsOnAMixedScene) {
   Scene s = random_scene(1, 500);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, {.wide_nodes = true});
   expect_invariants(s, bvh);
   EXPECT_EQ(bvh.stats.leaves + bvh.stats.inner_nodes, bvh.nodes.size());
   EXPECT_GT(bvh.stats.sah_cost, 0);
@@ -107,6 +178,7 @@ TEST(Bvh, EmptySceneGivesEmptyBvh) {
   Scene s;
   Bvh bvh = build_bvh(s);
   EXPECT_TRUE(bvh.empty());
+  EXPECT_TRUE(bvh.wide.empty());
   EXPECT_FALSE(closest_hit_bvh_ref(s, bvh, {{0, 0, 0}, {0, 0, 1}}).hit());
 }
 
@@ -120,7 +192,7 @@ TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
     s.table<Triangle>().append(p, n, 0);
   for (int i = 0; i < 200; ++i)
     s.table<Sphere>().append(std::array<double, 4>{1e30 * (i % 3 - 1), 1e30, -1e30, 1e29}, 0);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, {.wide_nodes = true});
   expect_invariants(s, bvh);
   Hit h = closest_hit_bvh_ref(s, bvh, {{1.1, 1.1, 5}, {0, 0, -1}});
   ASSERT_TRUE(h.hit());

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raylane/bvh/wide_bvh.h"
 #include "raylane/core/bounds3.h"
 #include "raylane/prims/prim_ref.h"
 
@@ -41,6 +42,7 @@ struct BvhConfig {
   int forced_leaf = 32;            // ...and must be split above this many, whatever the SAH says
   double traversal_cost = 1.0;     // SAH cost of visiting an inner node
   double intersection_cost = 1.0;  // SAH cost of one primitive test
+  bool wide_nodes = false;  // also collapse the tree to 8-wide nodes (Bvh::wide), for single rays
 };
 
 struct BvhStats {
@@ -57,11 +59,14 @@ struct Bvh {
   // (to report results in the input's order, e.g. triangle indices of a soup). Not used by
   // traversal, so not counted in bytes().
   std::vector<std::vector<uint32_t>> source_rows;
+  // The same tree collapsed to 8-wide nodes, for single rays (trace/ray_traverse.h); built
+  // only when BvhConfig::wide_nodes asks (it costs memory: bench/README.md).
+  WideBvh wide;
   BvhStats stats;
 
   bool empty() const { return refs.empty(); }
   std::size_t bytes() const {
-    return nodes.size() * sizeof(BvhNode) + refs.size() * sizeof(PrimRef);
+    return nodes.size() * sizeof(BvhNode) + refs.size() * sizeof(PrimRef) + wide.bytes();
   }
 };
 
