@@ -7,8 +7,10 @@ static_assert(XSIMD_WITH_FMA3_AVX2,
 namespace raylane::detail {
 
 void trace_avx2(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
-                std::size_t end, HitStream& hits, bool any_hit, TraversalCounters* counters) {
-  trace_range<xsimd::fma3<xsimd::avx2>>(scene, bvh, rays, begin, end, hits, any_hit, counters);
+                std::size_t end, HitStream& hits, bool any_hit, Traversal traversal,
+                TraversalCounters* counters) {
+  trace_range<xsimd::fma3<xsimd::avx2>>(scene, bvh, rays, begin, end, hits, any_hit, traversal,
+                                        counters);
 }
 
 }  // namespace raylane::detail

@@ -7,8 +7,9 @@ static_assert(XSIMD_WITH_SSE4_2,
 namespace raylane::detail {
 
 void trace_sse42(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
-                 std::size_t end, HitStream& hits, bool any_hit, TraversalCounters* counters) {
-  trace_range<xsimd::sse4_2>(scene, bvh, rays, begin, end, hits, any_hit, counters);
+                 std::size_t end, HitStream& hits, bool any_hit, Traversal traversal,
+                 TraversalCounters* counters) {
+  trace_range<xsimd::sse4_2>(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
 }
 
 }  // namespace raylane::detail

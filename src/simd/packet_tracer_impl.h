@@ -6,8 +6,24 @@
 
 #include "raylane/trace/packet_tracer.h"
 #include "raylane/trace/packet_traverse.h"
+#include "raylane/trace/ray_traverse.h"
 
 namespace raylane::detail {
+
+// 1/d, and the active mask: the lanes of `loaded` whose ray is valid — finite origin and
+// direction (|x| <= FLT_MAX is false for NaN and inf), a non-zero direction, and
+// tmin <= tmax (false for NaN).
+template <class A>
+void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
+                                 const simd::Mask<A>& loaded) {
+  using F = simd::Floats<A>;
+  const F one(1.0f), big(FLT_MAX);
+  r.inv_dx = one / r.dx, r.inv_dy = one / r.dy, r.inv_dz = one / r.dz;
+  auto finite = [&](const F& v) { return xsimd::abs(v) <= big; };
+  F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
+  r.active = loaded & finite(r.ox) & finite(r.oy) & finite(r.oz) & finite(r.dx) & finite(r.dy) &
+             finite(r.dz) & (dd > F(0.0f)) & (r.tmin <= tmax);
+}
 
 // Loads rays [i, i + n) into a packet; lanes past n, and invalid rays, are inactive.
 template <class A>
@@ -24,14 +40,21 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   r.dx = F::load_aligned(buf[3]), r.dy = F::load_aligned(buf[4]), r.dz = F::load_aligned(buf[5]);
   r.tmin = F::load_aligned(buf[6]);
   tmax = F::load_aligned(buf[7]);
-  const F one(1.0f), big(FLT_MAX);
-  r.inv_dx = one / r.dx, r.inv_dy = one / r.dy, r.inv_dz = one / r.dz;
-  // Valid: finite origin and direction (|x| <= FLT_MAX is false for NaN and inf), a non-zero
-  // direction, and tmin <= tmax (false for NaN).
-  auto finite = [&](const F& v) { return xsimd::abs(v) <= big; };
-  F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
-  r.active = simd::first_lanes<A>(n) & finite(r.ox) & finite(r.oy) & finite(r.oz) & finite(r.dx) &
-             finite(r.dy) & finite(r.dz) & (dd > F(0.0f)) & (r.tmin <= tmax);
+  set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n));
+  return r;
+}
+
+// Ray i of the stream in every lane of a packet (inactive if invalid), for single-ray
+// traversal.
+template <class A>
+RayPacket<A> load_broadcast(const RayStream& s, std::size_t i, simd::Floats<A>& tmax) {
+  using F = simd::Floats<A>;
+  RayPacket<A> r;
+  r.ox = F(s.ox[i]), r.oy = F(s.oy[i]), r.oz = F(s.oz[i]);
+  r.dx = F(s.dx[i]), r.dy = F(s.dy[i]), r.dz = F(s.dz[i]);
+  r.tmin = F(s.tmin[i]);
+  tmax = F(s.tmax[i]);
+  set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(simd::kWidth<A>));
   return r;
 }
 
@@ -49,9 +72,49 @@ void traverse(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>&
   traverse_packet<A, false>(scene, bvh, r, h);
 }
 
+// Rays [begin, end) one at a time over the 8-wide tree. Each ray is loaded as a packet with
+// itself in every lane (the packet's validity test is the same for both traversals).
+template <class A>
+void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                        std::size_t begin, std::size_t end, HitStream& hits, bool any_hit,
+                        TraversalCounters* c) {
+  using L = RayLanes<A>;
+  using F = simd::Floats<L>;
+  if (c) c->width = kWideArity;
+  const RayStream* one = &rays;
+  for (std::size_t i = begin; i < end; ++i) {
+    HitPacket<L> h;
+    RayPacket<L> r = load_broadcast<L>(*one, i, h.t);
+    h.prim = simd::Ints<L>(int32_t(PrimRef::kInvalidBits));
+    h.found = F(0.0f) != F(0.0f);
+    bool valid = simd::any<L>(r.active) && !bvh.wide.empty();
+    if (valid && c) ++c->packets, ++c->rays;
+    if (valid) {
+      if (any_hit) {
+        c ? traverse_ray<A, true, true>(scene, bvh, r, h, c)
+          : traverse_ray<A, true>(scene, bvh, r, h);
+      } else {
+        c ? traverse_ray<A, false, true>(scene, bvh, r, h, c)
+          : traverse_ray<A, false>(scene, bvh, r, h);
+      }
+    }
+    bool found = simd::any<L>(h.found);
+    if (any_hit) {
+      hits.t[i] = found ? 0.0f : std::numeric_limits<float>::infinity();
+      hits.prim[i] = found ? 0u : PrimRef::kInvalidBits;
+    } else {
+      hits.t[i] = found ? h.t.get(0) : std::numeric_limits<float>::infinity();
+      hits.prim[i] = found ? uint32_t(h.prim.get(0)) : PrimRef::kInvalidBits;
+    }
+  }
+}
+
 template <class A>
 void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
-                 std::size_t end, HitStream& hits, bool any_hit, TraversalCounters* counters) {
+                 std::size_t end, HitStream& hits, bool any_hit, Traversal traversal,
+                 TraversalCounters* counters) {
+  if (traversal == Traversal::kSingleRays)
+    return trace_range_single<A>(scene, bvh, rays, begin, end, hits, any_hit, counters);
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
   const F inf(std::numeric_limits<float>::infinity());

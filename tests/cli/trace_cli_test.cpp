@@ -35,20 +35,23 @@ void write_inputs(const std::string& dir, bool occlusion) {
 }
 
 TEST(CliTrace, WritesAnswersInTheSoupsOrder) {
-  std::string dir = temp_dir();
-  write_inputs(dir, false);
-  auto r = run_cli("trace row.tris down.rays --repeat 3", dir);
-  ASSERT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
-  auto hits = read_hits(dir + "/down.hits");
-  ASSERT_TRUE(hits.ok()) << hits.error();
-  ASSERT_EQ(hits->size(), 65u);
-  for (uint32_t i = 0; i < 64; ++i) {
-    EXPECT_EQ((*hits)[i].prim, i);
-    EXPECT_EQ((*hits)[i].t, 100.0f - float(i));
+  for (std::string traversal : {"packets", "rays"}) {
+    std::string dir = temp_dir();
+    write_inputs(dir, false);
+    auto r = run_cli("trace row.tris down.rays --repeat 3 --traversal " + traversal, dir);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" " + traversal + ","), std::string::npos) << r.out;
+    auto hits = read_hits(dir + "/down.hits");
+    ASSERT_TRUE(hits.ok()) << hits.error();
+    ASSERT_EQ(hits->size(), 65u);
+    for (uint32_t i = 0; i < 64; ++i) {
+      EXPECT_EQ((*hits)[i].prim, i) << traversal;
+      EXPECT_EQ((*hits)[i].t, 100.0f - float(i)) << traversal;
+    }
+    EXPECT_EQ((*hits)[64].prim, kNoHit);
+    EXPECT_TRUE(std::isinf((*hits)[64].t));
   }
-  EXPECT_EQ((*hits)[64].prim, kNoHit);
-  EXPECT_TRUE(std::isinf((*hits)[64].t));
 }
 
 TEST(CliTrace, OcclusionSetsAnswerOccludedOrNot) {
@@ -74,6 +77,9 @@ TEST(CliTrace, BadInputIsAnErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/down.hits"));
   EXPECT_EQ(run_cli("trace row.tris", dir).status, 2);
   EXPECT_EQ(run_cli("trace row.tris down.rays --repeat 0", dir).status, 2);
+  auto bad = run_cli("trace row.tris down.rays --traversal diagonal", dir);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("unknown --traversal 'diagonal'"), std::string::npos) << bad.out;
 }
 
 }  // namespace

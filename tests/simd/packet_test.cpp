@@ -19,16 +19,20 @@ using testing::random_rays;
 using testing::random_scene;
 using testing::round_to_float;
 
+// Both trees, so that either traversal can run.
+const BvhConfig kWithWideNodes{.wide_nodes = true};
+
 struct Agreement {
   int rays = 0, hits = 0, disagreements = 0;
 };
 
 // Agreement as in spec/ray-sets.md: the same hit/miss status and t within a relative 1e-4,
 // or the same primitive. The reference runs on the float rays, converted exactly.
-Agreement compare(const Scene& s, const Bvh& bvh, Isa isa, const std::vector<Rayd>& rays) {
+Agreement compare(const Scene& s, const Bvh& bvh, const PacketTracer& tracer,
+                  const std::vector<Rayd>& rays) {
   RayStream stream = RayStream::from(rays);
   HitStream hits;
-  PacketTracer(isa).closest(s, bvh, stream, hits);
+  tracer.closest(s, bvh, stream, hits);
   Agreement a;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     Hit ref = closest_hit_ref(s, round_to_float(rays[i]));
@@ -43,20 +47,29 @@ Agreement compare(const Scene& s, const Bvh& bvh, Isa isa, const std::vector<Ray
   return a;
 }
 
-class PacketTracerTest : public ::testing::TestWithParam<Isa> {
+// Every instruction set with both traversals: packets over the binary tree, single rays
+// over the 8-wide tree.
+struct TracerConfig {
+  Isa isa;
+  Traversal traversal;
+};
+
+class PacketTracerTest : public ::testing::TestWithParam<TracerConfig> {
  protected:
   void SetUp() override {
-    if (!isa_supported(GetParam())) GTEST_SKIP() << "this CPU lacks " << isa_name(GetParam());
+    if (!isa_supported(GetParam().isa))
+      GTEST_SKIP() << "this CPU lacks " << isa_name(GetParam().isa);
   }
+  PacketTracer tracer() const { return PacketTracer(GetParam().isa, GetParam().traversal); }
+  bool packets() const { return GetParam().traversal == Traversal::kPackets; }
 };
 
 TEST_P(PacketTracerTest, AgreesWithReferenceOnRandomScenes) {
   for (double offset : {0.0, 1e2, 1e4}) {
     Scene s = random_scene(11, 300, 10, 0.6, {offset, offset, -offset});
-    Bvh bvh = build_bvh(s);
+    Bvh bvh = build_bvh(s, kWithWideNodes);
     // 10001 rays: the last packet is partly filled.
-    Agreement a =
-        compare(s, bvh, GetParam(), random_rays(12, 10001, 12, {offset, offset, -offset}));
+    Agreement a = compare(s, bvh, tracer(), random_rays(12, 10001, 12, {offset, offset, -offset}));
     EXPECT_GT(a.hits, a.rays / 10);
     // Grazing rays may legitimately differ between float and double; allow 1 in 10^3.
     EXPECT_LE(a.disagreements, a.rays / 1000) << "offset " << offset;
@@ -67,9 +80,9 @@ TEST_P(PacketTracerTest, AgreesWithReferenceOnShippedScenes) {
   for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
     auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
     ASSERT_TRUE(p.ok());
-    Bvh bvh = build_bvh(p.scene);
+    Bvh bvh = build_bvh(p.scene, kWithWideNodes);
     // 10^5 rays per scene (issue 3), every ISA.
-    Agreement a = compare(p.scene, bvh, GetParam(), random_rays(13, 100000, 3));
+    Agreement a = compare(p.scene, bvh, tracer(), random_rays(13, 100000, 3));
     EXPECT_LE(a.disagreements, a.rays / 1000) << name;
     EXPECT_GT(a.hits, 0) << name;
   }
@@ -78,7 +91,7 @@ TEST_P(PacketTracerTest, AgreesWithReferenceOnShippedScenes) {
 // hard-cases N1: invalid rays miss without a NaN, and do not disturb their packet mates.
 TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   Scene s = random_scene(14, 50, 3);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(15, 64, 3);
   const double nan = std::nan(""), inf = INFINITY;
   rays[1].o.x = nan;
@@ -89,7 +102,7 @@ TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   rays[6].o.z = 1e39;  // inf after rounding to float
   RayStream stream = RayStream::from(rays);
   HitStream hits;
-  PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+  tracer().closest(s, bvh, stream, hits);
   for (int i = 1; i <= 6; ++i) {
     EXPECT_EQ(hits.prim[i], PrimRef::kInvalidBits) << i;
     EXPECT_FALSE(std::isnan(hits.t[i])) << i;
@@ -105,7 +118,7 @@ TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
   Scene s;
   s.materials.push_back(Material{});
   s.table<Box>().append(std::array<double, 6>{0, 0, 0, 1, 1, 1}, 0);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, kWithWideNodes);
   std::vector<Rayd> rays;
   for (double x : {0.0, 0.5, 1.0})
     for (double y : {0.0, 0.5, 1.0})
@@ -114,7 +127,7 @@ TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
           rays.push_back({{x, y, -1}, {zx, zy, 1}});
   RayStream stream = RayStream::from(rays);
   HitStream hits;
-  PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+  tracer().closest(s, bvh, stream, hits);
   for (std::size_t i = 0; i < rays.size(); ++i) {
     Hit ref = closest_hit_ref(s, rays[i]);
     ASSERT_TRUE(ref.hit()) << i;  // closed box: face, edge and corner rays hit
@@ -130,7 +143,7 @@ TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
     Scene s;
     Vec3d c(offset, -offset, offset);
     testing::add_closed_uv_sphere(s, 16, 24, 48, c);
-    Bvh bvh = build_bvh(s);
+    Bvh bvh = build_bvh(s, kWithWideNodes);
     const auto& t = s.table<Triangle>();
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(-0.25, 0.25), w(0, 1);
@@ -153,7 +166,7 @@ TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
     }
     RayStream stream = RayStream::from(rays);
     HitStream hits;
-    PacketTracer(GetParam()).closest(s, bvh, stream, hits);
+    tracer().closest(s, bvh, stream, hits);
     int escapes = 0;
     for (std::size_t i = 0; i < rays.size(); ++i)
       escapes += hits.prim[i] == PrimRef::kInvalidBits;
@@ -163,13 +176,13 @@ TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
 
 TEST_P(PacketTracerTest, OcclusionMatchesReference) {
   Scene s = random_scene(18, 300, 10);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(19, 5000, 12);
   for (auto& r : rays)
     r.tmax = 4.0;
   RayStream stream = RayStream::from(rays);
   HitStream hits;
-  PacketTracer(GetParam()).occluded(s, bvh, stream, hits);
+  tracer().occluded(s, bvh, stream, hits);
   int disagreements = 0, occluded = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     bool ref = any_hit_ref(s, round_to_float(rays[i]));
@@ -184,9 +197,9 @@ TEST_P(PacketTracerTest, OcclusionMatchesReference) {
 // up: on a one-sphere scene the root is the only node, a leaf with one primitive.
 TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   Scene s = random_scene(7, 40);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, kWithWideNodes);
   RayStream stream = RayStream::from(random_rays(8, 1000, 12));
-  PacketTracer tracer(GetParam());
+  const PacketTracer tracer = this->tracer();
   HitStream plain, counted;
   for (bool any_hit : {false, true}) {
     any_hit ? tracer.occluded(s, bvh, stream, plain) : tracer.closest(s, bvh, stream, plain);
@@ -194,31 +207,55 @@ TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
     EXPECT_EQ(plain.prim, counted.prim);
     EXPECT_EQ(plain.t, counted.t);
     EXPECT_EQ(c.rays, 1000u);
-    EXPECT_EQ(c.width, tracer.width());
+    EXPECT_EQ(c.width, packets() ? tracer.width() : kWideArity);
     EXPECT_GE(c.node_tests, c.packets);
     EXPECT_LE(c.lanes_overlap, c.lanes_active);
     EXPECT_LE(c.lanes_active, c.node_tests * uint64_t(c.width));
   }
   Scene one = parse_scene("camera 0 0 5 1\nsphere 0 0 0 1\n", "one.scn").scene;
-  Bvh one_bvh = build_bvh(one);
+  Bvh one_bvh = build_bvh(one, kWithWideNodes);
   std::vector<Rayd> down(37, Rayd{{0, 0, 5}, {0, 0, -1}});
   TraversalCounters c =
       tracer.trace_counted(one, one_bvh, RayStream::from(down), counted, /*any_hit=*/false);
-  uint64_t packets = (37 + c.width - 1) / c.width;
-  EXPECT_EQ(c.packets, packets);
-  EXPECT_EQ(c.node_tests, packets);
-  EXPECT_EQ(c.leaf_visits, packets);
-  EXPECT_EQ(c.prim_tests, packets);
+  // Packets: ceil(37 / W) packets, each testing the root leaf once. Single rays: 37 rays, each
+  // testing the one wide node (whose one child is that leaf) and the leaf.
+  uint64_t traced = packets() ? (37 + c.width - 1) / c.width : 37;
+  EXPECT_EQ(c.packets, traced);
+  EXPECT_EQ(c.node_tests, traced);
+  EXPECT_EQ(c.leaf_visits, traced);
+  EXPECT_EQ(c.prim_tests, traced);
   EXPECT_EQ(c.lanes_overlap, 37u);
   EXPECT_FLOAT_EQ(counted.t[36], 4.0f);
 }
 
+// Single rays need the 8-wide tree; on a BVH built without it they go as packets, with the
+// packets' answers, rather than missing everything.
+TEST(PacketTracer, SingleRaysWithoutWideNodesGoAsPackets) {
+  Scene s = random_scene(21, 200, 10);
+  Bvh bvh = build_bvh(s);
+  ASSERT_TRUE(bvh.wide.empty());
+  RayStream stream = RayStream::from(random_rays(22, 3000, 12));
+  HitStream packets, rays;
+  PacketTracer(best_isa(), Traversal::kPackets).closest(s, bvh, stream, packets);
+  PacketTracer(best_isa(), Traversal::kSingleRays).closest(s, bvh, stream, rays);
+  EXPECT_EQ(packets.prim, rays.prim);
+  EXPECT_EQ(packets.t, rays.t);
+  EXPECT_GT(std::count_if(rays.prim.begin(), rays.prim.end(),
+                          [](uint32_t p) { return p != PrimRef::kInvalidBits; }),
+            300);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryIsa, PacketTracerTest,
-                         ::testing::Values(Isa::kSse42, Isa::kAvx2, Isa::kAvx512),
+                         ::testing::Values(TracerConfig{Isa::kSse42, Traversal::kPackets},
+                                           TracerConfig{Isa::kAvx2, Traversal::kPackets},
+                                           TracerConfig{Isa::kAvx512, Traversal::kPackets},
+                                           TracerConfig{Isa::kSse42, Traversal::kSingleRays},
+                                           TracerConfig{Isa::kAvx2, Traversal::kSingleRays},
+                                           TracerConfig{Isa::kAvx512, Traversal::kSingleRays}),
                          [](const auto& info) {
-                           std::string n(isa_name(info.param));
+                           std::string n(isa_name(info.param.isa));
                            n.erase(std::remove(n.begin(), n.end(), '.'), n.end());
-                           return n;
+                           return n + "_" + std::string(traversal_name(info.param.traversal));
                          });
 
 }  // namespace

@@ -117,23 +117,23 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
 // The packet kernel: slabs in float with the reference's policy — closed box, NaN-keeping
 // extrema, near/far by the sign of 1/d (hard-cases B3, B4). The box corners are exact floats,
 // and t is as exact as float allows, so no slack is added here (slack belongs to BVH nodes).
-template <class A>
-void intersect_packet(const BoxTable& b, uint32_t begin, uint32_t end, const RayPacket<A>& r,
-                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+template <class A, class Rows>
+[[gnu::always_inline]] inline void intersect_packet(const BoxTable& b, Rows rows,
+                                                    const RayPacket<A>& r, HitPacket<A>& h) {
   using F = simd::Floats<A>;
   const auto neg_x = r.inv_dx < F(0.0f), neg_y = r.inv_dy < F(0.0f), neg_z = r.inv_dz < F(0.0f);
   const F inf(std::numeric_limits<float>::infinity());
-  for (uint32_t i = begin; i < end; ++i) {
+  for (; rows.more(); rows.next()) {
     F t0 = -inf, t1 = inf;
-    auto slab = [&](float lo, float hi, const F& o, const F& inv, const simd::Mask<A>& neg) {
-      F tlo = (F(lo) - o) * inv, thi = (F(hi) - o) * inv;
+    auto slab = [&](const F& lo, const F& hi, const F& o, const F& inv, const simd::Mask<A>& neg) {
+      F tlo = (lo - o) * inv, thi = (hi - o) * inv;
       t0 = simd::max_keep<A>(simd::select<A>(neg, thi, tlo), t0);
       t1 = simd::min_keep<A>(simd::select<A>(neg, tlo, thi), t1);
     };
-    slab(b.lox[i], b.hix[i], r.ox, r.inv_dx, neg_x);
-    slab(b.loy[i], b.hiy[i], r.oy, r.inv_dy, neg_y);
-    slab(b.loz[i], b.hiz[i], r.oz, r.inv_dz, neg_z);
-    commit_solid_hit<A>(t0, t1, r, lanes & (t0 <= t1), prim_bits(PrimTag::kBox, i), h);
+    slab(rows.col(b.lox), rows.col(b.hix), r.ox, r.inv_dx, neg_x);
+    slab(rows.col(b.loy), rows.col(b.hiy), r.oy, r.inv_dy, neg_y);
+    slab(rows.col(b.loz), rows.col(b.hiz), r.oz, r.inv_dz, neg_z);
+    commit_solid_hit<A>(t0, t1, r, rows.mask() & (t0 <= t1), rows.bits(PrimTag::kBox), h);
   }
 }
 

@@ -150,20 +150,20 @@ inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, 
 // intersected with the axial slab [0, h] (hard-cases §3). A ray parallel to the axis
 // (|d⊥|² = 0) has the whole line inside the side when |f⊥| ≤ r; a ray perpendicular to the
 // axis has the whole line inside the slab when 0 ≤ f·u ≤ h (NaN-keeping extrema).
-template <class A>
-void intersect_packet(const CylinderTable& c, uint32_t begin, uint32_t end, const RayPacket<A>& r,
-                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+template <class A, class Rows>
+[[gnu::always_inline]] inline void intersect_packet(const CylinderTable& c, Rows rows,
+                                                    const RayPacket<A>& r, HitPacket<A>& h) {
   using F = simd::Floats<A>;
   const F inf(std::numeric_limits<float>::infinity()), zero(0.0f);
-  for (uint32_t i = begin; i < end; ++i) {
-    F ux(c.ux[i]), uy(c.uy[i]), uz(c.uz[i]);
-    F fx = r.ox - F(c.bx[i]), fy = r.oy - F(c.by[i]), fz = r.oz - F(c.bz[i]);
+  for (; rows.more(); rows.next()) {
+    F ux = rows.col(c.ux), uy = rows.col(c.uy), uz = rows.col(c.uz);
+    F fx = r.ox - rows.col(c.bx), fy = r.oy - rows.col(c.by), fz = r.oz - rows.col(c.bz);
     F fa = fx * ux + fy * uy + fz * uz, da = r.dx * ux + r.dy * uy + r.dz * uz;
     F px = fx - fa * ux, py = fy - fa * uy, pz = fz - fa * uz;        // f⊥
     F qx = r.dx - da * ux, qy = r.dy - da * uy, qz = r.dz - da * uz;  // d⊥
     F a = qx * qx + qy * qy + qz * qz;
     F b = px * qx + py * qy + pz * qz;
-    F rr = F(c.r[i]) * F(c.r[i]);
+    F radius = rows.col(c.r), rr = radius * radius;
     F pp = px * px + py * py + pz * pz;
     F k = b / a;
     F lx = px - k * qx, ly = py - k * qy, lz = pz - k * qz;
@@ -176,11 +176,11 @@ void intersect_packet(const CylinderTable& c, uint32_t begin, uint32_t end, cons
     F side_n = simd::select<A>(parallel, -inf, simd::select<A>(s0 < s1, s0, s1));
     F side_f = simd::select<A>(parallel, inf, simd::select<A>(s0 < s1, s1, s0));
     F inv = F(1.0f) / da;
-    F ta = (zero - fa) * inv, tb = (F(c.h[i]) - fa) * inv;
+    F ta = (zero - fa) * inv, tb = (rows.col(c.h) - fa) * inv;
     F t0 = simd::max_keep<A>(side_n, simd::max_keep<A>(simd::select<A>(inv < zero, tb, ta), -inf));
     F t1 = simd::min_keep<A>(side_f, simd::min_keep<A>(simd::select<A>(inv < zero, ta, tb), inf));
-    commit_solid_hit<A>(t0, t1, r, lanes & side_ok & (t0 <= t1), prim_bits(PrimTag::kCylinder, i),
-                        h);
+    commit_solid_hit<A>(t0, t1, r, rows.mask() & side_ok & (t0 <= t1),
+                        rows.bits(PrimTag::kCylinder), h);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <cmath>
@@ -124,22 +125,23 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
 }
 
-// Per-lane setup of the watertight test: the axis of largest |d| becomes z, x and y follow
-// cyclically (swapped when d_z < 0, to keep the winding), and the shear that maps d to +z
-// (Woop, Benthin and Wald 2013, §3). Computed once per run of triangles.
+// The shear of the watertight test (Woop, Benthin and Wald 2013, §3): the axis of largest
+// |d| becomes z (ties to the lowest axis, as in the reference), x and y follow cyclically,
+// swapped when d_z < 0 to keep the winding; then the shear that maps d to +z. Computed once
+// per run of triangles, in one of two ways with the same roundings (so both give the same
+// answers): per lane for a packet of rays, or once when every lane holds the same ray.
 template <class A>
-struct WoopSetup {
+struct PacketShear {
   using F = simd::Floats<A>;
   simd::Mask<A> x_is[3], y_is[3], z_is[3];  // which world axis each sheared axis reads
-  F sx, sy, sz;
+  F ox, oy, oz, sx, sy, sz;
 
   static F pick(const simd::Mask<A>* is, const F& x, const F& y, const F& z) {
     return simd::select<A>(is[0], x, simd::select<A>(is[1], y, z));
   }
 
-  explicit WoopSetup(const RayPacket<A>& r) {
+  PacketShear(const TriangleTable&, const RayPacket<A>& r) : ox(r.ox), oy(r.oy), oz(r.oz) {
     F ax = xsimd::abs(r.dx), ay = xsimd::abs(r.dy), az = xsimd::abs(r.dz);
-    // kz = argmax |d|, ties to the lowest axis, as in the reference.
     z_is[0] = (ax >= ay) & (ax >= az);
     z_is[1] = (!z_is[0]) & (ay >= az);
     z_is[2] = (!z_is[0]) & (!z_is[1]);
@@ -156,6 +158,57 @@ struct WoopSetup {
     sz = F(1.0f) / dz;
     sx = dx * sz;
     sy = dy * sz;
+  }
+
+  // Vertex `v` of the current rows, relative to the origin, permuted and sheared.
+  template <class Rows>
+  void vertex(const TriangleTable& tri, const Rows& rows, int v, F& x, F& y, F& z) const {
+    const auto& c = vertex_columns(tri, v);
+    F ax = rows.col(*c[0]) - ox, ay = rows.col(*c[1]) - oy, az = rows.col(*c[2]) - oz;
+    F kz = pick(z_is, ax, ay, az);
+    x = simd::fma<A>(-sx, kz, pick(x_is, ax, ay, az));
+    y = simd::fma<A>(-sy, kz, pick(y_is, ax, ay, az));
+    z = sz * kz;
+  }
+
+  static std::array<const std::vector<float>*, 3> vertex_columns(const TriangleTable& tri, int v) {
+    if (v == 0) return {&tri.p0x, &tri.p0y, &tri.p0z};
+    if (v == 1) return {&tri.p1x, &tri.p1y, &tri.p1z};
+    return {&tri.p2x, &tri.p2y, &tri.p2z};
+  }
+};
+
+// The same shear when every lane holds one ray: the permutation is a single choice, so the
+// kernel loads the permuted columns instead of selecting in every lane.
+template <class A>
+struct OneRayShear {
+  using F = simd::Floats<A>;
+  std::array<const std::vector<float>*, 3> col[3];  // [vertex][sheared axis x, y, z]
+  F ox, oy, oz, sx, sy, sz;                         // origin in sheared axis order
+
+  OneRayShear(const TriangleTable& tri, const RayPacket<A>& r) {
+    const float d[3] = {r.dx.get(0), r.dy.get(0), r.dz.get(0)};
+    const float ad[3] = {std::abs(d[0]), std::abs(d[1]), std::abs(d[2])};
+    int kz = (ad[0] >= ad[1] && ad[0] >= ad[2]) ? 0 : (ad[1] >= ad[2] ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);
+    for (int v = 0; v < 3; ++v) {
+      auto c = PacketShear<A>::vertex_columns(tri, v);
+      col[v] = {c[kx], c[ky], c[kz]};
+    }
+    const F o[3] = {r.ox, r.oy, r.oz};
+    ox = o[kx], oy = o[ky], oz = o[kz];
+    sz = F(1.0f) / F(d[kz]);
+    sx = F(d[kx]) * sz;
+    sy = F(d[ky]) * sz;
+  }
+
+  template <class Rows>
+  void vertex(const TriangleTable&, const Rows& rows, int v, F& x, F& y, F& z) const {
+    F az = rows.col(*col[v][2]) - oz;
+    x = simd::fma<A>(-sx, az, rows.col(*col[v][0]) - ox);
+    y = simd::fma<A>(-sy, az, rows.col(*col[v][1]) - oy);
+    z = sz * az;
   }
 };
 
@@ -175,34 +228,28 @@ inline simd::Floats<A> difference_of_products_lanes(const simd::Floats<A>& a,
 // The packet kernel: the watertight test in float, per lane (Woop et al. 2013): vertices
 // relative to the origin, permuted and sheared; edge functions U, V, W with their exact sign;
 // accept all ≥ 0 or all ≤ 0 with det ≠ 0; t = T/det.
-template <class A>
-void intersect_packet(const TriangleTable& tri, uint32_t begin, uint32_t end, const RayPacket<A>& r,
-                      const simd::Mask<A>& lanes, HitPacket<A>& h) {
+template <class A, class Rows>
+[[gnu::always_inline]] inline void intersect_packet(const TriangleTable& tri, Rows rows,
+                                                    const RayPacket<A>& r, HitPacket<A>& h) {
   using F = simd::Floats<A>;
-  const WoopSetup<A> w(r);
+  using Shear = std::conditional_t<Rows::kOneRay, OneRayShear<A>, PacketShear<A>>;
+  const Shear shear(tri, r);
   const F zero(0.0f);
-  auto sheared = [&](float px, float py, float pz, F& x, F& y, F& z) {
-    F ax = F(px) - r.ox, ay = F(py) - r.oy, az = F(pz) - r.oz;
-    F kz = WoopSetup<A>::pick(w.z_is, ax, ay, az);
-    x = simd::fma<A>(-w.sx, kz, WoopSetup<A>::pick(w.x_is, ax, ay, az));
-    y = simd::fma<A>(-w.sy, kz, WoopSetup<A>::pick(w.y_is, ax, ay, az));
-    z = w.sz * kz;
-  };
-  for (uint32_t i = begin; i < end; ++i) {
+  for (; rows.more(); rows.next()) {
     F ax, ay, az, bx, by, bz, cx, cy, cz;
-    sheared(tri.p0x[i], tri.p0y[i], tri.p0z[i], ax, ay, az);
-    sheared(tri.p1x[i], tri.p1y[i], tri.p1z[i], bx, by, bz);
-    sheared(tri.p2x[i], tri.p2y[i], tri.p2z[i], cx, cy, cz);
+    shear.vertex(tri, rows, 0, ax, ay, az);
+    shear.vertex(tri, rows, 1, bx, by, bz);
+    shear.vertex(tri, rows, 2, cx, cy, cz);
     F u = difference_of_products_lanes<A>(cx, by, cy, bx);
     F v = difference_of_products_lanes<A>(ax, cy, ay, cx);
     F e = difference_of_products_lanes<A>(bx, ay, by, ax);
     auto has_neg = (u < zero) | (v < zero) | (e < zero);
     auto has_pos = (u > zero) | (v > zero) | (e > zero);
     F det = u + v + e;
-    simd::Mask<A> hit = lanes & (!(has_neg & has_pos)) & (det != zero);
+    simd::Mask<A> hit = rows.mask() & (!(has_neg & has_pos)) & (det != zero);
     if (simd::none<A>(hit)) continue;
     F t = (u * az + v * bz + e * cz) / det;
-    commit_hit<A>(t, hit & (t > r.tmin) & (t < h.t), prim_bits(PrimTag::kTriangle, i), h);
+    commit_hit<A>(t, hit & (t > r.tmin) & (t < h.t), rows.bits(PrimTag::kTriangle), h);
   }
 }
 

@@ -2,8 +2,10 @@
 // Templates over the instruction set A; used only inside the per-ISA translation units.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "raylane/prims/prim_ref.h"
 #include "raylane/simd/lanes.h"
@@ -32,12 +34,54 @@ inline int32_t prim_bits(PrimTag tag, uint32_t row) {
   return int32_t(PrimRef(tag, row).bits());
 }
 
+// How a kernel walks the rows [begin, end) of one run of its table. Two layouts share every
+// kernel's source:
+// - LanesAreRays (packet traversal): each lane is a ray; each step broadcasts one row.
+// - LanesAreRows (single-ray traversal): every lane holds the same ray; each step loads W
+//   consecutive rows, one per lane. The tables are SoA and a run's rows are contiguous, so
+//   that is one load per column (design.md, "Data layout").
+template <class A>
+struct LanesAreRays {
+  static constexpr bool kOneRay = false;
+  uint32_t i, end;
+  simd::Mask<A> lanes;  // the rays to test
+
+  bool more() const { return i < end; }
+  void next() { ++i; }
+  simd::Mask<A> mask() const { return lanes; }
+  simd::Floats<A> col(const std::vector<float>& c) const { return simd::Floats<A>(c[i]); }
+  simd::Ints<A> bits(PrimTag tag) const { return simd::Ints<A>(prim_bits(tag, i)); }
+};
+
+template <class A>
+struct LanesAreRows {
+  static constexpr bool kOneRay = true;
+  static constexpr int W = simd::kWidth<A>;
+  uint32_t i, end;    // no lane mask: a single ray is traced only while it is live
+  std::size_t table;  // rows in the table
+
+  bool more() const { return i < end; }
+  void next() { i += W; }
+  simd::Mask<A> mask() const { return simd::first_lanes<A>(int(std::min<uint32_t>(end - i, W))); }
+  // Rows i … i + W − 1; past the table's end (the last rows of a table) through a copy.
+  simd::Floats<A> col(const std::vector<float>& c) const {
+    if (i + W <= table) return simd::load<A>(c.data() + i);
+    alignas(64) float tail[W] = {};
+    for (std::size_t k = 0; k < W && i + k < table; ++k)
+      tail[k] = c[i + k];
+    return simd::load<A>(tail);
+  }
+  simd::Ints<A> bits(PrimTag tag) const {
+    return simd::Ints<A>(prim_bits(tag, i)) + simd::lane_index<A>();
+  }
+};
+
 // Records hit distance t as primitive `bits` in the lanes of `ok`.
 template <class A>
-inline void commit_hit(const simd::Floats<A>& t, const simd::Mask<A>& ok, int32_t bits,
+inline void commit_hit(const simd::Floats<A>& t, const simd::Mask<A>& ok, const simd::Ints<A>& bits,
                        HitPacket<A>& h) {
   h.t = simd::select<A>(ok, t, h.t);
-  h.prim = simd::select<A>(ok, simd::Ints<A>(bits), h.prim);
+  h.prim = simd::select<A>(ok, bits, h.prim);
   h.found = h.found | ok;
 }
 
@@ -45,8 +89,8 @@ inline void commit_hit(const simd::Floats<A>& t, const simd::Mask<A>& ok, int32_
 // first of tn and tf inside (tmin, closest t so far) — a ray starting inside hits the exit.
 template <class A>
 inline void commit_solid_hit(const simd::Floats<A>& tn, const simd::Floats<A>& tf,
-                             const RayPacket<A>& r, const simd::Mask<A>& hit, int32_t bits,
-                             HitPacket<A>& h) {
+                             const RayPacket<A>& r, const simd::Mask<A>& hit,
+                             const simd::Ints<A>& bits, HitPacket<A>& h) {
   auto near_ok = (tn > r.tmin) & (tn < h.t);
   auto far_ok = (tf > r.tmin) & (tf < h.t);
   commit_hit<A>(simd::select<A>(near_ok, tn, tf), hit & (near_ok | far_ok), bits, h);

@@ -57,7 +57,7 @@ inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& le
     uint32_t row_begin = first.row(), row_end = first.row() + (j - i);
     dispatch(first.tag(), [&](auto kind) {
       using Kind = decltype(kind);
-      intersect_packet<A>(scene.table<Kind>(), row_begin, row_end, r, lanes, h);
+      intersect_packet<A>(scene.table<Kind>(), LanesAreRays<A>{row_begin, row_end, lanes}, r, h);
     });
     i = j;
   }
