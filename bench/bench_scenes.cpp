@@ -183,7 +183,7 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
     if (why && why->empty()) *why = "no such scene or it failed to build: " + name;
     return nullptr;
   }
-  b->bvh = build_bvh(b->scene);
+  b->bvh = build_bvh(b->scene, BvhConfig{.wide_nodes = true});
   auto& slot = cache[name];
   slot = std::make_unique<BenchScene>(std::move(*b));
   return slot.get();

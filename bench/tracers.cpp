@@ -13,9 +13,16 @@ namespace raylane::bench {
 
 namespace {
 
-BenchTracer packet_tracer(const BenchScene& b, Isa isa) {
-  PacketTracer t(isa);
-  return {std::string("raylane-") + std::string(isa_name(isa)),
+// "raylane-<isa>": packets over the binary tree; "raylane-<isa>-rays": single rays over the
+// 8-wide tree.
+std::string packet_tracer_name(Isa isa, Traversal traversal) {
+  return "raylane-" + std::string(isa_name(isa)) +
+         (traversal == Traversal::kSingleRays ? "-rays" : "");
+}
+
+BenchTracer packet_tracer(const BenchScene& b, Isa isa, Traversal traversal) {
+  PacketTracer t(isa, traversal);
+  return {packet_tracer_name(isa, traversal),
           [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
             if (occlusion) {
               t.occluded(b.scene, b.bvh, rays, hits);
@@ -65,8 +72,9 @@ const HitStream& reference(const BenchScene& b, const RayStream& rays, bool occl
 
 std::vector<std::string> bench_tracer_names() {
   std::vector<std::string> names;
-  for (Isa isa : supported_isas())
-    names.push_back("raylane-" + std::string(isa_name(isa)));
+  for (Traversal traversal : {Traversal::kPackets, Traversal::kSingleRays})
+    for (Isa isa : supported_isas())
+      names.push_back(packet_tracer_name(isa, traversal));
   names.push_back("raylane-scalar");
   if (embree_available()) {
     names.push_back("embree-1");
@@ -76,8 +84,9 @@ std::vector<std::string> bench_tracer_names() {
 }
 
 BenchTracer bench_tracer(const BenchScene& b, const std::string& name) {
-  for (Isa isa : supported_isas())
-    if (name == "raylane-" + std::string(isa_name(isa))) return packet_tracer(b, isa);
+  for (Traversal traversal : {Traversal::kPackets, Traversal::kSingleRays})
+    for (Isa isa : supported_isas())
+      if (name == packet_tracer_name(isa, traversal)) return packet_tracer(b, isa, traversal);
   if (name == "raylane-scalar")
     return {name, [&b](const RayStream& r, bool o, HitStream& h) { trace_scalar(b, r, o, h); },
             nullptr};

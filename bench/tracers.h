@@ -22,7 +22,8 @@ struct BenchTracer {
   std::function<TraversalCounters(const RayStream&, bool occlusion, HitStream&)> count;
 };
 
-// raylane's packet tracer at each ISA this CPU has, raylane's scalar path (single rays
+// raylane's packet tracer at each ISA this CPU has, with packets ("raylane-avx2") and with
+// single rays over the 8-wide tree ("raylane-avx2-rays"), raylane's scalar path (single rays
 // through the BVH with the double reference kernels) and, when built with Embree, Embree's
 // single-ray and 16-wide packet calls.
 std::vector<std::string> bench_tracer_names();

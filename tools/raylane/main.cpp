@@ -47,6 +47,8 @@ render options:
 trace options (file formats: spec/ray-sets.md of the project's shared folder):
   -o, --output FILE   the answers (default: the ray set's name with .hits, here)
   --repeat N          runs to take the median of                   (default: 5)
+  --traversal T       packets (W rays at a time, binary tree) | rays (one ray at a time,
+                      8-wide tree; for incoherent rays)            (default: packets)
   --isa I, --threads N, --quiet   as for render
 
 A path render shows a progress bar (on a terminal) and ends with a summary. The first Ctrl-C

@@ -24,13 +24,14 @@ namespace {
 struct TraceRequest {
   std::string mesh, rays, output;
   Isa isa = best_isa();
+  Traversal traversal = Traversal::kPackets;
   int threads = 0, repeat = 5;
   bool quiet = false;
 };
 
 const std::vector<OptionSpec> kTraceOptions = {
     {"output", 'o', true, false}, {"isa", 0, true, false},      {"threads", 0, true, false},
-    {"repeat", 0, true, false},   {"quiet", 'q', false, false},
+    {"repeat", 0, true, false},   {"quiet", 'q', false, false}, {"traversal", 0, true, false},
 };
 
 Result<TraceRequest> read_request(const std::vector<std::string>& args) {
@@ -48,6 +49,11 @@ Result<TraceRequest> read_request(const std::vector<std::string>& args) {
     auto isa = parse_isa_option(*i);
     if (!isa) return Error{isa.error()};
     r.isa = *isa;
+  }
+  if (auto t = parsed->last("traversal")) {
+    auto v = traversal_from_name(*t);
+    if (!v) return Error{cat("unknown --traversal ", in_quotes(*t), " (packets, rays)")};
+    r.traversal = *v;
   }
   if (auto t = parsed->last("threads")) {
     auto v = parse_int_option("threads", *t, 0, 4096);
@@ -109,8 +115,8 @@ int trace_command(const std::vector<std::string>& args) {
   }
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
-  Bvh bvh = build_bvh(*scene);
-  PacketTracer tracer(r.isa);
+  Bvh bvh = build_bvh(*scene, {.wide_nodes = r.traversal == Traversal::kSingleRays});
+  PacketTracer tracer(r.isa, r.traversal);
   HitStream hits;
   std::vector<double> seconds;
   for (int i = 0; i < r.repeat; ++i) {
@@ -133,11 +139,12 @@ int trace_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     std::fprintf(stderr,
                  "traced %zu rays (%s) against %zu triangles: median %.2f Mrays/s over %d runs "
-                 "(%.2f … %.2f); %s, %d threads; BVH built in %.3f s\n",
+                 "(%.2f … %.2f); %s %s, %d threads; BVH built in %.3f s\n",
                  set->rays.size(), set->occlusion() ? "occlusion" : "closest hit",
                  scene->table<Triangle>().size(), set->rays.size() / median * 1e-6, r.repeat,
                  set->rays.size() / seconds.back() * 1e-6, set->rays.size() / seconds[0] * 1e-6,
-                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(),
+                 std::string(isa_name(r.isa)).c_str(),
+                 std::string(traversal_name(r.traversal)).c_str(), omp_get_max_threads(),
                  bvh.stats.build_seconds);
   return kExitOk;
 }
