@@ -12,6 +12,7 @@
 
 #include "bench_scenes.h"
 #include "embree_tracer.h"
+#include "ply_export.h"
 #include "ray_sets.h"
 #include "raylane/prims/table_util.h"
 #include "raylane/trace/ray_set_io.h"
@@ -144,7 +145,8 @@ void register_all() {
 }
 
 // --export DIR: writes every triangle scene as DIR/<scene>.tris and its ray sets as
-// DIR/<scene>-<rays>.rays (spec/ray-sets.md), for other tracers to run the identical rays.
+// DIR/<scene>-<rays>.rays (spec/ray-sets.md), for other tracers to run the identical rays,
+// and as DIR/<scene>.ply, for scene files to render (bench/scenes/).
 int export_sets(const std::string& dir) {
   for (const std::string& name : bench_scene_names()) {
     std::string why;
@@ -155,7 +157,8 @@ int export_sets(const std::string& dir) {
     }
     if (b->scene.primitive_count() != b->scene.table<Triangle>().size()) continue;
     std::vector<Status> done = {
-        write_triangle_soup(dir + "/" + name + ".tris", b->scene.table<Triangle>())};
+        write_triangle_soup(dir + "/" + name + ".tris", b->scene.table<Triangle>()),
+        write_ply_soup(dir + "/" + name + ".ply", b->scene.table<Triangle>())};
     for (RayKind kind : {RayKind::kPrimary, RayKind::kShadow, RayKind::kDiffuse}) {
       const RaySet& set = bench_rays(*b, kind);
       RaySetFile file{set.rays, set.occlusion ? kRaySetOcclusionFlag : 0, 0, 0};
@@ -164,7 +167,7 @@ int export_sets(const std::string& dir) {
     }
     for (const Status& st : done)
       if (!st) return std::fprintf(stderr, "%s\n", st.error().c_str()), 1;
-    std::printf("wrote %s/%s.tris and its ray sets\n", dir.c_str(), name.c_str());
+    std::printf("wrote %s/%s.tris, .ply and its ray sets\n", dir.c_str(), name.c_str());
   }
   return 0;
 }
