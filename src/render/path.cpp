@@ -155,7 +155,7 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
     for (uint32_t i : live)
       batch.push_back(paths[i].ray);
     batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
-    ctx.tracer.closest(batch, hits);
+    ctx.tracer.closest(batch, hits, /*coherent=*/depth == 0);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q) {

@@ -20,7 +20,21 @@ std::string_view tracer_kind_name(TracerKind kind) {
   return kNames[int(kind)];
 }
 
-void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) const {
+namespace {
+constexpr std::string_view kPolicyNames[] = {"packets", "rays", "auto"};
+}
+
+std::optional<TraversalPolicy> traversal_policy_from_name(std::string_view name) {
+  for (int i = 0; i < 3; ++i)
+    if (name == kPolicyNames[i]) return TraversalPolicy(i);
+  return std::nullopt;
+}
+
+std::string_view traversal_policy_name(TraversalPolicy policy) {
+  return kPolicyNames[int(policy)];
+}
+
+void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits, bool coherent) const {
   const std::ptrdiff_t n = std::ptrdiff_t(rays.size());
   hits.assign(rays.size(), Hit{});
   if (kind_ != TracerKind::kPacket) {
@@ -35,7 +49,9 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) cons
   for (std::ptrdiff_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   HitStream out;
-  packets_.closest(scene_, bvh_, stream, out);
+  bool single =
+      policy_ == TraversalPolicy::kRays || (policy_ == TraversalPolicy::kAuto && !coherent);
+  (single ? rays_ : packets_).closest(scene_, bvh_, stream, out);
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     if (out.prim[i] == PrimRef::kInvalidBits) continue;

@@ -41,6 +41,7 @@ TEST(CliPath, BadPathFlagsExitTwo) {
   EXPECT_EQ(run_status("render --integrator bidir -o " + dir + "/a.hdr"), 2);
   EXPECT_EQ(run_status("render --time -1 -o " + dir + "/a.hdr"), 2);
   EXPECT_EQ(run_status("render --seed x -o " + dir + "/a.hdr"), 2);
+  EXPECT_EQ(run_status("render --traversal sideways -o " + dir + "/a.hdr"), 2);
   EXPECT_FALSE(std::filesystem::exists(dir + "/a.hdr"));
   EXPECT_EQ(run_status("convert only-one.hdr"), 2);
   EXPECT_EQ(run_status("convert missing.hdr " + dir + "/b.png"), 2);
@@ -60,6 +61,18 @@ TEST(CliPath, FilesAreIdenticalForAnyThreadCountAndConvert) {
   auto a = read_image(dir + "/one.hdr"), b = read_image(dir + "/one.pfm");
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_EQ(a->rgb, b->rgb);  // RGBE values are exact in float
+}
+
+// Bounces as single rays over the 8-wide tree (--traversal auto, rays) take the same
+// samples and find the same hits as packets: the image agrees to rounding.
+TEST(CliPath, EveryTraversalRendersTheSameImage) {
+  std::string dir = temp_dir(), scene = source_path("scenes/testscene.scn");
+  for (std::string t : {"packets", "auto", "rays"})
+    ASSERT_EQ(run_status("render " + scene + " --spp 2 --traversal " + t + " -o " + dir + "/" + t +
+                         ".hdr"),
+              0);
+  EXPECT_EQ(run_status("diff " + dir + "/auto.hdr " + dir + "/packets.hdr --tol 1e-3"), 0);
+  EXPECT_EQ(run_status("diff " + dir + "/rays.hdr " + dir + "/packets.hdr --tol 1e-3"), 0);
 }
 
 // The first SIGINT ends the render after the pass in flight: a valid image with the samples

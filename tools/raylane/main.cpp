@@ -40,6 +40,8 @@ render options:
   --tracer T          packet (SIMD packets through the BVH) | bvh (single rays, double
                       kernels) | scalar (brute force, double kernels)  (default: packet)
   --isa I             sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set
+  --traversal T       packets (W rays at a time) | rays (one at a time over 8-wide nodes) |
+                      auto (packets for camera rays, rays for bounces)  (default: packets)
                                                                    (default: auto, the widest)
   --lenient           skip bad scene lines with a warning instead of failing
   --quiet             print only errors and the written image paths (no progress bar)

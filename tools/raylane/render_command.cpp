@@ -29,6 +29,7 @@ struct RenderRequest {
   CheckpointOptions checkpoints;
   TracerKind tracer = TracerKind::kPacket;
   Isa isa = best_isa();
+  TraversalPolicy traversal = TraversalPolicy::kPackets;
   double exposure = 0;
   int threads = 0;
   bool lenient = false, quiet = false;
@@ -37,23 +38,15 @@ struct RenderRequest {
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
 const std::vector<OptionSpec> kRenderOptions = {
-    {"output", 'o', true, true},
-    {"mode", 0, true, false},
-    {"exposure", 0, true, false},
-    {"threads", 0, true, false},
-    {"lenient", 0, false, false},
-    {"quiet", 'q', false, false},
-    {"tracer", 0, true, false},
-    {"isa", 0, true, false},
-    {"spp", 0, true, false},
-    {"seed", 0, true, false},
-    {"integrator", 0, true, false},
-    {"max-depth", 0, true, false},
-    {"time", 0, true, false},
-    {"png", 0, false, false},
-    {"checkpoint", 0, true, false},
-    {"resume", 0, true, false},
-    {"checkpoint-every", 0, true, false},
+    {"output", 'o', true, true},   {"mode", 0, true, false},
+    {"exposure", 0, true, false},  {"threads", 0, true, false},
+    {"lenient", 0, false, false},  {"quiet", 'q', false, false},
+    {"tracer", 0, true, false},    {"isa", 0, true, false},
+    {"traversal", 0, true, false}, {"spp", 0, true, false},
+    {"seed", 0, true, false},      {"integrator", 0, true, false},
+    {"max-depth", 0, true, false}, {"time", 0, true, false},
+    {"png", 0, false, false},      {"checkpoint", 0, true, false},
+    {"resume", 0, true, false},    {"checkpoint-every", 0, true, false},
 };
 
 std::string default_output(const std::optional<std::string>& scene_path) {
@@ -112,6 +105,11 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
     r.tracer = *kind;
   }
+  if (auto t = parsed->last("traversal")) {
+    auto policy = traversal_policy_from_name(*t);
+    if (!policy) return Error{cat("unknown --traversal ", in_quotes(*t), " (packets, rays, auto)")};
+    r.traversal = *policy;
+  }
   if (auto i = parsed->last("isa")) {
     auto isa = parse_isa_option(*i);
     if (!isa) return Error{isa.error()};
@@ -166,8 +164,8 @@ int render_command(const std::vector<std::string>& args) {
 
   // The BVH is built for every tracer: it permutes the tables, so all tracers name the same
   // primitive by the same row (and `--mode id` images compare across tracers).
-  Bvh bvh = build_bvh(*scene);
-  Tracer tracer(*scene, bvh, r.tracer, r.isa);
+  Bvh bvh = build_bvh(*scene, {.wide_nodes = r.traversal != TraversalPolicy::kPackets});
+  Tracer tracer(*scene, bvh, r.tracer, r.isa, r.traversal);
   auto start = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   std::string what;
@@ -225,12 +223,13 @@ int render_command(const std::vector<std::string>& args) {
   }
   if (!r.quiet) {
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %d "
+                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %s, %d "
                  "threads; BVH of %zu nodes built in %.3f s\n",
                  scene->width, scene->height, what.c_str(), seconds, (unsigned long long)rays,
                  rays / seconds * 1e-6, std::string(tracer_kind_name(r.tracer)).c_str(),
-                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
-                 bvh.stats.build_seconds);
+                 std::string(isa_name(r.isa)).c_str(),
+                 std::string(traversal_policy_name(r.traversal)).c_str(), omp_get_max_threads(),
+                 bvh.nodes.size(), bvh.stats.build_seconds);
   }
   if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
   return status;
