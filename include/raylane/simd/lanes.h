@@ -100,6 +100,26 @@ inline Mask<A> first_lanes(int n) {
   return load<A>(idx) < Floats<A>(float(n));
 }
 
+// p[0], …, p[n − 1] into the first n lanes (n < W), zeros after; nothing past p + n is read.
+// AVX2 and AVX-512 mask the load (masked-out lanes never fault); SSE4.2 has no masked
+// load, so it copies.
+template <class A>
+inline Floats<A> load_first(const float* p, int n) {
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_maskz_loadu_ps(__mmask16((1u << n) - 1), p));
+  } else if constexpr (kWidth<A> == 8) {
+    alignas(32) static constexpr int32_t kOn[16] = {-1, -1, -1, -1, -1, -1, -1, -1,
+                                                    0,  0,  0,  0,  0,  0,  0,  0};
+    __m256i mask = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kOn + 8 - n));
+    return Floats<A>(_mm256_maskload_ps(p, mask));
+  } else {
+    alignas(16) float tail[4] = {};
+    for (int k = 0; k < n; ++k)
+      tail[k] = p[k];
+    return Floats<A>::load_aligned(tail);
+  }
+}
+
 // 0, 1, …, W − 1.
 template <class A>
 inline Ints<A> lane_index() {

@@ -63,13 +63,11 @@ struct LanesAreRows {
   bool more() const { return i < end; }
   void next() { i += W; }
   simd::Mask<A> mask() const { return simd::first_lanes<A>(int(std::min<uint32_t>(end - i, W))); }
-  // Rows i … i + W − 1; past the table's end (the last rows of a table) through a copy.
+  // Rows i … i + W − 1; near the table's end (the last rows, or a small table) only the rows
+  // that exist are read.
   simd::Floats<A> col(const std::vector<float>& c) const {
     if (i + W <= table) return simd::load<A>(c.data() + i);
-    alignas(64) float tail[W] = {};
-    for (std::size_t k = 0; k < W && i + k < table; ++k)
-      tail[k] = c[i + k];
-    return simd::load<A>(tail);
+    return simd::load_first<A>(c.data() + i, int(table - i));
   }
   simd::Ints<A> bits(PrimTag tag) const {
     return simd::Ints<A>(prim_bits(tag, i)) + simd::lane_index<A>();
