@@ -17,6 +17,7 @@ struct BuildPrim {
   Bounds3f box;
   Vec3f centroid;
   PrimRef ref;
+  float cost;  // SAH cost of testing it (BvhConfig::intersection_cost of its kind)
 };
 
 struct Split {
@@ -45,21 +46,24 @@ int bin_of(float c, float lo, double scale, int bins) {
   return std::min(bins - 1, int(x));
 }
 
-// A bin of the SAH build: a box and a count, with no default initialisation (clearing
-// unused bins was the build's largest cost).
+// A bin of the SAH build: a box, a count and the summed test cost of its prims, with no
+// default initialisation (clearing unused bins was the build's largest cost).
 struct Bin {
   float lo[3], hi[3];
   uint32_t count;
+  double cost;
 
   void clear() {
     for (int k = 0; k < 3; ++k)
       lo[k] = std::numeric_limits<float>::infinity(), hi[k] = -lo[k];
     count = 0;
+    cost = 0;
   }
-  void add(const Bounds3f& b) {
+  void add(const BuildPrim& p) {
     for (int k = 0; k < 3; ++k)
-      lo[k] = std::min(lo[k], b.lo[k]), hi[k] = std::max(hi[k], b.hi[k]);
+      lo[k] = std::min(lo[k], p.box.lo[k]), hi[k] = std::max(hi[k], p.box.hi[k]);
     ++count;
+    cost += p.cost;
   }
   Bounds3f box() const {
     Bounds3f b;
@@ -92,7 +96,9 @@ class Builder {
     // Deep in the tree, split at the object median so traversal stacks cannot overflow.
     bool median_only = depth >= kMedianSplitDepth;
     Split split = count > 1 && !median_only ? find_split(begin, end, box, centroids) : Split{};
-    double leaf_cost = cfg_.intersection_cost * count;
+    double leaf_cost = 0;
+    for (uint32_t i = begin; i < end; ++i)
+      leaf_cost += prims_[i].cost;
     bool may_leaf = count <= uint32_t(cfg_.max_leaf) ||
                     (split.axis < 0 && !median_only && count <= uint32_t(cfg_.forced_leaf));
     if (count == 1 || (may_leaf && leaf_cost <= split.cost)) return make_leaf(n, begin, end);
@@ -140,7 +146,7 @@ class Builder {
       const BuildPrim& p = prims_[i];
       for (int axis = 0; axis < 3; ++axis) {
         int b = bin_of(p.centroid[axis], centroids.lo[axis], scale[axis], bins);
-        bin[axis][b].add(p.box);
+        bin[axis][b].add(p);
       }
     }
     Split best;
@@ -149,19 +155,20 @@ class Builder {
       if (!(scale[axis] > 0)) continue;  // all centroids in one plane: no split on this axis
       double right_cost[kMaxBins] = {};
       Bounds3f acc;
-      uint32_t n = 0;
+      double tests = 0;  // summed test cost of the prims on one side
       for (int b = bins - 1; b > 0; --b) {
         acc.extend(bin[axis][b].box());
-        n += bin[axis][b].count;
-        right_cost[b - 1] = half_area(acc) * n;
+        tests += bin[axis][b].cost;
+        right_cost[b - 1] = half_area(acc) * tests;
       }
       acc = Bounds3f();
-      n = 0;
+      tests = 0;
+      uint32_t n = 0;
       for (int b = 0; b < bins - 1; ++b) {
         acc.extend(bin[axis][b].box());
+        tests += bin[axis][b].cost;
         n += bin[axis][b].count;
-        double cost = cfg_.traversal_cost +
-                      cfg_.intersection_cost * (half_area(acc) * n + right_cost[b]) / parent_area;
+        double cost = cfg_.traversal_cost + (half_area(acc) * tests + right_cost[b]) / parent_area;
         if (n > 0 && n < end - begin && cost < best.cost) best = {axis, bins, b, cost};
       }
     }
@@ -193,18 +200,20 @@ class Builder {
   std::atomic<uint32_t> max_depth_{0};
 };
 
-std::vector<BuildPrim> gather(const Scene& scene) {
+std::vector<BuildPrim> gather(const Scene& scene, const BvhConfig& cfg) {
   std::vector<BuildPrim> prims;
   prims.reserve(scene.primitive_count());
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
+    const float cost = float(cfg.intersection_cost[uint32_t(Kind::tag)]);
     for (uint32_t row = 0; row < table.size(); ++row) {
       Bounds3f b = table.bounds(row);
       Vec3f c = b.centroid();
       prims.push_back({b,
                        {finite_or_zero(c.x), finite_or_zero(c.y), finite_or_zero(c.z)},
-                       PrimRef(Kind::tag, row)});
+                       PrimRef(Kind::tag, row),
+                       cost});
     }
   });
   return prims;
@@ -240,7 +249,8 @@ void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
     double rel = half_area(n.bounds()) / root_area;
     if (n.is_leaf()) {
       ++s.leaves;
-      s.sah_cost += rel * cfg.intersection_cost * n.count;
+      for (uint32_t i = n.index; i < n.index + n.count; ++i)
+        s.sah_cost += rel * cfg.intersection_cost[uint32_t(bvh.refs[i].tag())];
       if (s.leaf_size_histogram.size() <= n.count) s.leaf_size_histogram.resize(n.count + 1);
       ++s.leaf_size_histogram[n.count];
     } else {
@@ -255,7 +265,7 @@ void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
 Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   auto start = std::chrono::steady_clock::now();
   Bvh bvh;
-  std::vector<BuildPrim> prims = gather(scene);
+  std::vector<BuildPrim> prims = gather(scene, config);
   if (prims.empty()) return bvh;
   bvh.nodes.resize(2 * prims.size());
   BvhConfig cfg = config;
