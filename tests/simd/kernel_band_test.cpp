@@ -346,7 +346,7 @@ TYPED_TEST(KernelBandTest, ClearClassesAgreeWithTheReference) {
       Vec3d offset(at.offset, -at.offset, at.offset);
       Scene s = make_scene<Kind>(g, offset, at.scale, count);
       ASSERT_GT(s.table<Kind>().size(), 0u);
-      check_scene(s, make_rays<Kind>(s, g, 16 * 60 + 7), paths, tallies);
+      check_scene(s, make_rays<Kind>(s, g, 16 * 500 + 7), paths, tallies);
     }
   for (std::size_t p = 0; p < paths.size(); ++p) {
     const Tally& t = tallies[p];

@@ -284,6 +284,13 @@ bool line_misses_grown_bounds(const Bounds3f& b, const Rayd& ray) {
   return t0 > t1;
 }
 
+// Which of two clear hits is nearer: the gap between the reference's t against the room their
+// intervals leave (equal t, e.g. coplanar faces, is always in the band).
+Criterion order_criterion(const PrimVerdict& nearer, const PrimVerdict& farther) {
+  return {farther.t_ref - nearer.t_ref,
+          gap(nearer.t_ref, nearer.t.hi) + gap(farther.t_ref, farther.t.lo)};
+}
+
 }  // namespace
 
 const char* ray_class_name(RayClass c) {
@@ -480,7 +487,9 @@ RayVerdict classify_closest(const Scene& scene, const Rayd& ray, bool skip_far_b
   for (const Candidate& c : maybe)
     if (&c != best && (!best || c.v.t.lo <= best->v.t.hi)) {
       ambiguous = true;
-      out.band_ratio = std::min(out.band_ratio, c.v.decisive.ratio());
+      out.band_ratio = std::min(out.band_ratio, c.v.cls == RayClass::kClearHit
+                                                    ? order_criterion(best->v, c.v).ratio()
+                                                    : c.v.decisive.ratio());
     }
   if (ambiguous) {
     out.cls = RayClass::kBand;

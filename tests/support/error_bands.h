@@ -70,7 +70,9 @@ struct RayVerdict {
   PrimRef prim = PrimRef::invalid();
   double t = std::numeric_limits<double>::infinity();
   double t_bound = 0;
-  double band_ratio = 0;  // kBand: |margin|/bound of the primitive that made it ambiguous
+  // kBand: |margin|/bound of the decision that made it ambiguous (a primitive's hit or miss,
+  // or which of two hits is nearer).
+  double band_ratio = 0;
 };
 
 // `skip_far_bounds`: primitives whose bounds, grown by 2^-12 of the distance scale, the ray's
