@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/float_util.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/packet_tracer.h"
 #include "support/error_bands.h"
@@ -99,6 +100,7 @@ struct Shapes<Sphere> {
     std::array<double, 4> p{c.x, c.y, c.z, scale * uniform(g, 0.3, 1)};
     return !s.table<Sphere>().append(p, 0).has_value();
   }
+  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
   // A tangent from o: the line's distance from the centre is r(1 + jitter).
   static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
     const auto& t = s.table<Sphere>();
@@ -118,6 +120,11 @@ struct Shapes<Box> {
       p[3 + k] = scale * uniform(g, 0.2, 1) * (g() % 2 ? 1 : -1);
     return !s.table<Box>().append(p, 0).has_value();
   }
+  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) {
+    Vec3d n(0, 0, 0);
+    n[int(g() % 3)] = 1;
+    return n;
+  }
   // At a point of an edge (a corner one time in eight), moved by the jitter.
   static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
     const auto& t = s.table<Box>();
@@ -136,6 +143,9 @@ struct Shapes<Cylinder> {
     Vec3d a = unit_vector(g) * (scale * uniform(g, 0.5, 2));
     std::array<double, 7> p{c.x, c.y, c.z, a.x, a.y, a.z, scale * uniform(g, 0.1, 0.6)};
     return !s.table<Cylinder>().append(p, 0).has_value();
+  }
+  static Vec3d plane_normal(const Scene& s, uint32_t row, Rng&) {
+    return normalize(Vec3d(s.table<Cylinder>().axis(row)));
   }
   // Half the time a tangent to the side (hard-cases C5): in the plane across the axis the line
   // touches the circle of radius r(1 + jitter), and it climbs so that it touches at a height
@@ -172,6 +182,11 @@ struct Shapes<Triangle> {
     s.table<Triangle>().append(p, {nf, nf, nf}, 0);
     return true;
   }
+  static Vec3d plane_normal(const Scene& s, uint32_t row, Rng&) {
+    const auto& t = s.table<Triangle>();
+    return normalize(
+        cross(Vec3d(t.p1(row)) - Vec3d(t.p0(row)), Vec3d(t.p2(row)) - Vec3d(t.p0(row))));
+  }
   // At a point of an edge or at a vertex (hard-cases T1, T3), moved by the jitter.
   static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
     const auto& t = s.table<Triangle>();
@@ -186,9 +201,19 @@ struct Shapes<Triangle> {
 
 // ---- Ray sets ----
 
-// Rays, each from a float origin at 2–20 sizes from one primitive: half toward a random point
-// around it, half aimed at its band. One in five has a finite tmax near the primitive and one
-// in ten a tmin near it, so that the (tmin, tmax) range decides too. Every 29th ray is invalid.
+// A ray that crosses the primitive's plane (triangle, cap, box face) near `aim` at an angle of
+// 10^-1 … 10^-4 rad: t is ill-conditioned there (hard-cases §0, T8, C4).
+Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
+  double angle = std::pow(10.0, uniform(g, -4, -1)) * (g() % 2 ? 1 : -1);
+  Vec3d d = orthogonal_unit(g, n) * std::cos(angle) + n * std::sin(angle);
+  Vec3d o(Vec3f(aim - d * dist));
+  return {o, normalize(aim - o)};
+}
+
+// Rays, each from a float origin at 2–20 sizes from one primitive: 2 in 5 toward a random
+// point around it, 2 in 5 aimed at its band, 1 in 5 grazing its plane. One in five has a
+// finite tmax near the primitive and one in ten a tmin near it, so that the (tmin, tmax) range
+// decides too. Every 29th ray is invalid.
 template <class Kind>
 std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
   const auto& table = s.table<Kind>();
@@ -198,10 +223,15 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
     Bounds3f b = table.bounds(row);
     Vec3d c = centre_of(b);
     double size = radius_of(b), dist = size * uniform(g, 2, 20);
-    Vec3d o(Vec3f(c + unit_vector(g) * dist));
-    Vec3d d = i % 2 ? Shapes<Kind>::edge_direction(s, row, o, g)
-                    : c + unit_vector(g) * (1.2 * size * std::cbrt(uniform(g, 0, 1))) - o;
-    Rayd r{o, normalize(d)};
+    Vec3d o(Vec3f(c + unit_vector(g) * dist)), around = c + unit_vector(g) * (0.6 * size);
+    Rayd r;
+    if (i % 5 == 4)
+      r = grazing_ray(around, Shapes<Kind>::plane_normal(s, row, g), dist, g);
+    else if (i % 5 >= 2)
+      r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g))};
+    else
+      r = {o, normalize(c + unit_vector(g) * (1.2 * size * std::cbrt(uniform(g, 0, 1))) - o)};
+    o = r.o;
     if (i % 5 == 1) r.tmax = length(c - o) * uniform(g, 0.8, 1.2);
     if (i % 10 == 3) r.tmin = length(c - o) * uniform(g, 0.8, 1.2);
     rays.push_back(round_to_float(r));
@@ -248,6 +278,7 @@ struct Tally {
   long band_disagreements = 0;  // hit/miss or primitive differs from the reference
   double max_t_over_bound = 0;  // over clear hits: |t − t_ref| / bound
   double max_flip_ratio = 0;    // over band disagreements: |margin| / bound (≤ 1)
+  uint64_t max_t_ulps = 0;      // over clear hits: the error in ulps (large on grazing rays)
   long failures = 0;
 };
 
@@ -264,6 +295,7 @@ void check_ray(const Rayd& ray, const RayVerdict& v, const Hit& ref, float t, ui
     ok = ok && found && prim == v.prim.bits() && err <= v.t_bound && ref.prim == v.prim;
     if (found && v.t_bound > 0)
       tally.max_t_over_bound = std::max(tally.max_t_over_bound, err / v.t_bound);
+    if (found) tally.max_t_ulps = std::max(tally.max_t_ulps, ulp_distance(t, float(v.t)));
   } else if (v.cls == RayClass::kClearMiss) {
     ok = ok && !found && !ref.hit();
   } else if (found != ref.hit() || (found && prim != ref.prim.bits())) {
@@ -354,7 +386,8 @@ TYPED_TEST(KernelBandTest, ClearClassesAgreeWithTheReference) {
         (::testing::Message() << "clear hit " << t.count[0] << ", clear miss " << t.count[1]
                               << ", band " << t.count[2] << " (disagreeing " << t.band_disagreements
                               << ", deepest at " << t.max_flip_ratio << " of the bound)"
-                              << "; max |t - t_ref| / bound " << t.max_t_over_bound)
+                              << "; max |t - t_ref| / bound " << t.max_t_over_bound << " (max "
+                              << t.max_t_ulps << " ulp)")
             .GetString();
     std::printf("[ bands    ] %s %s: %s\n", KindNames::GetName<Kind>(0).c_str(), paths[p].name,
                 summary.c_str());

@@ -423,13 +423,40 @@ PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
   return commit_range(line, t0, t1, ray, nearer_band(side, overlap), intersect_ref(cyl, row, ray));
 }
 
+// The kernel's t = fl(fl(fl(fl(U·za) + fl(V·zb)) + fl(W·zc)) / fl(fl(U + V) + W)), as a bound
+// on |t_kernel − t| around the reference's t = Σ X·z_X / Σ X (X = U, V, W). Perturbation of the
+// barycentric form: with X̂ = X + δX and ẑ = z + δz, Σ X̂ẑ − t·Σ X̂ = Σ δX(ẑ_X − t) + Σ X·δz_X
+// exactly (since Σ X·z_X = t·Σ X), so before rounding t moves by at most
+//   A = Σ E_X(|z_X − t| + Ez_X) + Σ |X|·Ez_X   over   |Σ X̂| ≥ |det| − Σ E_X.
+// Each edge error is weighted by how far its vertex's depth is from t, not by the depth itself
+// (an interval quotient T/det would lose that, ~10× wider for small far triangles). Then the
+// roundings: the sum T gets γ3·Σ|X̂ẑ|, det gets γ2·Σ|X̂|, the quotient u. A small det (a ray
+// near the triangle's plane: det ∝ |cos θ|) divides everything, which is the conditioning of
+// hard-cases §0 (grazing errors of 10^4 ulp and more); when det may vanish t is unbounded.
+Interval kernel_triangle_t(const double x[3], const double e[3], const ShearedVertex* v[3]) {
+  double det = x[0] + x[1] + x[2], T = x[0] * v[0]->z + x[1] * v[1]->z + x[2] * v[2]->z;
+  double t = T / det, sum_e = 0, a = 0, sum_x = 0, sum_xz = 0;
+  for (int k = 0; k < 3; ++k) {
+    const ShearedVertex& w = *v[k];
+    sum_e += e[k];
+    a += e[k] * (std::abs(w.z - t) + w.ez) + std::abs(x[k]) * w.ez;
+    sum_x += std::abs(x[k]) + e[k];
+    sum_xz += (std::abs(x[k]) + e[k]) * (std::abs(w.z) + w.ez);
+  }
+  double det_lo = std::abs(det) - sum_e - gamma(2) * sum_x;
+  if (!(det_lo > 0) || !std::isfinite(t)) return Interval::everything();
+  double before_rounding = a / det_lo;
+  double roundings =
+      (gamma(3) * sum_xz + (std::abs(t) + before_rounding) * gamma(2) * sum_x) / det_lo;
+  double err = before_rounding + roundings;
+  err = (err + u * (std::abs(t) + err)) * kRefSlack;
+  return Interval::around(t, err);
+}
+
 // Triangle kernel (triangle.h), the watertight test: sheared vertices (shear_vertex), edge
 // functions U = cx·by − cy·bx, V, W (edge_error: input errors of translation and shear plus
-// the difference of products), det = fl(fl(U + V) + W), T = Σ fl(X·z_X) summed in order,
-// t = fl(T/det). The decision is the signs of U, V, W; its margin the reference's smallest
-// edge function (hard-cases T1–T3). t by interval: det shrinks with |cos θ| between the ray
-// and the plane while the edge errors do not, so t's error grows like 1/|cos θ| (§0: grazing
-// rays have errors of 10^4 ulp and more), which the interval quotient carries.
+// the difference of products); hit when all have one sign (and det ≠ 0, implied then). The
+// margin is the reference's smallest edge function (hard-cases T1–T3); t by kernel_triangle_t.
 PrimVerdict classify(const TriangleTable& tri, uint32_t row, const Rayd& ray) {
   Shear s = kernel_shear(ray.d);
   ShearedVertex a = shear_vertex(tri.p0(row), ray, s), b = shear_vertex(tri.p1(row), ray, s),
@@ -441,13 +468,8 @@ PrimVerdict classify(const TriangleTable& tri, uint32_t row, const Rayd& ray) {
                  edge_error(a.x, a.ex, c.y, c.ey, a.y, a.ey, c.x, c.ex),
                  edge_error(b.x, b.ex, a.y, a.ey, b.y, b.ey, a.x, a.ex)};
   Criterion edges = edge_criterion(x, e);
-  Interval U = Interval::around(x[0], e[0]), V = Interval::around(x[1], e[1]),
-           W = Interval::around(x[2], e[2]);
-  Interval det = rounded(rounded(U + V) + W);
-  Interval T = rounded(
-      rounded(rounded(U * Interval::around(a.z, a.ez)) + rounded(V * Interval::around(b.z, b.ez))) +
-      rounded(W * Interval::around(c.z, c.ez)));
-  Interval t = rounded(T / det);
+  const ShearedVertex* vertices[3] = {&a, &b, &c};
+  Interval t = kernel_triangle_t(x, e, vertices);
   return commit_range(edges.verdict(), t, t, ray, edges, intersect_ref(tri, row, ray));
 }
 
