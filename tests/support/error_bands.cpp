@@ -148,27 +148,39 @@ PrimVerdict commit_range(RayClass line, Interval tn, Interval tf, const Rayd& ra
   return v;
 }
 
+// Errors of the inputs p̂ = p + δp, q̂ = q + δq of kernel_line_distance, split into the part
+// inside the plane of p and q's motion (`in_plane`: first order in the distance) and the part
+// across it (`across`: second order, it adds in quadrature). For spheres all of it counts as
+// in-plane; for cylinders "across" is the axial direction, which the distance between the
+// axis and the ray's line ignores.
+struct InputErrors {
+  double in_plane = 0, across = 0;
+  double total() const { return in_plane + across; }
+};
+
 // The kernel's |l̂|, where l = p − (p·q / q·q)·q is the vector from the origin to the line
 // {p + s·q} at its closest point (Hearn and Baker's discriminant; Haines et al. 2019, Ray
 // Tracing Gems ch. 7), computed in float as  k = fl(fl(p̂·q̂) / fl(q̂·q̂)),
-// l̂_i = fl(p̂_i − fl(k·q̂_i)),  from inputs p̂ = p + δp, q̂ = q + δq with |δp| ≤ Ep, |δq| ≤ Eq.
-// L = |l|, P = |p|, Q = |q| are the reference's values.
-//  1. The distance of the origin from the line (p̂, q̂) is within Ep + K·Eq of L, with
-//     K = (P + Ep)/(Q − Eq) ≥ |k| of both lines: take the other line's nearest parameter.
+// l̂_i = fl(p̂_i − fl(k·q̂_i)).  L = |l|, P = |p|, Q = |q| are the reference's values.
+//  1. The distance of the origin from the line (p̂, q̂) is within ep + K·eq of L in the plane
+//     (ep, eq the in-plane errors; K = (P + Ep)/(Q − Eq) ≥ |s| at the nearest point of either
+//     line: take the other line's nearest parameter), and the across errors add
+//     (ep' + K·eq')² under the square root: the nearest point moves across by that much.
 //  2. k̂ differs from k(p̂, q̂) by Δk with |Δk|·|q̂| ≤ γ10·|p̂| (γ3 on the dot products, one
 //     rounding for the quotient). That error runs along q̂, orthogonal to l(p̂, q̂), so it adds
-//     in quadrature: sqrt(L² + (Δk|q̂|)²), second order (this is why the Hearn–Baker form is
-//     accurate, and why a first-order bound γ10|p| on |l̂| would be needlessly wide).
+//     in quadrature too: second order (this is why the Hearn–Baker form is accurate, and why a
+//     first-order bound γ10|p| on |l̂| would be needlessly wide).
 //  3. The products k·q̂_i add at most u·|k||q̂| ≤ u|p̂|(1 + γ10) in norm; the subtractions
 //     scale each component by (1 + δ_i), |δ_i| ≤ u.
-Interval kernel_line_distance(double L, double P, double Q, double Ep, double Eq) {
+Interval kernel_line_distance(double L, double P, double Q, InputErrors ep, InputErrors eq) {
+  double Ep = ep.total(), Eq = eq.total();
   if (!(Q > Eq)) return {0.0, kInf};
   double K = (P + Ep) / (Q - Eq);
-  double perp_lo = L - Ep - K * Eq, perp_hi = L + Ep + K * Eq;
-  double along = gamma(10) * (P + Ep);
+  double near = L - ep.in_plane - K * eq.in_plane, far = L + ep.in_plane + K * eq.in_plane;
+  double across = ep.across + K * eq.across, along = gamma(10) * (P + Ep);
   double products = u * (P + Ep) * (1 + gamma(10));
-  double lo = std::max(0.0, perp_lo - products) * (1 - u);
-  double hi = (std::hypot(perp_hi, along) + products) * (1 + u);
+  double lo = std::max(0.0, near - products) * (1 - u);
+  double hi = (std::sqrt(far * far + across * across + along * along) + products) * (1 + u);
   return widen({lo, hi}, 0.0);
 }
 
@@ -326,7 +338,7 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
   const Vec3d& d = ray.d;
   double r = s.r[row], F = length(f), D = length(d), b = dot(f, d), dd = dot(d, d);
   double L = length(f - (b / dd) * d);
-  Interval disc = kernel_discriminant(r, kernel_line_distance(L, F, D, u * F, 0.0));
+  Interval disc = kernel_discriminant(r, kernel_line_distance(L, F, D, {u * F, 0}, {}));
   Criterion side = criterion(r * r - L * L, disc);
   Interval a = widen(Interval::point(dd), gamma(3));
   Interval b_hat = Interval::around(b, (u * F * D + gamma(3) * F * (1 + u) * D) * kRefSlack);
@@ -368,15 +380,36 @@ PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
 }
 
 // Cylinder kernel (cylinder.h). Besides its roundings the kernel differs from the reference in
-// its inputs: it reads the stored float unit axis û (|û − u| = ΔU, computed here) where the
-// reference normalises the axis in double, and the float height. Error of f⊥ = f − (f·û)û:
-//   f̂ = fl(o − b): u|f|;  fa = fl(f̂·û): e1 ≤ γ3|f̂||û|;  products fl(fa·û_i): ≤ u|fa||û|;
-//   the projector with û instead of u moves any x by ≤ |x|ΔU(2 + ΔU);
-//   the subtractions: u|f⊥̂|.
-// Likewise for d⊥ (d is exact). These Ep, Eq feed kernel_line_distance (the side test, C5:
-// the margin is r² − dist(ray line, axis line)²) and the interval roots of the side; the axial
-// slab is t = fl(fl(h − fa)·fl(1/da)) with fa, da within their bounds. Hit: side ok and
-// max(side near, slab near) ≤ min(side far, slab far) — the second criterion (caps, rims).
+// its inputs: it reads the stored float unit axis û = u + Δ where the reference normalises the
+// axis in double (Δ computed here, split into Δ⊥ across the axis and Δ∥ along it), and the
+// float height. The kernel's f⊥ = fl(f̂ − fl(fl(f̂·û)·û)) expands, with fa' = f̂·u, to
+//   p + P⊥(δf) − (f̂·Δ)u − fa'·Δ − (f̂·Δ)Δ − e1·û − ρ1 + ρ2,
+// where f̂ = fl(o − b) (|δf| ≤ u|f|; P⊥ removes its axial part), e1 ≤ γ3|f̂||û| (the dot
+// product), ρ1 ≤ u|fâ||û| (the products), ρ2 ≤ u|pre| (the subtractions). The terms along u
+// change the distance between the lines only in second order (InputErrors::across); the others
+// are first order. Likewise for d⊥ (d is exact). These feed kernel_line_distance (the side
+// test, C5: the margin is r² − dist(ray line, axis line)²) and the interval roots of the side;
+// the axial slab is t = fl(fl(h − fa)·fl(1/da)) with fa, da within their bounds. Hit: side ok
+// and max(side near, slab near) ≤ min(side far, slab far) — the second criterion (caps, rims).
+InputErrors projected_errors(double F, double fa, double df, double P, Vec3d delta, Vec3d u_d) {
+  double d_par = std::abs(dot(delta, u_d)), d_perp = length(delta - dot(delta, u_d) * u_d);
+  double dU = length(delta), s = 1 + dU, F1 = F * (1 + u), fa1 = std::abs(fa) + df;
+  double e1 = gamma(3) * F1 * s;
+  double rho1 = u * (fa1 + F1 * dU + e1) * s;
+  InputErrors e;
+  e.in_plane = df + fa1 * d_perp + F1 * dU * d_perp + e1 * d_perp + rho1;
+  e.across = F1 * dU + fa1 * d_par + F1 * dU * d_par + e1 * (1 + d_par) + rho1;
+  double rho2 = u * (P + e.total());
+  e.in_plane = (e.in_plane + rho2) * kRefSlack;
+  e.across = (e.across + rho2) * kRefSlack;
+  return e;
+}
+
+// |x̂|² for x̂ = x + δ⊥ + δ∥ with x ⊥ δ∥ (δ∥ along the axis, x across it).
+Interval norm2_interval(double X, InputErrors e) {
+  return {sq(std::max(0.0, X - e.in_plane)), sq(X + e.in_plane) + sq(e.across)};
+}
+
 PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
   Vec3d axis(cyl.axis(row)), uf(cyl.unit_axis(row));
   double h = length(axis), hf = cyl.h[row], r = cyl.r[row];
@@ -389,16 +422,21 @@ PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
   double F = length(f), D = length(d), P = length(p), Q = length(q), b = dot(p, q), a = dot(q, q);
   double L = a > 0 ? length(p - (b / a) * q) : P;
 
+  // f⊥ (f̂ rounded: δf ≤ u|f|) and d⊥ (d exact).
+  InputErrors ep = projected_errors(F, fa, u * F, P, uf - ud, ud);
+  InputErrors eq = projected_errors(D, da, 0.0, Q, uf - ud, ud);
+  double Ep = ep.total(), Eq = eq.total();
   double e1f = gamma(3) * F * (1 + u) * s, e1d = gamma(3) * D * s;
-  double pre_p = u * F + F * (1 + u) * dU * (2 + dU) + e1f * s + u * (F * (1 + u) * s + e1f) * s;
-  double pre_q = D * dU * (2 + dU) + e1d * s + u * (D * s + e1d) * s;
-  double Ep = (pre_p + u * (P + pre_p)) * kRefSlack, Eq = (pre_q + u * (Q + pre_q)) * kRefSlack;
-  Interval disc = kernel_discriminant(r, kernel_line_distance(L, P, Q, Ep, Eq));
+  Interval disc = kernel_discriminant(r, kernel_line_distance(L, P, Q, ep, eq));
   Criterion side = criterion(r * r - L * L, disc);
 
-  Interval a_hat = widen(square_nonneg({Q - Eq, Q + Eq}), gamma(3));
-  Interval pp_hat = widen(square_nonneg({P - Ep, P + Ep}), gamma(3));
-  Interval b_hat = Interval::around(b, Ep * Q + P * Eq + Ep * Eq + gamma(3) * (P + Ep) * (Q + Eq));
+  // |q̂|², |p̂|², p̂·q̂ (γ3 each): p and q lie across the axis, so the axial errors enter the
+  // squares and the product only through their own squares and product.
+  Interval a_hat = widen(norm2_interval(Q, eq), gamma(3));
+  Interval pp_hat = widen(norm2_interval(P, ep), gamma(3));
+  Interval b_hat =
+      Interval::around(b, ep.in_plane * Q + P * eq.in_plane + ep.in_plane * eq.in_plane +
+                              ep.across * eq.across + gamma(3) * (P + Ep) * (Q + Eq));
   Interval c_hat = rounded(pp_hat - rounded(Interval::point(r * r)));
   Roots side_t{Interval::everything(), Interval::everything()};
   if (a_hat.lo > 0) side_t = kernel_roots(a_hat, b_hat, c_hat, disc);
