@@ -211,7 +211,8 @@ Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
 }
 
 // Rays, each from a float origin at 2–20 sizes from one primitive: 2 in 5 toward a random
-// point around it, 2 in 5 aimed at its band, 1 in 5 grazing its plane. One in five has a
+// point around it, 3 in 10 aimed at its band, 1 in 10 from inside it (the far root of a
+// solid, hard-cases S5), 1 in 5 grazing its plane. One in five has a
 // finite tmax near the primitive and one in ten a tmin near it, so that the (tmin, tmax) range
 // decides too. Every 29th ray is invalid.
 template <class Kind>
@@ -227,6 +228,8 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
     Rayd r;
     if (i % 5 == 4)
       r = grazing_ray(around, Shapes<Kind>::plane_normal(s, row, g), dist, g);
+    else if (i % 10 == 7)
+      r = {Vec3d(Vec3f(c + unit_vector(g) * (0.3 * size))), unit_vector(g)};  // from inside
     else if (i % 5 >= 2)
       r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g))};
     else
