@@ -13,7 +13,6 @@
 // The reference runs the same formulas in double on the same float inputs, so its own error
 // obeys the same bounds with u_d = 2^-53 = 2^-29·u: every bound is widened by 1 + 2^-28 to
 // cover it, so that |margin| > bound settles the reference's answer as well as the kernel's.
-// Interval endpoints are computed in double and widened by 2^-50 relative for that rounding.
 #include "support/error_bands.h"
 
 #include <algorithm>
@@ -22,14 +21,14 @@
 
 #include "raylane/core/float_util.h"
 #include "raylane/trace/brute_force.h"
+#include "support/interval.h"
 
 namespace raylane::testing {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double u = kFloatUnitRoundoff;
-constexpr double kEndpointSlack = 0x1p-50;  // double rounding of an interval endpoint
-constexpr double kRefSlack = 1 + 0x1p-28;   // the reference's own error (see above)
+constexpr double kRefSlack = 1 + 0x1p-28;  // the reference's own error (see above)
 
 double gamma(int n) {
   return gamma_float(n);
@@ -41,70 +40,6 @@ double sq(double x) {
 // Distance between two values that may both be the same infinity.
 double gap(double a, double b) {
   return a == b ? 0.0 : std::abs(a - b);
-}
-
-// x moved away from zero by `rel` of itself (infinities stay).
-double grow_up(double x, double rel) {
-  return std::isfinite(x) ? x + rel * std::abs(x) : x;
-}
-double grow_down(double x, double rel) {
-  return std::isfinite(x) ? x - rel * std::abs(x) : x;
-}
-
-// ---- Interval arithmetic (every result contains the exact result of any operands) ----
-
-Interval sanitize(Interval x) {
-  if (std::isnan(x.lo)) x.lo = -kInf;
-  if (std::isnan(x.hi)) x.hi = kInf;
-  return x;
-}
-// A relative error of at most `rel` on every value of x.
-Interval widen(Interval x, double rel) {
-  return {grow_down(x.lo, rel + kEndpointSlack), grow_up(x.hi, rel + kEndpointSlack)};
-}
-// One float rounding.
-Interval rounded(Interval x) {
-  return widen(x, u);
-}
-Interval operator-(Interval a) {
-  return {-a.hi, -a.lo};
-}
-Interval operator+(Interval a, Interval b) {
-  return sanitize({a.lo + b.lo, a.hi + b.hi});
-}
-Interval operator-(Interval a, Interval b) {
-  return sanitize({a.lo - b.hi, a.hi - b.lo});
-}
-Interval operator*(Interval a, Interval b) {
-  double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
-  for (double v : p)
-    if (std::isnan(v)) return Interval::everything();  // 0·inf
-  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
-}
-Interval operator/(Interval a, Interval b) {
-  if (b.contains_zero()) return Interval::everything();
-  double p[4] = {a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi};
-  for (double v : p)
-    if (std::isnan(v)) return Interval::everything();
-  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
-}
-Interval imin(Interval a, Interval b) {
-  return {std::min(a.lo, b.lo), std::min(a.hi, b.hi)};
-}
-Interval imax(Interval a, Interval b) {
-  return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
-}
-Interval hull(Interval a, Interval b) {
-  return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
-}
-Interval clamp_nonneg(Interval a) {
-  return {std::max(a.lo, 0.0), std::max(a.hi, 0.0)};
-}
-Interval isqrt(Interval a) {
-  return {std::sqrt(std::max(a.lo, 0.0)), std::sqrt(std::max(a.hi, 0.0))};
-}
-Interval square_nonneg(Interval a) {
-  return {sq(std::max(a.lo, 0.0)), sq(a.hi)};
 }
 
 // The criterion for a decision the kernel takes on the sign of a value it holds in `kernel`

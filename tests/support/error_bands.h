@@ -15,22 +15,12 @@
 #include "raylane/core/ray.h"
 #include "raylane/prims/prim_list.h"
 #include "raylane/scene/scene.h"
+#include "support/interval.h"
 
 namespace raylane::testing {
 
 enum class RayClass { kClearHit, kClearMiss, kBand };
 const char* ray_class_name(RayClass c);
-
-// A closed interval that holds every value a float computation can produce (pbrt-v4's
-// `Interval`, src/pbrt/util/float.h, here in double around float operations).
-struct Interval {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  static Interval point(double x) { return {x, x}; }
-  static Interval around(double x, double err) { return {x - err, x + err}; }
-  static Interval everything() { return {}; }
-  bool contains_zero() const { return lo <= 0 && hi >= 0; }
-};
 
 // One yes/no decision of a kernel: the reference's signed margin (> 0 on the hit side) and a
 // bound on how far the float kernel's value of it can be from the reference's. |margin| >
