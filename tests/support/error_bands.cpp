@@ -47,16 +47,32 @@ double gap(double a, double b) {
 Criterion criterion(double ref, Interval kernel) {
   return {ref, std::max(gap(ref, kernel.lo), gap(ref, kernel.hi)) * kRefSlack};
 }
-Criterion nearer_band(const Criterion& a, const Criterion& b) {
-  return a.ratio() <= b.ratio() ? a : b;
-}
-
 // A hit needs every criterion: one clear miss decides a miss, all clear hits a hit.
 RayClass both(RayClass a, RayClass b) {
   if (a == RayClass::kClearMiss || b == RayClass::kClearMiss) return RayClass::kClearMiss;
   if (a == RayClass::kClearHit && b == RayClass::kClearHit) return RayClass::kClearHit;
   return RayClass::kBand;
 }
+
+// A hit that needs several criteria at once: one clear miss settles a miss, all clear hits a
+// hit. `decisive` is the clearest miss, else the band criterion nearest its edge, else the
+// weakest hit.
+struct AllOf {
+  RayClass cls = RayClass::kClearHit;
+  Criterion decisive{kInf, 0};
+  void add(const Criterion& c) {
+    RayClass v = c.verdict();
+    if (v == RayClass::kClearMiss) {
+      if (cls != RayClass::kClearMiss || c.ratio() > decisive.ratio()) decisive = c;
+      cls = RayClass::kClearMiss;
+    } else if (cls != RayClass::kClearMiss && v == RayClass::kBand) {
+      if (cls == RayClass::kClearHit || c.ratio() < decisive.ratio()) decisive = c;
+      cls = RayClass::kBand;
+    } else if (cls == RayClass::kClearHit && c.ratio() < decisive.ratio()) {
+      decisive = c;
+    }
+  }
+};
 
 // ---- What the kernels share ----
 
@@ -286,32 +302,37 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
 // Box kernel (box.h): per axis t = fl(fl(bound − o)·fl(1/d)), three roundings: γ3|t| (pbrt-v4
 // Bounds3::IntersectP; Ize 2013, "Robust BVH Ray Traversal"). A zero component gives ±inf or
 // NaN exactly as in the reference (0·inf only when o lies in the plane; both skip it). Entry
-// t0 = max of the near values, exit t1 = min of the far ones; hit when t0 ≤ t1. The margin
-// is the reference's slab overlap t1 − t0 (hard-cases B2, B7); the t of a clear hit is one of
-// the slab values, so its error stays γ3|t| — no conditioning issue near an edge.
+// t0 = max of the near values, exit t1 = min of the far ones; hit when t0 ≤ t1, that is when
+// near_i ≤ far_j for every pair of axes i ≠ j (i = j always holds: rounding is monotone and
+// lo < hi). So the margins are the reference's far_j − near_i (the slab overlap, hard-cases
+// B2, B7), each against the sum of its two values' errors; comparing max and min as
+// independent intervals would also count an axis against itself. The t of a clear hit is one
+// of the slab values, so its error stays γ3|t| — no conditioning issue near an edge.
 PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
   Vec3d lo(bt.lo(row)), hi(bt.hi(row));
+  double tn[3], tf[3];
+  Interval near[3], far[3];
   Interval t0 = Interval::point(-kInf), t1 = Interval::point(kInf);
-  double r0 = -kInf, r1 = kInf;
   for (int k = 0; k < 3; ++k) {
-    double tn, tf;
-    detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn, tf);
-    r0 = tn > r0 ? tn : r0;
-    r1 = tf < r1 ? tf : r1;
-    Interval near = Interval::point(tn), far = Interval::point(tf);
+    detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn[k], tf[k]);
+    near[k] = Interval::point(tn[k]), far[k] = Interval::point(tf[k]);
     if (ray.d[k] != 0) {
       Interval inv = rounded(Interval::point(1.0 / ray.d[k]));
       Interval a = rounded(rounded(Interval::point(lo[k] - ray.o[k])) * inv);
       Interval c = rounded(rounded(Interval::point(hi[k] - ray.o[k])) * inv);
       bool neg = std::signbit(ray.d[k]);
-      near = neg ? c : a;
-      far = neg ? a : c;
+      near[k] = neg ? c : a;
+      far[k] = neg ? a : c;
     }
-    if (!std::isnan(near.lo)) t0 = imax(t0, near);
-    if (!std::isnan(far.lo)) t1 = imin(t1, far);
+    if (!std::isnan(tn[k])) t0 = imax(t0, near[k]);
+    if (!std::isnan(tf[k])) t1 = imin(t1, far[k]);
   }
-  Criterion overlap = criterion(r1 - r0, t1 - t0);
-  return commit_range(overlap.verdict(), t0, t1, ray, overlap, intersect_ref(bt, row, ray));
+  AllOf overlap;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (i != j && !std::isnan(tn[i]) && !std::isnan(tf[j]))
+        overlap.add(criterion(tf[j] - tn[i], far[j] - near[i]));
+  return commit_range(overlap.cls, t0, t1, ray, overlap.decisive, intersect_ref(bt, row, ray));
 }
 
 // Cylinder kernel (cylinder.h). Besides its roundings the kernel differs from the reference in
@@ -385,15 +406,18 @@ PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
   if (da_hat.hi < 0) z_near = tb, z_far = ta;
   Interval t0 = imax(side_t.near, z_near), t1 = imin(side_t.far, z_far);
 
-  // The reference's overlap, in double, with the side roots of a grazing line (disc < 0
-  // would miss anyway) and the double height.
-  double s0 = -kInf, s1 = kInf, r0 = -kInf, r1 = kInf;
+  // The reference's side roots (of a grazing line too: disc < 0 would miss anyway) and slab,
+  // with the double height. The kernel's side near ≤ side far and slab near ≤ slab far always
+  // (min/max of the same pair; monotone rounding), so max(near) ≤ min(far) needs only the two
+  // cross comparisons: the line enters the side before leaving the slab and vice versa.
+  double s0 = -kInf, s1 = kInf, z0 = -kInf, z1 = kInf;
   if (a > 0) solve_quadratic(a, b, P * P - r * r, a * std::max(0.0, r * r - L * L), s0, s1);
-  if (da != 0) r0 = std::min(-fa / da, (h - fa) / da), r1 = std::max(-fa / da, (h - fa) / da);
-  Criterion overlap = criterion(std::min(s1, r1) - std::max(s0, r0), t1 - t0);
-
-  RayClass line = both(side.verdict(), overlap.verdict());
-  return commit_range(line, t0, t1, ray, nearer_band(side, overlap), intersect_ref(cyl, row, ray));
+  if (da != 0) z0 = std::min(-fa / da, (h - fa) / da), z1 = std::max(-fa / da, (h - fa) / da);
+  AllOf line;
+  line.add(side);
+  line.add(criterion(z1 - s0, z_far - side_t.near));
+  line.add(criterion(s1 - z0, side_t.far - z_near));
+  return commit_range(line.cls, t0, t1, ray, line.decisive, intersect_ref(cyl, row, ray));
 }
 
 // The kernel's t = fl(fl(fl(fl(U·za) + fl(V·zb)) + fl(W·zc)) / fl(fl(U + V) + W)), as a bound
