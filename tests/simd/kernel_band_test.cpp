@@ -210,7 +210,8 @@ Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
   return {o, normalize(aim - o)};
 }
 
-// Rays, each from a float origin at 2–20 sizes from one primitive: 2 in 5 toward a random
+// Rays, each from a float origin at 2–20 sizes from one primitive (one in three from 10^2 …
+// 10^4 sizes: far, small shapes, hard-cases S1 and C5): 2 in 5 toward a random
 // point around it, 3 in 10 aimed at its band, 1 in 10 from inside it (the far root of a
 // solid, hard-cases S5), 1 in 5 grazing its plane. One in five has a
 // finite tmax near the primitive and one in ten a tmin near it, so that the (tmin, tmax) range
@@ -223,7 +224,8 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
     uint32_t row = uint32_t(g() % table.size());
     Bounds3f b = table.bounds(row);
     Vec3d c = centre_of(b);
-    double size = radius_of(b), dist = size * uniform(g, 2, 20);
+    double size = radius_of(b);
+    double dist = size * (i % 3 ? uniform(g, 2, 20) : std::pow(10.0, uniform(g, 2, 4)));
     Vec3d o(Vec3f(c + unit_vector(g) * dist)), around = c + unit_vector(g) * (0.6 * size);
     Rayd r;
     if (i % 5 == 4)
