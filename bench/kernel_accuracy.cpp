@@ -2,7 +2,10 @@
 // kind, on random inputs and on the hard cases of hard-cases.md, and for each instruction
 // set, the distribution of the hit distance's error against the double reference (run on the
 // same float inputs, converted exactly: hard-cases §0), hit/miss disagreements, and the speed
-// of the packet tracer on that ray set.
+// of the packet tracer on that ray set. Each ray is classified by the error bounds of
+// tests/support/error_bands (compiled into this program): "in band" counts the rays whose
+// answer rounding may flip, "flips outside band" the disagreements on clear rays (kernel bugs),
+// and the last column how much of its t bound a clear hit's error uses.
 //
 //   build/bench/kernel_accuracy [rays per set, default 131072]
 #include <algorithm>
@@ -20,6 +23,7 @@
 #include "raylane/simd/isa.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/packet_tracer.h"
+#include "support/error_bands.h"
 
 namespace raylane::bench {
 namespace {
@@ -127,35 +131,12 @@ std::vector<Rayd> make_rays(const InputSet& s, int count) {
   return rays;
 }
 
-// How far outside its ambiguous band a flipped answer lies, for the quadrics: the margin is
-// r − dist(ray line, centre) for spheres (hard-cases S1) and r − dist(ray line, axis line)
-// for cylinders (C5; the side only), the band 8u(|o − c| + extent). A ratio ≤ 1 is a flip
-// rounding may cause; > 1 is a kernel error. Negative: not classified (boxes, triangles).
-double margin_over_band(const Scene& s, const Rayd& ray, PrimRef prim) {
-  constexpr double u = kFloatUnitRoundoff;
-  Vec3d d = normalize(ray.d);
-  if (prim.tag() == PrimTag::kSphere) {
-    const auto& t = s.table<Sphere>();
-    Vec3d f = ray.o - Vec3d(t.center(prim.row()));
-    double dist = length(f - d * dot(f, d)), r = t.r[prim.row()];
-    return std::abs(r - dist) / (8 * u * (length(f) + r));
-  }
-  if (prim.tag() == PrimTag::kCylinder) {
-    const auto& t = s.table<Cylinder>();
-    Vec3d a(t.unit_axis(prim.row())), f = ray.o - Vec3d(t.base(prim.row()));
-    Vec3d n = cross(d, a);
-    double dist = length(n) > 1e-12 ? std::abs(dot(f, n)) / length(n) : length(f - a * dot(f, a));
-    double r = t.r[prim.row()];
-    return std::abs(r - dist) / (8 * u * (length(f) + t.h[prim.row()] + r));
-  }
-  return -1;
-}
-
 struct Row {
   double mrays = 0;
   std::size_t hits = 0, false_miss = 0, false_hit = 0, other_prim = 0;
-  std::size_t flips_outside_band = 0;  // hit/miss flips the error bound does not excuse
-  bool classified = false;
+  std::size_t band = 0;                // rays whose answer the error bounds leave open
+  std::size_t flips_outside_band = 0;  // hit/miss or primitive differs on a clear ray: a bug
+  double max_t_over_bound = 0;         // over clear hits: |t − t_ref| / the ray's t bound
   std::vector<double> ulps, rel;
 };
 
@@ -167,7 +148,8 @@ double percentile(std::vector<double>& v, double p) {
 }
 
 Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
-            const std::vector<Hit>& ref, Isa isa) {
+            const std::vector<Hit>& ref, const std::vector<testing::RayVerdict>& verdicts,
+            Isa isa) {
   RayStream stream = RayStream::from(rays);
   PacketTracer tracer(isa);
   HitStream hits;
@@ -181,13 +163,14 @@ Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
   row.mrays = double(rays.size()) / percentile(seconds, 0.5) * 1e-6;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     bool hit = hits.prim[i] != PrimRef::kInvalidBits;
-    if (ref[i].hit() != hit) {
-      ++(hit ? row.false_hit : row.false_miss);
-      double m =
-          margin_over_band(s.scene, rays[i], hit ? PrimRef::from_bits(hits.prim[i]) : ref[i].prim);
-      row.classified = m >= 0;
-      row.flips_outside_band += m > 1;
-    }
+    const testing::RayVerdict& v = verdicts[i];
+    bool same = ref[i].hit() == hit && (!hit || hits.prim[i] == ref[i].prim.bits());
+    row.band += v.cls == testing::RayClass::kBand;
+    row.flips_outside_band += v.cls != testing::RayClass::kBand && !same;
+    if (v.cls == testing::RayClass::kClearHit && hit && v.t_bound > 0)
+      row.max_t_over_bound =
+          std::max(row.max_t_over_bound, std::abs(double(hits.t[i]) - v.t) / v.t_bound);
+    if (ref[i].hit() != hit) ++(hit ? row.false_hit : row.false_miss);
     if (!(ref[i].hit() && hit)) continue;
     ++row.hits;
     // Another primitive: the float kernel missed a grazed one and hit the next (or the
@@ -207,18 +190,21 @@ void print_set(InputSet& s, int count) {
   Bvh bvh = build_bvh(s.scene);
   std::vector<Rayd> rays = make_rays(s, count);
   std::vector<Hit> ref(rays.size());
+  std::vector<testing::RayVerdict> verdicts(rays.size());
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(rays.size()); ++i)
+  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(rays.size()); ++i) {
     ref[i] = closest_hit_ref(s.scene, rays[i]);
+    verdicts[i] = testing::classify_closest(s.scene, rays[i], /*skip_far_bounds=*/true);
+  }
   for (Isa isa : supported_isas()) {
-    Row r = measure(s, bvh, rays, ref, isa);
-    std::string outside = r.classified ? std::to_string(r.flips_outside_band) : "—";
-    if (r.false_miss + r.false_hit == 0) outside = "0";
+    Row r = measure(s, bvh, rays, ref, verdicts, isa);
     std::printf(
-        "| %s | %s | %s | %.1f | %zu | %zu | %zu | %s | %zu | %.1f | %.1f | %.0f | %.1e |\n",
+        "| %s | %s | %s | %.1f | %zu | %zu | %zu | %zu | %zu | %zu | %.1f | %.1f | %.0f | %.1e | "
+        "%.2f |\n",
         s.kind.c_str(), s.name.c_str(), std::string(isa_name(isa)).c_str(), r.mrays, r.hits,
-        r.false_miss, r.false_hit, outside.c_str(), r.other_prim, percentile(r.ulps, 0.5),
-        percentile(r.ulps, 0.99), percentile(r.ulps, 1.0), percentile(r.rel, 1.0));
+        r.false_miss, r.false_hit, r.band, r.flips_outside_band, r.other_prim,
+        percentile(r.ulps, 0.5), percentile(r.ulps, 0.99), percentile(r.ulps, 1.0),
+        percentile(r.rel, 1.0), r.max_t_over_bound);
   }
 }
 
@@ -237,9 +223,10 @@ int main(int argc, char** argv) {
       "set; errors over rays that hit the same primitive (ulps of the reference t in float).\n\n",
       count);
   std::printf(
-      "| kind | set | ISA | Mrays/s | both hit | false miss | false hit | flips outside "
-      "band | other prim | median ulp | p99 ulp | max ulp | max rel. err |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| kind | set | ISA | Mrays/s | both hit | false miss | false hit | in band | flips "
+      "outside band | other prim | median ulp | p99 ulp | max ulp | max rel. err | max t err / "
+      "bound |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<InputSet> sets;
   sets.push_back(spheres("random", false, 0));
   sets.push_back(spheres("far small (S1)", true, 0));
