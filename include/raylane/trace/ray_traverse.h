@@ -85,6 +85,15 @@ inline void push_nearest_last(const WideNode& n, uint32_t hit, const float* tnea
   }
 }
 
+// Occlusion needs any hit, not the nearest: the overlapped children go on the stack unsorted.
+inline void push_any_order(const WideNode& n, uint32_t hit, const float* tnear, WideEntry* stack,
+                           int& top) {
+  for (; hit; hit &= hit - 1) {
+    int k = __builtin_ctz(hit);
+    stack[top++] = entry(n, k, tnear[k]);
+  }
+}
+
 // Tests `count` rows of one kind from `head` on, with the ray in every lane and rows across.
 template <class L>
 inline void intersect_run_rows(const Scene& scene, PrimRef head, uint32_t count,
@@ -173,7 +182,11 @@ inline void traverse_ray(const Scene& scene, const Bvh& bvh, const RayPacket<Ray
         continue;
       }
       if (hit != 0) {
-        push_nearest_last(n, hit, tnear, stack, top);
+        if constexpr (kAnyHit) {
+          push_any_order(n, hit, tnear, stack, top);
+        } else {
+          push_nearest_last(n, hit, tnear, stack, top);
+        }
         cur = stack[--top];
         continue;
       }
