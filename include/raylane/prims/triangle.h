@@ -125,50 +125,27 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
 }
 
-// The shear of the watertight test (Woop, Benthin and Wald 2013, §3): the axis of largest
-// |d| becomes z (ties to the lowest axis, as in the reference), x and y follow cyclically,
-// swapped when d_z < 0 to keep the winding; then the shear that maps d to +z. Computed once
-// per run of triangles, in one of two ways with the same roundings (so both give the same
-// answers): per lane for a packet of rays, or once when every lane holds the same ray.
+// The vertices of the current rows relative to the ray origin, permuted and sheared by the
+// ray's frame (RayShear, computed once per ray), in one of two ways with the same roundings,
+// so both give the same answers:
+// - LaneShear: every lane may have its own permutation, so each coordinate is selected per
+//   lane;
+// - ColumnShear: every active lane has the same permutation (a single ray, or a coherent
+//   packet), so the permuted columns are loaded directly.
 template <class A>
-struct PacketShear {
+struct LaneShear {
   using F = simd::Floats<A>;
-  simd::Mask<A> x_is[3], y_is[3], z_is[3];  // which world axis each sheared axis reads
-  F ox, oy, oz, sx, sy, sz;
+  const RayShear<A>& s;
+  const RayPacket<A>& r;
 
-  static F pick(const simd::Mask<A>* is, const F& x, const F& y, const F& z) {
-    return simd::select<A>(is[0], x, simd::select<A>(is[1], y, z));
-  }
-
-  PacketShear(const TriangleTable&, const RayPacket<A>& r) : ox(r.ox), oy(r.oy), oz(r.oz) {
-    F ax = xsimd::abs(r.dx), ay = xsimd::abs(r.dy), az = xsimd::abs(r.dz);
-    z_is[0] = (ax >= ay) & (ax >= az);
-    z_is[1] = (!z_is[0]) & (ay >= az);
-    z_is[2] = (!z_is[0]) & (!z_is[1]);
-    // kx = kz + 1, ky = kz + 2 (mod 3); swapped when d[kz] < 0.
-    simd::Mask<A> kx_base[3] = {z_is[2], z_is[0], z_is[1]};
-    simd::Mask<A> ky_base[3] = {z_is[1], z_is[2], z_is[0]};
-    F dz = pick(z_is, r.dx, r.dy, r.dz);
-    auto flip = dz < F(0.0f);
-    for (int k = 0; k < 3; ++k) {
-      x_is[k] = (kx_base[k] & (!flip)) | (ky_base[k] & flip);
-      y_is[k] = (ky_base[k] & (!flip)) | (kx_base[k] & flip);
-    }
-    F dx = pick(x_is, r.dx, r.dy, r.dz), dy = pick(y_is, r.dx, r.dy, r.dz);
-    sz = F(1.0f) / dz;
-    sx = dx * sz;
-    sy = dy * sz;
-  }
-
-  // Vertex `v` of the current rows, relative to the origin, permuted and sheared.
   template <class Rows>
   void vertex(const TriangleTable& tri, const Rows& rows, int v, F& x, F& y, F& z) const {
     const auto& c = vertex_columns(tri, v);
-    F ax = rows.col(*c[0]) - ox, ay = rows.col(*c[1]) - oy, az = rows.col(*c[2]) - oz;
-    F kz = pick(z_is, ax, ay, az);
-    x = simd::fma<A>(-sx, kz, pick(x_is, ax, ay, az));
-    y = simd::fma<A>(-sy, kz, pick(y_is, ax, ay, az));
-    z = sz * kz;
+    F ax = rows.col(*c[0]) - r.ox, ay = rows.col(*c[1]) - r.oy, az = rows.col(*c[2]) - r.oz;
+    F kz = RayShear<A>::pick(s.z_is, ax, ay, az);
+    x = simd::fma<A>(-s.sx, kz, RayShear<A>::pick(s.x_is, ax, ay, az));
+    y = simd::fma<A>(-s.sy, kz, RayShear<A>::pick(s.y_is, ax, ay, az));
+    z = s.sz * kz;
   }
 
   static std::array<const std::vector<float>*, 3> vertex_columns(const TriangleTable& tri, int v) {
@@ -178,29 +155,21 @@ struct PacketShear {
   }
 };
 
-// The same shear when every lane holds one ray: the permutation is a single choice, so the
-// kernel loads the permuted columns instead of selecting in every lane.
 template <class A>
-struct OneRayShear {
+struct ColumnShear {
   using F = simd::Floats<A>;
   std::array<const std::vector<float>*, 3> col[3];  // [vertex][sheared axis x, y, z]
   F ox, oy, oz, sx, sy, sz;                         // origin in sheared axis order
 
-  OneRayShear(const TriangleTable& tri, const RayPacket<A>& r) {
-    const float d[3] = {r.dx.get(0), r.dy.get(0), r.dz.get(0)};
-    const float ad[3] = {std::abs(d[0]), std::abs(d[1]), std::abs(d[2])};
-    int kz = (ad[0] >= ad[1] && ad[0] >= ad[2]) ? 0 : (ad[1] >= ad[2] ? 1 : 2);
-    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-    if (d[kz] < 0) std::swap(kx, ky);
+  ColumnShear(const TriangleTable& tri, const RayPacket<A>& r)
+      : sx(r.shear.sx), sy(r.shear.sy), sz(r.shear.sz) {
+    const RayShear<A>& s = r.shear;
     for (int v = 0; v < 3; ++v) {
-      auto c = PacketShear<A>::vertex_columns(tri, v);
-      col[v] = {c[kx], c[ky], c[kz]};
+      auto c = LaneShear<A>::vertex_columns(tri, v);
+      col[v] = {c[s.kx], c[s.ky], c[s.kz]};
     }
-    const F o[3] = {r.ox, r.oy, r.oz};
-    ox = o[kx], oy = o[ky], oz = o[kz];
-    sz = F(1.0f) / F(d[kz]);
-    sx = F(d[kx]) * sz;
-    sy = F(d[ky]) * sz;
+    const F* o[3] = {&r.ox, &r.oy, &r.oz};
+    ox = *o[s.kx], oy = *o[s.ky], oz = *o[s.kz];
   }
 
   template <class Rows>
@@ -225,15 +194,14 @@ inline simd::Floats<A> difference_of_products_lanes(const simd::Floats<A>& a,
   return simd::fma<A>(a, b, -cd) + err;
 }
 
-// The packet kernel: the watertight test in float, per lane (Woop et al. 2013): vertices
-// relative to the origin, permuted and sheared; edge functions U, V, W with their exact sign;
-// accept all ≥ 0 or all ≤ 0 with det ≠ 0; t = T/det.
-template <class A, class Rows>
-[[gnu::always_inline]] inline void intersect_packet(const TriangleTable& tri, Rows rows,
-                                                    const RayPacket<A>& r, HitPacket<A>& h) {
+// The watertight test in float, per lane (Woop et al. 2013): vertices relative to the
+// origin, permuted and sheared; edge functions U, V, W with their exact sign; accept all ≥ 0
+// or all ≤ 0 with det ≠ 0; t = T/det.
+template <class A, class Rows, class Shear>
+[[gnu::always_inline]] inline void watertight_rows(const TriangleTable& tri, Rows rows,
+                                                   const Shear& shear, const RayPacket<A>& r,
+                                                   HitPacket<A>& h) {
   using F = simd::Floats<A>;
-  using Shear = std::conditional_t<Rows::kOneRay, OneRayShear<A>, PacketShear<A>>;
-  const Shear shear(tri, r);
   const F zero(0.0f);
   for (; rows.more(); rows.next()) {
     F ax, ay, az, bx, by, bz, cx, cy, cz;
@@ -251,6 +219,16 @@ template <class A, class Rows>
     F t = (u * az + v * bz + e * cz) / det;
     commit_hit<A>(t, hit & (t > r.tmin) & (t < h.t), rows.bits(PrimTag::kTriangle), h);
   }
+}
+
+// The packet kernel: permuted columns when the lanes share the ray's axes, selects otherwise.
+template <class A, class Rows>
+[[gnu::always_inline]] inline void intersect_packet(const TriangleTable& tri, Rows rows,
+                                                    const RayPacket<A>& r, HitPacket<A>& h) {
+  if constexpr (!Rows::kOneRay) {
+    if (!r.shear.uniform) return watertight_rows<A>(tri, rows, LaneShear<A>{r.shear, r}, r, h);
+  }
+  watertight_rows<A>(tri, rows, ColumnShear<A>(tri, r), r, h);
 }
 
 }  // namespace raylane

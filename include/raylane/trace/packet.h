@@ -5,12 +5,65 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "raylane/prims/prim_ref.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane {
+
+// The ray's frame for the watertight triangle test, computed once per ray as Woop, Benthin
+// and Wald (2013, JCGT 2(1), §3) prescribe: the axis of largest |d| becomes z (ties to the
+// lowest axis), x and y follow cyclically and are swapped when d_z < 0 to keep the winding;
+// the shear (sx, sy, sz) maps d to +z. Per lane, as masks naming the world axis each sheared
+// axis reads; and, when every active lane has the same permutation (coherent packets, and
+// always for a single ray in every lane), that permutation, so a kernel can load permuted
+// columns instead of selecting in every lane.
+template <class A>
+struct RayShear {
+  using F = simd::Floats<A>;
+  simd::Mask<A> x_is[3], y_is[3], z_is[3];
+  F sx, sy, sz;
+  bool uniform = false;  // every active lane has the axes (kx, ky, kz)
+  int kx = 0, ky = 1, kz = 2;
+
+  static F pick(const simd::Mask<A>* is, const F& x, const F& y, const F& z) {
+    return simd::select<A>(is[0], x, simd::select<A>(is[1], y, z));
+  }
+
+  RayShear() = default;
+  RayShear(const F& dx, const F& dy, const F& dz, const simd::Mask<A>& active) {
+    F ax = xsimd::abs(dx), ay = xsimd::abs(dy), az = xsimd::abs(dz);
+    z_is[0] = (ax >= ay) & (ax >= az);
+    z_is[1] = (!z_is[0]) & (ay >= az);
+    z_is[2] = (!z_is[0]) & (!z_is[1]);
+    // kx = kz + 1, ky = kz + 2 (mod 3); swapped when d[kz] < 0.
+    simd::Mask<A> kx_base[3] = {z_is[2], z_is[0], z_is[1]};
+    simd::Mask<A> ky_base[3] = {z_is[1], z_is[2], z_is[0]};
+    F d_z = pick(z_is, dx, dy, dz);
+    auto flip = d_z < F(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      x_is[k] = (kx_base[k] & (!flip)) | (ky_base[k] & flip);
+      y_is[k] = (ky_base[k] & (!flip)) | (kx_base[k] & flip);
+    }
+    sz = F(1.0f) / d_z;
+    sx = pick(x_is, dx, dy, dz) * sz;
+    sy = pick(y_is, dx, dy, dz) * sz;
+    find_common_axes(simd::bits<A>(active), simd::bits<A>(flip));
+  }
+
+ private:
+  void find_common_axes(uint32_t act, uint32_t flip) {
+    auto same = [act](uint32_t m) { return (m & act) == 0 || (m & act) == act; };
+    uniform = same(simd::bits<A>(z_is[0])) && same(simd::bits<A>(z_is[1])) && same(flip);
+    if (!uniform || act == 0) return;
+    uint32_t lane = 1u << __builtin_ctz(act);
+    kz = (simd::bits<A>(z_is[0]) & lane) ? 0 : (simd::bits<A>(z_is[1]) & lane) ? 1 : 2;
+    kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (flip & lane) std::swap(kx, ky);
+  }
+};
 
 template <class A>
 struct RayPacket {
@@ -20,6 +73,7 @@ struct RayPacket {
   F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (hard-cases B3)
   F tmin;
   simd::Mask<A> active;  // lanes that hold a valid ray still being traced
+  RayShear<A> shear;     // set with `active`, from the rays valid then
 };
 
 template <class A>
