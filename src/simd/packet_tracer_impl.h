@@ -12,7 +12,8 @@ namespace raylane::detail {
 
 // 1/d, and the active mask: the lanes of `loaded` whose ray is valid — finite origin and
 // direction (|x| <= FLT_MAX is false for NaN and inf), a non-zero direction, and
-// tmin <= tmax (false for NaN); then the rays' shear frame for triangles.
+// tmin <= tmax (false for NaN); then the rays' shear frame for triangles and
+// the near side of each slab.
 template <class A>
 void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
                                  const simd::Mask<A>& loaded) {
@@ -24,6 +25,7 @@ void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
   r.active = loaded & finite(r.ox) & finite(r.oy) & finite(r.oz) & finite(r.dx) & finite(r.dy) &
              finite(r.dz) & (dd > F(0.0f)) & (r.tmin <= tmax);
   r.shear = RayShear<A>(r.dx, r.dy, r.dz, r.active);
+  r.sides = SlabSides<A>(r.inv_dx, r.inv_dy, r.inv_dz, r.active);
 }
 
 // Loads rays [i, i + n) into a packet; lanes past n, and invalid rays, are inactive.

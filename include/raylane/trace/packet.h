@@ -65,6 +65,33 @@ struct RayShear {
   }
 };
 
+// Which plane of each slab a ray meets first: the box's hi where 1/d < 0 (the sign of d,
+// even for ±0: hard-cases B3), its lo otherwise. Per lane, and as one choice per axis when
+// every active lane agrees (coherent packets, single rays), so that a box test can load its
+// near and far planes instead of selecting them in every lane.
+template <class A>
+struct SlabSides {
+  using F = simd::Floats<A>;
+  simd::Mask<A> hi_first[3];
+  uint32_t hi_first_bits[3] = {0, 0, 0};  // the same, lane i as bit i
+  bool uniform = false;  // every active lane agrees on each axis: the near plane is near[k]
+  uint8_t near[3] = {0, 1, 2}, far[3] = {3, 4, 5};  // as indices of {lo[0..2], hi[0..2]}
+
+  SlabSides() = default;
+  SlabSides(const F& inv_dx, const F& inv_dy, const F& inv_dz, const simd::Mask<A>& active) {
+    const F* inv[3] = {&inv_dx, &inv_dy, &inv_dz};
+    uint32_t act = simd::bits<A>(active);
+    uniform = true;
+    for (int k = 0; k < 3; ++k) {
+      hi_first[k] = *inv[k] < F(0.0f);
+      hi_first_bits[k] = simd::bits<A>(hi_first[k]);
+      uint32_t m = hi_first_bits[k] & act;
+      uniform = uniform && (m == 0 || m == act);
+      near[k] = uint8_t(m != 0 ? 3 + k : k), far[k] = uint8_t(m != 0 ? k : 3 + k);
+    }
+  }
+};
+
 template <class A>
 struct RayPacket {
   using F = simd::Floats<A>;
@@ -74,6 +101,7 @@ struct RayPacket {
   F tmin;
   simd::Mask<A> active;  // lanes that hold a valid ray still being traced
   RayShear<A> shear;     // set with `active`, from the rays valid then
+  SlabSides<A> sides;    // likewise
 };
 
 template <class A>

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/float_util.h"
@@ -15,31 +16,37 @@
 namespace raylane {
 
 // Which lanes' segments (tmin, tfar) overlap a node box. Closed box, NaN-keeping extrema
-// (a ray lying in a slab plane keeps the accumulator: hard-cases B4), near/far chosen by the
-// sign of 1/d, which is the sign of d even for ±0 (B3). Each t carries three roundings
-// (difference, reciprocal, product); the far value is widened by 2·γ3 of its size so that
-// rounding never closes an overlap (Ize 2013, "Robust BVH Ray Traversal"; pbrt-v4
-// Bounds3::IntersectP).
-template <class A>
-inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
-                                  const simd::Floats<A>& tfar, simd::Floats<A>* tnear_out) {
+// (a ray lying in a slab plane keeps the accumulator: hard-cases B4), near and far planes
+// chosen by the sign of 1/d, which is the sign of d even for ±0 (B3) — loaded as such when
+// the lanes agree on it (RayPacket::sides), selected per lane otherwise. Each t carries three
+// roundings (difference, reciprocal, product); the far end is widened by 2·γ3 of its size so
+// that rounding never closes an overlap (Ize 2013, "Robust BVH Ray Traversal"; pbrt-v4
+// Bounds3::IntersectP). The widening x + 2γ3|x| is monotone, so it is applied once to the
+// smallest far value rather than to each; that widens tfar too, which can only add a visit.
+template <class A, bool kSameSides>
+[[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
+                                                         const simd::Floats<A>& tfar) {
   using F = simd::Floats<A>;
+  static_assert(offsetof(BvhNode, hi) == 3 * sizeof(float));
   const F slack(float(2 * gamma_float(3)));
+  const SlabSides<A>& sides = r.sides;
+  const float* planes = n.lo;  // lo[0..2], then hi[0..2]
   F t0 = r.tmin, t1 = tfar;
-  auto axis = [&](float lo, float hi, const F& o, const F& inv) {
-    F tlo = (F(lo) - o) * inv;
-    F thi = (F(hi) - o) * inv;
-    auto neg = inv < F(0.0f);
-    F near = simd::select<A>(neg, thi, tlo);
-    F far = simd::select<A>(neg, tlo, thi);
-    far = simd::fma<A>(xsimd::abs(far), slack, far);
-    t0 = simd::max_keep<A>(near, t0);
-    t1 = simd::min_keep<A>(far, t1);
+  auto axis = [&](int k, const F& o, const F& inv) {
+    F near, far;
+    if constexpr (kSameSides) {
+      near = F(planes[sides.near[k]]), far = F(planes[sides.far[k]]);
+    } else {
+      near = simd::select<A>(sides.hi_first[k], F(n.hi[k]), F(n.lo[k]));
+      far = simd::select<A>(sides.hi_first[k], F(n.lo[k]), F(n.hi[k]));
+    }
+    t0 = simd::max_keep<A>((near - o) * inv, t0);
+    t1 = simd::min_keep<A>((far - o) * inv, t1);
   };
-  axis(n.lo[0], n.hi[0], r.ox, r.inv_dx);
-  axis(n.lo[1], n.hi[1], r.oy, r.inv_dy);
-  axis(n.lo[2], n.hi[2], r.oz, r.inv_dz);
-  if (tnear_out) *tnear_out = t0;
+  axis(0, r.ox, r.inv_dx);
+  axis(1, r.oy, r.inv_dy);
+  axis(2, r.oz, r.inv_dz);
+  t1 = simd::fma<A>(xsimd::abs(t1), slack, t1);
   return (t0 <= t1) & r.active;
 }
 
@@ -65,18 +72,16 @@ inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& le
 
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
-template <class A, bool kAnyHit, bool kCount = false>
-inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h,
-                            TraversalCounters* c = nullptr) {
-  using F = simd::Floats<A>;
-  if (bvh.empty()) return;
+// kSameSides: every lane meets each slab from the same side (RayPacket::sides).
+template <class A, bool kAnyHit, bool kCount, bool kSameSides>
+inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A>& r,
+                                 HitPacket<A>& h, TraversalCounters* c) {
   uint32_t stack[kBvhStackSize];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const BvhNode& n = bvh.nodes[stack[--top]];
-    F tnear;
-    simd::Mask<A> lanes = node_overlap<A>(n, r, h.t, &tnear);
+    simd::Mask<A> lanes = node_overlap<A, kSameSides>(n, r, h.t);
     if constexpr (kCount) {
       ++c->node_tests;
       c->lanes_active += uint64_t(__builtin_popcount(simd::bits<A>(r.active)));
@@ -94,11 +99,18 @@ inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r,
     }
     // Near child first, judged by the direction of the first overlapping lane.
     uint32_t lane = uint32_t(__builtin_ctz(simd::bits<A>(lanes)));
-    const F& d = n.axis == 0 ? r.dx : (n.axis == 1 ? r.dy : r.dz);
-    bool left_first = !std::signbit(d.get(lane));
+    bool left_first = !((r.sides.hi_first_bits[n.axis] >> lane) & 1u);
     stack[top++] = left_first ? n.index + 1 : n.index;
     stack[top++] = left_first ? n.index : n.index + 1;
   }
+}
+
+template <class A, bool kAnyHit, bool kCount = false>
+inline void traverse_packet(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h,
+                            TraversalCounters* c = nullptr) {
+  if (bvh.empty()) return;
+  if (r.sides.uniform) return traverse_packet_loop<A, kAnyHit, kCount, true>(scene, bvh, r, h, c);
+  traverse_packet_loop<A, kAnyHit, kCount, false>(scene, bvh, r, h, c);
 }
 
 }  // namespace raylane
