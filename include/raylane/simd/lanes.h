@@ -55,10 +55,15 @@ inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
 // NaN or both are zeros (Intel SDM vol. 2, MAXPS), so the instruction is named here rather
 // than left to xsimd::max, whose operand order is unspecified: one instruction instead of a
 // compare and a blend, on the critical path of every node test.
+// GCC 12's _mm512_max_ps/_mm512_min_ps pass _mm512_undefined_ps(), a self-initialised value
+// that -Wuninitialized flags once inlined deep enough; the zero-masking forms with every lane
+// on are the same instruction without it.
+inline constexpr __mmask16 kAll16 = 0xFFFF;
+
 template <class A>
 inline Floats<A> max_keep(const Floats<A>& x, const Floats<A>& acc) {
   if constexpr (kWidth<A> == 16) {
-    return Floats<A>(_mm512_max_ps(__m512(x), __m512(acc)));
+    return Floats<A>(_mm512_maskz_max_ps(kAll16, __m512(x), __m512(acc)));
   } else if constexpr (kWidth<A> == 8) {
     return Floats<A>(_mm256_max_ps(__m256(x), __m256(acc)));
   } else {
@@ -68,7 +73,7 @@ inline Floats<A> max_keep(const Floats<A>& x, const Floats<A>& acc) {
 template <class A>
 inline Floats<A> min_keep(const Floats<A>& x, const Floats<A>& acc) {
   if constexpr (kWidth<A> == 16) {
-    return Floats<A>(_mm512_min_ps(__m512(x), __m512(acc)));
+    return Floats<A>(_mm512_maskz_min_ps(kAll16, __m512(x), __m512(acc)));
   } else if constexpr (kWidth<A> == 8) {
     return Floats<A>(_mm256_min_ps(__m256(x), __m256(acc)));
   } else {

@@ -23,12 +23,18 @@ namespace raylane {
 // that rounding never closes an overlap (Ize 2013, "Robust BVH Ray Traversal"; pbrt-v4
 // Bounds3::IntersectP). The widening x + 2γ3|x| is monotone, so it is applied once to the
 // smallest far value rather than to each; that widens tfar too, which can only add a visit.
+// x + 2·γ3·|x|: a far distance widened by its rounding error (Ize 2013).
+template <class A>
+inline simd::Floats<A> widen_far(const simd::Floats<A>& x) {
+  return simd::fma<A>(xsimd::abs(x), simd::Floats<A>(float(2 * gamma_float(3))), x);
+}
+
 template <class A, bool kSameSides>
 [[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
-                                                         const simd::Floats<A>& tfar) {
+                                                         const simd::Floats<A>& tfar,
+                                                         simd::Floats<A>& tnear) {
   using F = simd::Floats<A>;
   static_assert(offsetof(BvhNode, hi) == 3 * sizeof(float));
-  const F slack(float(2 * gamma_float(3)));
   const SlabSides<A>& sides = r.sides;
   const float* planes = n.lo;  // lo[0..2], then hi[0..2]
   F t0 = r.tmin, t1 = tfar;
@@ -46,7 +52,8 @@ template <class A, bool kSameSides>
   axis(0, r.ox, r.inv_dx);
   axis(1, r.oy, r.inv_dy);
   axis(2, r.oz, r.inv_dz);
-  t1 = simd::fma<A>(xsimd::abs(t1), slack, t1);
+  t1 = widen_far<A>(t1);
+  tnear = t0;
   return (t0 <= t1) & r.active;
 }
 
@@ -70,24 +77,43 @@ inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& le
   }
 }
 
+// A node waiting on the traversal stack: its box was found overlapped by `lanes`, entered at
+// `tnear`. When it is popped, the lanes whose closest hit has since come nearer than tnear
+// drop out — the same answer as testing the box again (the widening is monotone, so
+// t0 ≤ widen(min(far, t)) is t0 ≤ widen(far) and t0 ≤ widen(t)).
+template <class A>
+struct PacketEntry {
+  simd::Floats<A> tnear;
+  simd::Mask<A> lanes;
+  uint32_t node;
+};
+
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
-// kSameSides: every lane meets each slab from the same side (RayPacket::sides).
+// kSameSides: every lane meets each slab from the same side (RayPacket::sides). An inner
+// node's two children (adjacent, one cache line) are tested together, so the two box tests
+// overlap in the pipeline; the nearer one is visited, the other pushed.
 template <class A, bool kAnyHit, bool kCount, bool kSameSides>
 inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A>& r,
                                  HitPacket<A>& h, TraversalCounters* c) {
-  uint32_t stack[kBvhStackSize];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const BvhNode& n = bvh.nodes[stack[--top]];
-    simd::Mask<A> lanes = node_overlap<A, kSameSides>(n, r, h.t);
+  using F = simd::Floats<A>;
+  auto test = [&](const BvhNode& n, F& tnear) {
+    simd::Mask<A> lanes = node_overlap<A, kSameSides>(n, r, h.t, tnear);
     if constexpr (kCount) {
       ++c->node_tests;
       c->lanes_active += uint64_t(__builtin_popcount(simd::bits<A>(r.active)));
       c->lanes_overlap += uint64_t(__builtin_popcount(simd::bits<A>(lanes)));
     }
-    if (simd::none<A>(lanes)) continue;
+    return lanes;
+  };
+  PacketEntry<A> stack[kBvhStackSize];
+  int top = 0;
+  F tnear;
+  uint32_t cur = 0;
+  simd::Mask<A> lanes = test(bvh.nodes[0], tnear);
+  if (simd::none<A>(lanes)) return;
+  for (;;) {
+    const BvhNode& n = bvh.nodes[cur];
     if (n.is_leaf()) {
       if constexpr (kCount) ++c->leaf_visits, c->prim_tests += n.count;
       intersect_leaf<A>(scene, bvh, n, r, lanes, h);
@@ -95,13 +121,34 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
         r.active = r.active & !h.found;
         if (simd::none<A>(r.active)) return;
       }
-      continue;
+    } else {
+      F t_left, t_right;
+      simd::Mask<A> left = test(bvh.nodes[n.index], t_left);
+      simd::Mask<A> right = test(bvh.nodes[n.index + 1], t_right);
+      bool go_left = simd::any<A>(left), go_right = simd::any<A>(right);
+      if (go_left && go_right) {
+        // Near child first, judged by the direction of the first overlapping lane.
+        uint32_t lane = uint32_t(__builtin_ctz(simd::bits<A>(lanes)));
+        bool left_first = !((r.sides.hi_first_bits[n.axis] >> lane) & 1u);
+        stack[top++] = left_first ? PacketEntry<A>{t_right, right, n.index + 1}
+                                  : PacketEntry<A>{t_left, left, n.index};
+        cur = left_first ? n.index : n.index + 1;
+        lanes = left_first ? left : right;
+        continue;
+      }
+      if (go_left || go_right) {
+        cur = go_left ? n.index : n.index + 1;
+        lanes = go_left ? left : right;
+        continue;
+      }
     }
-    // Near child first, judged by the direction of the first overlapping lane.
-    uint32_t lane = uint32_t(__builtin_ctz(simd::bits<A>(lanes)));
-    bool left_first = !((r.sides.hi_first_bits[n.axis] >> lane) & 1u);
-    stack[top++] = left_first ? n.index + 1 : n.index;
-    stack[top++] = left_first ? n.index : n.index + 1;
+    do {  // the next waiting node that some lane can still reach
+      if (top == 0) return;
+      const PacketEntry<A>& e = stack[--top];
+      cur = e.node;
+      lanes = e.lanes & r.active;
+      if constexpr (!kAnyHit) lanes = lanes & (e.tnear <= widen_far<A>(h.t));
+    } while (simd::none<A>(lanes));
   }
 }
 
