@@ -7,7 +7,6 @@
 #include <optional>
 #include <span>
 #include <string_view>
-#include <type_traits>
 #include <vector>
 
 #include <cmath>
@@ -132,26 +131,26 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
 //   lane;
 // - ColumnShear: every active lane has the same permutation (a single ray, or a coherent
 //   packet), so the permuted columns are loaded directly.
+inline std::array<const std::vector<float>*, 3> vertex_columns(const TriangleTable& tri, int v) {
+  if (v == 0) return {&tri.p0x, &tri.p0y, &tri.p0z};
+  if (v == 1) return {&tri.p1x, &tri.p1y, &tri.p1z};
+  return {&tri.p2x, &tri.p2y, &tri.p2z};
+}
+
 template <class A>
 struct LaneShear {
   using F = simd::Floats<A>;
-  const RayShear<A>& s;
   const RayPacket<A>& r;
 
   template <class Rows>
   void vertex(const TriangleTable& tri, const Rows& rows, int v, F& x, F& y, F& z) const {
+    const RayShear<A>& s = r.shear;
     const auto& c = vertex_columns(tri, v);
     F ax = rows.col(*c[0]) - r.ox, ay = rows.col(*c[1]) - r.oy, az = rows.col(*c[2]) - r.oz;
     F kz = RayShear<A>::pick(s.z_is, ax, ay, az);
     x = simd::fma<A>(-s.sx, kz, RayShear<A>::pick(s.x_is, ax, ay, az));
     y = simd::fma<A>(-s.sy, kz, RayShear<A>::pick(s.y_is, ax, ay, az));
     z = s.sz * kz;
-  }
-
-  static std::array<const std::vector<float>*, 3> vertex_columns(const TriangleTable& tri, int v) {
-    if (v == 0) return {&tri.p0x, &tri.p0y, &tri.p0z};
-    if (v == 1) return {&tri.p1x, &tri.p1y, &tri.p1z};
-    return {&tri.p2x, &tri.p2y, &tri.p2z};
   }
 };
 
@@ -165,7 +164,7 @@ struct ColumnShear {
       : sx(r.shear.sx), sy(r.shear.sy), sz(r.shear.sz) {
     const RayShear<A>& s = r.shear;
     for (int v = 0; v < 3; ++v) {
-      auto c = LaneShear<A>::vertex_columns(tri, v);
+      auto c = vertex_columns(tri, v);
       col[v] = {c[s.kx], c[s.ky], c[s.kz]};
     }
     const F* o[3] = {&r.ox, &r.oy, &r.oz};
@@ -226,7 +225,7 @@ template <class A, class Rows>
 [[gnu::always_inline]] inline void intersect_packet(const TriangleTable& tri, Rows rows,
                                                     const RayPacket<A>& r, HitPacket<A>& h) {
   if constexpr (!Rows::kOneRay) {
-    if (!r.shear.uniform) return watertight_rows<A>(tri, rows, LaneShear<A>{r.shear, r}, r, h);
+    if (!r.shear.uniform) return watertight_rows<A>(tri, rows, LaneShear<A>{r}, r, h);
   }
   watertight_rows<A>(tri, rows, ColumnShear<A>(tri, r), r, h);
 }

@@ -49,17 +49,17 @@ inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
   return xsimd::select(xsimd::bool_cast(m), a, b);
 }
 
+// GCC 12's _mm512_max_ps/_mm512_min_ps pass _mm512_undefined_ps(), a self-initialised value
+// that -Wuninitialized flags once inlined deep enough; the zero-masking forms with every lane
+// on are the same instruction without it.
+inline constexpr __mmask16 kAll16 = 0xFFFF;
+
 // NaN-keeping running extrema: x > acc ? x : acc (and x < acc ? x : acc), so where x is NaN
 // (or not better) the accumulator is kept. The operand order is the contract (hard-cases.md
 // N2). x86's MAXPS/MINPS compute exactly this, returning the second operand when either is
 // NaN or both are zeros (Intel SDM vol. 2, MAXPS), so the instruction is named here rather
 // than left to xsimd::max, whose operand order is unspecified: one instruction instead of a
 // compare and a blend, on the critical path of every node test.
-// GCC 12's _mm512_max_ps/_mm512_min_ps pass _mm512_undefined_ps(), a self-initialised value
-// that -Wuninitialized flags once inlined deep enough; the zero-masking forms with every lane
-// on are the same instruction without it.
-inline constexpr __mmask16 kAll16 = 0xFFFF;
-
 template <class A>
 inline Floats<A> max_keep(const Floats<A>& x, const Floats<A>& acc) {
   if constexpr (kWidth<A> == 16) {

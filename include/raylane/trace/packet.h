@@ -74,8 +74,8 @@ struct SlabSides {
   using F = simd::Floats<A>;
   simd::Mask<A> hi_first[3];
   uint32_t hi_first_bits[3] = {0, 0, 0};  // the same, lane i as bit i
-  bool uniform = false;  // every active lane agrees on each axis: the near plane is near[k]
-  uint8_t near[3] = {0, 1, 2}, far[3] = {3, 4, 5};  // as indices of {lo[0..2], hi[0..2]}
+  bool uniform = false;  // every active lane agrees on each axis: its hi is near iff near_hi[k]
+  bool near_hi[3] = {false, false, false};
 
   SlabSides() = default;
   SlabSides(const F& inv_dx, const F& inv_dy, const F& inv_dz, const simd::Mask<A>& active) {
@@ -87,7 +87,7 @@ struct SlabSides {
       hi_first_bits[k] = simd::bits<A>(hi_first[k]);
       uint32_t m = hi_first_bits[k] & act;
       uniform = uniform && (m == 0 || m == act);
-      near[k] = uint8_t(m != 0 ? 3 + k : k), far[k] = uint8_t(m != 0 ? k : 3 + k);
+      near_hi[k] = m != 0;
     }
   }
 };
@@ -100,8 +100,11 @@ struct RayPacket {
   F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (hard-cases B3)
   F tmin;
   simd::Mask<A> active;  // lanes that hold a valid ray still being traced
-  RayShear<A> shear;     // set with `active`, from the rays valid then
-  SlabSides<A> sides;    // likewise
+  // Set with `active`, from the lanes valid then. `active` only ever loses lanes (any-hit
+  // traversal retires the lanes that found a hit), so what held for every active lane then
+  // holds for every active lane later.
+  RayShear<A> shear;
+  SlabSides<A> sides;
 };
 
 template <class A>

@@ -3,9 +3,6 @@
 // units, which instantiate it for their instruction set.
 #pragma once
 
-#include <cmath>
-#include <cstddef>
-
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/float_util.h"
 #include "raylane/prims/prim_list.h"
@@ -15,33 +12,35 @@
 
 namespace raylane {
 
-// Which lanes' segments (tmin, tfar) overlap a node box. Closed box, NaN-keeping extrema
-// (a ray lying in a slab plane keeps the accumulator: hard-cases B4), near and far planes
-// chosen by the sign of 1/d, which is the sign of d even for ±0 (B3) — loaded as such when
-// the lanes agree on it (RayPacket::sides), selected per lane otherwise. Each t carries three
-// roundings (difference, reciprocal, product); the far end is widened by 2·γ3 of its size so
-// that rounding never closes an overlap (Ize 2013, "Robust BVH Ray Traversal"; pbrt-v4
-// Bounds3::IntersectP). The widening x + 2γ3|x| is monotone, so it is applied once to the
-// smallest far value rather than to each; that widens tfar too, which can only add a visit.
-// x + 2·γ3·|x|: a far distance widened by its rounding error (Ize 2013).
+// x + 2·γ3·|x|: a far distance widened by its rounding error (Ize 2013, "Robust BVH Ray
+// Traversal"; pbrt-v4 Bounds3::IntersectP). Monotone in x.
 template <class A>
 inline simd::Floats<A> widen_far(const simd::Floats<A>& x) {
   return simd::fma<A>(xsimd::abs(x), simd::Floats<A>(float(2 * gamma_float(3))), x);
 }
 
+// Which lanes' segments (tmin, tfar) overlap a node box, and where each enters it. Closed
+// box, NaN-keeping extrema (a ray lying in a slab plane keeps the accumulator: hard-cases B4),
+// near and far planes chosen by the sign of 1/d, which is the sign of d even for ±0 (B3):
+// one choice per axis when the lanes agree on it (kSameSides, RayPacket::sides), per lane
+// otherwise. Each t carries three roundings (difference, reciprocal, product); the far end is
+// widened by 2·γ3 of its size so that rounding never closes an overlap. The widening is
+// monotone, so it is applied once, to the smallest far value, instead of to each: that widens
+// tfar too, which can only add a visit. A far value of −inf (a ray parallel to a slab and
+// outside it, or an exit that overflows behind the origin) widens to NaN and the box is
+// rejected, rightly: the ray cannot be inside it.
 template <class A, bool kSameSides>
 [[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
                                                          const simd::Floats<A>& tfar,
                                                          simd::Floats<A>& tnear) {
   using F = simd::Floats<A>;
-  static_assert(offsetof(BvhNode, hi) == 3 * sizeof(float));
   const SlabSides<A>& sides = r.sides;
-  const float* planes = n.lo;  // lo[0..2], then hi[0..2]
   F t0 = r.tmin, t1 = tfar;
   auto axis = [&](int k, const F& o, const F& inv) {
     F near, far;
     if constexpr (kSameSides) {
-      near = F(planes[sides.near[k]]), far = F(planes[sides.far[k]]);
+      bool hi = sides.near_hi[k];
+      near = F(hi ? n.hi[k] : n.lo[k]), far = F(hi ? n.lo[k] : n.hi[k]);
     } else {
       near = simd::select<A>(sides.hi_first[k], F(n.hi[k]), F(n.lo[k]));
       far = simd::select<A>(sides.hi_first[k], F(n.lo[k]), F(n.hi[k]));
@@ -90,7 +89,9 @@ struct PacketEntry {
 
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
-// kSameSides: every lane meets each slab from the same side (RayPacket::sides). An inner
+// kSameSides: every active lane meets each slab from the same side (RayPacket::sides), so
+// the node test loads planes instead of selecting them per lane: a second instantiation of
+// the loop, as for any-hit, because the choice holds for the whole packet. An inner
 // node's two children (adjacent, one cache line) are tested together, so the two box tests
 // overlap in the pipeline; the nearer one is visited, the other pushed.
 template <class A, bool kAnyHit, bool kCount, bool kSameSides>

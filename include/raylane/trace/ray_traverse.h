@@ -35,8 +35,9 @@ struct SingleRay {
 // Which of the children [first, first + W) of `n` the ray's segment (tmin, tfar) overlaps,
 // as bits, and their entry distances. The same robust slab test as the packet path's
 // node_overlap: NaN-keeping extrema (a NaN from 0·∞, a ray in a slab plane, leaves the
-// segment's end), the far value widened by 2·γ3 (Ize 2013). The three axes are reduced as a
-// tree, each against the NaN-free segment end first, to shorten the dependency chain.
+// segment's end), the far value widened by 2·γ3 (Ize 2013), once, for the smallest far value
+// (the widening is monotone). The three axes are reduced as a tree, each against the
+// NaN-free segment end first, to shorten the dependency chain.
 template <class N>
 inline uint32_t children_overlap(const WideNode& n, int first, const SingleRay<N>& r,
                                  const simd::Floats<N>& tfar, float* tnear) {
@@ -46,13 +47,15 @@ inline uint32_t children_overlap(const WideNode& n, int first, const SingleRay<N
     return simd::max_keep<N>((F::load_aligned(&n.box[k][r.near[k]][first]) - o) * inv, r.tmin);
   };
   auto far = [&](int k, const F& o, const F& inv) {
-    F t = (F::load_aligned(&n.box[k][1 - r.near[k]][first]) - o) * inv;
-    return simd::min_keep<N>(simd::fma<N>(xsimd::abs(t), slack, t), tfar);
+    return simd::min_keep<N>((F::load_aligned(&n.box[k][1 - r.near[k]][first]) - o) * inv, tfar);
   };
   F t0 = xsimd::max(xsimd::max(near(0, r.ox, r.inv_x), near(1, r.oy, r.inv_y)),
                     near(2, r.oz, r.inv_z));
   F t1 =
       xsimd::min(xsimd::min(far(0, r.ox, r.inv_x), far(1, r.oy, r.inv_y)), far(2, r.oz, r.inv_z));
+  // The segment's end is not widened (min with tfar again), so an unused slot (t0 = +inf)
+  // never passes, even when tfar is FLT_MAX; a far of −inf widens to NaN, which keeps tfar.
+  t1 = simd::min_keep<N>(simd::fma<N>(xsimd::abs(t1), slack, t1), tfar);
   t0.store_unaligned(tnear);
   return simd::bits<N>(t0 <= t1);
 }
@@ -154,8 +157,8 @@ inline void traverse_ray(const Scene& scene, const Bvh& bvh, const RayPacket<Ray
                          r.inv_dy,
                          r.inv_dz,
                          r.tmin,
-                         {int(std::signbit(r.inv_dx.get(0))), int(std::signbit(r.inv_dy.get(0))),
-                          int(std::signbit(r.inv_dz.get(0)))}};
+                         {int(r.sides.near_hi[0]), int(r.sides.near_hi[1]),
+                          int(r.sides.near_hi[2])}};  // one ray: its lanes agree
   const std::vector<WideNode>& nodes = bvh.wide.nodes;
   // Boxes are tested against (tmin, min(tmax, FLT_MAX)): an unused slot (lo = +inf) is
   // entered at t = +inf, so it never passes, and nothing is lost — a hit beyond FLT_MAX
