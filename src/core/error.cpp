@@ -1,7 +1,5 @@
 #include "raylane/core/error.h"
 
-#include <algorithm>
-
 namespace raylane {
 
 std::string to_string(const FileLoc& loc) {
@@ -16,15 +14,6 @@ std::string to_string(const Diagnostic& d) {
   s.append(": ");
   if (d.severity == Severity::kWarning) s.append("warning: ");
   return s.append(d.message);
-}
-
-int Diagnostics::error_count() const {
-  return int(std::count_if(items.begin(), items.end(),
-                           [](const Diagnostic& d) { return d.severity == Severity::kError; }));
-}
-
-int Diagnostics::warning_count() const {
-  return int(items.size()) - error_count();
 }
 
 }  // namespace raylane

@@ -31,6 +31,23 @@ TEST(Limits, MillionLineScene) {
   EXPECT_EQ(t.material[kLines - 1], uint32_t(kLines / 1000 - 1));
 }
 
+// A hundred thousand bad lines are all counted, and only the first Diagnostics::kMaxKept
+// are kept with their text, in order: memory does not grow with the number of errors.
+TEST(Limits, ManyBadLinesAreCountedNotAllKept) {
+  constexpr int kBad = 100000;
+  std::string text = testing::kCameraLine;
+  for (int i = 0; i < kBad; ++i)
+    text += "sphere 0 0 zero 1\n";
+  auto p = parse(text);
+  EXPECT_EQ(p.diagnostics.error_count(), kBad);
+  EXPECT_EQ(p.diagnostics.warning_count(), 1);  // no screen line, said after the last line
+  EXPECT_EQ(p.diagnostics.items.size(), Diagnostics::kMaxKept);
+  EXPECT_EQ(p.diagnostics.dropped(), kBad + 1 - int(Diagnostics::kMaxKept));
+  EXPECT_EQ(to_string(p.diagnostics.items.front().loc), "t.scn:2:12");
+  EXPECT_EQ(to_string(p.diagnostics.items.back().loc),
+            cat("t.scn:", Diagnostics::kMaxKept + 1, ":12"));
+}
+
 // The orientation list is bounded by the line length only; a long one is still exact
 // rotation algebra: 10^4 turns of 36° about x is 1000 full turns.
 TEST(Limits, LongOrientationList) {

@@ -17,6 +17,8 @@ std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, 
   for (const Diagnostic& d : parsed.diagnostics.items)
     if (d.severity == Severity::kError || !quiet)
       std::fprintf(stderr, "%s\n", to_string(d).c_str());
+  if (int more = parsed.diagnostics.dropped(); more > 0)
+    std::fprintf(stderr, "raylane: %d more diagnostic%s not shown\n", more, more == 1 ? "" : "s");
   if (!parsed.ok()) {
     std::fprintf(stderr, "raylane: %d error%s in the scene; nothing rendered\n",
                  parsed.diagnostics.error_count(),

@@ -2,6 +2,7 @@
 // Result<T> so library code reports errors without throwing across the API.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <variant>
@@ -28,17 +29,30 @@ struct Diagnostic {
 // "file:line:col: message" for errors, "file:line:col: warning: message" for warnings.
 std::string to_string(const Diagnostic& d);
 
+// Every diagnostic is counted; the first kMaxKept are kept with their text. A file of a
+// million bad lines then costs a counter rather than a million messages, and its reader a
+// screenful rather than a scroll (the first errors are the ones to fix first).
 struct Diagnostics {
-  std::vector<Diagnostic> items;
+  static constexpr std::size_t kMaxKept = 200;
+  std::vector<Diagnostic> items;  // the first kMaxKept, in order
+  int errors = 0, warnings = 0;   // all of them, kept or not
 
   void error(FileLoc loc, std::string msg) {
-    items.push_back({Severity::kError, std::move(loc), std::move(msg)});
+    add(Severity::kError, std::move(loc), std::move(msg));
   }
   void warning(FileLoc loc, std::string msg) {
-    items.push_back({Severity::kWarning, std::move(loc), std::move(msg)});
+    add(Severity::kWarning, std::move(loc), std::move(msg));
   }
-  int error_count() const;
-  int warning_count() const;
+  int error_count() const { return errors; }
+  int warning_count() const { return warnings; }
+  // How many were counted but not kept.
+  int dropped() const { return errors + warnings - int(items.size()); }
+
+ private:
+  void add(Severity s, FileLoc loc, std::string msg) {
+    (s == Severity::kError ? errors : warnings) += 1;
+    if (items.size() < kMaxKept) items.push_back({s, std::move(loc), std::move(msg)});
+  }
 };
 
 struct Error {
