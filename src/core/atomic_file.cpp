@@ -35,8 +35,11 @@ Status check_writable(const std::string& path) {
   if (fs::is_directory(path, ec)) return Error{"it is a directory"};
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir, ec))
-    return Error{cat("folder ", in_quotes(dir.string()), " does not exist")};
+  if (!fs::is_directory(dir, ec)) {
+    bool exists = fs::exists(dir, ec);
+    // The whole path, not in_quotes' shortened token: the folder is what the user must find.
+    return Error{cat("'", dir.string(), exists ? "' is not a folder" : "': no such folder")};
+  }
   std::string probe = temp_path_for(path);
   std::FILE* f = std::fopen(probe.c_str(), "wbx");
   if (!f)

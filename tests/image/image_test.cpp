@@ -194,7 +194,13 @@ TEST(WriteImage, FailuresCreateNothingAndKeepExistingFiles) {
   Image img(4, 4);
   EXPECT_FALSE(write_image(dir + "/missing/x.hdr", img));
   EXPECT_FALSE(fs::exists(dir + "/missing"));
-  EXPECT_FALSE(check_writable(dir + "/missing/x.hdr"));
+  Status missing = check_writable(dir + "/missing/x.hdr");
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().find(": no such folder"), std::string::npos) << missing.error();
+  std::ofstream(dir + "/plain") << "a file, not a folder";
+  Status not_folder = check_writable(dir + "/plain/x.hdr");
+  ASSERT_FALSE(not_folder);
+  EXPECT_EQ(not_folder.error(), "'" + dir + "/plain' is not a folder") << not_folder.error();
   fs::create_directory(dir + "/taken.hdr");
   EXPECT_FALSE(write_image(dir + "/taken.hdr", img));
   EXPECT_TRUE(fs::is_directory(dir + "/taken.hdr"));
