@@ -87,6 +87,31 @@ struct PacketEntry {
   uint32_t node;
 };
 
+// A child as one packet test saw it: the lanes that overlap its box, and where they enter.
+template <class A>
+struct ChildOverlap {
+  simd::Mask<A> lanes;
+  simd::Floats<A> tnear;
+};
+
+// Whether the left child of `n` is visited first when the packet overlaps both. A coherent
+// packet (kSameSides) goes by the direction of its first overlapping lane along the split
+// axis, which costs nothing and speaks for every lane. In a mixed packet one lane speaks for
+// few others, so the child that most of the lanes entering both enter first goes first
+// (1 thread, AVX-512, median of 3: diffuse rays 1.16-1.34x, coherent sets unchanged).
+template <class A, bool kSameSides>
+inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd::Mask<A>& lanes,
+                             const ChildOverlap<A>& left, const ChildOverlap<A>& right) {
+  if constexpr (kSameSides) {
+    uint32_t lane = uint32_t(__builtin_ctz(simd::bits<A>(lanes)));
+    return !((r.sides.hi_first_bits[n.axis] >> lane) & 1u);
+  } else {
+    uint32_t both = simd::bits<A>(left.lanes & right.lanes);
+    uint32_t left_nearer = simd::bits<A>(left.tnear <= right.tnear) & both;
+    return 2 * __builtin_popcount(left_nearer) >= __builtin_popcount(both);
+  }
+}
+
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
 // kSameSides: every active lane meets each slab from the same side (RayPacket::sides), so
@@ -128,9 +153,8 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
       simd::Mask<A> right = test(bvh.nodes[n.index + 1], t_right);
       bool go_left = simd::any<A>(left), go_right = simd::any<A>(right);
       if (go_left && go_right) {
-        // Near child first, judged by the direction of the first overlapping lane.
-        uint32_t lane = uint32_t(__builtin_ctz(simd::bits<A>(lanes)));
-        bool left_first = !((r.sides.hi_first_bits[n.axis] >> lane) & 1u);
+        bool left_first =
+            left_child_first<A, kSameSides>(n, r, lanes, {left, t_left}, {right, t_right});
         stack[top++] = left_first ? PacketEntry<A>{t_right, right, n.index + 1}
                                   : PacketEntry<A>{t_left, left, n.index};
         cur = left_first ? n.index : n.index + 1;
