@@ -128,7 +128,7 @@ std::optional<BenchScene> make_testscene() {
   b.scene.width = kWidth, b.scene.height = kHeight;
   // Shadow rays aim at the first light sphere's centre and stop at its surface.
   for (PrimRef l : b.scene.lights)
-    if (l.tag() == PrimTag::kSphere) {
+    if (l.tag() == tag_of<Sphere>) {
       b.light = Vec3d(b.scene.table<Sphere>().center(l.row()));
       b.light_gap = b.scene.table<Sphere>().r[l.row()] * 1.01;
       break;

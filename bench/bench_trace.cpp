@@ -92,7 +92,7 @@ void build_raylane(benchmark::State& state, const std::string& scene, int thread
     state.PauseTiming();
     bytes = bvh.bytes() + table_bytes_of(copy);
     sah = bvh.stats.sah_cost;
-    wide_bytes = collapse_to_wide(bvh).bytes();  // what --traversal rays adds
+    wide_bytes = collapse_to_wide(bvh).bytes();  // what single rays over the 8-wide tree add
     state.ResumeTiming();
   }
   state.counters["sah_cost"] = sah;

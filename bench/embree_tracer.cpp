@@ -52,7 +52,7 @@ void add_triangles(RTCScene s, const TriangleTable& t) {
     }
   }
   rtcCommitGeometry(g);
-  rtcAttachGeometryByID(s, g, unsigned(PrimTag::kTriangle));
+  rtcAttachGeometryByID(s, g, unsigned(tag_of<Triangle>));
   rtcReleaseGeometry(g);
 }
 
@@ -64,7 +64,7 @@ void add_spheres(RTCScene s, const SphereTable& t) {
   for (uint32_t i = 0; i < t.size(); ++i)
     v[4 * i] = t.cx[i], v[4 * i + 1] = t.cy[i], v[4 * i + 2] = t.cz[i], v[4 * i + 3] = t.r[i];
   rtcCommitGeometry(g);
-  rtcAttachGeometryByID(s, g, unsigned(PrimTag::kSphere));
+  rtcAttachGeometryByID(s, g, unsigned(tag_of<Sphere>));
   rtcReleaseGeometry(g);
 }
 
@@ -113,7 +113,7 @@ struct UserGeometry {
     rtcSetGeometryIntersectFunction(g, intersect);
     rtcSetGeometryOccludedFunction(g, occluded);
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(s, g, unsigned(Kind::tag));
+    rtcAttachGeometryByID(s, g, unsigned(tag_of<Kind>));
     rtcReleaseGeometry(g);
   }
 };

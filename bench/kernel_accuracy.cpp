@@ -22,7 +22,7 @@
 #include "raylane/core/float_util.h"
 #include "raylane/simd/isa.h"
 #include "raylane/trace/brute_force.h"
-#include "raylane/trace/packet_tracer.h"
+#include "raylane/trace/simd_tracer.h"
 #include "support/error_bands.h"
 
 namespace raylane::bench {
@@ -151,7 +151,7 @@ Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
             const std::vector<Hit>& ref, const std::vector<testing::RayVerdict>& verdicts,
             Isa isa) {
   RayStream stream = RayStream::from(rays);
-  PacketTracer tracer(isa);
+  SimdTracer tracer(isa);
   HitStream hits;
   std::vector<double> seconds;
   for (int rep = 0; rep < 5; ++rep) {

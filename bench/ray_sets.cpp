@@ -5,9 +5,9 @@
 #include <mutex>
 #include <random>
 
+#include "raylane/core/ray_offset.h"
 #include "raylane/render/camera.h"
-#include "raylane/render/raycast.h"
-#include "raylane/render/tracer.h"
+#include "raylane/trace/tracer.h"
 
 namespace raylane::bench {
 

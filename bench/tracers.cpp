@@ -5,9 +5,10 @@
 #include <mutex>
 
 #include "embree_tracer.h"
-#include "raylane/bvh/traverse_ref.h"
+#include "raylane/core/parallel.h"
 #include "raylane/simd/isa.h"
-#include "raylane/trace/packet_tracer.h"
+#include "raylane/trace/bvh_ref.h"
+#include "raylane/trace/simd_tracer.h"
 
 namespace raylane::bench {
 
@@ -21,14 +22,13 @@ std::string packet_tracer_name(Isa isa, Traversal traversal) {
 }
 
 BenchTracer packet_tracer(const BenchScene& b, Isa isa, Traversal traversal) {
-  PacketTracer t(isa, traversal);
+  SimdTracer t(isa, traversal);
   return {packet_tracer_name(isa, traversal),
           [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
-            if (occlusion) {
-              t.occluded(b.scene, b.bvh, rays, hits);
-            } else {
-              t.closest(b.scene, b.bvh, rays, hits);
-            }
+            hits.resize(rays.size());
+            parallel_chunks(rays.size(), 256, [&](std::size_t begin, std::size_t end) {
+              t.trace_range(b.scene, b.bvh, rays, begin, end, hits, occlusion);
+            });
           },
           [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
             return t.trace_counted(b.scene, b.bvh, rays, hits, occlusion);

@@ -17,7 +17,7 @@ struct BuildPrim {
   Bounds3f box;
   Vec3f centroid;
   PrimRef ref;
-  float cost;  // SAH cost of testing it (BvhConfig::intersection_cost of its kind)
+  float cost;  // SAH cost of testing it: its kind's sah_test_cost
 };
 
 struct Split {
@@ -212,46 +212,34 @@ class Builder {
   alignas(64) std::atomic<uint32_t> next_node_{1};
 };
 
-std::vector<BuildPrim> gather(const Scene& scene, const BvhConfig& cfg) {
+std::vector<BuildPrim> gather(const Scene& scene) {
   std::vector<BuildPrim> prims;
   prims.reserve(scene.primitive_count());
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
-    const float cost = float(cfg.intersection_cost[uint32_t(Kind::tag)]);
+    const float cost = float(Kind::sah_test_cost);
     for (uint32_t row = 0; row < table.size(); ++row) {
       Bounds3f b = table.bounds(row);
       Vec3f c = b.centroid();
       prims.push_back({b,
                        {finite_or_zero(c.x), finite_or_zero(c.y), finite_or_zero(c.z)},
-                       PrimRef(Kind::tag, row),
+                       PrimRef(tag_of<Kind>, row),
                        cost});
     }
   });
   return prims;
 }
 
-// Reorders every table into leaf order and rewrites refs and lights to the new rows;
+// Reorders every table into leaf order (Scene::permute) and rewrites the refs to the new rows;
 // returns, per kind, the old row of each new row.
 std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimRef>& refs) {
   std::vector<std::vector<uint32_t>> order(kPrimKindCount);
   for (PrimRef r : refs)
     order[uint32_t(r.tag())].push_back(r.row());
-  std::vector<std::vector<uint32_t>> new_row(kPrimKindCount);
-  PrimKinds::for_each([&](auto kind) {
-    using Kind = decltype(kind);
-    auto& o = order[uint32_t(Kind::tag)];
-    auto& nr = new_row[uint32_t(Kind::tag)];
-    nr.resize(o.size());
-    for (uint32_t i = 0; i < o.size(); ++i)
-      nr[o[i]] = i;
-    table_permute(scene.table<Kind>(), o);
-  });
+  std::vector<std::vector<uint32_t>> new_row = scene.permute(order);
   for (PrimRef& r : refs)
     r = PrimRef(r.tag(), new_row[uint32_t(r.tag())][r.row()]);
-  for (PrimRef& l : scene.lights)
-    l = PrimRef(l.tag(), new_row[uint32_t(l.tag())][l.row()]);
-  std::sort(scene.lights.begin(), scene.lights.end());
   return order;
 }
 
@@ -262,7 +250,7 @@ void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
     if (n.is_leaf()) {
       ++s.leaves;
       for (uint32_t i = n.index; i < n.index + n.count; ++i)
-        s.sah_cost += rel * cfg.intersection_cost[uint32_t(bvh.refs[i].tag())];
+        s.sah_cost += rel * kind_sah_test_cost(bvh.refs[i].tag());
       if (s.leaf_size_histogram.size() <= n.count) s.leaf_size_histogram.resize(n.count + 1);
       ++s.leaf_size_histogram[n.count];
     } else {
@@ -277,7 +265,7 @@ void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
 Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   auto start = std::chrono::steady_clock::now();
   Bvh bvh;
-  std::vector<BuildPrim> prims = gather(scene, config);
+  std::vector<BuildPrim> prims = gather(scene);
   if (prims.empty()) return bvh;
   bvh.nodes.resize(2 * prims.size());
   BvhConfig cfg = config;

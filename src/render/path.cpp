@@ -1,14 +1,13 @@
 #include "raylane/render/path.h"
 
-#include "raylane/render/film.h"
-
 #include <chrono>
 #include <cmath>
 
+#include "raylane/core/ray_offset.h"
 #include "raylane/render/bsdf.h"
 #include "raylane/render/camera.h"
+#include "raylane/render/film.h"
 #include "raylane/render/lights.h"
-#include "raylane/render/raycast.h"
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
 
@@ -16,7 +15,6 @@ namespace raylane {
 
 namespace {
 
-constexpr std::string_view kIntegratorNames[] = {"brdf", "nee", "mis"};
 constexpr uint32_t kTile = 16;  // pixels per tile side: 256 paths per wavefront
 constexpr uint32_t kBlock = 4;  // camera rays in 4×4 blocks: one coherent packet
 constexpr double kRouletteSurvival = 0.8;
@@ -155,15 +153,15 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
     for (uint32_t i : live)
       batch.push_back(paths[i].ray);
     batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
-    ctx.tracer.closest(batch, hits, /*coherent=*/depth == 0);
+    ctx.tracer.closest(batch, hits);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q) {
       const Hit& h = hits[live.size() + q];
       // Visible when the first thing met is the light's emitting side (convex solids are
       // sampled on faces toward the vertex only, so no other face of theirs is in between).
-      bool seen = h.hit() && h.prim == queries[q].light &&
-                  (h.front_face || h.prim.tag() == PrimTag::kTriangle);
+      bool seen =
+          h.hit() && h.prim == queries[q].light && (h.front_face || kind_two_sided(h.prim.tag()));
       if (seen) paths[queries[q].path].radiance += queries[q].contribution;
     }
     shadow_rays.clear();
@@ -193,16 +191,6 @@ void add_stats(PathStats& into, const PathStats& s) {
 }
 
 }  // namespace
-
-std::optional<Integrator> integrator_from_name(std::string_view name) {
-  for (int i = 0; i < 3; ++i)
-    if (name == kIntegratorNames[i]) return Integrator(i);
-  return std::nullopt;
-}
-
-std::string_view integrator_name(Integrator integrator) {
-  return kIntegratorNames[int(integrator)];
-}
 
 Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats,
                   Film* film) {

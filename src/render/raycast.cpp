@@ -2,14 +2,14 @@
 
 #include <cmath>
 
-#include "raylane/core/float_util.h"
+#include "raylane/core/ray_offset.h"
 
 namespace raylane {
 
 namespace {
 
-constexpr std::string_view kModeNames[] = {"normal", "depth", "albedo", "id", "lit"};
-constexpr uint32_t kTile = 4;  // camera rays go out in 4×4 tiles: one AVX-512 packet each
+constexpr uint32_t kTile = 4;   // camera rays go out in 4×4 tiles: one AVX-512 packet each
+constexpr uint32_t kBand = 16;  // rows per band: the unit of work of one thread
 
 Vec3d to_d(const Vec3f& v) {
   return Vec3d(v);
@@ -36,6 +36,17 @@ Vec3d shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
   return {0, 0, 0};
 }
 
+// Where the lit view places a light: the point its kind names (a sphere's centre), if any.
+std::optional<Vec3d> point_light(const Scene& scene, PrimRef light) {
+  return dispatch(light.tag(), [&](auto kind) -> std::optional<Vec3d> {
+    using Kind = decltype(kind);
+    const auto& table = scene.table<Kind>();
+    if constexpr (requires { Kind::point_light(table, light.row()); })
+      return Kind::point_light(table, light.row());
+    return std::nullopt;
+  });
+}
+
 // One shadow ray of the lit mode: from a shaded pixel towards an emitting sphere's centre.
 struct ShadowQuery {
   std::size_t pixel;
@@ -55,8 +66,9 @@ Vec3d shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::
   Vec3d v = -normalize(ray.d);
   Vec3d origin = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, v);
   for (PrimRef light : scene.lights) {
-    if (light.tag() != PrimTag::kSphere) continue;
-    Vec3d to_light = Vec3d(scene.table<Sphere>().center(light.row())) - origin;
+    std::optional<Vec3d> at = point_light(scene, light);
+    if (!at) continue;
+    Vec3d to_light = *at - origin;
     double dist = length(to_light);
     Vec3d l = to_light / dist;
     double nl = dot(n, l);
@@ -84,73 +96,55 @@ void camera_rays(const Camera& cam, uint32_t y0, uint32_t rows, std::vector<Rayd
       }
 }
 
-}  // namespace
-
-std::optional<RaycastMode> raycast_mode_from_name(std::string_view name) {
-  for (int i = 0; i < 5; ++i)
-    if (name == kModeNames[i]) return RaycastMode(i);
-  return std::nullopt;
-}
-
-std::string_view raycast_mode_name(RaycastMode mode) {
-  return kModeNames[int(mode)];
-}
-
-Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng,
-                        const Vec3d& toward) {
-  Vec3d offset = ng * dot(abs(ng), p_error);
-  if (dot(ng, toward) < 0) offset = -offset;
-  Vec3d o = p + offset;
-  // Round away from p so the offset is not lost to rounding (pbrt-v4 OffsetRayOrigin).
-  for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0) o[i] = std::nextafter(o[i], INFINITY);
-    if (offset[i] < 0) o[i] = std::nextafter(o[i], -INFINITY);
+// One band of rows: camera rays, shading, then the lit mode's shadow rays.
+void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, uint32_t y0,
+                 uint32_t rows, Image& image, RaycastStats& st) {
+  const Scene& scene = tracer.scene();
+  std::vector<Rayd> rays, shadow_rays;
+  std::vector<std::size_t> pixel;
+  std::vector<Hit> hits, shadow_hits;
+  std::vector<ShadowQuery> queries;
+  camera_rays(camera, y0, rows, rays, pixel);
+  tracer.closest(rays, hits);
+  st.camera_rays += rays.size();
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    Vec3d c = mode == RaycastMode::kLit
+                  ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
+                  : shade_simple(scene, mode, hits[i]);
+    for (int k = 0; k < 3; ++k)
+      image.rgb[pixel[i] * 3 + k] = float(c[k]);
   }
-  return o;
+  if (shadow_rays.empty()) return;
+  // Shadow rays as closest-hit queries: the light is visible when the first thing met is
+  // the light itself (no epsilon on the far end of the segment).
+  tracer.closest(shadow_rays, shadow_hits);
+  st.shadow_rays += shadow_rays.size();
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    const Hit& h = shadow_hits[q];
+    if (h.hit() && h.prim != queries[q].light) continue;
+    for (int k = 0; k < 3; ++k)
+      image.rgb[queries[q].pixel * 3 + k] += float(queries[q].contribution[k]);
+  }
 }
 
-Vec3d hit_point_error(const Rayd& ray, double t) {
-  constexpr double kBound = 32 * kFloatUnitRoundoff;
-  return (abs(ray.o) + abs(ray.d * t)) * kBound;
-}
+}  // namespace
 
 Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats) {
   const Scene& scene = tracer.scene();
   Camera camera = Camera::from_scene(scene);
   Image image(scene.width, scene.height);
-  std::vector<Rayd> rays, shadow_rays;
-  std::vector<std::size_t> pixel;
-  std::vector<Hit> hits, shadow_hits;
-  std::vector<ShadowQuery> queries;
-  RaycastStats st;
-  // Bands of 64 pixel rows: enough rays per batch to keep every thread busy.
-  for (uint32_t y0 = 0; y0 < scene.height; y0 += 64) {
-    uint32_t rows = std::min<uint32_t>(64, scene.height - y0);
-    camera_rays(camera, y0, rows, rays, pixel);
-    tracer.closest(rays, hits);
-    st.camera_rays += rays.size();
-    shadow_rays.clear();
-    queries.clear();
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-      Vec3d c = mode == RaycastMode::kLit
-                    ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
-                    : shade_simple(scene, mode, hits[i]);
-      for (int k = 0; k < 3; ++k)
-        image.rgb[pixel[i] * 3 + k] = float(c[k]);
-    }
-    if (shadow_rays.empty()) continue;
-    // Shadow rays as closest-hit queries: the light is visible when the first thing met is
-    // the light itself (no epsilon on the far end of the segment).
-    tracer.closest(shadow_rays, shadow_hits);
-    st.shadow_rays += shadow_rays.size();
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-      const Hit& h = shadow_hits[q];
-      if (h.hit() && h.prim != queries[q].light) continue;
-      for (int k = 0; k < 3; ++k)
-        image.rgb[queries[q].pixel * 3 + k] += float(queries[q].contribution[k]);
-    }
+  const std::ptrdiff_t bands = (scene.height + kBand - 1) / kBand;
+  uint64_t camera_rays_total = 0, shadow_rays_total = 0;
+  // Bands of rows over the threads; each band writes only its own pixels.
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : camera_rays_total, shadow_rays_total)
+  for (std::ptrdiff_t b = 0; b < bands; ++b) {
+    uint32_t y0 = uint32_t(b) * kBand;
+    RaycastStats st;
+    render_band(tracer, camera, mode, y0, std::min<uint32_t>(kBand, scene.height - y0), image, st);
+    camera_rays_total += st.camera_rays;
+    shadow_rays_total += st.shadow_rays;
   }
-  if (stats) *stats = st;
+  if (stats) *stats = {camera_rays_total, shadow_rays_total};
   return image;
 }
 

@@ -36,12 +36,12 @@ bool screen_command(Scene& s, const Line& line, ParseState& state) {
   if (!v) return false;
   for (int i = 0; i < 2; ++i) {
     double x = (*v)[i];
-    if (x < 1 || x != std::floor(x) || x > double(Scene::kMaxPixels)) {
+    if (x < 1 || x != std::floor(x) || x > double(kMaxImagePixels)) {
       state.problem(line.at(1 + i), "screen size must be a whole number >= 1");
       return false;
     }
   }
-  if ((*v)[0] * (*v)[1] > double(Scene::kMaxPixels)) {
+  if ((*v)[0] * (*v)[1] > double(kMaxImagePixels)) {
     state.problem(line.at(1), "screen has more than 2^28 pixels");
     return false;
   }
@@ -141,7 +141,7 @@ bool primitive(Scene& s, const Line& line, ParseState& state) {
   if (!v) return false;
   auto& table = s.table<Kind>();
   if (table.size() >= PrimRef::kMaxRows) {
-    state.problem(line.at(0), cat("too many ", Kind::keyword, "s"));
+    state.problem(line.at(0), cat("too many ", Kind::plural));
     return false;
   }
   // Checked before the material, so a rejected line leaves no default material behind.
@@ -153,7 +153,8 @@ bool primitive(Scene& s, const Line& line, ParseState& state) {
   }
   uint32_t mat = shape_material(s, line, state);
   table.append(params, mat);
-  if (s.materials[mat].is_light) s.lights.push_back(PrimRef(Kind::tag, uint32_t(table.size() - 1)));
+  if (s.materials[mat].is_light)
+    s.lights.push_back(PrimRef(tag_of<Kind>, uint32_t(table.size() - 1)));
   return true;
 }
 
@@ -181,18 +182,6 @@ bool Scene::command(const Line& line, ParseState& state) {
   });
   if (!handled) state.problem(line.at(0), cat("unknown command ", in_quotes(word)));
   return accepted;
-}
-
-std::size_t Scene::primitive_count() const {
-  std::size_t n = 0;
-  std::apply([&](const auto&... t) { n = (t.size() + ...); }, tables);
-  return n;
-}
-
-uint32_t Scene::material_of(PrimRef ref) const {
-  return dispatch(ref.tag(), [&](auto kind) -> uint32_t {
-    return table<decltype(kind)>().material[ref.row()];
-  });
 }
 
 }  // namespace raylane

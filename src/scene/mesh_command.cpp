@@ -94,7 +94,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
                                               " zero-area triangles of ", in_quotes(name)));
   if (s.materials[mat].is_light)
     for (uint32_t r = first_row; r < table.size(); ++r)
-      s.lights.push_back(PrimRef(Triangle::tag, r));
+      s.lights.push_back(PrimRef(tag_of<Triangle>, r));
   return true;
 }
 

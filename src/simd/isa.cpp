@@ -2,24 +2,6 @@
 
 namespace raylane {
 
-std::string_view isa_name(Isa isa) {
-  switch (isa) {
-    case Isa::kSse42:
-      return "sse4.2";
-    case Isa::kAvx2:
-      return "avx2";
-    case Isa::kAvx512:
-      return "avx512";
-  }
-  return "?";
-}
-
-std::optional<Isa> isa_from_name(std::string_view name) {
-  for (Isa isa : {Isa::kSse42, Isa::kAvx2, Isa::kAvx512})
-    if (name == isa_name(isa)) return isa;
-  return std::nullopt;
-}
-
 int isa_width(Isa isa) {
   return isa == Isa::kSse42 ? 4 : (isa == Isa::kAvx2 ? 8 : 16);
 }

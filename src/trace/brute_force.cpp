@@ -19,7 +19,7 @@ Hit closest_hit_ref(const Scene& scene, const Rayd& ray) {
     const auto& table = scene.table<Kind>();
     for (uint32_t row = 0; row < table.size(); ++row) {
       double t = intersect_ref(table, row, ray);
-      PrimRef ref(Kind::tag, row);
+      PrimRef ref(tag_of<Kind>, row);
       if (t < best.t || (t == best.t && t < ray.tmax && ref < best.prim)) {
         best.t = t;
         best.prim = ref;

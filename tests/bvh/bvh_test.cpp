@@ -7,9 +7,9 @@
 #include <set>
 
 #include "raylane/bvh/bvh.h"
-#include "raylane/bvh/traverse_ref.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
+#include "raylane/trace/bvh_ref.h"
 #include "support/paths.h"
 #include "support/random_scene.h"
 
@@ -139,13 +139,13 @@ TEST(Bvh, RecordsWhereEveryRowCameFrom) {
   Scene after = before;
   Bvh bvh = build_bvh(after);
   ASSERT_EQ(bvh.source_rows.size(), kPrimKindCount);
-  EXPECT_EQ(bvh.source_rows[uint32_t(PrimTag::kSphere)].size(), before.table<Sphere>().size());
+  EXPECT_EQ(bvh.source_rows[uint32_t(tag_of<Sphere>)].size(), before.table<Sphere>().size());
   for (uint32_t r = 0; r < after.table<Sphere>().size(); ++r) {
-    uint32_t old = bvh.source_rows[uint32_t(PrimTag::kSphere)][r];
+    uint32_t old = bvh.source_rows[uint32_t(tag_of<Sphere>)][r];
     EXPECT_EQ(after.table<Sphere>().center(r), before.table<Sphere>().center(old));
   }
   for (uint32_t r = 0; r < after.table<Triangle>().size(); ++r) {
-    uint32_t old = bvh.source_rows[uint32_t(PrimTag::kTriangle)][r];
+    uint32_t old = bvh.source_rows[uint32_t(tag_of<Triangle>)][r];
     EXPECT_EQ(after.table<Triangle>().p1(r), before.table<Triangle>().p1(old));
   }
 }

@@ -63,18 +63,6 @@ TEST(CliPath, FilesAreIdenticalForAnyThreadCountAndConvert) {
   EXPECT_EQ(a->rgb, b->rgb);  // RGBE values are exact in float
 }
 
-// Bounces as single rays over the 8-wide tree (--traversal auto, rays) take the same
-// samples and find the same hits as packets: the image agrees to rounding.
-TEST(CliPath, EveryTraversalRendersTheSameImage) {
-  std::string dir = temp_dir(), scene = source_path("scenes/testscene.scn");
-  for (std::string t : {"packets", "auto", "rays"})
-    ASSERT_EQ(run_status("render " + scene + " --spp 2 --traversal " + t + " -o " + dir + "/" + t +
-                         ".hdr"),
-              0);
-  EXPECT_EQ(run_status("diff " + dir + "/auto.hdr " + dir + "/packets.hdr --tol 1e-3"), 0);
-  EXPECT_EQ(run_status("diff " + dir + "/rays.hdr " + dir + "/packets.hdr --tol 1e-3"), 0);
-}
-
 // The first SIGINT ends the render after the pass in flight: a valid image with the samples
 // taken so far in its header, and exit status 130; the --checkpoint film is saved then too,
 // and resuming it gives exactly the file of an uninterrupted render (issue 6).

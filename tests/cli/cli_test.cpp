@@ -37,6 +37,27 @@ TEST(Cli, HelpAndVersionExitZero) {
   EXPECT_EQ(version.out.rfind("raylane ", 0), 0u);
 }
 
+// Every command answers --help and -h with its own text and exit status 0; render's lists
+// every option, and each default sits on a line of its own.
+TEST(Cli, EveryCommandHasHelp) {
+  std::string dir = temp_dir();
+  for (std::string command : {"render", "info", "trace", "convert", "diff"})
+    for (std::string flag : {"--help", "-h"}) {
+      CliRun r = run(command + " " + flag, dir);
+      EXPECT_EQ(r.status, 0) << command << " " << flag;
+      EXPECT_EQ(r.out.rfind("usage: raylane " + command, 0), 0u) << r.out;
+    }
+  CliRun render = run("render --help", dir);
+  for (std::string option :
+       {"--output FILE", "--mode MODE", "--spp N", "--integrator I", "--seed S", "--max-depth D",
+        "--time SECONDS", "--checkpoint FILE", "--checkpoint-every SECONDS", "--resume FILE",
+        "--png", "--exposure E", "--threads N", "--tracer T", "--isa I", "--lenient", "--quiet"})
+    EXPECT_NE(render.out.find(option), std::string::npos) << option;
+  EXPECT_NE(render.out.find("\n                      (default: 60)\n"), std::string::npos)
+      << render.out;  // --checkpoint-every's default, on its own line under it
+  EXPECT_EQ(render.out.find("traversal"), std::string::npos) << render.out;
+}
+
 TEST(Cli, UsageErrorsExitTwo) {
   std::string dir = temp_dir();
   EXPECT_EQ(run("render --bogus", dir).status, 2);

@@ -34,20 +34,21 @@ void write_inputs(const std::string& dir, bool occlusion) {
   ASSERT_TRUE(write_ray_set(dir + "/down.rays", set).ok());
 }
 
+// With one thread and two: the command splits the stream over its threads itself.
 TEST(CliTrace, WritesAnswersInTheSoupsOrder) {
-  for (std::string traversal : {"packets", "rays"}) {
+  for (std::string threads : {"1", "2"}) {
     std::string dir = temp_dir();
     write_inputs(dir, false);
-    auto r = run_cli("trace row.tris down.rays --repeat 3 --traversal " + traversal, dir);
+    auto r = run_cli("trace row.tris down.rays --repeat 3 --threads " + threads, dir);
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find(" " + traversal + ","), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" " + threads + " threads"), std::string::npos) << r.out;
     auto hits = read_hits(dir + "/down.hits");
     ASSERT_TRUE(hits.ok()) << hits.error();
     ASSERT_EQ(hits->size(), 65u);
     for (uint32_t i = 0; i < 64; ++i) {
-      EXPECT_EQ((*hits)[i].prim, i) << traversal;
-      EXPECT_EQ((*hits)[i].t, 100.0f - float(i)) << traversal;
+      EXPECT_EQ((*hits)[i].prim, i) << threads;
+      EXPECT_EQ((*hits)[i].t, 100.0f - float(i)) << threads;
     }
     EXPECT_EQ((*hits)[64].prim, kNoHit);
     EXPECT_TRUE(std::isinf((*hits)[64].t));
@@ -77,9 +78,9 @@ TEST(CliTrace, BadInputIsAnErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/down.hits"));
   EXPECT_EQ(run_cli("trace row.tris", dir).status, 2);
   EXPECT_EQ(run_cli("trace row.tris down.rays --repeat 0", dir).status, 2);
-  auto bad = run_cli("trace row.tris down.rays --traversal diagonal", dir);
+  auto bad = run_cli("trace row.tris down.rays --isa diagonal", dir);
   EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.out.find("unknown --traversal 'diagonal'"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("unknown --isa 'diagonal'"), std::string::npos) << bad.out;
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ void check(const raylane::ParsedScene& parsed) {
   const raylane::Scene& s = parsed.scene;
   if (!parsed.ok()) return;
   if (!s.camera || s.width == 0 || s.height == 0 ||
-      uint64_t(s.width) * s.height > raylane::Scene::kMaxPixels)
+      uint64_t(s.width) * s.height > raylane::kMaxImagePixels)
     std::abort();
 }
 

@@ -14,12 +14,11 @@ struct Rendered {
   RaycastStats stats;
 };
 
-Rendered render(const std::string& scene_name, RaycastMode mode, TracerKind kind, Isa isa,
-                TraversalPolicy policy = TraversalPolicy::kPackets) {
+Rendered render(const std::string& scene_name, RaycastMode mode, TracerKind kind, Isa isa) {
   auto p = load_scene_file(testing::source_path("scenes/" + scene_name));
   EXPECT_TRUE(p.ok());
-  Bvh bvh = build_bvh(p.scene, {.wide_nodes = policy != TraversalPolicy::kPackets});
-  Tracer tracer(p.scene, bvh, kind, isa, policy);
+  Bvh bvh = build_bvh(p.scene);
+  Tracer tracer(p.scene, bvh, kind, isa);
   Rendered r;
   r.image = render_raycast(tracer, mode, &r.stats);
   return r;
@@ -57,11 +56,6 @@ TEST(Raycast, IdImageIsTheSameForEveryTracerAndIsa) {
   for (Isa isa : supported_isas()) {
     Image img = render("testscene.scn", RaycastMode::kId, TracerKind::kPacket, isa).image;
     EXPECT_LE(differing_pixels(ref, img), 12) << isa_name(isa);
-    // Single rays over the 8-wide tree run the same kernels with the same roundings.
-    Image rays =
-        render("testscene.scn", RaycastMode::kId, TracerKind::kPacket, isa, TraversalPolicy::kRays)
-            .image;
-    EXPECT_LE(differing_pixels(ref, rays), 12) << isa_name(isa) << " rays";
   }
 }
 

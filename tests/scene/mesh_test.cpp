@@ -126,7 +126,7 @@ TEST(MeshImport, EmittingMeshTrianglesAreLights) {
                           " 0 0 0 1\n");
   ASSERT_TRUE(p.ok()) << errors(p)[0];
   EXPECT_EQ(p.scene.lights.size(), 4u);
-  EXPECT_EQ(p.scene.lights[3], PrimRef(PrimTag::kTriangle, 3));
+  EXPECT_EQ(p.scene.lights[3], PrimRef(tag_of<Triangle>, 3));
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ TEST(Parser, ReadsEveryCommand) {
   ASSERT_EQ(s.table<Cylinder>().size(), 1u);
   EXPECT_EQ(s.table<Cylinder>().material[0], 2u);
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_EQ(s.lights[0], PrimRef(PrimTag::kSphere, 0));
+  EXPECT_EQ(s.lights[0], PrimRef(tag_of<Sphere>, 0));
   EXPECT_EQ(s.primitive_count(), 3u);
 }
 

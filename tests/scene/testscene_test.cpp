@@ -23,7 +23,7 @@ TEST(TestScene, ParsesCleanlyWithEveryPrimitiveKind) {
   EXPECT_EQ(s.table<Cylinder>().size(), 8u);
   EXPECT_EQ(s.table<Triangle>().size(), 10u);  // X: 2 quads, Y: 3 quads
   ASSERT_EQ(s.lights.size(), 1u);              // the big sphere above the room
-  EXPECT_EQ(s.lights[0], PrimRef(PrimTag::kSphere, 0));
+  EXPECT_EQ(s.lights[0], PrimRef(tag_of<Sphere>, 0));
   EXPECT_EQ(s.materials.size(), 12u);  // 11 brdf lines and 1 light
   // The purple sphere's brdf line has 7 numbers: Kt and ior take their defaults.
   uint32_t purple = s.table<Sphere>().material[5];

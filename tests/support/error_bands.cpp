@@ -492,7 +492,7 @@ RayVerdict classify_closest(const Scene& scene, const Rayd& ray, bool skip_far_b
     for (uint32_t row = 0; row < table.size(); ++row) {
       if (skip_far_bounds && line_misses_grown_bounds(table.bounds(row), ray)) continue;
       PrimVerdict v = classify(table, row, ray);
-      if (v.cls != RayClass::kClearMiss) maybe.push_back({PrimRef(decltype(kind)::tag, row), v});
+      if (v.cls != RayClass::kClearMiss) maybe.push_back({PrimRef(tag_of<decltype(kind)>, row), v});
     }
   });
   if (maybe.empty()) return out;

@@ -39,7 +39,7 @@ Scene random_scene(uint32_t seed, int n, double extent, double size, Vec3d offse
     std::array<double, 4> sp{c.x, c.y, c.z, s(rng)};
     scene.table<Sphere>().append(sp, mat);
     if (mat == 1)
-      scene.lights.push_back(PrimRef(PrimTag::kSphere, uint32_t(scene.table<Sphere>().size() - 1)));
+      scene.lights.push_back(PrimRef(tag_of<Sphere>, uint32_t(scene.table<Sphere>().size() - 1)));
     c = uniform_in_cube(rng, extent, offset);
     std::array<double, 6> bx{c.x, c.y, c.z, s(rng), -s(rng), s(rng)};
     scene.table<Box>().append(bx, 0);

@@ -23,14 +23,14 @@ TEST(BruteForce, NearestOverEveryKind) {
   Scene s = mixed_row_scene();
   Hit h = closest_hit_ref(s, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(h.hit());
-  EXPECT_EQ(h.prim, PrimRef(PrimTag::kBox, 0));
+  EXPECT_EQ(h.prim, PrimRef(tag_of<Box>, 0));
   EXPECT_EQ(h.t, 5.0);
   EXPECT_TRUE(h.front_face);
   h = closest_hit_ref(s, {{0, 0, 6.5}, {0, 0, 1}});
-  EXPECT_EQ(h.prim, PrimRef(PrimTag::kCylinder, 0));
+  EXPECT_EQ(h.prim, PrimRef(tag_of<Cylinder>, 0));
   EXPECT_EQ(h.t, 0.5);
   h = closest_hit_ref(s, {{0, 0, 10}, {0, 0, -1}});  // inside the sphere: its exit
-  EXPECT_EQ(h.prim, PrimRef(PrimTag::kSphere, 0));
+  EXPECT_EQ(h.prim, PrimRef(tag_of<Sphere>, 0));
   EXPECT_FALSE(h.front_face);
 }
 
@@ -40,7 +40,7 @@ TEST(BruteForce, RespectsTheInterval) {
   EXPECT_FALSE(any_hit_ref(s, {{0, 0, 0}, {0, 0, 1}, 0, 5}));
   EXPECT_TRUE(any_hit_ref(s, {{0, 0, 0}, {0, 0, 1}, 0, 5.01}));
   EXPECT_EQ(closest_hit_ref(s, {{0, 0, 0}, {0, 0, 1}, 6.5, 100}).prim,
-            PrimRef(PrimTag::kCylinder, 0));
+            PrimRef(tag_of<Cylinder>, 0));
 }
 
 TEST(BruteForce, EqualDistanceGoesToTheLowerRef) {
@@ -50,7 +50,7 @@ TEST(BruteForce, EqualDistanceGoesToTheLowerRef) {
     s.table<Box>().append(std::array<double, 6>{-1, -1, 5, 2, 2, 1}, 0);
   s.table<Sphere>().append(std::array<double, 4>{0, 0, 6, 1}, 0);  // also entered at z = 5
   Hit h = closest_hit_ref(s, {{0, 0, 0}, {0, 0, 1}});
-  EXPECT_EQ(h.prim, PrimRef(PrimTag::kSphere, 0));
+  EXPECT_EQ(h.prim, PrimRef(tag_of<Sphere>, 0));
 }
 
 // hard-cases N1: invalid rays hit nothing and produce no NaN.

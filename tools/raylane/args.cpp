@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
 #include "raylane/core/strings.h"
 
@@ -52,7 +54,7 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
     }
     if (!spec) return Error{cat("unknown option ", in_quotes(a))};
     std::string value;
-    if (spec->takes_value) {
+    if (spec->takes_value()) {
       if (inline_value) {
         value = *inline_value;
       } else if (i + 1 < args.size()) {
@@ -71,6 +73,64 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
   return out;
 }
 
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const std::string& a : args) {
+    if (a == "--") return false;
+    if (a == "--help" || a == "-h") return true;
+  }
+  return false;
+}
+
+namespace {
+constexpr std::size_t kHelpColumn = 22;  // where option descriptions start
+
+std::string option_label(const OptionSpec& o) {
+  std::string label =
+      o.short_name ? cat("-", std::string(1, o.short_name), ", --", o.name) : cat("    --", o.name);
+  if (o.takes_value()) label += " " + o.value_name;
+  return label;
+}
+
+// Lines of `text` after `first`, each indented to the description column.
+void append_described(std::string& out, const std::string& first, const std::string& text) {
+  std::string line = "  " + first;
+  std::istringstream lines(text);
+  std::string part;
+  bool any = false;
+  while (std::getline(lines, part)) {
+    if (!any && line.size() + 1 < kHelpColumn) {
+      line.resize(kHelpColumn, ' ');
+    } else {
+      out += line + "\n";
+      line = std::string(kHelpColumn, ' ');
+    }
+    line += part;
+    any = true;
+  }
+  out += line + "\n";
+}
+}  // namespace
+
+std::string format_help(const CommandHelp& help) {
+  std::string out = cat("usage: ", help.usage, "\n\n", help.about, "\n");
+  if (help.options && !help.options->empty()) {
+    out += "\noptions:\n";
+    for (const OptionSpec& o : *help.options) {
+      std::string text = o.help;
+      if (!o.default_text.empty()) text += cat("\n(default: ", o.default_text, ")");
+      append_described(out, option_label(o), text);
+    }
+  }
+  append_described(out, "-h, --help", "this text");
+  if (!help.notes.empty()) out += "\n" + help.notes + "\n";
+  return out;
+}
+
+int print_help(const CommandHelp& help) {
+  std::fputs(format_help(help).c_str(), stdout);
+  return 0;
+}
+
 Result<long> parse_int_option(const std::string& name, const std::string& value, long lo, long hi) {
   long v = 0;
   auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
@@ -86,6 +146,13 @@ Result<double> parse_double_option(const std::string& name, const std::string& v
   if (ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v))
     return Error{cat("--", name, " takes a number, found ", in_quotes(value))};
   return v;
+}
+
+Status read_double_option(const std::string& name, const std::string& value, double& out) {
+  auto v = parse_double_option(name, value);
+  if (!v) return Error{v.error()};
+  out = *v;
+  return ok_status();
 }
 
 Result<Isa> parse_isa_option(const std::string& value) {

@@ -7,22 +7,6 @@
 
 namespace raylane::cli {
 
-Status read_checkpoint_options(const ParsedArgs& parsed, CheckpointOptions& c) {
-  c.checkpoint = parsed.last("checkpoint");
-  c.resume = parsed.last("resume");
-  if (auto v = parsed.last("checkpoint-every")) {
-    auto s = parse_double_option("checkpoint-every", *v);
-    if (!s) return Error{s.error()};
-    if (!(*s >= 0)) return Error{cat("--checkpoint-every takes seconds ≥ 0, found ", *v)};
-    c.every = *s;
-  }
-  if (c.checkpoint) {
-    if (Status s = check_writable(*c.checkpoint); !s)
-      return Error{cat("cannot write --checkpoint ", *c.checkpoint, ": ", s.error())};
-  }
-  return ok_status();
-}
-
 Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
                            const PathSettings& settings) {
   if (!c.resume) return Film{};

@@ -17,9 +17,6 @@ struct CheckpointOptions {
   double every = 60;  // seconds between saves
 };
 
-// Reads --checkpoint, --resume and --checkpoint-every.
-Status read_checkpoint_options(const ParsedArgs& parsed, CheckpointOptions& c);
-
 // The film to render into: empty, or the --resume film once it is known to belong to this
 // scene and these settings.
 Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,

@@ -8,8 +8,20 @@
 
 namespace raylane::cli {
 
+namespace {
+const std::vector<OptionSpec> kConvertOptions = {
+    {"exposure", 0, "E", false, "PNG exposure in stops (pixel · 2^E)", "0"},
+};
+const CommandHelp kConvertHelp{
+    "raylane convert IN OUT [--exposure E]",
+    "Writes the image IN (.hdr or .pfm) as OUT, in the format OUT's extension names: .hdr,\n"
+    ".pfm or .png (8-bit sRGB).",
+    &kConvertOptions, ""};
+}  // namespace
+
 int convert_command(const std::vector<std::string>& args) {
-  auto parsed = parse_args(args, {{"exposure", 0, true, false}});
+  if (asks_for_help(args)) return print_help(kConvertHelp);
+  auto parsed = parse_args(args, kConvertOptions);
   if (!parsed) return usage_error(parsed.error());
   if (parsed->positional.size() != 2) return usage_error("convert takes IN and OUT");
   const std::string& in = parsed->positional[0];

@@ -10,8 +10,21 @@
 
 namespace raylane::cli {
 
+namespace {
+const std::vector<OptionSpec> kDiffOptions = {
+    {"tol", 0, "T", false, "the largest RMSE that still counts as equal (exit status 0)", "0"},
+};
+const CommandHelp kDiffHelp{
+    "raylane diff IMAGE REFERENCE [--tol T]",
+    "Prints how far IMAGE is from REFERENCE (.hdr or .pfm, the same size): RMSE, relative MSE\n"
+    "(mean of (a−b)²/(b²+0.01)), mean and largest absolute difference over all channels. Exit\n"
+    "status 1 when the RMSE is over T.",
+    &kDiffOptions, ""};
+}  // namespace
+
 int diff_command(const std::vector<std::string>& args) {
-  auto parsed = parse_args(args, {{"tol", 0, true, false}});
+  if (asks_for_help(args)) return print_help(kDiffHelp);
+  auto parsed = parse_args(args, kDiffOptions);
   if (!parsed) return usage_error(parsed.error());
   if (parsed->positional.size() != 2) return usage_error("diff takes IMAGE and REFERENCE");
   double tol = 0;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 
 #include "args.h"
@@ -29,110 +30,200 @@ struct RenderRequest {
   CheckpointOptions checkpoints;
   TracerKind tracer = TracerKind::kPacket;
   Isa isa = best_isa();
-  TraversalPolicy traversal = TraversalPolicy::kPackets;
   double exposure = 0;
   int threads = 0;
-  bool lenient = false, quiet = false;
+  bool also_png = false, lenient = false, quiet = false;
 };
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
-const std::vector<OptionSpec> kRenderOptions = {
-    {"output", 'o', true, true},   {"mode", 0, true, false},
-    {"exposure", 0, true, false},  {"threads", 0, true, false},
-    {"lenient", 0, false, false},  {"quiet", 'q', false, false},
-    {"tracer", 0, true, false},    {"isa", 0, true, false},
-    {"traversal", 0, true, false}, {"spp", 0, true, false},
-    {"seed", 0, true, false},      {"integrator", 0, true, false},
-    {"max-depth", 0, true, false}, {"time", 0, true, false},
-    {"png", 0, false, false},      {"checkpoint", 0, true, false},
-    {"resume", 0, true, false},    {"checkpoint-every", 0, true, false},
+// An option of `raylane render`: how it is written and described, and what it does to the
+// request. Values are applied in the table's order, each option's values in the order given.
+struct RenderOption {
+  OptionSpec spec;
+  std::function<Status(RenderRequest&, const std::string& value)> apply;
 };
+
+Status set_mode(RenderRequest& r, const std::string& v) {
+  r.path = v == "path";
+  if (r.path) return ok_status();
+  auto mode = raycast_mode_from_name(v);
+  if (!mode)
+    return Error{cat("unknown --mode ", in_quotes(v), " (path, ", kRaycastModeNames.list(), ")")};
+  r.mode = *mode;
+  return ok_status();
+}
+
+Status set_integrator(RenderRequest& r, const std::string& v) {
+  auto i = integrator_from_name(v);
+  if (!i)
+    return Error{cat("unknown --integrator ", in_quotes(v), " (", kIntegratorNames.list(), ")")};
+  r.path_settings.integrator = *i;
+  return ok_status();
+}
+
+Status set_time(RenderRequest& r, const std::string& v) {
+  double t = 0;
+  if (Status s = read_double_option("time", v, t); !s) return s;
+  if (!(t > 0)) return Error{cat("--time takes a number of seconds > 0, found ", v)};
+  r.path_settings.time_limit = t;
+  return ok_status();
+}
+
+Status set_checkpoint_every(RenderRequest& r, const std::string& v) {
+  double t = 0;
+  if (Status s = read_double_option("checkpoint-every", v, t); !s) return s;
+  if (!(t >= 0)) return Error{cat("--checkpoint-every takes seconds ≥ 0, found ", v)};
+  r.checkpoints.every = t;
+  return ok_status();
+}
+
+Status set_tracer(RenderRequest& r, const std::string& v) {
+  auto kind = tracer_kind_from_name(v);
+  if (!kind)
+    return Error{cat("unknown --tracer ", in_quotes(v), " (", kTracerKindNames.list(), ")")};
+  r.tracer = *kind;
+  return ok_status();
+}
+
+Status set_isa(RenderRequest& r, const std::string& v) {
+  auto isa = parse_isa_option(v);
+  if (!isa) return Error{isa.error()};
+  r.isa = *isa;
+  return ok_status();
+}
+
+const std::vector<RenderOption>& render_options() {
+  using R = RenderRequest;
+  using V = const std::string&;
+  static const std::vector<RenderOption> options = {
+      {{"output", 'o', "FILE", true,
+        "image to write; the extension picks the format: .hdr (Radiance RGBE),\n"
+        ".pfm (float), .png (8-bit sRGB). Repeat to write several.",
+        "<scene name>.hdr in the working directory"},
+       [](R& r, V v) {
+         r.outputs.push_back(v);
+         return ok_status();
+       }},
+      {{"mode", 0, "MODE", false, "path | normal | depth | albedo | id | lit", "path"}, set_mode},
+      {{"spp", 0, "N", false, "path: samples per pixel, in progressive passes", "16"},
+       [](R& r, V v) { return read_int_option("spp", v, 1, 1 << 24, r.path_settings.spp); }},
+      {{"integrator", 0, "I", false,
+        "path: brdf (BSDF sampling only) | nee (light sampling only) |\n"
+        "mis (both, power heuristic)",
+        "mis"},
+       set_integrator},
+      {{"seed", 0, "S", false, "path: image seed; the image is the same for any --threads", "0"},
+       [](R& r, V v) {
+         return read_int_option("seed", v, 0, std::numeric_limits<long>::max(),
+                                r.path_settings.seed);
+       }},
+      {{"max-depth", 0, "D", false, "path: at most D bounces (Russian roulette after 3)", "64"},
+       [](R& r, V v) {
+         return read_int_option("max-depth", v, 0, 1 << 16, r.path_settings.max_depth);
+       }},
+      {{"time", 0, "SECONDS", false, "path: stop after the pass that ends past this budget",
+        "none"},
+       set_time},
+      {{"checkpoint", 0, "FILE", false,
+        "path: save the film to FILE every --checkpoint-every seconds and\n"
+        "when the render stops (done, --time, Ctrl-C)",
+        "none"},
+       [](R& r, V v) {
+         r.checkpoints.checkpoint = v;
+         return ok_status();
+       }},
+      {{"checkpoint-every", 0, "SECONDS", false, "path: seconds between checkpoints", "60"},
+       set_checkpoint_every},
+      {{"resume", 0, "FILE", false,
+        "path: continue a saved film up to --spp; the same scene, --seed,\n"
+        "--integrator and --max-depth give the uninterrupted run's image",
+        "none"},
+       [](R& r, V v) {
+         r.checkpoints.resume = v;
+         return ok_status();
+       }},
+      {{"png", 0, "", false, "also write a PNG beside the first output", ""},
+       [](R& r, V) {
+         r.also_png = true;
+         return ok_status();
+       }},
+      {{"exposure", 0, "E", false, "PNG exposure in stops (pixel · 2^E)", "0"},
+       [](R& r, V v) { return read_double_option("exposure", v, r.exposure); }},
+      {{"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
+       [](R& r, V v) { return read_int_option("threads", v, 0, 4096, r.threads); }},
+      {{"tracer", 0, "T", false,
+        "packet (SIMD packets through the BVH) | bvh (single rays, double\n"
+        "kernels) | scalar (brute force, double kernels)",
+        "packet"},
+       set_tracer},
+      {{"isa", 0, "I", false, "sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set",
+        "auto, the widest this CPU has"},
+       set_isa},
+      {{"lenient", 0, "", false, "skip bad scene lines with a warning instead of failing", ""},
+       [](R& r, V) {
+         r.lenient = true;
+         return ok_status();
+       }},
+      {{"quiet", 'q', "", false, "print only errors and the written image paths (no progress bar)",
+        ""},
+       [](R& r, V) {
+         r.quiet = true;
+         return ok_status();
+       }},
+  };
+  return options;
+}
+
+const std::vector<OptionSpec>& render_specs() {
+  static const std::vector<OptionSpec> specs = [] {
+    std::vector<OptionSpec> out;
+    for (const RenderOption& o : render_options())
+      out.push_back(o.spec);
+    return out;
+  }();
+  return specs;
+}
+
+const CommandHelp& render_help() {
+  static const CommandHelp help{
+      "raylane render [SCENE] [options]",
+      "Renders SCENE (default: the built-in course test scene) by path tracing or one of the\n"
+      "ray-casting views, and writes the image.",
+      &render_specs(),
+      "A path render shows a progress bar (on a terminal) and ends with a summary. The first\n"
+      "Ctrl-C finishes the pass in flight and writes the image converged so far (RAYLANE_SPP in\n"
+      "the HDR header), exit status 130; a second Ctrl-C exits at once.\n"
+      "The scene language: docs/scene-language.md."};
+  return help;
+}
 
 std::string default_output(const std::optional<std::string>& scene_path) {
   std::string stem = scene_path ? std::filesystem::path(*scene_path).stem().string() : "testscene";
   return stem + ".hdr";
 }
 
-Status read_path_settings(const ParsedArgs& parsed, PathSettings& p) {
-  if (auto v = parsed.last("integrator")) {
-    auto i = integrator_from_name(*v);
-    if (!i) return Error{cat("unknown --integrator ", in_quotes(*v), " (brdf, nee, mis)")};
-    p.integrator = *i;
-  }
-  if (auto v = parsed.last("spp")) {
-    auto n = parse_int_option("spp", *v, 1, 1 << 24);
-    if (!n) return Error{n.error()};
-    p.spp = int(*n);
-  }
-  if (auto v = parsed.last("seed")) {
-    auto n = parse_int_option("seed", *v, 0, std::numeric_limits<long>::max());
-    if (!n) return Error{n.error()};
-    p.seed = uint64_t(*n);
-  }
-  if (auto v = parsed.last("max-depth")) {
-    auto n = parse_int_option("max-depth", *v, 0, 1 << 16);
-    if (!n) return Error{n.error()};
-    p.max_depth = int(*n);
-  }
-  if (auto v = parsed.last("time")) {
-    auto t = parse_double_option("time", *v);
-    if (!t) return Error{t.error()};
-    if (!(*t > 0)) return Error{cat("--time takes a number of seconds > 0, found ", *v)};
-    p.time_limit = *t;
-  }
-  return ok_status();
-}
-
 Result<RenderRequest> read_request(const std::vector<std::string>& args) {
-  auto parsed = parse_args(args, kRenderOptions);
+  auto parsed = parse_args(args, render_specs());
   if (!parsed) return Error{parsed.error()};
   RenderRequest r;
   if (parsed->positional.size() > 1) return Error{"render takes at most one scene file"};
   if (!parsed->positional.empty()) r.scene_path = parsed->positional[0];
-  if (auto m = parsed->last("mode"); m && *m != "path") {
-    auto mode = raycast_mode_from_name(*m);
-    if (!mode)
-      return Error{
-          cat("unknown --mode ", in_quotes(*m), " (path, normal, depth, albedo, id, lit)")};
-    r.mode = *mode;
-    r.path = false;
+  for (const RenderOption& o : render_options()) {
+    auto given = parsed->values.find(o.spec.name);
+    if (given == parsed->values.end()) continue;
+    for (const std::string& value : given->second)
+      if (Status s = o.apply(r, value); !s) return Error{s.error()};
   }
-  if (Status s = read_path_settings(*parsed, r.path_settings); !s) return Error{s.error()};
-  if (Status s = read_checkpoint_options(*parsed, r.checkpoints); !s) return Error{s.error()};
-  if (auto t = parsed->last("tracer")) {
-    auto kind = tracer_kind_from_name(*t);
-    if (!kind) return Error{cat("unknown --tracer ", in_quotes(*t), " (packet, bvh, scalar)")};
-    r.tracer = *kind;
+  if (r.checkpoints.checkpoint) {
+    if (Status s = check_writable(*r.checkpoints.checkpoint); !s)
+      return Error{cat("cannot write --checkpoint ", *r.checkpoints.checkpoint, ": ", s.error())};
   }
-  if (auto t = parsed->last("traversal")) {
-    auto policy = traversal_policy_from_name(*t);
-    if (!policy) return Error{cat("unknown --traversal ", in_quotes(*t), " (packets, rays, auto)")};
-    r.traversal = *policy;
-  }
-  if (auto i = parsed->last("isa")) {
-    auto isa = parse_isa_option(*i);
-    if (!isa) return Error{isa.error()};
-    r.isa = *isa;
-  }
-  if (auto e = parsed->last("exposure")) {
-    auto v = parse_double_option("exposure", *e);
-    if (!v) return Error{v.error()};
-    r.exposure = *v;
-  }
-  if (auto t = parsed->last("threads")) {
-    auto v = parse_int_option("threads", *t, 0, 4096);
-    if (!v) return Error{v.error()};
-    r.threads = int(*v);
-  }
-  r.lenient = parsed->has("lenient");
-  r.quiet = parsed->has("quiet");
-  if (parsed->has("output")) r.outputs = parsed->values.at("output");
   if (r.outputs.empty()) r.outputs.push_back(default_output(r.scene_path));
   bool has_png = false;
   for (const auto& out : r.outputs)
     has_png |= format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
-  if (parsed->has("png") && !has_png)
+  if (r.also_png && !has_png)
     r.outputs.push_back(std::filesystem::path(r.outputs[0]).replace_extension(".png").string());
   for (const auto& out : r.outputs)
     if (auto f = format_from_path(out); !f) return Error{f.error()};
@@ -154,6 +245,7 @@ bool outputs_writable(const RenderRequest& r) {
 }  // namespace
 
 int render_command(const std::vector<std::string>& args) {
+  if (asks_for_help(args)) return print_help(render_help());
   auto request = read_request(args);
   if (!request) return usage_error(request.error());
   const RenderRequest& r = *request;
@@ -164,8 +256,8 @@ int render_command(const std::vector<std::string>& args) {
 
   // The BVH is built for every tracer: it permutes the tables, so all tracers name the same
   // primitive by the same row (and `--mode id` images compare across tracers).
-  Bvh bvh = build_bvh(*scene, {.wide_nodes = r.traversal != TraversalPolicy::kPackets});
-  Tracer tracer(*scene, bvh, r.tracer, r.isa, r.traversal);
+  Bvh bvh = build_bvh(*scene);
+  Tracer tracer(*scene, bvh, r.tracer, r.isa);
   auto start = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   std::string what;
@@ -173,7 +265,10 @@ int render_command(const std::vector<std::string>& args) {
   int spp = 1;
   if (r.path) {
     auto film = starting_film(r.checkpoints, *scene, r.path_settings);
-    if (!film) return std::fprintf(stderr, "raylane: %s\n", film.error().c_str()), kExitUsage;
+    if (!film) {
+      std::fprintf(stderr, "raylane: %s\n", film.error().c_str());
+      return kExitUsage;
+    }
     PathStats stats;
     Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
     Checkpointer checkpointer(r.checkpoints);
@@ -223,13 +318,12 @@ int render_command(const std::vector<std::string>& args) {
   }
   if (!r.quiet) {
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %s, %d "
+                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %d "
                  "threads; BVH of %zu nodes built in %.3f s\n",
                  scene->width, scene->height, what.c_str(), seconds, (unsigned long long)rays,
                  rays / seconds * 1e-6, std::string(tracer_kind_name(r.tracer)).c_str(),
-                 std::string(isa_name(r.isa)).c_str(),
-                 std::string(traversal_policy_name(r.traversal)).c_str(), omp_get_max_threads(),
-                 bvh.nodes.size(), bvh.stats.build_seconds);
+                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
+                 bvh.stats.build_seconds);
   }
   if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
   return status;

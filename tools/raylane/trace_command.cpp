@@ -1,4 +1,4 @@
-// `raylane trace MESH RAYS`: traces an external ray set (spec/ray-sets.md) with the packet
+// `raylane trace MESH RAYS`: traces an external ray set (docs/ray-sets.md) with the packet
 // tracer, prints the median speed of several runs and writes the answers as a .hits file, so
 // raylane and any other tracer can be compared on identical rays.
 #include <omp.h>
@@ -11,11 +11,12 @@
 #include "args.h"
 #include "commands.h"
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/parallel.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_image.h"
 #include "raylane/scene/mesh_import.h"
-#include "raylane/trace/packet_tracer.h"
 #include "raylane/trace/ray_set_io.h"
+#include "raylane/trace/simd_tracer.h"
 
 namespace raylane::cli {
 
@@ -24,15 +25,27 @@ namespace {
 struct TraceRequest {
   std::string mesh, rays, output;
   Isa isa = best_isa();
-  Traversal traversal = Traversal::kPackets;
   int threads = 0, repeat = 5;
   bool quiet = false;
 };
 
 const std::vector<OptionSpec> kTraceOptions = {
-    {"output", 'o', true, false}, {"isa", 0, true, false},      {"threads", 0, true, false},
-    {"repeat", 0, true, false},   {"quiet", 'q', false, false}, {"traversal", 0, true, false},
+    {"output", 'o', "FILE", false, "the answers, as .hits",
+     "the ray set's name with .hits, in the working directory"},
+    {"repeat", 0, "N", false, "runs to take the median of", "5"},
+    {"isa", 0, "I", false, "sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set",
+     "auto, the widest this CPU has"},
+    {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
+    {"quiet", 'q', "", false, "print only errors and the written file's path", ""},
 };
+
+const CommandHelp kTraceHelp{
+    "raylane trace MESH RAYS [options]",
+    "Traces an external ray set (.rays) against a mesh (a .tris soup, or any mesh file Assimp\n"
+    "reads) with the packet tracer, prints the median Mrays/s and writes the answers (.hits), so\n"
+    "raylane and any other tracer can be compared on identical rays. Closest hit or occlusion,\n"
+    "as the ray set says. The file formats: docs/ray-sets.md.",
+    &kTraceOptions, ""};
 
 Result<TraceRequest> read_request(const std::vector<std::string>& args) {
   auto parsed = parse_args(args, kTraceOptions);
@@ -50,21 +63,10 @@ Result<TraceRequest> read_request(const std::vector<std::string>& args) {
     if (!isa) return Error{isa.error()};
     r.isa = *isa;
   }
-  if (auto t = parsed->last("traversal")) {
-    auto v = traversal_from_name(*t);
-    if (!v) return Error{cat("unknown --traversal ", in_quotes(*t), " (packets, rays)")};
-    r.traversal = *v;
-  }
-  if (auto t = parsed->last("threads")) {
-    auto v = parse_int_option("threads", *t, 0, 4096);
-    if (!v) return Error{v.error()};
-    r.threads = int(*v);
-  }
-  if (auto n = parsed->last("repeat")) {
-    auto v = parse_int_option("repeat", *n, 1, 1000);
-    if (!v) return Error{v.error()};
-    r.repeat = int(*v);
-  }
+  if (auto t = parsed->last("threads"))
+    if (Status s = read_int_option("threads", *t, 0, 4096, r.threads); !s) return Error{s.error()};
+  if (auto n = parsed->last("repeat"))
+    if (Status s = read_int_option("repeat", *n, 1, 1000, r.repeat); !s) return Error{s.error()};
   r.quiet = parsed->has("quiet");
   return r;
 }
@@ -86,7 +88,7 @@ Result<Scene> load_mesh(const std::string& path) {
 
 // The answers in the file's terms: triangle indices of the input, not of the BVH's order.
 std::vector<HitRecord> to_records(const HitStream& hits, const Bvh& bvh, bool occlusion) {
-  const auto& source = bvh.source_rows[uint32_t(PrimTag::kTriangle)];
+  const auto& source = bvh.source_rows[uint32_t(tag_of<Triangle>)];
   std::vector<HitRecord> out(hits.t.size());
   for (std::size_t i = 0; i < out.size(); ++i) {
     bool hit = hits.prim[i] != PrimRef::kInvalidBits;
@@ -102,30 +104,37 @@ std::vector<HitRecord> to_records(const HitStream& hits, const Bvh& bvh, bool oc
 }  // namespace
 
 int trace_command(const std::vector<std::string>& args) {
+  if (asks_for_help(args)) return print_help(kTraceHelp);
   auto request = read_request(args);
   if (!request) return usage_error(request.error());
   const TraceRequest& r = *request;
   auto scene = load_mesh(r.mesh);
-  if (!scene) return std::fprintf(stderr, "raylane: %s\n", scene.error().c_str()), kExitUsage;
+  if (!scene) {
+    std::fprintf(stderr, "raylane: %s\n", scene.error().c_str());
+    return kExitUsage;
+  }
   auto set = read_ray_set(r.rays);
-  if (!set) return std::fprintf(stderr, "raylane: %s\n", set.error().c_str()), kExitUsage;
+  if (!set) {
+    std::fprintf(stderr, "raylane: %s\n", set.error().c_str());
+    return kExitUsage;
+  }
   if (Status s = check_writable(r.output); !s) {
     std::fprintf(stderr, "raylane: cannot write %s: %s\n", r.output.c_str(), s.error().c_str());
     return kExitUsage;
   }
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
-  Bvh bvh = build_bvh(*scene, {.wide_nodes = r.traversal == Traversal::kSingleRays});
-  PacketTracer tracer(r.isa, r.traversal);
+  Bvh bvh = build_bvh(*scene);
+  SimdTracer tracer(r.isa);
   HitStream hits;
+  hits.resize(set->rays.size());
   std::vector<double> seconds;
   for (int i = 0; i < r.repeat; ++i) {
     auto start = std::chrono::steady_clock::now();
-    if (set->occlusion()) {
-      tracer.occluded(*scene, bvh, set->rays, hits);
-    } else {
-      tracer.closest(*scene, bvh, set->rays, hits);
-    }
+    // This command owns the threads: chunks of whole packets, as one pass would make them.
+    parallel_chunks(set->rays.size(), 256, [&](std::size_t begin, std::size_t end) {
+      tracer.trace_range(*scene, bvh, set->rays, begin, end, hits, set->occlusion());
+    });
     seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -139,12 +148,11 @@ int trace_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     std::fprintf(stderr,
                  "traced %zu rays (%s) against %zu triangles: median %.2f Mrays/s over %d runs "
-                 "(%.2f … %.2f); %s %s, %d threads; BVH built in %.3f s\n",
+                 "(%.2f … %.2f); %s packets, %d threads; BVH built in %.3f s\n",
                  set->rays.size(), set->occlusion() ? "occlusion" : "closest hit",
                  scene->table<Triangle>().size(), set->rays.size() / median * 1e-6, r.repeat,
                  set->rays.size() / seconds.back() * 1e-6, set->rays.size() / seconds[0] * 1e-6,
-                 std::string(isa_name(r.isa)).c_str(),
-                 std::string(traversal_name(r.traversal)).c_str(), omp_get_max_threads(),
+                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(),
                  bvh.stats.build_seconds);
   return kExitOk;
 }

@@ -5,7 +5,6 @@
 // (design.md, "BVH"). The BVH never names a primitive kind.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -41,12 +40,8 @@ struct BvhConfig {
   int bins = 16;                // 2 … 64
   int max_leaf = 8;             // a leaf may be made when it has at most this many refs...
   int forced_leaf = 32;         // ...and must be split above this many, whatever the SAH says
-  double traversal_cost = 1.0;  // SAH cost of visiting an inner node
-  // SAH cost of one primitive test, per kind (indexed by PrimTag), relative to a node visit.
-  // Measured with bench_trace (bench/README.md): triangles are cheap enough that leaves of
-  // up to 8 pay, for packets and single rays alike (1.31M mesh: 1.2-1.3x); for the quadrics
-  // and boxes of the lattice, bigger leaves cost speed, so they keep cost 1.
-  std::array<double, kPrimKindCount> intersection_cost = {1.0, 1.0, 1.0, 0.3};
+  double traversal_cost = 1.0;  // SAH cost of visiting an inner node (a primitive test costs
+                                // its kind's sah_test_cost: prims/prim_list.h)
   bool wide_nodes = false;  // also collapse the tree to 8-wide nodes (Bvh::wide), for single rays
 };
 
@@ -75,8 +70,8 @@ struct Bvh {
   }
 };
 
-// Builds the BVH over every primitive of `scene` and permutes the scene's tables (and its
-// list of lights) into leaf order. A scene without primitives gives an empty BVH.
+// Builds the BVH over every primitive of `scene` and has the scene permute its tables into
+// leaf order (Scene::permute). A scene without primitives gives an empty BVH.
 Bvh build_bvh(Scene& scene, const BvhConfig& config = {});
 
 }  // namespace raylane

@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include "raylane/core/float_util.h"
 #include "raylane/core/vec3.h"
 
 namespace raylane {
@@ -44,12 +45,6 @@ struct Bounds3 {
 
 using Bounds3f = Bounds3<float>;
 using Bounds3d = Bounds3<double>;
-
-}  // namespace raylane
-
-#include "raylane/core/float_util.h"
-
-namespace raylane {
 
 // The float box that surely contains a double box: each bound is rounded to float and then
 // stepped one float outward, so rounding to nearest can never cut off a tangent hit

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raylane/core/limits.h"
 #include "raylane/core/vec3.h"
 
 namespace raylane {
@@ -26,8 +27,5 @@ struct Image {
     rgb[i] = c.x, rgb[i + 1] = c.y, rgb[i + 2] = c.z;
   }
 };
-
-// The largest image any reader accepts or the parser allows: 2^28 pixels.
-inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
 
 }  // namespace raylane

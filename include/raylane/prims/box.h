@@ -1,5 +1,5 @@
-// Axis-aligned boxes: `box bx by bz dx dy dz` (corner b, diagonal d). The table, its
-// reference kernel and its packet kernel.
+// Axis-aligned boxes: `box bx by bz dx dy dz` (corner b, diagonal d). The table, the kind's traits
+// and its reference kernel; the SIMD kernel is in box_packet.h.
 #pragma once
 
 #include <array>
@@ -15,7 +15,6 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
-#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -55,10 +54,15 @@ struct BoxTable {
 };
 
 struct Box {
-  static constexpr PrimTag tag = PrimTag::kBox;
-  static constexpr std::string_view keyword = "box";
-  static constexpr int param_count = 6;
   using Table = BoxTable;
+  static constexpr std::string_view name = "box", plural = "boxes", keyword = "box";
+  static constexpr int param_count = 6;
+  static constexpr bool two_sided = false;
+  static constexpr double sah_test_cost = 1.0;
+  static double area(const Table& t, uint32_t i);
+  // A uniform point on the surface and its outward normal; u_part picks the part (a box's
+  // face, a cylinder's side or cap) in proportion to its area.
+  static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
 };
 
 namespace detail {
@@ -112,29 +116,6 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
   n[axis] = (entering == neg) ? 1.0 : -1.0;
   p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];
   return {p, n, n};
-}
-
-// The packet kernel: slabs in float with the reference's policy — closed box, NaN-keeping
-// extrema, near/far by the sign of 1/d (hard-cases B3, B4). The box corners are exact floats,
-// and t is as exact as float allows, so no slack is added here (slack belongs to BVH nodes).
-template <class A, class Rows>
-[[gnu::always_inline]] inline void intersect_packet(const BoxTable& b, Rows rows,
-                                                    const RayPacket<A>& r, HitPacket<A>& h) {
-  using F = simd::Floats<A>;
-  const auto neg_x = r.inv_dx < F(0.0f), neg_y = r.inv_dy < F(0.0f), neg_z = r.inv_dz < F(0.0f);
-  const F inf(std::numeric_limits<float>::infinity());
-  for (; rows.more(); rows.next()) {
-    F t0 = -inf, t1 = inf;
-    auto slab = [&](const F& lo, const F& hi, const F& o, const F& inv, const simd::Mask<A>& neg) {
-      F tlo = (lo - o) * inv, thi = (hi - o) * inv;
-      t0 = simd::max_keep<A>(simd::select<A>(neg, thi, tlo), t0);
-      t1 = simd::min_keep<A>(simd::select<A>(neg, tlo, thi), t1);
-    };
-    slab(rows.col(b.lox), rows.col(b.hix), r.ox, r.inv_dx, neg_x);
-    slab(rows.col(b.loy), rows.col(b.hiy), r.oy, r.inv_dy, neg_y);
-    slab(rows.col(b.loz), rows.col(b.hiz), r.oz, r.inv_dz, neg_z);
-    commit_solid_hit<A>(t0, t1, r, rows.mask() & (t0 <= t1), rows.bits(PrimTag::kBox), h);
-  }
 }
 
 }  // namespace raylane

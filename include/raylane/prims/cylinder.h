@@ -1,5 +1,6 @@
 // Capped cylinders: `cylinder bx by bz ax ay az r` (base centre b, axis a from base to top
-// cap, radius r). The table, its reference kernel and its packet kernel.
+// cap, radius r). The table, the kind's traits and its reference kernel; the SIMD kernel is in
+// cylinder_packet.h.
 #pragma once
 
 #include <array>
@@ -16,7 +17,6 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
-#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -76,10 +76,15 @@ struct CylinderTable {
 };
 
 struct Cylinder {
-  static constexpr PrimTag tag = PrimTag::kCylinder;
-  static constexpr std::string_view keyword = "cylinder";
-  static constexpr int param_count = 7;
   using Table = CylinderTable;
+  static constexpr std::string_view name = "cylinder", plural = "cylinders", keyword = "cylinder";
+  static constexpr int param_count = 7;
+  static constexpr bool two_sided = false;
+  static constexpr double sah_test_cost = 1.0;
+  static double area(const Table& t, uint32_t i);
+  // A uniform point on the surface and its outward normal; u_part picks the part (a box's
+  // face, a cylinder's side or cap) in proportion to its area.
+  static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
 };
 
 namespace detail {
@@ -143,45 +148,6 @@ inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, 
     n = radial / rlen;
   }
   return {p, n, n};
-}
-
-// The packet kernel, in float: the side interval from the quadratic in the components
-// perpendicular to the unit axis (Hearn–Baker discriminant, Press roots, as for spheres),
-// intersected with the axial slab [0, h] (hard-cases §3). A ray parallel to the axis
-// (|d⊥|² = 0) has the whole line inside the side when |f⊥| ≤ r; a ray perpendicular to the
-// axis has the whole line inside the slab when 0 ≤ f·u ≤ h (NaN-keeping extrema).
-template <class A, class Rows>
-[[gnu::always_inline]] inline void intersect_packet(const CylinderTable& c, Rows rows,
-                                                    const RayPacket<A>& r, HitPacket<A>& h) {
-  using F = simd::Floats<A>;
-  const F inf(std::numeric_limits<float>::infinity()), zero(0.0f);
-  for (; rows.more(); rows.next()) {
-    F ux = rows.col(c.ux), uy = rows.col(c.uy), uz = rows.col(c.uz);
-    F fx = r.ox - rows.col(c.bx), fy = r.oy - rows.col(c.by), fz = r.oz - rows.col(c.bz);
-    F fa = fx * ux + fy * uy + fz * uz, da = r.dx * ux + r.dy * uy + r.dz * uz;
-    F px = fx - fa * ux, py = fy - fa * uy, pz = fz - fa * uz;        // f⊥
-    F qx = r.dx - da * ux, qy = r.dy - da * uy, qz = r.dz - da * uz;  // d⊥
-    F a = qx * qx + qy * qy + qz * qz;
-    F b = px * qx + py * qy + pz * qz;
-    F radius = rows.col(c.r), rr = radius * radius;
-    F pp = px * px + py * py + pz * pz;
-    F k = b / a;
-    F lx = px - k * qx, ly = py - k * qy, lz = pz - k * qz;
-    F disc = rr - (lx * lx + ly * ly + lz * lz);
-    auto parallel = a == zero;
-    auto side_ok = (parallel & (pp <= rr)) | ((!parallel) & (disc >= zero));
-    F sq = xsimd::sqrt(a * disc);
-    F q = -(b + simd::select<A>(b < zero, -sq, sq));
-    F s0 = (pp - rr) / q, s1 = q / a;
-    F side_n = simd::select<A>(parallel, -inf, simd::select<A>(s0 < s1, s0, s1));
-    F side_f = simd::select<A>(parallel, inf, simd::select<A>(s0 < s1, s1, s0));
-    F inv = F(1.0f) / da;
-    F ta = (zero - fa) * inv, tb = (rows.col(c.h) - fa) * inv;
-    F t0 = simd::max_keep<A>(side_n, simd::max_keep<A>(simd::select<A>(inv < zero, tb, ta), -inf));
-    F t1 = simd::min_keep<A>(side_f, simd::min_keep<A>(simd::select<A>(inv < zero, ta, tb), inf));
-    commit_solid_hit<A>(t0, t1, r, rows.mask() & side_ok & (t0 <= t1),
-                        rows.bits(PrimTag::kCylinder), h);
-  }
 }
 
 }  // namespace raylane

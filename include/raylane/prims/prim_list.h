@@ -1,8 +1,25 @@
-// The list of primitive kinds and the one switch over them. Adding a kind means one header in
-// prims/ and one entry in PrimKinds (design.md, "Tagged dispatch").
+// The list of primitive kinds and the one switch over them. Adding a kind means its header
+// family in prims/ (<kind>.h: table, traits, reference; <kind>_packet.h: the SIMD kernel), one
+// entry in PrimKinds and one include in prim_packets.h (docs/design.md, "Tagged dispatch").
+//
+// What every kind's traits struct provides (Sphere in sphere.h is the example):
+//   using Table;                      its SoA table (append, bounds, size, columns)
+//   name, plural, keyword, param_count   for messages; the scene command and its parameter
+//                                     count
+//                                     (keyword "" and 0: no command of its own)
+//   two_sided                         a surface seen, lit and emitting from both sides (else a
+//                                     closed solid: outside only)
+//   sah_test_cost                     one primitive test, relative to a BVH node visit
+//   area(t, i), sample_area(t, i, u_part, u1, u2)   uniform area sampling, for emitters
+// and may provide (found with `requires` where used):
+//   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
+//                                     primitive subtends, better than by area (spheres)
+//   point_light(t, i)                 the point the course's `lit` view lights from (spheres)
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -25,10 +42,34 @@ struct KindList {
   static constexpr void for_each(F&& f) {
     (f(Kinds{}), ...);
   }
+
+  // The position of Kind in the list.
+  template <class Kind>
+  static constexpr std::size_t index_of() {
+    constexpr bool is[] = {std::is_same_v<Kind, Kinds>...};
+    for (std::size_t i = 0; i < size; ++i)
+      if (is[i]) return i;
+    return size;
+  }
 };
 
 using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle>;
 using PrimTables = PrimKinds::Tables;
+inline constexpr std::size_t kPrimKindCount = PrimKinds::size;
+static_assert(kPrimKindCount <= (std::size_t(1) << PrimRef::kTagBits),
+              "PrimRef has room for 2^kTagBits kinds");
+
+// Kind's tag: its position in PrimKinds.
+template <class Kind>
+inline constexpr PrimTag tag_of = [] {
+  static_assert(PrimKinds::index_of<Kind>() < kPrimKindCount, "not in PrimKinds");
+  return PrimTag(PrimKinds::index_of<Kind>());
+}();
+
+template <class Kind>
+constexpr std::size_t kind_index() {
+  return std::size_t(tag_of<Kind>);
+}
 
 namespace detail {
 template <class F, class... Kinds>
@@ -36,10 +77,10 @@ constexpr decltype(auto) dispatch_impl(PrimTag tag, F&& f, KindList<Kinds...>) {
   using R = std::invoke_result_t<F, Sphere>;
   if constexpr (std::is_void_v<R>) {
     // (void): the fold is evaluated for its short-circuit, not its value (clang warns).
-    (void)((tag == Kinds::tag ? (f(Kinds{}), true) : false) || ...);
+    (void)((tag == tag_of<Kinds> ? (f(Kinds{}), true) : false) || ...);
   } else {
     R result{};
-    (void)((tag == Kinds::tag ? (result = f(Kinds{}), true) : false) || ...);
+    (void)((tag == tag_of<Kinds> ? (result = f(Kinds{}), true) : false) || ...);
     return result;
   }
 }
@@ -51,14 +92,22 @@ constexpr decltype(auto) dispatch(PrimTag tag, F&& f) {
   return detail::dispatch_impl(tag, std::forward<F>(f), PrimKinds{});
 }
 
-template <class Kind>
-constexpr std::size_t kind_index() {
-  return std::size_t(Kind::tag);
+// Facts of a kind known only by its tag.
+inline std::string_view kind_name(PrimTag tag) {
+  return dispatch(tag, [](auto kind) { return decltype(kind)::name; });
+}
+inline bool kind_two_sided(PrimTag tag) {
+  return dispatch(tag, [](auto kind) { return decltype(kind)::two_sided; });
+}
+inline double kind_sah_test_cost(PrimTag tag) {
+  return dispatch(tag, [](auto kind) { return decltype(kind)::sah_test_cost; });
 }
 
-static_assert(PrimKinds::size == kPrimKindCount);
-static_assert(kind_index<Sphere>() == 0 && kind_index<Box>() == 1 && kind_index<Cylinder>() == 2 &&
-                  kind_index<Triangle>() == 3,
-              "PrimTag values must follow the order of PrimKinds");
+// "sphere#12", or "none".
+inline std::string to_string(PrimRef ref) {
+  if (!ref.valid()) return "none";
+  if (std::size_t(ref.tag()) >= kPrimKindCount) return "kind" + std::to_string(int(ref.tag()));
+  return std::string(kind_name(ref.tag())) + "#" + std::to_string(ref.row());
+}
 
 }  // namespace raylane

@@ -6,9 +6,9 @@
 
 namespace raylane {
 
-// One value per primitive kind, in the order of PrimKinds (prim_list.h).
-enum class PrimTag : uint32_t { kSphere = 0, kBox = 1, kCylinder = 2, kTriangle = 3 };
-inline constexpr int kPrimKindCount = 4;
+// A primitive kind's position in the kind list: tag_of<Kind> (prim_list.h) derives it, so the
+// list is the one place that orders the kinds.
+enum class PrimTag : uint32_t {};
 
 // A kind tag and a row index packed in 32 bits: 3 bits of tag (room for 8 kinds) and 29 bits
 // of row, so a table holds at most 2^29 rows; the scene checks that bound before appending.
@@ -37,8 +37,6 @@ class PrimRef {
   constexpr explicit PrimRef(uint32_t bits) : bits_(bits) {}
   uint32_t bits_ = kInvalidBits;
 };
-
-std::string to_string(PrimRef ref);
 
 // Why a row could not be appended: the 0-based index of the offending parameter (−1 for the
 // row as a whole) and what was wrong.

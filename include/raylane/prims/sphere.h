@@ -1,4 +1,5 @@
-// Spheres: `sphere cx cy cz r`. The table, its reference kernel and its packet kernel.
+// Spheres: `sphere cx cy cz r`. The table, the kind's traits and its reference kernel; the SIMD
+// kernel is in sphere_packet.h.
 #pragma once
 
 #include <array>
@@ -14,7 +15,6 @@
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
-#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -46,10 +46,22 @@ struct SphereTable {
 };
 
 struct Sphere {
-  static constexpr PrimTag tag = PrimTag::kSphere;
-  static constexpr std::string_view keyword = "sphere";
-  static constexpr int param_count = 4;
   using Table = SphereTable;
+  static constexpr std::string_view name = "sphere", plural = "spheres", keyword = "sphere";
+  static constexpr int param_count = 4;
+  static constexpr bool two_sided = false;
+  static constexpr double sah_test_cost = 1.0;
+  static double area(const Table& t, uint32_t i);
+  // A uniform point on the surface and its outward normal; u_part picks the part (a box's
+  // face, a cylinder's side or cap) in proportion to its area.
+  static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
+  // Seen from outside: a direction uniform in the cone the sphere subtends (pbrt-v4
+  // Sphere::Sample), and that cone's solid angle; nothing from inside (area sampling then).
+  static std::optional<SubtendedSample> sample_subtended(const Table& t, uint32_t i,
+                                                         const Vec3d& ref, double u1, double u2);
+  static std::optional<double> subtended_solid_angle(const Table& t, uint32_t i, const Vec3d& ref);
+  // The course's `lit` view lights from an emitting sphere's centre.
+  static Vec3d point_light(const Table& t, uint32_t i) { return Vec3d(t.center(i)); }
 };
 
 // The reference kernel, in double on the table's floats. The discriminant is the squared
@@ -75,33 +87,6 @@ inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, do
   Vec3d c(s.center(i));
   Vec3d n = normalize(ray.at(t) - c);
   return {c + n * double(s.r[i]), n, n};
-}
-
-// The packet kernel, in float, with rays or rows in the lanes (`Rows`, trace/packet.h).
-// Discriminant in the Hearn–Baker form r² − |f − (f·d/d·d)·d|² and roots by the Press form, as in
-// the reference (Haines et al. 2019, Ray Tracing Gems ch. 7). Updates h where a lane finds a nearer
-// hit.
-template <class A, class Rows>
-[[gnu::always_inline]] inline void intersect_packet(const SphereTable& s, Rows rows,
-                                                    const RayPacket<A>& r, HitPacket<A>& h) {
-  using F = simd::Floats<A>;
-  const F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
-  for (; rows.more(); rows.next()) {
-    F fx = r.ox - rows.col(s.cx), fy = r.oy - rows.col(s.cy), fz = r.oz - rows.col(s.cz);
-    F b = fx * r.dx + fy * r.dy + fz * r.dz;
-    F k = b / dd;
-    F lx = fx - k * r.dx, ly = fy - k * r.dy, lz = fz - k * r.dz;
-    F radius = rows.col(s.r), rr = radius * radius;
-    F disc = rr - (lx * lx + ly * ly + lz * lz);
-    simd::Mask<A> hit = rows.mask() & (disc >= F(0.0f));
-    if (simd::none<A>(hit)) continue;
-    F sq = xsimd::sqrt(dd * disc);
-    F q = -(b + simd::select<A>(b < F(0.0f), -sq, sq));
-    F c = fx * fx + fy * fy + fz * fz - rr;
-    F t0 = c / q, t1 = q / dd;
-    F tn = simd::select<A>(t0 < t1, t0, t1), tf = simd::select<A>(t0 < t1, t1, t0);
-    commit_solid_hit<A>(tn, tf, r, hit, rows.bits(PrimTag::kSphere), h);
-  }
 }
 
 }  // namespace raylane

@@ -1,4 +1,5 @@
-// What a reference kernel reports about a hit point, computed once for the closest hit.
+// What a reference kernel reports about a hit point, computed once for the closest hit; and
+// the points and directions a kind's sampling hooks return (prim_list.h).
 #pragma once
 
 #include "raylane/core/vec3.h"
@@ -9,6 +10,20 @@ struct Surface {
   Vec3d p;   // the hit point
   Vec3d ng;  // unit geometric normal, pointing out of the solid (or by the triangle's winding)
   Vec3d ns;  // unit shading normal (interpolated for mesh triangles; = ng otherwise)
+};
+
+// A point on a primitive's surface and its unit outward normal (by the winding for triangles).
+struct AreaSample {
+  Vec3d p, n;
+};
+
+// A direction toward a primitive from a reference point, drawn uniformly over the solid angle
+// the primitive subtends there (density 1 / solid_angle), and the distance to the surface
+// along it.
+struct SubtendedSample {
+  Vec3d wi;
+  double dist = 0;
+  double solid_angle = 0;
 };
 
 }  // namespace raylane

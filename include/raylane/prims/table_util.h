@@ -1,9 +1,11 @@
-// Helpers shared by the SoA tables: column lists for size, bytes and permutation.
+// Helpers shared by the SoA tables. Every table exposes `auto columns()` (a std::tie of its
+// column vectors); these work on any table through it.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace raylane {
@@ -22,19 +24,6 @@ void permute_column(std::vector<T>& c, std::span<const uint32_t> order) {
   c.swap(out);
 }
 
-// Applies f to every column of a table, given as a list of references.
-template <class F, class... Cols>
-void for_each_column(F&& f, Cols&... cols) {
-  (f(cols), ...);
-}
-
-}  // namespace raylane
-
-#include <tuple>
-
-namespace raylane {
-
-// Every table exposes `auto columns()` (a std::tie of its column vectors); these work on any.
 template <class Table>
 std::size_t table_bytes(Table& t) {
   return std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.columns());

@@ -1,24 +1,22 @@
-// Mesh triangles (made by the `mesh` command). The table, its reference kernel and its
-// packet kernel.
+// Mesh triangles (made by the `mesh` command). The table, the kind's traits and its reference
+// kernel; the SIMD kernel is in triangle_packet.h.
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
-#include <cmath>
-#include <utility>
 #include "raylane/core/bounds3.h"
-#include "raylane/core/ray.h"
-
 #include "raylane/core/float_util.h"
+#include "raylane/core/ray.h"
 #include "raylane/prims/prim_ref.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
-#include "raylane/trace/packet.h"
 
 namespace raylane {
 
@@ -62,10 +60,19 @@ struct TriangleTable {
 };
 
 struct Triangle {
-  static constexpr PrimTag tag = PrimTag::kTriangle;
+  using Table = TriangleTable;
+  static constexpr std::string_view name = "triangle", plural = "triangles";
   static constexpr std::string_view keyword = "";  // no scene command: made by `mesh`
   static constexpr int param_count = 0;
-  using Table = TriangleTable;
+  static constexpr bool two_sided = true;  // a mesh is a surface: both sides emit and reflect
+  // Measured with bench_trace (bench/README.md): triangles are cheap enough that leaves of up
+  // to 8 pay, for packets and single rays alike (1.31M mesh: 1.2-1.3x); the quadrics and
+  // boxes of the lattice lose speed with bigger leaves, so they keep cost 1.
+  static constexpr double sah_test_cost = 0.3;
+  static double area(const Table& t, uint32_t i);
+  // A uniform point on the surface and its outward normal; u_part picks the part (a box's
+  // face, a cylinder's side or cap) in proportion to its area.
+  static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
 };
 
 namespace detail {
@@ -122,112 +129,6 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   Vec3d ns = b0 * Vec3d(tri.n0(i)) + b1 * Vec3d(tri.n1(i)) + b2 * Vec3d(tri.n2(i));
   double len = length(ns);
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
-}
-
-// The vertices of the current rows relative to the ray origin, permuted and sheared by the
-// ray's frame (RayShear, computed once per ray), in one of two ways with the same roundings,
-// so both give the same answers:
-// - LaneShear: every lane may have its own permutation, so each coordinate is selected per
-//   lane;
-// - ColumnShear: every active lane has the same permutation (a single ray, or a coherent
-//   packet), so the permuted columns are loaded directly.
-inline std::array<const std::vector<float>*, 3> vertex_columns(const TriangleTable& tri, int v) {
-  if (v == 0) return {&tri.p0x, &tri.p0y, &tri.p0z};
-  if (v == 1) return {&tri.p1x, &tri.p1y, &tri.p1z};
-  return {&tri.p2x, &tri.p2y, &tri.p2z};
-}
-
-template <class A>
-struct LaneShear {
-  using F = simd::Floats<A>;
-  const RayPacket<A>& r;
-
-  template <class Rows>
-  void vertex(const TriangleTable& tri, const Rows& rows, int v, F& x, F& y, F& z) const {
-    const RayShear<A>& s = r.shear;
-    const auto& c = vertex_columns(tri, v);
-    F ax = rows.col(*c[0]) - r.ox, ay = rows.col(*c[1]) - r.oy, az = rows.col(*c[2]) - r.oz;
-    F kz = RayShear<A>::pick(s.z_is, ax, ay, az);
-    x = simd::fma<A>(-s.sx, kz, RayShear<A>::pick(s.x_is, ax, ay, az));
-    y = simd::fma<A>(-s.sy, kz, RayShear<A>::pick(s.y_is, ax, ay, az));
-    z = s.sz * kz;
-  }
-};
-
-template <class A>
-struct ColumnShear {
-  using F = simd::Floats<A>;
-  std::array<const std::vector<float>*, 3> col[3];  // [vertex][sheared axis x, y, z]
-  F ox, oy, oz, sx, sy, sz;                         // origin in sheared axis order
-
-  ColumnShear(const TriangleTable& tri, const RayPacket<A>& r)
-      : sx(r.shear.sx), sy(r.shear.sy), sz(r.shear.sz) {
-    const RayShear<A>& s = r.shear;
-    for (int v = 0; v < 3; ++v) {
-      auto c = vertex_columns(tri, v);
-      col[v] = {c[s.kx], c[s.ky], c[s.kz]};
-    }
-    const F* o[3] = {&r.ox, &r.oy, &r.oz};
-    ox = *o[s.kx], oy = *o[s.ky], oz = *o[s.kz];
-  }
-
-  template <class Rows>
-  void vertex(const TriangleTable&, const Rows& rows, int v, F& x, F& y, F& z) const {
-    F az = rows.col(*col[v][2]) - oz;
-    x = simd::fma<A>(-sx, az, rows.col(*col[v][0]) - ox);
-    y = simd::fma<A>(-sy, az, rows.col(*col[v][1]) - oy);
-    z = sz * az;
-  }
-};
-
-// a·b − c·d with the exact sign in every lane (Kahan; see difference_of_products): the
-// shared edge of two triangles gets opposite signs from both, so nothing leaks between them
-// (hard-cases T2).
-template <class A>
-inline simd::Floats<A> difference_of_products_lanes(const simd::Floats<A>& a,
-                                                    const simd::Floats<A>& b,
-                                                    const simd::Floats<A>& c,
-                                                    const simd::Floats<A>& d) {
-  simd::Floats<A> cd = c * d;
-  simd::Floats<A> err = simd::fma<A>(-c, d, cd);
-  return simd::fma<A>(a, b, -cd) + err;
-}
-
-// The watertight test in float, per lane (Woop et al. 2013): vertices relative to the
-// origin, permuted and sheared; edge functions U, V, W with their exact sign; accept all ≥ 0
-// or all ≤ 0 with det ≠ 0; t = T/det.
-template <class A, class Rows, class Shear>
-[[gnu::always_inline]] inline void watertight_rows(const TriangleTable& tri, Rows rows,
-                                                   const Shear& shear, const RayPacket<A>& r,
-                                                   HitPacket<A>& h) {
-  using F = simd::Floats<A>;
-  const F zero(0.0f);
-  for (; rows.more(); rows.next()) {
-    F ax, ay, az, bx, by, bz, cx, cy, cz;
-    shear.vertex(tri, rows, 0, ax, ay, az);
-    shear.vertex(tri, rows, 1, bx, by, bz);
-    shear.vertex(tri, rows, 2, cx, cy, cz);
-    F u = difference_of_products_lanes<A>(cx, by, cy, bx);
-    F v = difference_of_products_lanes<A>(ax, cy, ay, cx);
-    F e = difference_of_products_lanes<A>(bx, ay, by, ax);
-    auto has_neg = (u < zero) | (v < zero) | (e < zero);
-    auto has_pos = (u > zero) | (v > zero) | (e > zero);
-    F det = u + v + e;
-    simd::Mask<A> hit = rows.mask() & (!(has_neg & has_pos)) & (det != zero);
-    if (simd::none<A>(hit)) continue;
-    F t = (u * az + v * bz + e * cz) / det;
-    commit_hit<A>(t, hit & (t > r.tmin) & (t < h.t), rows.bits(PrimTag::kTriangle), h);
-  }
-}
-
-// The packet kernel: permuted columns when the lanes share the ray's axes, selects otherwise.
-template <class A, class Rows>
-[[gnu::always_inline]] inline void intersect_packet(const TriangleTable& tri, Rows rows,
-                                                    const RayPacket<A>& r, HitPacket<A>& h) {
-  if constexpr (!Rows::kOneRay) {
-    if (!r.shear.uniform) return watertight_rows<A>(tri, rows, LaneShear<A>{r}, r, h);
-  }
-  watertight_rows<A>(tri, rows, ColumnShear<A>(tri, r), r, h);
 }
 
 }  // namespace raylane

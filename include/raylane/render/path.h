@@ -13,8 +13,9 @@
 #include <optional>
 #include <string_view>
 
+#include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
-#include "raylane/render/tracer.h"
+#include "raylane/trace/tracer.h"
 
 namespace raylane {
 
@@ -24,8 +25,13 @@ enum class Integrator {
   kMis,   // both, weighted by the power heuristic
 };
 
-std::optional<Integrator> integrator_from_name(std::string_view name);  // brdf, nee, mis
-std::string_view integrator_name(Integrator integrator);
+inline constexpr EnumNames<Integrator, 3> kIntegratorNames{{"brdf", "nee", "mis"}};
+inline std::optional<Integrator> integrator_from_name(std::string_view name) {
+  return kIntegratorNames.from_name(name);
+}
+inline std::string_view integrator_name(Integrator integrator) {
+  return kIntegratorNames.name(integrator);
+}
 
 struct PathSettings {
   Integrator integrator = Integrator::kMis;

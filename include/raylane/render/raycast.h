@@ -5,10 +5,11 @@
 #include <optional>
 #include <string_view>
 
+#include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
 #include "raylane/render/camera.h"
-#include "raylane/render/tracer.h"
 #include "raylane/scene/scene.h"
+#include "raylane/trace/tracer.h"
 
 namespace raylane {
 
@@ -20,8 +21,14 @@ enum class RaycastMode {
   kLit,     // ambient·Kd plus a Phong term from each emitting sphere's centre, shadowed
 };
 
-std::optional<RaycastMode> raycast_mode_from_name(std::string_view name);
-std::string_view raycast_mode_name(RaycastMode mode);
+inline constexpr EnumNames<RaycastMode, 5> kRaycastModeNames{
+    {"normal", "depth", "albedo", "id", "lit"}};
+inline std::optional<RaycastMode> raycast_mode_from_name(std::string_view name) {
+  return kRaycastModeNames.from_name(name);
+}
+inline std::string_view raycast_mode_name(RaycastMode mode) {
+  return kRaycastModeNames.name(mode);
+}
 
 struct RaycastStats {
   uint64_t camera_rays = 0;
@@ -31,15 +38,5 @@ struct RaycastStats {
 // Renders every pixel; camera rays go out in 4×4-pixel tiles (coherent packets), rows are
 // stored top row first (Image's convention).
 Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr);
-
-// The origin of a ray leaving surface point p: moved along the geometric normal, to the
-// side `toward` points to, by a bound on p's own rounding error (pbrt-v4 `OffsetRayOrigin`;
-// Wächter and Binder, Ray Tracing Gems ch. 6), so the ray cannot re-hit the surface it starts
-// on. `p_error` is a componentwise bound on |p − exact p|.
-Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng, const Vec3d& toward);
-
-// A componentwise bound on the error of a hit point o + t·d whose t came from a float
-// kernel: a float t is within a few ulps, so allow 2^5 float roundoffs of |o| + |t·d|.
-Vec3d hit_point_error(const Rayd& ray, double t);
 
 }  // namespace raylane

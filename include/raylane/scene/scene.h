@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
+#include "raylane/core/limits.h"
 #include "raylane/core/mat3.h"
 #include "raylane/prims/prim_list.h"
 #include "raylane/scene/material.h"
@@ -37,7 +38,6 @@ struct ParseState;
 
 struct Scene {
   static constexpr uint32_t kDefaultWidth = 400, kDefaultHeight = 300;
-  static constexpr uint64_t kMaxPixels = uint64_t(1) << 28;
 
   uint32_t width = kDefaultWidth, height = kDefaultHeight;
   std::optional<CameraSpec> camera;
@@ -56,6 +56,11 @@ struct Scene {
   }
   std::size_t primitive_count() const;
   uint32_t material_of(PrimRef ref) const;
+
+  // Reorders the rows of every table: new row i of kind k is old row order[k][i] (order[k] is
+  // a permutation of table k's rows, k = kind_index); the lights follow their rows. Returns,
+  // per kind, the new row of every old row.
+  std::vector<std::vector<uint32_t>> permute(const std::vector<std::vector<uint32_t>>& order);
 
   // Validates one line and applies it: a setting, a material, or rows appended to a table.
   // Problems go to state.diagnostics; returns false if the line was rejected.

@@ -6,15 +6,23 @@
 #include <string_view>
 #include <vector>
 
+#include "raylane/core/enum_names.h"
+
 namespace raylane {
 
 enum class Isa { kSse42, kAvx2, kAvx512 };
 
-std::string_view isa_name(Isa isa);                  // "sse4.2", "avx2", "avx512"
-std::optional<Isa> isa_from_name(std::string_view);  // the names above
-int isa_width(Isa isa);                              // float lanes: 4, 8, 16
-bool isa_supported(Isa isa);                         // by this CPU (cpuid)
-Isa best_isa();                                      // the widest supported
-std::vector<Isa> supported_isas();                   // narrowest first
+inline constexpr EnumNames<Isa, 3> kIsaNames{{"sse4.2", "avx2", "avx512"}};
+inline std::string_view isa_name(Isa isa) {
+  return kIsaNames.name(isa);
+}
+inline std::optional<Isa> isa_from_name(std::string_view name) {
+  return kIsaNames.from_name(name);
+}
+
+int isa_width(Isa isa);             // float lanes: 4, 8, 16
+bool isa_supported(Isa isa);        // by this CPU (cpuid)
+Isa best_isa();                     // the widest supported
+std::vector<Isa> supported_isas();  // narrowest first
 
 }  // namespace raylane

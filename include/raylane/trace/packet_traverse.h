@@ -5,7 +5,7 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/float_util.h"
-#include "raylane/prims/prim_list.h"
+#include "raylane/prims/prim_packets.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/packet.h"
 #include "raylane/trace/traversal_counters.h"

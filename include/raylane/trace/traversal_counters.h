@@ -1,6 +1,6 @@
 // What a packet traversal did: the figures that explain its speed (nodes and primitives
 // tested per ray, how many lanes of each SIMD test did useful work). Counted only by the
-// counting instantiation of the traversal (PacketTracer::trace_counted); the production
+// counting instantiation of the traversal (SimdTracer::trace_counted); the production
 // loop carries no counters.
 #pragma once
 

@@ -13,7 +13,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
-#include "raylane/trace/packet_tracer.h"
+#include "raylane/trace/simd_tracer.h"
 #include "support/error_bands.h"
 #include "support/paths.h"
 #include "support/random_scene.h"
@@ -36,7 +36,7 @@ struct Agreement {
   int rays = 0, hits = 0, band = 0, band_disagreements = 0, disagreements_outside_band = 0;
 };
 
-Agreement compare(const Scene& s, const Bvh& bvh, const PacketTracer& tracer,
+Agreement compare(const Scene& s, const Bvh& bvh, const SimdTracer& tracer,
                   const std::vector<Rayd>& rays) {
   RayStream stream = RayStream::from(rays);
   HitStream hits;
@@ -69,17 +69,17 @@ struct TracerConfig {
   Traversal traversal;
 };
 
-class PacketTracerTest : public ::testing::TestWithParam<TracerConfig> {
+class SimdTracerTest : public ::testing::TestWithParam<TracerConfig> {
  protected:
   void SetUp() override {
     if (!isa_supported(GetParam().isa))
       GTEST_SKIP() << "this CPU lacks " << isa_name(GetParam().isa);
   }
-  PacketTracer tracer() const { return PacketTracer(GetParam().isa, GetParam().traversal); }
+  SimdTracer tracer() const { return SimdTracer(GetParam().isa, GetParam().traversal); }
   bool packets() const { return GetParam().traversal == Traversal::kPackets; }
 };
 
-TEST_P(PacketTracerTest, AgreesWithReferenceOnRandomScenes) {
+TEST_P(SimdTracerTest, AgreesWithReferenceOnRandomScenes) {
   for (double offset : {0.0, 1e2, 1e4}) {
     Scene s = random_scene(11, 300, 10, 0.6, {offset, offset, -offset});
     Bvh bvh = build_bvh(s, kWithWideNodes);
@@ -92,7 +92,7 @@ TEST_P(PacketTracerTest, AgreesWithReferenceOnRandomScenes) {
   }
 }
 
-TEST_P(PacketTracerTest, AgreesWithReferenceOnShippedScenes) {
+TEST_P(SimdTracerTest, AgreesWithReferenceOnShippedScenes) {
   for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
     auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
     ASSERT_TRUE(p.ok());
@@ -107,7 +107,7 @@ TEST_P(PacketTracerTest, AgreesWithReferenceOnShippedScenes) {
 }
 
 // hard-cases N1: invalid rays miss without a NaN, and do not disturb their packet mates.
-TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
+TEST_P(SimdTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   Scene s = random_scene(14, 50, 3);
   Bvh bvh = build_bvh(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(15, 64, 3);
@@ -132,7 +132,7 @@ TEST_P(PacketTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
 }
 
 // hard-cases B3, B4: ±0 components and rays in a box's face planes, edges and corners.
-TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
+TEST_P(SimdTracerTest, BoxFacePlaneAndSignedZeroRays) {
   Scene s;
   s.materials.push_back(Material{});
   s.table<Box>().append(std::array<double, 6>{0, 0, 0, 1, 1, 1}, 0);
@@ -156,7 +156,7 @@ TEST_P(PacketTracerTest, BoxFacePlaneAndSignedZeroRays) {
 
 // hard-cases T1: rays from inside a closed mesh, random and aimed exactly at vertices and at
 // points on edges, through the BVH, at offsets 0, 1e4 and 1e5: no ray escapes.
-TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
+TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
   for (double offset : {0.0, 1e4, 1e5}) {
     Scene s;
     Vec3d c(offset, -offset, offset);
@@ -192,7 +192,7 @@ TEST_P(PacketTracerTest, NoRayEscapesAClosedMesh) {
   }
 }
 
-TEST_P(PacketTracerTest, OcclusionMatchesReference) {
+TEST_P(SimdTracerTest, OcclusionMatchesReference) {
   Scene s = random_scene(18, 300, 10);
   Bvh bvh = build_bvh(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(19, 5000, 12);
@@ -232,7 +232,7 @@ int axes_key(const Rayd& r) {
 // same answers, bit for bit, for closest hit and for occlusion. Invalid rays of other
 // octants sit inside the coherent packets (they must not break the coherence of the active
 // lanes), some rays start at tmin > 0, and the last packet is partly filled.
-TEST_P(PacketTracerTest, CoherentAndMixedPacketsAnswerBitForBitAlike) {
+TEST_P(SimdTracerTest, CoherentAndMixedPacketsAnswerBitForBitAlike) {
   if (!packets()) GTEST_SKIP() << "a single ray has one permutation and octant by construction";
   Scene s = random_scene(23, 300, 10);
   testing::add_closed_uv_sphere(s, 24, 16, 32, {2, -1, 3});
@@ -299,11 +299,11 @@ TEST_P(PacketTracerTest, CoherentAndMixedPacketsAnswerBitForBitAlike) {
 
 // The counting traversal gives the same answers as the production one, and its counts add
 // up: on a one-sphere scene the root is the only node, a leaf with one primitive.
-TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
+TEST_P(SimdTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   Scene s = random_scene(7, 40);
   Bvh bvh = build_bvh(s, kWithWideNodes);
   RayStream stream = RayStream::from(random_rays(8, 1000, 12));
-  const PacketTracer tracer = this->tracer();
+  const SimdTracer tracer = this->tracer();
   HitStream plain, counted;
   for (bool any_hit : {false, true}) {
     any_hit ? tracer.occluded(s, bvh, stream, plain) : tracer.closest(s, bvh, stream, plain);
@@ -334,14 +334,14 @@ TEST_P(PacketTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
 
 // Single rays need the 8-wide tree; on a BVH built without it they go as packets, with the
 // packets' answers, rather than missing everything.
-TEST(PacketTracer, SingleRaysWithoutWideNodesGoAsPackets) {
+TEST(SimdTracer, SingleRaysWithoutWideNodesGoAsPackets) {
   Scene s = random_scene(21, 200, 10);
   Bvh bvh = build_bvh(s);
   ASSERT_TRUE(bvh.wide.empty());
   RayStream stream = RayStream::from(random_rays(22, 3000, 12));
   HitStream packets, rays;
-  PacketTracer(best_isa(), Traversal::kPackets).closest(s, bvh, stream, packets);
-  PacketTracer(best_isa(), Traversal::kSingleRays).closest(s, bvh, stream, rays);
+  SimdTracer(best_isa(), Traversal::kPackets).closest(s, bvh, stream, packets);
+  SimdTracer(best_isa(), Traversal::kSingleRays).closest(s, bvh, stream, rays);
   EXPECT_EQ(packets.prim, rays.prim);
   EXPECT_EQ(packets.t, rays.t);
   EXPECT_GT(std::count_if(rays.prim.begin(), rays.prim.end(),
@@ -349,7 +349,7 @@ TEST(PacketTracer, SingleRaysWithoutWideNodesGoAsPackets) {
             300);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryIsa, PacketTracerTest,
+INSTANTIATE_TEST_SUITE_P(EveryIsa, SimdTracerTest,
                          ::testing::Values(TracerConfig{Isa::kSse42, Traversal::kPackets},
                                            TracerConfig{Isa::kAvx2, Traversal::kPackets},
                                            TracerConfig{Isa::kAvx512, Traversal::kPackets},

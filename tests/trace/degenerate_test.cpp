@@ -10,7 +10,7 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/trace/brute_force.h"
-#include "raylane/trace/packet_tracer.h"
+#include "raylane/trace/simd_tracer.h"
 #include "support/random_scene.h"
 
 namespace raylane {
@@ -47,7 +47,7 @@ int expect_agreement(const Scene& s, const Bvh& bvh, const std::vector<Rayd>& ra
   for (std::size_t i = 0; i < rays.size(); ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   HitStream hits;
-  PacketTracer().closest(s, bvh, stream, hits);
+  SimdTracer().closest(s, bvh, stream, hits);
   int misses = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     Hit ref = closest_hit_ref(s, testing::round_to_float(rays[i]));

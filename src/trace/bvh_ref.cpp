@@ -1,4 +1,4 @@
-#include "raylane/bvh/traverse_ref.h"
+#include "raylane/trace/bvh_ref.h"
 
 #include <cmath>
 

@@ -17,7 +17,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/float_util.h"
 #include "raylane/trace/brute_force.h"
-#include "raylane/trace/packet_tracer.h"
+#include "raylane/trace/simd_tracer.h"
 #include "support/error_bands.h"
 #include "support/random_scene.h"
 
@@ -51,12 +51,12 @@ std::vector<KernelPath> kernel_paths() {
 
 void trace_closest(const KernelPath& path, const Scene& scene, const Bvh& bvh,
                    const RayStream& rays, HitStream& hits) {
-  PacketTracer(path.isa, path.traversal).closest(scene, bvh, rays, hits);
+  SimdTracer(path.isa, path.traversal).closest(scene, bvh, rays, hits);
 }
 
 void trace_occluded(const KernelPath& path, const Scene& scene, const Bvh& bvh,
                     const RayStream& rays, HitStream& hits) {
-  PacketTracer(path.isa, path.traversal).occluded(scene, bvh, rays, hits);
+  SimdTracer(path.isa, path.traversal).occluded(scene, bvh, rays, hits);
 }
 
 // ---- Random geometry ----
@@ -369,7 +369,7 @@ using Kinds = ::testing::Types<Sphere, Box, Cylinder, Triangle>;
 struct KindNames {
   template <class Kind>
   static std::string GetName(int) {
-    return Kind::tag == PrimTag::kTriangle ? "triangle" : std::string(Kind::keyword);
+    return std::string(Kind::name);
   }
 };
 TYPED_TEST_SUITE(KernelBandTest, Kinds, KindNames);
@@ -380,7 +380,7 @@ TYPED_TEST(KernelBandTest, ClearClassesAgreeWithTheReference) {
   using Kind = TypeParam;
   const std::vector<KernelPath> paths = kernel_paths();
   std::vector<Tally> tallies(paths.size());
-  Rng g(2026 + int(Kind::tag));
+  Rng g(2026 + int(tag_of<Kind>));
   for (const Placement& at : placements())
     for (int count : {1, 6}) {
       SCOPED_TRACE(::testing::Message() << "offset " << at.offset << ", scale " << at.scale << ", "

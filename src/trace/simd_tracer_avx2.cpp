@@ -1,5 +1,5 @@
 // The packet tracer compiled for one instruction set (flags set in CMakeLists.txt).
-#include "simd/packet_tracer_impl.h"
+#include "trace/simd_tracer_impl.h"
 
 static_assert(XSIMD_WITH_FMA3_AVX2,
               "this file must be compiled with the flags of its instruction set");

@@ -1,12 +1,12 @@
 // The body of the packet tracer, instantiated once per instruction set by
-// src/simd/isa_*.cpp. Include from nowhere else.
+// src/trace/simd_tracer_*.cpp. Include from nowhere else.
 #pragma once
 
 #include <cfloat>
 
-#include "raylane/trace/packet_tracer.h"
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"
+#include "raylane/trace/simd_tracer.h"
 
 namespace raylane::detail {
 

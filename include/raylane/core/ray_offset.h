@@ -1,0 +1,20 @@
+// Where a secondary ray starts: off the surface by a bound on the hit point's own rounding
+// error, not by a fixed epsilon, so nothing re-hits its own surface or leaks at any scale
+// (hard-cases §5).
+#pragma once
+
+#include "raylane/core/ray.h"
+
+namespace raylane {
+
+// The origin of a ray leaving surface point p: moved along the geometric normal, to the
+// side `toward` points to, by a bound on p's own rounding error (pbrt-v4 `OffsetRayOrigin`;
+// Wächter and Binder, Ray Tracing Gems ch. 6), so the ray cannot re-hit the surface it starts
+// on. `p_error` is a componentwise bound on |p − exact p|.
+Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng, const Vec3d& toward);
+
+// A componentwise bound on the error of a hit point o + t·d whose t came from a float
+// kernel: a float t is within a few ulps, so allow 2^5 float roundoffs of |o| + |t·d|.
+Vec3d hit_point_error(const Rayd& ray, double t);
+
+}  // namespace raylane

@@ -1,0 +1,37 @@
+// Warps from the unit square to points and directions, with their densities (solid-angle
+// measure), and an orthonormal frame: the geometry of sampling, shared by the primitive kinds
+// (area sampling of emitters) and the path tracer. Every warp is total: u in [0, 1]² never
+// gives NaN (hard-cases N6).
+#pragma once
+
+#include "raylane/core/vec3.h"
+
+namespace raylane {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// An orthonormal frame (s, t, n) around a unit vector n (Duff et al. 2017, "Building an
+// Orthonormal Basis, Revisited", JCGT 6(1)): branch-free except for the sign of n.z.
+struct Frame {
+  Vec3d s, t, n;
+  explicit Frame(const Vec3d& normal);
+  Vec3d to_world(const Vec3d& v) const { return s * v.x + t * v.y + n * v.z; }
+  Vec3d to_local(const Vec3d& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+};
+
+// Cosine-weighted hemisphere around +z (Malley's method: a uniform disk point lifted up);
+// pdf = cosθ/π.
+Vec3d sample_cosine_hemisphere(double u1, double u2);
+inline double cosine_hemisphere_pdf(double cos_theta) {
+  return cos_theta > 0 ? cos_theta / kPi : 0.0;
+}
+
+// A direction uniformly inside the cone around +z of half-angle θmax, given
+// one_minus_cos_max = 1 − cos θmax (computed by the caller without cancellation for narrow
+// cones); pdf = 1 / (2π·(1 − cos θmax)).
+Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max);
+
+// A uniform direction on the unit sphere; pdf = 1/(4π).
+Vec3d sample_uniform_sphere(double u1, double u2);
+
+}  // namespace raylane

@@ -1,0 +1,49 @@
+// Capped cylinders: the SIMD kernel (cylinder.h has the table and the reference). Lane code:
+// included only through prims/prim_packets.h by the SIMD tracer's per-ISA translation units.
+#pragma once
+
+#include "raylane/prims/prim_list.h"
+#include "raylane/trace/packet.h"
+
+namespace raylane {
+
+// The packet kernel, in float: the side interval from the quadratic in the components
+// perpendicular to the unit axis (Hearn–Baker discriminant, Press roots, as for spheres),
+// intersected with the axial slab [0, h] (hard-cases §3). A ray parallel to the axis
+// (|d⊥|² = 0) has the whole line inside the side when |f⊥| ≤ r; a ray perpendicular to the
+// axis has the whole line inside the slab when 0 ≤ f·u ≤ h (NaN-keeping extrema).
+template <class A, class Rows>
+[[gnu::always_inline]] inline void intersect_packet(const CylinderTable& c, Rows rows,
+                                                    const RayPacket<A>& r, HitPacket<A>& h) {
+  using F = simd::Floats<A>;
+  const F inf(std::numeric_limits<float>::infinity()), zero(0.0f);
+  for (; rows.more(); rows.next()) {
+    F ux = rows.col(c.ux), uy = rows.col(c.uy), uz = rows.col(c.uz);
+    F fx = r.ox - rows.col(c.bx), fy = r.oy - rows.col(c.by), fz = r.oz - rows.col(c.bz);
+    F fa = fx * ux + fy * uy + fz * uz, da = r.dx * ux + r.dy * uy + r.dz * uz;
+    F px = fx - fa * ux, py = fy - fa * uy, pz = fz - fa * uz;        // f⊥
+    F qx = r.dx - da * ux, qy = r.dy - da * uy, qz = r.dz - da * uz;  // d⊥
+    F a = qx * qx + qy * qy + qz * qz;
+    F b = px * qx + py * qy + pz * qz;
+    F radius = rows.col(c.r), rr = radius * radius;
+    F pp = px * px + py * py + pz * pz;
+    F k = b / a;
+    F lx = px - k * qx, ly = py - k * qy, lz = pz - k * qz;
+    F disc = rr - (lx * lx + ly * ly + lz * lz);
+    auto parallel = a == zero;
+    auto side_ok = (parallel & (pp <= rr)) | ((!parallel) & (disc >= zero));
+    F sq = xsimd::sqrt(a * disc);
+    F q = -(b + simd::select<A>(b < zero, -sq, sq));
+    F s0 = (pp - rr) / q, s1 = q / a;
+    F side_n = simd::select<A>(parallel, -inf, simd::select<A>(s0 < s1, s0, s1));
+    F side_f = simd::select<A>(parallel, inf, simd::select<A>(s0 < s1, s1, s0));
+    F inv = F(1.0f) / da;
+    F ta = (zero - fa) * inv, tb = (rows.col(c.h) - fa) * inv;
+    F t0 = simd::max_keep<A>(side_n, simd::max_keep<A>(simd::select<A>(inv < zero, tb, ta), -inf));
+    F t1 = simd::min_keep<A>(side_f, simd::min_keep<A>(simd::select<A>(inv < zero, ta, tb), inf));
+    commit_solid_hit<A>(t0, t1, r, rows.mask() & side_ok & (t0 <= t1), rows.bits(tag_of<Cylinder>),
+                        h);
+  }
+}
+
+}  // namespace raylane

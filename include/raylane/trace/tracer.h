@@ -1,0 +1,51 @@
+// The tracer a renderer calls, behind one batch interface: the SIMD tracer (default), single
+// rays through the BVH with the double kernels, or the brute-force oracle. All three see the
+// same scene (its tables permuted by the BVH build), so their answers — including primitive
+// ids — can be compared pixel for pixel. Every call runs on the calling thread: the renderer's
+// tile loop owns the threads (core/parallel.h).
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "raylane/bvh/bvh.h"
+#include "raylane/core/enum_names.h"
+#include "raylane/scene/scene.h"
+#include "raylane/trace/hit.h"
+#include "raylane/trace/simd_tracer.h"
+
+namespace raylane {
+
+enum class TracerKind { kPacket, kBvh, kScalar };  // kPacket: the SimdTracer
+
+inline constexpr EnumNames<TracerKind, 3> kTracerKindNames{{"packet", "bvh", "scalar"}};
+inline std::optional<TracerKind> tracer_kind_from_name(std::string_view name) {
+  return kTracerKindNames.from_name(name);
+}
+inline std::string_view tracer_kind_name(TracerKind kind) {
+  return kTracerKindNames.name(kind);
+}
+
+class Tracer {
+ public:
+  Tracer(const Scene& scene, const Bvh& bvh, TracerKind kind, Isa isa = best_isa())
+      : scene_(scene), bvh_(bvh), kind_(kind), simd_(isa) {}
+
+  // The closest hit of every ray, with its surface (computed by the double reference from
+  // the ray as traced). SIMD rays are traced in float: origins and directions are rounded
+  // first, and the surface is computed for the rounded ray, so t and the point agree.
+  void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) const;
+
+  const Scene& scene() const { return scene_; }
+  TracerKind kind() const { return kind_; }
+  Isa isa() const { return simd_.isa(); }
+
+ private:
+  const Scene& scene_;
+  const Bvh& bvh_;
+  TracerKind kind_;
+  SimdTracer simd_;
+};
+
+}  // namespace raylane

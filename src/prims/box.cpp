@@ -1,0 +1,28 @@
+// Boxes as emitters: area and area sampling.
+#include "raylane/prims/box.h"
+
+namespace raylane {
+
+double Box::area(const Table& t, uint32_t i) {
+  Vec3d d = Vec3d(t.hi(i)) - Vec3d(t.lo(i));
+  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+AreaSample Box::sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2) {
+  Vec3d lo(t.lo(i)), hi(t.hi(i)), d = hi - lo;
+  double face[3] = {d.y * d.z, d.z * d.x, d.x * d.y};  // faces normal to x, y, z (each ×2)
+  double pick = u_part * 2 * (face[0] + face[1] + face[2]);
+  int axis = 0;
+  while (axis < 2 && pick >= 2 * face[axis])
+    pick -= 2 * face[axis++];
+  bool high = pick >= face[axis];
+  int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  Vec3d p, n(0, 0, 0);
+  p[axis] = high ? hi[axis] : lo[axis];
+  p[a1] = lo[a1] + u1 * d[a1];
+  p[a2] = lo[a2] + u2 * d[a2];
+  n[axis] = high ? 1 : -1;
+  return {p, n};
+}
+
+}  // namespace raylane

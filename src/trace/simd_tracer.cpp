@@ -1,0 +1,46 @@
+#include "raylane/trace/simd_tracer.h"
+
+namespace raylane {
+
+std::string_view traversal_name(Traversal t) {
+  return t == Traversal::kPackets ? "packets" : "rays";
+}
+
+void SimdTracer::closest(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                         HitStream& hits) const {
+  hits.resize(rays.size());
+  trace(scene, bvh, rays, 0, rays.size(), hits, false, nullptr);
+}
+
+void SimdTracer::occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                          HitStream& hits) const {
+  hits.resize(rays.size());
+  trace(scene, bvh, rays, 0, rays.size(), hits, true, nullptr);
+}
+
+void SimdTracer::trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays,
+                             std::size_t begin, std::size_t end, HitStream& hits,
+                             bool any_hit) const {
+  trace(scene, bvh, rays, begin, end, hits, any_hit, nullptr);
+}
+
+TraversalCounters SimdTracer::trace_counted(const Scene& scene, const Bvh& bvh,
+                                            const RayStream& rays, HitStream& hits,
+                                            bool any_hit) const {
+  TraversalCounters total;
+  hits.resize(rays.size());
+  trace(scene, bvh, rays, 0, rays.size(), hits, any_hit, &total);
+  return total;
+}
+
+void SimdTracer::trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
+                       std::size_t end, HitStream& hits, bool any_hit,
+                       TraversalCounters* counters) const {
+  auto* fn = isa_ == Isa::kAvx512 ? detail::trace_avx512
+             : isa_ == Isa::kAvx2 ? detail::trace_avx2
+                                  : detail::trace_sse42;
+  const Traversal traversal = bvh.wide.empty() && !bvh.empty() ? Traversal::kPackets : traversal_;
+  fn(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
+}
+
+}  // namespace raylane
