@@ -13,7 +13,8 @@ namespace raylane::bench {
 
 namespace {
 
-constexpr uint32_t kWidth = 1024, kHeight = 768;  // perf-notes.md: 1024×768 primary rays
+constexpr uint32_t kWidth = 1024,
+                   kHeight = 768;  // docs/benchmarks.md, "Ray sets": 1024×768 primary rays
 constexpr const char* kEnginePath =
     "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 

@@ -28,7 +28,7 @@ constexpr std::size_t kCheckedRays = 1 << 15;
 constexpr double kMaxDisagreement = 1e-3;
 
 // Flush denormals to zero on every worker thread, for every tracer alike (Embree's API
-// documentation recommends it; toolchain.md §2 item 8).
+// documentation recommends it; docs/benchmarks.md, "Denormals").
 void use_threads(int threads) {
   omp_set_num_threads(threads);
 #pragma omp parallel
@@ -145,7 +145,7 @@ void register_all() {
 }
 
 // --export DIR: writes every triangle scene as DIR/<scene>.tris and its ray sets as
-// DIR/<scene>-<rays>.rays (spec/ray-sets.md), for other tracers to run the identical rays,
+// DIR/<scene>-<rays>.rays (docs/ray-sets.md), for other tracers to run the identical rays,
 // and as DIR/<scene>.ply, for scene files to render (bench/scenes/).
 int export_sets(const std::string& dir) {
   for (const std::string& name : bench_scene_names()) {

@@ -16,7 +16,7 @@ namespace {
 constexpr uint32_t kTile = 4;
 
 // One ray per pixel centre, in 4×4 tiles (tiles row-major, pixels row-major inside a tile),
-// as the ray-set format stores camera rays (spec/ray-sets.md).
+// as the ray-set format stores camera rays (docs/ray-sets.md).
 std::vector<Rayd> primary_rays(const Scene& scene) {
   Camera cam = Camera::from_scene(scene);
   std::vector<Rayd> rays;

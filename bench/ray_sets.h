@@ -1,5 +1,5 @@
-// The ray sets every tracer is timed on (issue 5; perf-notes.md): primary rays, one per pixel
-// in 4×4-pixel tiles; shadow rays from each primary hit toward the scene's light (any hit);
+// The ray sets every tracer is timed on (docs/benchmarks.md, "Ray sets"): primary rays, one per
+// pixel in 4×4-pixel tiles; shadow rays from each primary hit toward the scene's light (any hit);
 // diffuse bounces, cosine-distributed about each primary hit's normal (incoherent). Fixed
 // seeds, so every tracer and every run sees the identical rays.
 #pragma once

@@ -31,7 +31,7 @@ BenchTracer bench_tracer(const BenchScene& scene, const std::string& name);
 
 // Agreement with the double reference (closest_hit_bvh_ref / any_hit_bvh_ref on the float
 // rays converted exactly to double), on every `stride`-th ray: a ray agrees when hit/miss
-// matches and t is within a relative 1e-4 (spec/ray-sets.md; another primitive at the same
+// matches and t is within a relative 1e-4 (docs/ray-sets.md; another primitive at the same
 // t, e.g. across a shared edge, agrees).
 struct Agreement {
   std::size_t checked = 0, disagree = 0;

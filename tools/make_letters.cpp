@@ -1,5 +1,5 @@
 // Writes letterX.ply and letterY.ply, the flat letters of the CS500 test scene, from the
-// corner points given in spec/scene-language.md ("The course's test scene").
+// corner points given in docs/scene-language.md ("The letter meshes").
 // Usage: make_letters OUTPUT_DIR
 #include <cstdio>
 #include <string>

@@ -1,5 +1,5 @@
 // Scene::command: one parsed line → a setting, a material, or rows in a table
-// (spec/scene-language.md, "Commands").
+// (docs/scene-language.md, "Commands").
 #include <cmath>
 
 #include "raylane/core/strings.h"

@@ -1,4 +1,4 @@
-// Strict number reading for scene lines (spec/scene-language.md, "Lines and tokens").
+// Strict number reading for scene lines (docs/scene-language.md, "Lines and tokens").
 #include <cfloat>
 #include <charconv>
 #include <cmath>

@@ -55,14 +55,14 @@ bool traverse(const Scene& scene, const Bvh& bvh, Rayd& ray, OnHit&& on_hit) {
 bool ray_overlaps_box_ref(const Rayd& ray, const Vec3d& inv_d, const Bounds3f& box, double tmax) {
   double t0 = ray.tmin, t1 = tmax;
   for (int k = 0; k < 3; ++k) {
-    // The near plane follows the sign bit of d, so +0 and −0 agree (hard-cases B3).
+    // The near plane follows the sign bit of d, so +0 and −0 agree (docs/hard-cases.md B3).
     bool neg = std::signbit(ray.d[k]);
     double near_plane = neg ? box.hi[k] : box.lo[k];
     double far_plane = neg ? box.lo[k] : box.hi[k];
     double tn = (near_plane - ray.o[k]) * inv_d[k];
     double tf = (far_plane - ray.o[k]) * inv_d[k];
     // 0·inf = NaN when the origin lies in a slab plane of a parallel ray: the comparisons
-    // below then keep the accumulator, which is the closed-box answer (hard-cases B4).
+    // below then keep the accumulator, which is the closed-box answer (docs/hard-cases.md B4).
     // Each t carries three roundings in double (difference, reciprocal, product): widen the
     // interval by a relative 4u on both ends, so rounding never closes it (Ize 2013).
     tn -= std::abs(tn) * (4 * 0x1p-53);

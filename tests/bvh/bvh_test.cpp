@@ -182,7 +182,7 @@ TEST(Bvh, EmptySceneGivesEmptyBvh) {
   EXPECT_FALSE(closest_hit_bvh_ref(s, bvh, {{0, 0, 0}, {0, 0, 1}}).hit());
 }
 
-// hard-cases / issue 6: all primitives at one point; huge coordinates.
+// docs/hard-cases.md / issue 6: all primitives at one point; huge coordinates.
 TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
   Scene s;
   s.materials.push_back(Material{});
@@ -254,7 +254,7 @@ TEST(BvhTraversal, EqualsBruteForceOnEveryShippedScene) {
 }
 
 // Axis-parallel rays and ±0 direction components over flat, axis-aligned geometry
-// (hard-cases B2, B3): the node test must not lose hits the brute force finds.
+// (docs/hard-cases.md B2, B3): the node test must not lose hits the brute force finds.
 TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
   Scene s;
   s.materials.push_back(Material{});

@@ -12,7 +12,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// hard-cases.md N4: the neighbours of special values.
+// docs/hard-cases.md N4: the neighbours of special values.
 TEST(NextFloat, SpecialValues) {
   EXPECT_EQ(next_float_up(FLT_MAX), kInf);
   EXPECT_EQ(next_float_up(kInf), kInf);

@@ -1,4 +1,4 @@
-// The box's reference kernel (hard-cases.md §4).
+// The box's reference kernel (docs/hard-cases.md §4).
 #include <gtest/gtest.h>
 
 #include "prims/prim_test_util.h"

@@ -1,4 +1,4 @@
-// The capped cylinder's reference kernel (hard-cases.md §3): base (0,0,0), axis (0,0,2),
+// The capped cylinder's reference kernel (docs/hard-cases.md §3): base (0,0,0), axis (0,0,2),
 // r = 1 unless stated, also turned to a generic axis and moved far away.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The sphere's reference kernel (hard-cases.md §2).
+// The sphere's reference kernel (docs/hard-cases.md §2).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -44,7 +44,7 @@ TEST(SphereRef, OriginInsideHitsTheExit) {
 }
 
 // S1: a unit sphere at distance D, rays at perpendicular distance h; compared with the same
-// computation in long double. Error bound from hard-cases S1, with double's u = 2^-53.
+// computation in long double. Error bound from docs/hard-cases.md S1, with double's u = 2^-53.
 TEST(SphereRef, FarSmallSphereDoesNotCancel) {
   for (double D : {1e1, 1e3, 1e5, 1e7}) {
     for (double h : {0.5, 0.999}) {

@@ -1,4 +1,4 @@
-// The triangle's reference kernel (hard-cases.md §1).
+// The triangle's reference kernel (docs/hard-cases.md §1).
 #include <gtest/gtest.h>
 
 #include <random>

@@ -1,5 +1,5 @@
 // The course's BSDF: sample(), eval() and pdf() agree; Lambert is exact; the Phong lobe's
-// albedo stays within Kd + Ks (hard-cases.md M2); corner inputs give no NaN (N6).
+// albedo stays within Kd + Ks (docs/hard-cases.md M2); corner inputs give no NaN (N6).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,7 +68,7 @@ TEST(Bsdf, SampleEvalAndPdfAgree) {
 }
 
 // Cosine sampling of a Lambertian surface has zero variance: every weight is Kd
-// (hard-cases M1: |L − ρ| ≤ 1e-5 where the estimator is deterministic).
+// (docs/hard-cases.md M1: |L − ρ| ≤ 1e-5 where the estimator is deterministic).
 TEST(Bsdf, LambertWeightIsExactlyKd) {
   Bsdf bsdf(make_material({0.5f, 0.25f, 1}, {0, 0, 0}, 0), kN, direction_at(0.4));
   Rng rng(3);
@@ -137,7 +137,7 @@ TEST(Bsdf, PhongLobeAlbedoIsBounded) {
 }
 
 // No NaN or inf at the corners of the unit cube of random numbers, for α up to 1e4 and
-// outgoing directions down to grazing (hard-cases N6); pdf-0 samples are reported invalid.
+// outgoing directions down to grazing (docs/hard-cases.md N6); pdf-0 samples are reported invalid.
 TEST(Bsdf, CornerSamplesAreFinite) {
   const double us[] = {0.0, 0x1p-53, 0.5, 1 - 0x1p-24, 1 - 0x1p-53};
   int invalid = 0, total = 0;

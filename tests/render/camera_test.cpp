@@ -1,4 +1,4 @@
-// The camera of the course (spec/scene-language.md, "Camera and image orientation").
+// The camera of the course (docs/scene-language.md, "Camera and image orientation").
 #include <gtest/gtest.h>
 
 #include "raylane/render/camera.h"

@@ -1,5 +1,5 @@
 // A chi-square goodness-of-fit test of a direction sampler against its density, after the
-// setups of pbrt-v4 (src/pbrt/bsdfs_test.cpp) and Mitsuba 3 (chi2.py), see hard-cases.md M4:
+// setups of pbrt-v4 (src/pbrt/bsdfs_test.cpp) and Mitsuba 3 (chi2.py), see docs/hard-cases.md M4:
 // directions binned in (z, φ) around an axis (z = cos of the angle to it, so a cell's solid
 // angle is Δz·Δφ), expected counts from the density integrated over each cell (24×24 midpoint
 // sub-samples), cells below 5 expected pooled, a cell for samples outside the binned cap

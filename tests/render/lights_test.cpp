@@ -1,4 +1,4 @@
-// Light sampling of every kind (hard-cases.md M4, "triangle/area sampling"): two independent
+// Light sampling of every kind (docs/hard-cases.md M4, "triangle/area sampling"): two independent
 // estimates of the same integrals must agree within 4σ.
 //  - Irradiance-like ∫ cos θ · V(ω) dω over the light's emitting side, by next-event sampling
 //    (cos/pdf) and by uniform directions ray-cast against the light (4π·cos·[front hit]).

@@ -1,4 +1,4 @@
-// The path tracer against analytic answers (hard-cases.md M1, M3): a furnace with a known
+// The path tracer against analytic answers (docs/hard-cases.md M1, M3): a furnace with a known
 // radiance, direct light from a sphere on a plane; and determinism across thread counts.
 #include <gtest/gtest.h>
 #include <omp.h>

@@ -1,4 +1,4 @@
-// Chi-square tests of the direction samplers against their densities (hard-cases.md M4): the
+// Chi-square tests of the direction samplers against their densities (docs/hard-cases.md M4): the
 // cosine hemisphere, the course's BSDF lobes (Phong reflection at α = 1, 10, 1000, a mixture,
 // transmission in and out of glass) and solid-angle sampling of sphere lights.
 #include <gtest/gtest.h>

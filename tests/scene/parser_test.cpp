@@ -1,4 +1,4 @@
-// The scene language, rule by rule (spec/scene-language.md).
+// The scene language, rule by rule (docs/scene-language.md).
 #include <gtest/gtest.h>
 
 #include "scene/scene_test_util.h"

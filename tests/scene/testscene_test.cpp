@@ -31,8 +31,8 @@ TEST(TestScene, ParsesCleanlyWithEveryPrimitiveKind) {
   EXPECT_EQ(s.materials[purple].ior, 1.0f);
 }
 
-// The copy inside seed/cs500-project0.md lost numbers in transcription
-// (spec/scene-language.md, "The course's test scene").
+// The copy inside the course brief lost numbers in transcription
+// (docs/scene-language.md, "The damaged copy in the course brief").
 TEST(TestScene, DamagedSeedCopyGetsOneErrorPerDamagedLine) {
   auto p = load_scene_file(source_path("scenes/testscene-damaged.scn"));
   std::vector<std::string> expected;

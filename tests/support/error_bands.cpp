@@ -1,4 +1,4 @@
-// Error bands of the float packet kernels against the double references (hard-cases.md §0).
+// Error bands of the float packet kernels against the double references (docs/hard-cases.md §0).
 //
 // Method. For each kernel we follow its float operations one by one and keep, in double, an
 // interval that holds the value the kernel computes (pbrt-v4 does this with its `Interval`
@@ -283,7 +283,7 @@ double Criterion::ratio() const {
 // direction is exact), then the Hearn–Baker distance (kernel_line_distance with p = f,
 // q = d, Ep = u|f|, Eq = 0), disc = fl(r²) − fl(|l̂|²); roots from a = fl(d·d) (γ3),
 // b = fl(f̂·d) (|b̂ − f·d| ≤ u|f||d| + γ3|f̂||d|), c = fl(fl(|f̂|²) − fl(r²)).
-// The decision is disc ≥ 0; its margin is the reference's r² − |l|² (hard-cases S1).
+// The decision is disc ≥ 0; its margin is the reference's r² − |l|² (docs/hard-cases.md S1).
 PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
   Vec3d f = ray.o - Vec3d(s.center(row));
   const Vec3d& d = ray.d;
@@ -304,7 +304,7 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
 // NaN exactly as in the reference (0·inf only when o lies in the plane; both skip it). Entry
 // t0 = max of the near values, exit t1 = min of the far ones; hit when t0 ≤ t1, that is when
 // near_i ≤ far_j for every pair of axes i ≠ j (i = j always holds: rounding is monotone and
-// lo < hi). So the margins are the reference's far_j − near_i (the slab overlap, hard-cases
+// lo < hi). So the margins are the reference's far_j − near_i (the slab overlap, docs/hard-cases.md
 // B2, B7), each against the sum of its two values' errors; comparing max and min as
 // independent intervals would also count an axis against itself. The t of a clear hit is one
 // of the slab values, so its error stays γ3|t| — no conditioning issue near an edge.
@@ -429,7 +429,7 @@ PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
 // (an interval quotient T/det would lose that, ~10× wider for small far triangles). Then the
 // roundings: the sum T gets γ3·Σ|X̂ẑ|, det gets γ2·Σ|X̂|, the quotient u. A small det (a ray
 // near the triangle's plane: det ∝ |cos θ|) divides everything, which is the conditioning of
-// hard-cases §0 (grazing errors of 10^4 ulp and more); when det may vanish t is unbounded.
+// docs/hard-cases.md §0 (grazing errors of 10^4 ulp and more); when det may vanish t is unbounded.
 Interval kernel_triangle_t(const double x[3], const double e[3], const ShearedVertex* v[3]) {
   double det = x[0] + x[1] + x[2], T = x[0] * v[0]->z + x[1] * v[1]->z + x[2] * v[2]->z;
   double t = T / det, sum_e = 0, a = 0, sum_x = 0, sum_xz = 0;
@@ -453,7 +453,8 @@ Interval kernel_triangle_t(const double x[3], const double e[3], const ShearedVe
 // Triangle kernel (triangle.h), the watertight test: sheared vertices (shear_vertex), edge
 // functions U = cx·by − cy·bx, V, W (edge_error: input errors of translation and shear plus
 // the difference of products); hit when all have one sign (and det ≠ 0, implied then). The
-// margin is the reference's smallest edge function (hard-cases T1–T3); t by kernel_triangle_t.
+// margin is the reference's smallest edge function (docs/hard-cases.md T1–T3); t by
+// kernel_triangle_t.
 PrimVerdict classify(const TriangleTable& tri, uint32_t row, const Rayd& ray) {
   Shear s = kernel_shear(ray.d);
   ShearedVertex a = shear_vertex(tri.p0(row), ray, s), b = shear_vertex(tri.p1(row), ray, s),

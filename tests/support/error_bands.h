@@ -1,5 +1,5 @@
 // Error bands for comparing the float packet kernels with the double references
-// (hard-cases.md §0): each ray is a clear hit, a clear miss, or lies in an ambiguous band,
+// (docs/hard-cases.md §0): each ray is a clear hit, a clear miss, or lies in an ambiguous band,
 // judged by the reference's signed margin (discriminant, slab overlap, edge function) against
 // a bound on the float kernel's error in that margin. The bounds are derived from the
 // operations the kernels in include/raylane/prims/ perform (see error_bands.cpp); a ray is
@@ -44,7 +44,8 @@ struct PrimVerdict {
   Criterion decisive;
 };
 
-// Per kind: `ray` is the float ray converted exactly to double (hard-cases §0), rows as stored.
+// Per kind: `ray` is the float ray converted exactly to double (docs/hard-cases.md §0), rows as
+// stored.
 PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const BoxTable& b, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const CylinderTable& c, uint32_t row, const Rayd& ray);

@@ -16,7 +16,7 @@ Scene random_scene(uint32_t seed, int n, double extent = 10, double size = 0.6,
                    Vec3d offset = {0, 0, 0});
 
 // A closed mesh: a UV sphere of `rings` × `segments` with shared vertices and single-vertex
-// poles, radii jittered in [1, 1.3] (hard-cases.md T1), appended to `scene`.
+// poles, radii jittered in [1, 1.3] (docs/hard-cases.md T1), appended to `scene`.
 void add_closed_uv_sphere(Scene& scene, uint32_t seed, int rings, int segments,
                           Vec3d offset = {0, 0, 0});
 

@@ -1,5 +1,5 @@
 // The brute-force oracle: nearest over kinds, ties, intervals, invalid rays, and the
-// reference leak test on a closed mesh (hard-cases.md T1).
+// reference leak test on a closed mesh (docs/hard-cases.md T1).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -53,7 +53,7 @@ TEST(BruteForce, EqualDistanceGoesToTheLowerRef) {
   EXPECT_EQ(h.prim, PrimRef(tag_of<Sphere>, 0));
 }
 
-// hard-cases N1: invalid rays hit nothing and produce no NaN.
+// docs/hard-cases.md N1: invalid rays hit nothing and produce no NaN.
 TEST(BruteForce, InvalidRaysHitNothing) {
   Scene s = mixed_row_scene();
   const double nan = std::nan(""), inf = INFINITY;

@@ -1,4 +1,4 @@
-// The packet kernels against the double references, with hard-cases.md §0's classes: every
+// The packet kernels against the double references, with docs/hard-cases.md §0's classes: every
 // ray is a clear hit, a clear miss or in the ambiguous band, from the error bounds of
 // support/error_bands (no tolerance is guessed). Typed over the primitive kinds; seeded random
 // rays and rays aimed at silhouettes, edges and rims so that the band is populated; world
@@ -152,8 +152,8 @@ struct Shapes<Cylinder> {
   static Vec3d plane_normal(const Scene& s, uint32_t row, Rng&) {
     return normalize(Vec3d(s.table<Cylinder>().axis(row)));
   }
-  // Half the time a tangent to the side (hard-cases C5): in the plane across the axis the line
-  // touches the circle of radius r(1 + jitter), and it climbs so that it touches at a height
+  // Half the time a tangent to the side (docs/hard-cases.md C5): in the plane across the axis the
+  // line touches the circle of radius r(1 + jitter), and it climbs so that it touches at a height
   // inside the caps. Otherwise aimed at a rim point (C3).
   static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
     const auto& t = s.table<Cylinder>();
@@ -192,7 +192,7 @@ struct Shapes<Triangle> {
     return normalize(
         cross(Vec3d(t.p1(row)) - Vec3d(t.p0(row)), Vec3d(t.p2(row)) - Vec3d(t.p0(row))));
   }
-  // At a point of an edge or at a vertex (hard-cases T1, T3), moved by the jitter.
+  // At a point of an edge or at a vertex (docs/hard-cases.md T1, T3), moved by the jitter.
   static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
     const auto& t = s.table<Triangle>();
     Vec3d v[3] = {Vec3d(t.p0(row)), Vec3d(t.p1(row)), Vec3d(t.p2(row))};
@@ -207,7 +207,7 @@ struct Shapes<Triangle> {
 // ---- Ray sets ----
 
 // A ray that crosses the primitive's plane (triangle, cap, box face) near `aim` at an angle of
-// 10^-1 … 10^-4 rad: t is ill-conditioned there (hard-cases §0, T8, C4).
+// 10^-1 … 10^-4 rad: t is ill-conditioned there (docs/hard-cases.md §0, T8, C4).
 Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
   double angle = std::pow(10.0, uniform(g, -4, -1)) * (g() % 2 ? 1 : -1);
   Vec3d d = orthogonal_unit(g, n) * std::cos(angle) + n * std::sin(angle);
@@ -216,9 +216,9 @@ Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
 }
 
 // Rays, each from a float origin at 2–20 sizes from one primitive (one in three from 10^2 …
-// 10^4 sizes: far, small shapes, hard-cases S1 and C5): 2 in 5 toward a random
+// 10^4 sizes: far, small shapes, docs/hard-cases.md S1 and C5): 2 in 5 toward a random
 // point around it, 3 in 10 aimed at its band, 1 in 10 from inside it (the far root of a
-// solid, hard-cases S5), 1 in 5 grazing its plane. One in five has a
+// solid, docs/hard-cases.md S5), 1 in 5 grazing its plane. One in five has a
 // finite tmax near the primitive and one in ten a tmin near it, so that the (tmin, tmax) range
 // decides too. Every 29th ray is invalid.
 template <class Kind>
@@ -348,8 +348,8 @@ void check_scene(Scene& s, const std::vector<Rayd>& rays, const std::vector<Kern
   }
 }
 
-// Offsets and scales of hard-cases §0. A scale below 64 ulps of the offset is skipped: boxes
-// that thin do not survive rounding to float (BoxTable::append refuses them).
+// Offsets and scales of docs/hard-cases.md §0. A scale below 64 ulps of the offset is skipped:
+// boxes that thin do not survive rounding to float (BoxTable::append refuses them).
 struct Placement {
   double offset, scale;
 };

@@ -28,10 +28,10 @@ using testing::round_to_float;
 // Both trees, so that either traversal can run.
 const BvhConfig kWithWideNodes{.wide_nodes = true};
 
-// Disagreements with the reference, sorted by hard-cases.md §0's classes (support/error_bands):
-// outside the band the kernel must give the reference's answer — the same primitive, t within
-// the error bound — and inside it either answer is allowed, and counted. The reference runs on
-// the float rays, converted exactly.
+// Disagreements with the reference, sorted by docs/hard-cases.md §0's classes
+// (support/error_bands): outside the band the kernel must give the reference's answer — the same
+// primitive, t within the error bound — and inside it either answer is allowed, and counted. The
+// reference runs on the float rays, converted exactly.
 struct Agreement {
   int rays = 0, hits = 0, band = 0, band_disagreements = 0, disagreements_outside_band = 0;
 };
@@ -106,7 +106,7 @@ TEST_P(SimdTracerTest, AgreesWithReferenceOnShippedScenes) {
   }
 }
 
-// hard-cases N1: invalid rays miss without a NaN, and do not disturb their packet mates.
+// docs/hard-cases.md N1: invalid rays miss without a NaN, and do not disturb their packet mates.
 TEST_P(SimdTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   Scene s = random_scene(14, 50, 3);
   Bvh bvh = build_bvh(s, kWithWideNodes);
@@ -131,7 +131,7 @@ TEST_P(SimdTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   }
 }
 
-// hard-cases B3, B4: ±0 components and rays in a box's face planes, edges and corners.
+// docs/hard-cases.md B3, B4: ±0 components and rays in a box's face planes, edges and corners.
 TEST_P(SimdTracerTest, BoxFacePlaneAndSignedZeroRays) {
   Scene s;
   s.materials.push_back(Material{});
@@ -154,8 +154,8 @@ TEST_P(SimdTracerTest, BoxFacePlaneAndSignedZeroRays) {
   }
 }
 
-// hard-cases T1: rays from inside a closed mesh, random and aimed exactly at vertices and at
-// points on edges, through the BVH, at offsets 0, 1e4 and 1e5: no ray escapes.
+// docs/hard-cases.md T1: rays from inside a closed mesh, random and aimed exactly at vertices and
+// at points on edges, through the BVH, at offsets 0, 1e4 and 1e5: no ray escapes.
 TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
   for (double offset : {0.0, 1e4, 1e5}) {
     Scene s;

@@ -1,4 +1,4 @@
-// The ray-set exchange files (spec/ray-sets.md): exact layout, round trips, hostile headers.
+// The ray-set exchange files (docs/ray-sets.md): exact layout, round trips, hostile headers.
 #include <gtest/gtest.h>
 
 #include <cmath>

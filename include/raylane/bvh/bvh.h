@@ -2,7 +2,7 @@
 // with the binned surface area heuristic (Wald 2007, "On fast Construction of SAH-based
 // Bounding Volume Hierarchies"). Leaves hold refs sorted by kind, and the scene's tables are
 // permuted into leaf order, so each leaf is a few runs of contiguous rows of one kind
-// (design.md, "BVH"). The BVH never names a primitive kind.
+// (docs/design.md, "BVH"). The BVH never names a primitive kind.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // Files written atomically: to a temporary file beside the target, flushed and synced, then
 // renamed into place, so a failed run never leaves a half-written or clobbered file
-// (spec/scene-language.md, "Output").
+// (docs/scene-language.md, "Output").
 #pragma once
 
 #include <cstdio>

@@ -48,7 +48,7 @@ using Bounds3d = Bounds3<double>;
 
 // The float box that surely contains a double box: each bound is rounded to float and then
 // stepped one float outward, so rounding to nearest can never cut off a tangent hit
-// (hard-cases.md C7).
+// (docs/hard-cases.md C7).
 inline Bounds3f round_out(const Bounds3d& b) {
   Bounds3f r;
   for (int i = 0; i < 3; ++i) {

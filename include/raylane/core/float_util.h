@@ -56,7 +56,7 @@ inline uint64_t ulp_distance(float a, float b) {
 // analysis of Kahan's algorithm for the accurate computation of 2×2 determinants"), so its
 // sign is always the exact sign: sign(dop(a,b,c,d)) == −sign(dop(c,d,a,b)). A contracted
 // fma(a, b, −c·d) lacks that antisymmetry, which is what opens cracks between triangles that
-// share an edge (hard-cases.md T2). pbrt-v4 uses the same `DifferenceOfProducts`.
+// share an edge (docs/hard-cases.md T2). pbrt-v4 uses the same `DifferenceOfProducts`.
 template <class T>
 inline T difference_of_products(T a, T b, T c, T d) {
   T cd = c * d;

@@ -1,6 +1,6 @@
 // Where a secondary ray starts: off the surface by a bound on the hit point's own rounding
 // error, not by a fixed epsilon, so nothing re-hits its own surface or leaks at any scale
-// (hard-cases §5).
+// (docs/hard-cases.md §5).
 #pragma once
 
 #include "raylane/core/ray.h"

@@ -1,5 +1,5 @@
 // Vec3<T>: the 3-vector of raylane. T = float in hot code and tables, double in the
-// reference kernels (which convert float inputs exactly, see hard-cases.md §0).
+// reference kernels (which convert float inputs exactly, see docs/hard-cases.md §0).
 #pragma once
 
 #include <algorithm>

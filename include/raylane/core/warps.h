@@ -1,7 +1,7 @@
 // Warps from the unit square to points and directions, with their densities (solid-angle
 // measure), and an orthonormal frame: the geometry of sampling, shared by the primitive kinds
 // (area sampling of emitters) and the path tracer. Every warp is total: u in [0, 1]² never
-// gives NaN (hard-cases N6).
+// gives NaN (docs/hard-cases.md N6).
 #pragma once
 
 #include "raylane/core/vec3.h"

@@ -1,6 +1,6 @@
 // Writing and reading image files by extension, atomically: a file is written to a temporary
 // in the same directory and renamed into place, so a failed run never leaves a half-written
-// or clobbered file (spec/scene-language.md, "Output").
+// or clobbered file (docs/scene-language.md, "Output").
 #pragma once
 
 #include <string>

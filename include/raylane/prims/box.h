@@ -18,7 +18,7 @@
 
 namespace raylane {
 
-// Stored as its min and max corners (hard-cases.md B1: a negative diagonal is the same box).
+// Stored as its min and max corners (docs/hard-cases.md B1: a negative diagonal is the same box).
 struct BoxTable {
   std::vector<float> lox, loy, loz, hix, hiy, hiz;
   std::vector<uint32_t> material;
@@ -67,8 +67,8 @@ struct Box {
 
 namespace detail {
 // The slab intervals of one axis: near and far t, chosen by the sign bit of d so that +0 and
-// −0 agree (hard-cases B3). A ray lying in a slab plane gives 0·inf = NaN, which the callers'
-// comparisons skip: the closed-box answer (B4).
+// −0 agree (docs/hard-cases.md B3). A ray lying in a slab plane gives 0·inf = NaN, which the
+// callers' comparisons skip: the closed-box answer (B4).
 inline void box_slab(double lo, double hi, double o, double d, double& tn, double& tf) {
   double inv = 1.0 / d;
   bool neg = std::signbit(d);
@@ -94,7 +94,7 @@ inline double intersect_ref(const BoxTable& b, uint32_t i, const Rayd& ray) {
 
 // The face: at the entry, the axis whose near plane is last (the largest near t); at the
 // exit, the axis whose far plane is first; ties go to the lowest axis, so the normal is
-// always exactly one unit axis vector (hard-cases B5). The point is snapped onto that face.
+// always exactly one unit axis vector (docs/hard-cases.md B5). The point is snapped onto that face.
 inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {
   Vec3d lo(b.lo(i)), hi(b.hi(i));
   double tn[3], tf[3];

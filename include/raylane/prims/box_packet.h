@@ -8,8 +8,9 @@
 namespace raylane {
 
 // The packet kernel: slabs in float with the reference's policy — closed box, NaN-keeping
-// extrema, near/far by the sign of 1/d (hard-cases B3, B4). The box corners are exact floats,
-// and t is as exact as float allows, so no slack is added here (slack belongs to BVH nodes).
+// extrema, near/far by the sign of 1/d (docs/hard-cases.md B3, B4). The box corners are exact
+// floats, and t is as exact as float allows, so no slack is added here (slack belongs to BVH
+// nodes).
 template <class A, class Rows>
 [[gnu::always_inline]] inline void intersect_packet(const BoxTable& b, Rows rows,
                                                     const RayPacket<A>& r, HitPacket<A>& h) {

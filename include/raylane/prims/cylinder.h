@@ -21,7 +21,7 @@
 namespace raylane {
 
 // The defining values (base, axis, radius) as given, rounded to float, plus the derived unit
-// axis and height, computed once in double from those floats (hard-cases.md C6).
+// axis and height, computed once in double from those floats (docs/hard-cases.md C6).
 struct CylinderTable {
   std::vector<float> bx, by, bz;  // base centre
   std::vector<float> ax, ay, az;  // axis: base to top-cap centre
@@ -62,7 +62,7 @@ struct CylinderTable {
   }
 
   // The box of the two cap discs: the span of both centres grown by r·sqrt(1 − u_k²) per
-  // axis (hard-cases.md C7), computed in double and rounded outward.
+  // axis (docs/hard-cases.md C7), computed in double and rounded outward.
   Bounds3f bounds(uint32_t i) const {
     Vec3d b(base(i)), top = Vec3d(base(i)) + Vec3d(axis(i));
     Vec3d u = normalize(Vec3d(axis(i)));
@@ -90,7 +90,7 @@ struct Cylinder {
 namespace detail {
 // The interval of the ray inside a capped cylinder, in double: the infinite cylinder's
 // quadratic in the components perpendicular to the unit axis (Hearn–Baker discriminant, as for
-// spheres: hard-cases C5) intersected with the axial slab 0 ≤ (p − b)·u ≤ h. Rays parallel
+// spheres: docs/hard-cases.md C5) intersected with the axial slab 0 ≤ (p − b)·u ≤ h. Rays parallel
 // to the axis and rays perpendicular to it are handled by their own branches, so no 0·inf
 // appears (C1, C4). Returns false when the line misses.
 inline bool cylinder_interval(const CylinderTable& c, uint32_t i, const Rayd& ray, double& t0,

@@ -9,7 +9,7 @@ namespace raylane {
 
 // The packet kernel, in float: the side interval from the quadratic in the components
 // perpendicular to the unit axis (Hearn–Baker discriminant, Press roots, as for spheres),
-// intersected with the axial slab [0, h] (hard-cases §3). A ray parallel to the axis
+// intersected with the axial slab [0, h] (docs/hard-cases.md §3). A ray parallel to the axis
 // (|d⊥|² = 0) has the whole line inside the side when |f⊥| ≤ r; a ray perpendicular to the
 // axis has the whole line inside the slab when 0 ≤ f·u ≤ h (NaN-keeping extrema).
 template <class A, class Rows>

@@ -1,4 +1,4 @@
-// PrimTag and PrimRef: how any primitive of any kind is named (design.md, "Tagged dispatch").
+// PrimTag and PrimRef: how any primitive of any kind is named (docs/design.md, "Tagged dispatch").
 #pragma once
 
 #include <cstdint>

@@ -20,7 +20,7 @@ inline double first_in_range(double tn, double tf, const Rayd& ray) {
 // The roots of a·t² + 2b·t + c = 0 given disc = b² − a·c ≥ 0 as Δ = a·(r² − |l|²) (Hearn and
 // Baker's form, which does not cancel for far, small shapes), by the Press form
 // q = −(b + sign(b)·√Δ), t = c/q and q/a (Numerical Recipes §5.6; Haines et al., Ray Tracing
-// Gems ch. 7). Branches on b < 0 rather than a sign() that could return 0 (hard-cases S5).
+// Gems ch. 7). Branches on b < 0 rather than a sign() that could return 0 (docs/hard-cases.md S5).
 // Returns the ordered roots.
 inline void solve_quadratic(double a, double b, double c, double delta, double& t0, double& t1) {
   double sq = std::sqrt(delta);

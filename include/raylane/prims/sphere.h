@@ -66,7 +66,7 @@ struct Sphere {
 
 // The reference kernel, in double on the table's floats. The discriminant is the squared
 // distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a far,
-// small sphere does not cancel to nothing (hard-cases S1).
+// small sphere does not cancel to nothing (docs/hard-cases.md S1).
 inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
   constexpr double kMiss = std::numeric_limits<double>::infinity();
   Vec3d c(s.center(i));

@@ -86,7 +86,8 @@ struct WoopRef {
 };
 inline bool woop_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, WoopRef& out) {
   Vec3d p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
-  if (length_squared(cross(p1 - p0, p2 - p0)) == 0) return false;  // zero area (hard-cases T4)
+  if (length_squared(cross(p1 - p0, p2 - p0)) == 0)
+    return false;  // zero area (docs/hard-cases.md T4)
   int kz = max_dimension(abs(ray.d));
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
   if (ray.d[kz] < 0) std::swap(kx, ky);

@@ -65,7 +65,7 @@ struct ColumnShear {
 
 // a·b − c·d with the exact sign in every lane (Kahan; see difference_of_products): the
 // shared edge of two triangles gets opposite signs from both, so nothing leaks between them
-// (hard-cases T2).
+// (docs/hard-cases.md T2).
 template <class A>
 inline simd::Floats<A> difference_of_products_lanes(const simd::Floats<A>& a,
                                                     const simd::Floats<A>& b,

@@ -1,4 +1,4 @@
-// The course's reflection model at one surface point (design.md, "The course's rendering
+// The course's reflection model at one surface point (docs/design.md, "The course's rendering
 // model"): a mixture of a Lambertian lobe, a Phong-distribution microfacet reflection lobe and
 // a microfacet transmission lobe, chosen by the lengths of Kd, Ks and Kt. Directions point
 // away from the surface; wo is towards the viewer. eval() returns f(wo, wi)·|cos θi| and pdf()

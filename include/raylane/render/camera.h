@@ -1,4 +1,4 @@
-// The pinhole camera of the course (spec/scene-language.md, "Camera and image orientation").
+// The pinhole camera of the course (docs/scene-language.md, "Camera and image orientation").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The course's Monte Carlo path tracer (design.md, "The course's rendering model"): next-event
+// The course's Monte Carlo path tracer (docs/design.md, "The course's rendering model"): next-event
 // estimation toward emitting primitives, BSDF sampling, MIS with the power heuristic, Russian
 // roulette. Each tile of 16×16 pixels traces its paths as wavefronts: all of a bounce's
 // continuation and shadow rays go through the Tracer in one batch (so through the packet

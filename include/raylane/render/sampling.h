@@ -1,6 +1,6 @@
 // The path tracer's own warps (the course's Phong microfacet lobe) and the MIS weight; the
 // general warps are in core/warps.h. Every warp is total: u in [0, 1]² never gives NaN
-// (hard-cases N6).
+// (docs/hard-cases.md N6).
 #pragma once
 
 #include "raylane/core/warps.h"

@@ -1,5 +1,5 @@
 // The orientation mini-language: `x A`, `y A`, `z A`, `a A ax ay az`, `q w x y z`, composed
-// left to right by multiplying each new rotation on the right (spec/scene-language.md).
+// left to right by multiplying each new rotation on the right (docs/scene-language.md).
 #pragma once
 
 #include <cstddef>

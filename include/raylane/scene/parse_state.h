@@ -36,7 +36,7 @@ struct ParseState {
 };
 
 // Reads one token as a number: a complete decimal float that is finite and fits in a float
-// (spec/scene-language.md, "Lines and tokens"). Under --lenient a numeric prefix is taken
+// (docs/scene-language.md, "Lines and tokens"). Under --lenient a numeric prefix is taken
 // with a warning. Reports and returns nullopt otherwise.
 std::optional<double> parse_number(const Line& line, std::size_t token, ParseState& state);
 

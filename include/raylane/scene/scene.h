@@ -1,5 +1,5 @@
 // The scene: one SoA table per primitive kind, materials, lights, camera and screen. Rows are
-// appended by Scene::command, one parsed line at a time (design.md, "Tables, not objects").
+// appended by Scene::command, one parsed line at a time (docs/design.md, "Tables, not objects").
 #pragma once
 
 #include <cstdint>

@@ -55,7 +55,7 @@ inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
 inline constexpr __mmask16 kAll16 = 0xFFFF;
 
 // NaN-keeping running extrema: x > acc ? x : acc (and x < acc ? x : acc), so where x is NaN
-// (or not better) the accumulator is kept. The operand order is the contract (hard-cases.md
+// (or not better) the accumulator is kept. The operand order is the contract (docs/hard-cases.md
 // N2). x86's MAXPS/MINPS compute exactly this, returning the second operand when either is
 // NaN or both are zeros (Intel SDM vol. 2, MAXPS), so the instruction is named here rather
 // than left to xsimd::max, whose operand order is unspecified: one instruction instead of a
@@ -135,7 +135,7 @@ inline Ints<A> lane_index() {
 // a·b + c with ONE rounding where the hardware has FMA. xsimd 8.1 has no fused fma for
 // AVX-512 (it falls back to a·b + c, which GCC contracts in some places and not others), and
 // a half-fused difference of products loses its exact sign and opens cracks between triangles
-// (hard-cases.md T2; found by the leak test). So the instruction is named here. SSE4.2 has no
+// (docs/hard-cases.md T2; found by the leak test). So the instruction is named here. SSE4.2 has no
 // FMA: there a·b + c is two roundings, and the difference of products becomes the plain
 // a·b − c·d, which is exactly antisymmetric, hence watertight too.
 template <class A>

@@ -9,7 +9,7 @@
 namespace raylane {
 
 // The nearest hit in (tmin, tmax); equal t goes to the lower PrimRef bits. Rays with NaN or
-// inf components, a zero direction or tmin > tmax hit nothing (hard-cases.md N1).
+// inf components, a zero direction or tmin > tmax hit nothing (docs/hard-cases.md N1).
 Hit closest_hit_ref(const Scene& scene, const Rayd& ray);
 // Whether any surface lies in (tmin, tmax).
 bool any_hit_ref(const Scene& scene, const Rayd& ray);

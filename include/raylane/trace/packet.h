@@ -1,4 +1,4 @@
-// Ray and hit packets: W rays in SIMD lanes, structure of arrays (design.md, "Packets").
+// Ray and hit packets: W rays in SIMD lanes, structure of arrays (docs/design.md, "Packets").
 // Templates over the instruction set A; used only inside the per-ISA translation units.
 #pragma once
 
@@ -66,7 +66,7 @@ struct RayShear {
 };
 
 // Which plane of each slab a ray meets first: the box's hi where 1/d < 0 (the sign of d,
-// even for ±0: hard-cases B3), its lo otherwise. Per lane, and as one choice per axis when
+// even for ±0: docs/hard-cases.md B3), its lo otherwise. Per lane, and as one choice per axis when
 // every active lane agrees (coherent packets, single rays), so that a box test can load its
 // near and far planes instead of selecting them in every lane.
 template <class A>
@@ -97,7 +97,7 @@ struct RayPacket {
   using F = simd::Floats<A>;
   F ox, oy, oz;
   F dx, dy, dz;
-  F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (hard-cases B3)
+  F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (docs/hard-cases.md B3)
   F tmin;
   simd::Mask<A> active;  // lanes that hold a valid ray still being traced
   // Set with `active`, from the lanes valid then. `active` only ever loses lanes (any-hit
@@ -124,7 +124,7 @@ inline int32_t prim_bits(PrimTag tag, uint32_t row) {
 // - LanesAreRays (packet traversal): each lane is a ray; each step broadcasts one row.
 // - LanesAreRows (single-ray traversal): every lane holds the same ray; each step loads W
 //   consecutive rows, one per lane. The tables are SoA and a run's rows are contiguous, so
-//   that is one load per column (design.md, "Data layout").
+//   that is one load per column (docs/design.md, "Data layout").
 template <class A>
 struct LanesAreRays {
   static constexpr bool kOneRay = false;

@@ -1,5 +1,5 @@
 // Packet traversal of the BVH: W rays in lanes visit a node together when any active lane's
-// segment overlaps its box (design.md, "Packets"). Included only by the per-ISA translation
+// segment overlaps its box (docs/design.md, "Packets"). Included only by the per-ISA translation
 // units, which instantiate it for their instruction set.
 #pragma once
 
@@ -20,15 +20,14 @@ inline simd::Floats<A> widen_far(const simd::Floats<A>& x) {
 }
 
 // Which lanes' segments (tmin, tfar) overlap a node box, and where each enters it. Closed
-// box, NaN-keeping extrema (a ray lying in a slab plane keeps the accumulator: hard-cases B4),
-// near and far planes chosen by the sign of 1/d, which is the sign of d even for ±0 (B3):
-// one choice per axis when the lanes agree on it (kSameSides, RayPacket::sides), per lane
-// otherwise. Each t carries three roundings (difference, reciprocal, product); the far end is
-// widened by 2·γ3 of its size so that rounding never closes an overlap. The widening is
-// monotone, so it is applied once, to the smallest far value, instead of to each: that widens
-// tfar too, which can only add a visit. A far value of −inf (a ray parallel to a slab and
-// outside it, or an exit that overflows behind the origin) widens to NaN and the box is
-// rejected, rightly: the ray cannot be inside it.
+// box, NaN-keeping extrema (a ray lying in a slab plane keeps the accumulator: docs/hard-cases.md
+// B4), near and far planes chosen by the sign of 1/d, which is the sign of d even for ±0 (B3): one
+// choice per axis when the lanes agree on it (kSameSides, RayPacket::sides), per lane otherwise.
+// Each t carries three roundings (difference, reciprocal, product); the far end is widened by 2·γ3
+// of its size so that rounding never closes an overlap. The widening is monotone, so it is applied
+// once, to the smallest far value, instead of to each: that widens tfar too, which can only add a
+// visit. A far value of −inf (a ray parallel to a slab and outside it, or an exit that overflows
+// behind the origin) widens to NaN and the box is rejected, rightly: the ray cannot be inside it.
 template <class A, bool kSameSides>
 [[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
                                                          const simd::Floats<A>& tfar,

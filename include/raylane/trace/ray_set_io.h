@@ -1,4 +1,4 @@
-// The ray-set exchange files of spec/ray-sets.md: `.rays` (a ray set), `.tris` (a triangle
+// The ray-set exchange files of docs/ray-sets.md: `.rays` (a ray set), `.tris` (a triangle
 // soup) and `.hits` (the answers), all little endian, so raylane and any other tracer can be
 // compared on identical rays. Readers check every size against the file before allocating
 // and report `file: what was expected, what was found`.

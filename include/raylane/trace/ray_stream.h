@@ -1,7 +1,7 @@
 // Rays and answers as plain structure-of-arrays streams: what crosses from baseline code into
-// the per-ISA packet tracers (only pointers and scalars cross that boundary, toolchain.md §5).
-// The tracer takes W consecutive rays as one packet, so camera rays stored in small tiles
-// make coherent packets.
+// the per-ISA packet tracers (only pointers and scalars cross that boundary, docs/design.md, "SIMD
+// and the instruction sets"). The tracer takes W consecutive rays as one packet, so camera rays
+// stored in small tiles make coherent packets.
 #pragma once
 
 #include <cstdint>

@@ -37,7 +37,7 @@ class SimdTracer {
   int width() const { return isa_width(isa_); }  // rays per packet
 
   // Closest hit of every ray: hits.t (+inf for a miss) and hits.prim. Rays with NaN or inf
-  // components, a zero direction or tmin > tmax miss without traversal (hard-cases N1).
+  // components, a zero direction or tmin > tmax miss without traversal (docs/hard-cases.md N1).
   void closest(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
   // Occlusion: hits.prim = 0 where something lies in (tmin, tmax), kInvalidBits elsewhere.
   void occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
