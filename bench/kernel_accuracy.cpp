@@ -20,6 +20,7 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/float_util.h"
+#include "raylane/core/parallel.h"
 #include "raylane/simd/isa.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/simd_tracer.h"
@@ -153,10 +154,13 @@ Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
   RayStream stream = RayStream::from(rays);
   SimdTracer tracer(isa);
   HitStream hits;
+  hits.resize(stream.size());
   std::vector<double> seconds;
   for (int rep = 0; rep < 5; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
-    tracer.closest(s.scene, bvh, stream, hits);
+    parallel_chunks(stream.size(), kTraceChunk, [&](std::size_t begin, std::size_t end) {
+      tracer.trace_range(s.scene, bvh, stream, begin, end, hits, /*any_hit=*/false);
+    });
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   Row row;

@@ -26,7 +26,7 @@ BenchTracer packet_tracer(const BenchScene& b, Isa isa, Traversal traversal) {
   return {packet_tracer_name(isa, traversal),
           [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
             hits.resize(rays.size());
-            parallel_chunks(rays.size(), 256, [&](std::size_t begin, std::size_t end) {
+            parallel_chunks(rays.size(), kTraceChunk, [&](std::size_t begin, std::size_t end) {
               t.trace_range(b.scene, b.bvh, rays, begin, end, hits, occlusion);
             });
           },

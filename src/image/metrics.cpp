@@ -1,6 +1,7 @@
 #include "raylane/image/metrics.h"
 
 #include <cmath>
+#include <limits>
 
 namespace raylane {
 
@@ -11,6 +12,10 @@ Result<ImageDiff> compare(const Image& a, const Image& ref) {
   if (n == 0) return d;
   double se = 0, rel = 0, abs_sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(a.rgb[i]) || !std::isfinite(ref.rgb[i])) {
+      ++d.nonfinite;
+      continue;
+    }
     double diff = double(a.rgb[i]) - ref.rgb[i];
     se += diff * diff;
     rel += diff * diff / (double(ref.rgb[i]) * ref.rgb[i] + 1e-2);
@@ -20,6 +25,10 @@ Result<ImageDiff> compare(const Image& a, const Image& ref) {
   d.rmse = std::sqrt(se / n);
   d.rel_mse = rel / n;
   d.mean_abs = abs_sum / n;
+  if (d.nonfinite > 0) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    d.rmse = d.rel_mse = d.mean_abs = d.max_abs = kInf;
+  }
   return d;
 }
 

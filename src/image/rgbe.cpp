@@ -188,6 +188,14 @@ Result<RgbeFile> decode_rgbe(std::string_view bytes) {
   RgbeFile f;
   uint32_t w = 0, h = 0;
   if (Status s = read_header(r, f, w, h); !s) return Error{s.error()};
+  // The fewest bytes a row can take: one header and runs of at most 127 per channel when it
+  // is run-length encoded, 4 bytes a pixel when it is flat. A header that announces more rows
+  // than the bytes left can hold is refused before the row buffer is sized from it.
+  bool rle_possible = w >= kMinRleWidth && w <= kMaxRleWidth;
+  uint64_t min_row = rle_possible ? 4 + 4 * 2 * ((uint64_t(w) + 126) / 127) : uint64_t(w) * 4;
+  if (min_row * h > r.left())
+    return Error{cat("the header announces ", w, "x", h, " pixels, at least ", min_row * h,
+                     " bytes of data, and ", r.left(), " bytes follow it")};
   std::vector<uint8_t> ch(std::size_t(w) * 4);
   f.image.width = w;
   f.image.height = 0;

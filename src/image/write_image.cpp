@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/png.h"
@@ -58,21 +59,20 @@ Status write_image(const std::string& path, const Image& image, const WriteOptio
 }
 
 Result<Image> read_image(const std::string& path) {
-  std::error_code ec;
-  auto size = fs::file_size(path, ec);
-  if (ec) return Error{cat("cannot read ", in_quotes(path), ": ", ec.message())};
-  if (size > (uint64_t(4) << 30)) return Error{"image file is over 4 GiB"};
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  std::string bytes = buf.str();
+  auto contents = read_input_file(path, uint64_t(4) << 30, "the image");
+  if (!contents) return Error{contents.error()};
+  const std::string& bytes = *contents;
   std::string ext = lower_extension(path);
   if (ext == ".hdr") {
     auto f = decode_rgbe(bytes);
-    if (!f) return Error{f.error()};
+    if (!f) return Error{cat(path, ": ", f.error())};
     return std::move(f->image);
   }
-  if (ext == ".pfm") return decode_pfm(bytes);
+  if (ext == ".pfm") {
+    auto image = decode_pfm(bytes);
+    if (!image) return Error{cat(path, ": ", image.error())};
+    return image;
+  }
   return Error{cat("cannot read ", in_quotes(path), " (raylane reads .hdr and .pfm)")};
 }
 

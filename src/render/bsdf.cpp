@@ -50,6 +50,32 @@ double Bsdf::smith_g(const Vec3d& wi, const Vec3d& m) const {
   return g1(dot(wi, n_), dot(wi, m), alpha_) * g1(cos_o_, dot(wo_, m), alpha_);
 }
 
+// At η = 1 a refracted ray leaves along −wo through every microfacet: the transmission lobe
+// is a Dirac delta, its generalised half vector −(η_o·wo + η_i·wi) is 0 and the Jacobian of
+// Walter et al.'s eq. 17 divides by 0. Near η = 1 the lobe's width is |1 − η|·tan θm, below
+// what light sampling can hit and above what double keeps well: within this relative contrast
+// the lobe is taken as the delta (a direction off by at most 1e-5·tan θm).
+constexpr double kIndexMatchedContrast = 1e-5;
+
+bool Bsdf::index_matched() const {
+  return std::abs(eta_o_ / eta_i_ - 1) <= kIndexMatchedContrast;
+}
+
+// Transmission through microfacet m at η = 1: wi = −wo. The weight is the limit of the
+// regular estimator eval/pdf as η → 1 (its 1/den² factors cancel): (1 − F)·G·(wo·m)/cos θo ·
+// D/p(m) / p_t, with D/p(m) = (α+2)/(α+1) for the course's warp. Its expectation over m is the
+// transmitted fraction: at normal incidence with F = 0 exactly 1 (E[cos θm] = (α+1)/(α+2)).
+BsdfSample Bsdf::sample_index_matched(const Vec3d& m, double om) const {
+  BsdfSample s;
+  s.wi = -wo_;
+  double weight = smith_g(s.wi, m) * om / cos_o_ * (alpha_ + 2) / (alpha_ + 1) / pt_;
+  s.value = (Vec3d(1, 1, 1) - schlick(om)) * weight;
+  s.pdf = 1;
+  s.specular = true;
+  if (!is_finite(s.value)) s.pdf = 0;
+  return s;
+}
+
 bool Bsdf::refracts(double cos_om) const {
   double eta = eta_o_ / eta_i_;
   return 1 - eta * eta * (1 - cos_om * cos_om) >= 0;
@@ -77,7 +103,7 @@ Vec3d Bsdf::eval(const Vec3d& wi) const {
     if (pt_ > 0 && !refracts(dot(wo_, m))) out += reflection(m, wi, -1);
     return out;
   }
-  if (!(cos_i < 0) || pt_ == 0) return out;
+  if (!(cos_i < 0) || pt_ == 0 || index_matched()) return out;
   // Walter et al. 2007, eqs. 16 and 21: the generalised half vector and the BTDF, radiance
   // scaled by η_o² (the viewer's side).
   Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
@@ -106,7 +132,7 @@ double Bsdf::pdf(const Vec3d& wi) const {
     double w = pr_ + (pt_ > 0 && !refracts(dot(wo_, m)) ? pt_ : 0.0);
     return p + w * lobe;  // the warp's density of m, Jacobian 1/(4|wi·m|)
   }
-  if (!(cos_i < 0) || pt_ == 0) return 0;
+  if (!(cos_i < 0) || pt_ == 0 || index_matched()) return 0;
   Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
   double len = length(m);
   if (!(len > 0)) return 0;
@@ -131,6 +157,7 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
     double om = dot(wo_, m);
     if (!(om > 0)) return s;
     s.wi = reflect(wo_, m);
+    if (u0 >= pd_ + pr_ && index_matched()) return sample_index_matched(m, om);
     if (u0 >= pd_ + pr_ && refracts(om)) {
       // Refraction through m (Walter eq. 40), η = η_o/η_i.
       double eta = eta_o_ / eta_i_;

@@ -1,11 +1,13 @@
 #include "raylane/render/film.h"
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "raylane/core/atomic_file.h"
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 
 namespace raylane {
@@ -76,9 +78,9 @@ Status save_film(const std::string& path, const Film& film) {
 }
 
 Result<Film> load_film(const std::string& path) {
-  std::error_code ec;
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec) return Error{cat(path, ": cannot read: ", ec.message())};
+  auto file_size = regular_file_size(path);
+  if (!file_size) return Error{cat(path, ": cannot read: ", file_size.error())};
+  uint64_t size = *file_size;
   if (size < kHeader) return Error{cat(path, ": expected a 32-byte film header, found ", size)};
   std::ifstream in(path, std::ios::binary);
   char head[kHeader];
@@ -100,6 +102,12 @@ Result<Film> load_film(const std::string& path) {
   f.sum.resize(pixels * 3);
   if (!in.read(reinterpret_cast<char*>(f.sum.data()), std::streamsize(pixels * 24)))
     return Error{cat(path, ": read failed")};
+  // A film raylane wrote holds finite sums only (non-finite samples are dropped before they
+  // reach it), so anything else is damage, and continuing would spread it to the image.
+  for (std::size_t i = 0; i < f.sum.size(); ++i)
+    if (!std::isfinite(f.sum[i]))
+      return Error{cat(path, ": pixel ", i / 3, " holds a non-finite sum (", f.sum[i],
+                       "): the film is damaged")};
   return f;
 }
 

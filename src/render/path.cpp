@@ -23,8 +23,9 @@ struct PathState {
   Rayd ray;
   Vec3d beta{1, 1, 1};  // throughput
   Vec3d radiance{0, 0, 0};
-  Vec3d prev_p;         // the vertex the ray left (for the light pdf of MIS)
-  double prev_pdf = 0;  // the BSDF density of the ray's direction
+  Vec3d prev_p;                // the vertex the ray left (for the light pdf of MIS)
+  double prev_pdf = 0;         // the BSDF density of the ray's direction
+  bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
   std::size_t pixel = 0;
 };
 
@@ -74,15 +75,16 @@ void tile_camera_rays(const Camera& cam, uint32_t x0, uint32_t y0, Rng& rng,
         }
 }
 
-// What a path gains where it hits an emitter: all of it for a camera ray or for BSDF
-// sampling alone, the MIS share after a bounce, nothing for NEE alone (light sampling
-// counted it already).
+// What a path gains where it hits an emitter: all of it for a camera ray, for BSDF sampling
+// alone or after a specular bounce (light sampling cannot reach a Dirac lobe); the MIS share
+// after another bounce, nothing for NEE alone (light sampling counted it already).
 void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
   Vec3d le = ctx.lights.emitted(hit);
   if (le == Vec3d(0, 0, 0)) return;
   double w = 1;
-  if (depth > 0 && ctx.settings.integrator == Integrator::kNee) w = 0;
-  if (depth > 0 && ctx.settings.integrator == Integrator::kMis)
+  bool sampled_light_too = depth > 0 && !p.prev_specular;
+  if (sampled_light_too && ctx.settings.integrator == Integrator::kNee) w = 0;
+  if (sampled_light_too && ctx.settings.integrator == Integrator::kMis)
     w = power_heuristic(p.prev_pdf, ctx.lights.pdf(p.prev_p, p.ray.d, hit));
   p.radiance += p.beta * le * w;
 }
@@ -133,6 +135,7 @@ bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
   if (!is_finite(p.beta) || p.beta == Vec3d(0, 0, 0)) return false;
   p.prev_p = hit.surface.p;
   p.prev_pdf = s.pdf;
+  p.prev_specular = s.specular;
   Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, s.wi);
   p.ray = {o, s.wi};
   return true;

@@ -1,6 +1,8 @@
 #include "raylane/render/raycast.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "raylane/core/ray_offset.h"
 
@@ -10,6 +12,7 @@ namespace {
 
 constexpr uint32_t kTile = 4;   // camera rays go out in 4×4 tiles: one AVX-512 packet each
 constexpr uint32_t kBand = 16;  // rows per band: the unit of work of one thread
+static_assert(kBand % kTile == 0, "bands of whole 4×4 tiles keep the packets of one pass");
 
 Vec3d to_d(const Vec3f& v) {
   return Vec3d(v);
@@ -128,6 +131,32 @@ void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, u
 }
 
 }  // namespace
+
+Image viewable(const Image& raw, RaycastMode mode) {
+  if (mode != RaycastMode::kDepth && mode != RaycastMode::kId) return raw;
+  Image out = raw;
+  const std::size_t pixels = std::size_t(raw.width) * raw.height;
+  if (mode == RaycastMode::kDepth) {
+    float lo = std::numeric_limits<float>::infinity(), hi = 0;
+    for (std::size_t i = 0; i < pixels; ++i)
+      if (raw.rgb[3 * i] > 0) lo = std::min(lo, raw.rgb[3 * i]), hi = std::max(hi, raw.rgb[3 * i]);
+    float range = hi > lo ? hi - lo : 1;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      float t = raw.rgb[3 * i];
+      float v = t > 0 ? 1 - 0.9f * (t - lo) / range : 0;
+      out.rgb[3 * i] = out.rgb[3 * i + 1] = out.rgb[3 * i + 2] = v;
+    }
+    return out;
+  }
+  for (std::size_t i = 0; i < pixels; ++i) {
+    uint32_t tag = uint32_t(raw.rgb[3 * i]), row = uint32_t(raw.rgb[3 * i + 1]);
+    // A multiplicative hash (Knuth's 2654435761) spreads neighbouring rows over the colours.
+    uint32_t h = (row * 2654435761u) ^ (tag * 0x9E3779B9u);
+    for (int k = 0; k < 3; ++k)
+      out.rgb[3 * i + k] = tag == 0 ? 0.0f : 0.2f + 0.8f * float((h >> (8 * k)) & 0xFF) / 255;
+  }
+  return out;
+}
 
 Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats) {
   const Scene& scene = tracer.scene();

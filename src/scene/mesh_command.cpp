@@ -22,7 +22,8 @@ const std::string* find_memory_file(const ParseState& state, const std::string& 
 }
 
 // "A mesh path is looked up relative to the directory of the scene file first, then the
-// working directory."
+// working directory." The first path that exists is taken, whatever it is: the import then
+// says if it is no regular file (a FIFO, a directory), rather than "not found".
 std::optional<std::string> find_mesh_file(const ParseState& state, const std::string& name) {
   std::vector<fs::path> candidates;
   fs::path p(name);
@@ -34,7 +35,7 @@ std::optional<std::string> find_mesh_file(const ParseState& state, const std::st
   }
   for (const auto& c : candidates) {
     std::error_code ec;
-    if (fs::is_regular_file(c, ec)) return c.string();
+    if (fs::exists(c, ec)) return c.string();
   }
   return std::nullopt;
 }
@@ -49,7 +50,7 @@ Result<MeshImportStats> import(const ParseState& state, const std::string& name,
     std::string where = state.scene_dir.empty()
                             ? std::string("the working directory")
                             : cat("'", state.scene_dir, "' and the working directory");
-    return Error{cat("mesh file ", in_quotes(name), " not found (looked in ", where, ")")};
+    return Error{cat("mesh file ", quote_path(name), " not found (looked in ", where, ")")};
   }
   return import_mesh_file(*path, placement, material, table);
 }
@@ -71,7 +72,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   auto rot = parse_orientation(line, 6, state);
   if (!rot) return false;
   MeshPlacement placement{{(*v)[0], (*v)[1], (*v)[2]}, (*v)[3], *rot};
-  std::string name(line.tokens[1].text);
+  std::string name = line.tokens[1].name();
   TriangleTable& table = s.table<Triangle>();
   uint32_t first_row = uint32_t(table.size());
   // The material index is only committed (a default one created) if the import succeeds.
@@ -82,6 +83,11 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(1), stats.error());
     return false;
   }
+  state.input_files.insert(state.input_files.end(), stats->files.begin(), stats->files.end());
+  MeshSummary summary{name, line.loc, stats->triangles, stats->degenerate_dropped, {}};
+  for (uint32_t r = first_row; r < table.size(); ++r)
+    summary.bounds.extend(table.bounds(r));
+  state.meshes.push_back(std::move(summary));
   if (!had_material) {
     state.diagnostics.warning(line.at(0),
                               "mesh before any material line: using grey diffuse "
@@ -91,7 +97,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   }
   if (stats->degenerate_dropped > 0)
     state.diagnostics.warning(line.at(1), cat("skipped ", stats->degenerate_dropped,
-                                              " zero-area triangles of ", in_quotes(name)));
+                                              " zero-area triangles of ", quote_path(name)));
   if (s.materials[mat].is_light)
     for (uint32_t r = first_row; r < table.size(); ++r)
       s.lights.push_back(PrimRef(tag_of<Triangle>, r));

@@ -43,12 +43,17 @@ bool is_count_type(std::string_view t) {
   return is_scalar_type(t) && t != "float" && t != "double" && t != "float32" && t != "float64";
 }
 
-// One header line after `ply` and `format`; false if it is not part of the PLY grammar
-// (Paul Bourke's PLY description): comment, obj_info, element NAME COUNT,
-// property TYPE NAME, property list COUNT_TYPE TYPE NAME.
+// One header line after `ply` and `format`; false if it breaks the PLY grammar (Paul Bourke's
+// PLY description): element NAME COUNT, property TYPE NAME, property list COUNT_TYPE TYPE NAME.
+// Comments, obj_info and lines of free text are skipped, as Assimp skips them: real exporters
+// write such lines (Blender 2.47 wrote "Created by Blender3D 247 ..." with no `comment`) and a
+// guard may refuse only what would crash or hang the reader — here, a malformed element or
+// property line, or an `end_header` that is not alone on its line.
 bool read_header_line(const std::vector<std::string_view>& w, std::vector<PlyElement>& elements) {
   if (w.empty()) return true;
   if (w[0] == "comment" || w[0] == "obj_info") return true;
+  if (w[0] != "element" && w[0] != "property")
+    return std::find(w.begin(), w.end(), "end_header") == w.end();
   if (w[0] == "element" && w.size() == 3) {
     PlyElement e;
     e.name = w[1];
@@ -77,13 +82,13 @@ bool is_printable_text(std::string_view s) {
 Status read_ply_header(std::string_view head, std::vector<PlyElement>& elements,
                        uint64_t& header_bytes, const std::string& name) {
   auto bad = [&](int line, std::string_view what) {
-    return Error{cat("mesh ", in_quotes(name), ": PLY header line ", line, ": ", what)};
+    return Error{cat("mesh ", quote_path(name), ": PLY header line ", line, ": ", what)};
   };
   std::size_t pos = 0;
   for (int number = 1;; ++number) {
     std::size_t eol = head.find('\n', pos);
     if (eol == std::string_view::npos)
-      return Error{cat("mesh ", in_quotes(name), ": PLY header has no end_header line")};
+      return Error{cat("mesh ", quote_path(name), ": PLY header has no end_header line")};
     std::string_view line = head.substr(pos, eol - pos);
     pos = eol + 1;
     if (!is_printable_text(line)) return bad(number, "holds bytes that are not text");
@@ -102,7 +107,8 @@ Status read_ply_header(std::string_view head, std::vector<PlyElement>& elements,
       header_bytes = pos;
       return ok_status();
     } else if (!read_header_line(w, elements)) {
-      return bad(number, cat("expected comment, element or property, found ", in_quotes(line)));
+      return bad(number, cat("expected an element or property line of the PLY grammar, found ",
+                             in_quotes(line)));
     }
   }
 }
@@ -114,10 +120,10 @@ Status check_vertex_element(const std::vector<PlyElement>& elements, const std::
   auto is = [](std::string_view n) { return [n](const PlyElement& e) { return e.name == n; }; };
   auto vertex = std::find_if(elements.begin(), elements.end(), is("vertex"));
   if (vertex == elements.end())
-    return Error{cat("mesh ", in_quotes(name),
+    return Error{cat("mesh ", quote_path(name),
                      ": expected a PLY 'vertex' element, found none in the header")};
   if (std::find_if(elements.begin(), vertex, is("face")) != vertex)
-    return Error{cat("mesh ", in_quotes(name),
+    return Error{cat("mesh ", quote_path(name),
                      ": expected the PLY 'vertex' element before 'face', found it after")};
   return ok_status();
 }
@@ -145,7 +151,7 @@ bool may_be_read_as_ply(std::string_view head, const std::string& name) {
 }  // namespace
 
 Status check_mesh_plausible(std::string_view head, uint64_t file_size, const std::string& name) {
-  if (file_size > kMaxMeshFileBytes) return Error{cat("mesh ", in_quotes(name), " is over 4 GiB")};
+  if (file_size > kMaxMeshFileBytes) return Error{cat("mesh ", quote_path(name), " is over 4 GiB")};
   if (!may_be_read_as_ply(head, name)) return ok_status();
   std::vector<PlyElement> elements;
   uint64_t header_bytes = 0;
@@ -156,8 +162,8 @@ Status check_mesh_plausible(std::string_view head, uint64_t file_size, const std
   for (const PlyElement& e : elements) {
     uint64_t per = e.properties == 0 ? 1 : e.properties;
     if (e.count > body / per || needed + e.count * per > body)
-      return Error{
-          cat("mesh ", in_quotes(name), ": PLY header declares more elements than the file holds")};
+      return Error{cat("mesh ", quote_path(name),
+                       ": PLY header declares more elements than the file holds")};
     needed += e.count * per;
   }
   return ok_status();

@@ -1,5 +1,6 @@
 #include "raylane/scene/mesh_import.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -9,12 +10,21 @@
 #include <new>
 #include <utility>
 
+#include "raylane/core/alloc_budget.h"
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 #include "raylane/scene/mesh_guard.h"
 
 namespace raylane {
 
 namespace {
+
+// What Assimp may allocate while it reads a mesh: a fixed allowance plus a multiple of the
+// bytes of the files it reads (the mesh and what it names). Real files stay far below (the
+// 1.31M-triangle binary PLY of the benchmark peaks near 32 bytes per byte); a header that
+// announces more than its file holds hits the limit before its arrays are filled.
+constexpr uint64_t kImportAllowance = uint64_t(256) << 20;
+constexpr uint64_t kImportBytesPerFileByte = 64;
 
 constexpr unsigned kImportFlags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                   aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
@@ -47,12 +57,114 @@ void drop_empty_faces(const aiScene& scene) {
   }
 }
 
+// Whether any mesh of a scene as read has a face of three or more corners (a surface).
+bool has_surface(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    for (unsigned f = 0; f < scene.mMeshes[m]->mNumFaces; ++f)
+      if (scene.mMeshes[m]->mFaces[f].mNumIndices >= 3) return true;
+  return false;
+}
+
+// The first vertex that is not finite, as "mesh M vertex V (x y z)"; empty if none. Assimp
+// reads inf and NaN coordinates as given; a triangle made of them has no place in a BVH.
+std::string first_nonfinite_vertex(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        return cat("mesh ", m, " vertex ", v, " (", p.x, " ", p.y, " ", p.z, ")");
+    }
+  }
+  return "";
+}
+
 // Reads without post-processing, removes what Assimp's own steps do not survive, then runs
-// the steps. Returns null with the importer's error string set on failure.
-const aiScene* read_checked(Assimp::Importer& importer, const aiScene* raw) {
+// the steps. Returns null with the importer's error string set on failure; `faceless` is set
+// when the file holds no surface at all (points or lines only, or nothing).
+const aiScene* read_checked(Assimp::Importer& importer, const aiScene* raw, bool& faceless) {
   if (!raw) return nullptr;
+  faceless = !has_surface(*raw);
+  if (faceless) return nullptr;
   drop_empty_faces(*raw);
   return importer.ApplyPostProcessing(kImportFlags);
+}
+
+// Assimp opens the mesh and every file it names (an OBJ's mtllib, a glTF's buffers, images)
+// through this. A path that is not a regular file is refused — a FIFO would block fopen for
+// ever, a device never ends — and so is any mode but reading. Every file opened is recorded.
+class GuardedIOSystem final : public Assimp::DefaultIOSystem {
+ public:
+  void set_budget(AllocBudget* budget) { budget_ = budget; }
+
+  bool Exists(const char* file) const override { return regular_file_size(file).ok(); }
+
+  Assimp::IOStream* Open(const char* file, const char* mode = "rb") override {
+    std::string_view m = mode ? mode : "rb";
+    if (m.find_first_of("wa+") != std::string_view::npos) {
+      refused_.push_back(cat(file, ": raylane opens mesh files for reading only"));
+      return nullptr;
+    }
+    auto size = regular_file_size(file);
+    if (!size) {
+      refused_.push_back(cat(file, ": ", size.error()));
+      return nullptr;
+    }
+    opened_.emplace_back(file);
+    if (budget_) budget_->grow(kImportBytesPerFileByte * *size);
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+  const std::vector<std::string>& opened() const { return opened_; }
+  // "; a.mtl: not a regular file (a FIFO)" for each refusal, to append to Assimp's message.
+  std::string refusals() const {
+    std::string out;
+    for (const std::string& r : refused_)
+      out += "; " + r;
+    return out;
+  }
+
+ private:
+  std::vector<std::string> opened_, refused_;
+  AllocBudget* budget_ = nullptr;
+};
+
+// Runs read() (Assimp's ReadFile or ReadFileFromMemory) and its post-processing within an
+// AllocBudget of kImportAllowance plus kImportBytesPerFileByte per byte of `bytes` and of every
+// file `io` opens. Assimp may turn the std::bad_alloc of an exceeded budget into its own error
+// or let it through; either way the budget says what happened.
+template <class Read>
+Result<const aiScene*> read_within_budget(Assimp::Importer& importer, const std::string& name,
+                                          uint64_t bytes, GuardedIOSystem* io, Read read) {
+  AllocBudget budget(kImportAllowance + kImportBytesPerFileByte * bytes);
+  if (io) io->set_budget(&budget);
+  const aiScene* scene = nullptr;
+  bool out_of_memory = false, faceless = false;
+  try {
+    scene = read_checked(importer, read(), faceless);
+  } catch (const std::bad_alloc&) {
+    out_of_memory = true;
+  } catch (const std::exception& e) {
+    if (io) io->set_budget(nullptr);
+    return Error{cat("cannot read mesh ", quote_path(name), ": ", e.what())};
+  }
+  if (io) io->set_budget(nullptr);
+  if (budget.exceeded())
+    return Error{cat("mesh ", quote_path(name), ": reading it would take more than ",
+                     budget.limit() >> 20, " MiB (", kImportAllowance >> 20, " MiB and ",
+                     kImportBytesPerFileByte,
+                     " bytes per byte of the files it reads): it "
+                     "announces more data than it holds")};
+  if (out_of_memory) return Error{cat("out of memory reading mesh ", quote_path(name))};
+  if (faceless)
+    return Error{cat("mesh ", quote_path(name), " has no faces (points or lines only, or empty)")};
+  if (!scene) {
+    std::string ext = std::filesystem::path(name).extension().string();
+    std::string tried = ext.empty() ? "by its contents" : "as " + ext;
+    return Error{cat("cannot read mesh ", quote_path(name), " (Assimp read it ", tried,
+                     "): ", escape_invisible(importer.GetErrorString()))};
+  }
+  return scene;
 }
 
 Vec3d to_vec(const aiVector3D& v) {
@@ -99,21 +211,24 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
   }
 }
 
-Result<MeshImportStats> convert(const aiScene* scene, Assimp::Importer& importer,
-                                const std::string& name, const MeshPlacement& placement,
-                                uint32_t material, TriangleTable& table) {
-  if (!scene)
-    return Error{cat("cannot read mesh ", in_quotes(name), ": ", importer.GetErrorString())};
+Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
+                                const MeshPlacement& placement, uint32_t material,
+                                TriangleTable& table) {
+  if (std::string bad = first_nonfinite_vertex(*scene); !bad.empty())
+    return Error{
+        cat("mesh ", quote_path(name), ": expected finite vertex coordinates, found ", bad)};
   uint64_t total = count_triangles(*scene);
-  if (total == 0) return Error{cat("mesh ", in_quotes(name), " has no triangles")};
+  if (total == 0)
+    return Error{cat("mesh ", quote_path(name), " has no faces (points or lines only, or empty)")};
   if (total > kMaxMeshTriangles || table.size() + total > PrimRef::kMaxRows)
-    return Error{cat("mesh ", in_quotes(name), " has too many triangles (", total, ")")};
+    return Error{cat("mesh ", quote_path(name), " has too many triangles (", total, ")")};
   MeshImportStats stats;
   table_reserve(table, table.size() + total);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
     append_mesh(*scene->mMeshes[m], placement, material, table, stats);
   if (stats.triangles == 0)
-    return Error{cat("mesh ", in_quotes(name), " has only zero-area triangles")};
+    return Error{cat("mesh ", quote_path(name), " has only zero-area triangles (",
+                     stats.degenerate_dropped, ")")};
   return stats;
 }
 
@@ -127,43 +242,56 @@ std::string read_head(const std::string& path) {
   return head;
 }
 
+// convert(), with running out of memory for the table an error rather than an exception.
+Result<MeshImportStats> convert_or_fail(const aiScene* scene, const std::string& name,
+                                        const MeshPlacement& placement, uint32_t material,
+                                        TriangleTable& table) {
+  try {
+    return convert(scene, name, placement, material, table);
+  } catch (const std::bad_alloc&) {
+    return Error{cat("out of memory storing the triangles of mesh ", quote_path(name))};
+  }
+}
+
 }  // namespace
+
+bool mesh_extension_known(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  // .scn is a scene of ours, though Assimp also claims it (Caligari trueSpace).
+  return !ext.empty() && ext != ".scn" && Assimp::Importer().IsExtensionSupported(ext.c_str());
+}
 
 Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlacement& placement,
                                          uint32_t material, TriangleTable& table) {
-  try {
-    std::error_code ec;
-    uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) return Error{cat("cannot read mesh ", in_quotes(path), ": ", ec.message())};
-    if (Status s = check_mesh_plausible(read_head(path), size, path); !s) return Error{s.error()};
-    Assimp::Importer importer;
-    configure(importer);
-    const aiScene* scene = read_checked(importer, importer.ReadFile(path, 0));
-    return convert(scene, importer, path, placement, material, table);
-  } catch (const std::bad_alloc&) {
-    return Error{cat("out of memory reading mesh ", in_quotes(path))};
-  } catch (const std::exception& e) {
-    return Error{cat("cannot read mesh ", in_quotes(path), ": ", e.what())};
-  }
+  auto size = regular_file_size(path);
+  if (!size) return Error{cat("cannot read mesh ", quote_path(path), ": ", size.error())};
+  if (Status s = check_mesh_plausible(read_head(path), *size, path); !s) return Error{s.error()};
+  Assimp::Importer importer;
+  configure(importer);
+  auto* io = new GuardedIOSystem;  // the importer owns and deletes it
+  importer.SetIOHandler(io);
+  auto scene =
+      read_within_budget(importer, path, 0, io, [&] { return importer.ReadFile(path, 0); });
+  if (!scene) return Error{scene.error() + io->refusals()};
+  auto stats = convert_or_fail(*scene, path, placement, material, table);
+  if (!stats) return Error{stats.error()};
+  stats->files = io->opened();
+  return stats;
 }
 
 Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::string& name,
                                            const MeshPlacement& placement, uint32_t material,
                                            TriangleTable& table) {
-  try {
-    if (Status s = check_mesh_plausible(bytes, bytes.size(), name); !s) return Error{s.error()};
-    Assimp::Importer importer;
-    configure(importer);
-    std::string hint = std::filesystem::path(name).extension().string();
-    if (!hint.empty()) hint.erase(0, 1);
-    const aiScene* scene = read_checked(
-        importer, importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str()));
-    return convert(scene, importer, name, placement, material, table);
-  } catch (const std::bad_alloc&) {
-    return Error{cat("out of memory reading mesh ", in_quotes(name))};
-  } catch (const std::exception& e) {
-    return Error{cat("cannot read mesh ", in_quotes(name), ": ", e.what())};
-  }
+  if (Status s = check_mesh_plausible(bytes, bytes.size(), name); !s) return Error{s.error()};
+  Assimp::Importer importer;
+  configure(importer);
+  std::string hint = std::filesystem::path(name).extension().string();
+  if (!hint.empty()) hint.erase(0, 1);
+  auto scene = read_within_budget(importer, name, bytes.size(), nullptr, [&] {
+    return importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str());
+  });
+  if (!scene) return Error{scene.error()};
+  return convert_or_fail(*scene, name, placement, material, table);
 }
 
 }  // namespace raylane

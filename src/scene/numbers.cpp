@@ -2,6 +2,8 @@
 #include <cfloat>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "raylane/core/strings.h"
 #include "raylane/scene/parse_state.h"
@@ -17,6 +19,25 @@ std::from_chars_result read_double(std::string_view s, double& v) {
   const char* e = b + s.size();
   if (b != e && *b == '+' && b + 1 != e && b[1] != '-' && b[1] != '+') ++b;
   return std::from_chars(b, e, v, std::chars_format::general);
+}
+
+// "expected a number" — pointing at an invisible character, if the token holds one (a
+// no-break space pasted from a web page, a vertical tab), and saying what to do about it.
+void not_a_number(std::string_view text, FileLoc loc, ParseState& state) {
+  std::string invisible = first_invisible(text);
+  if (invisible.empty()) {
+    state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+    return;
+  }
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c >= 0x7F) {
+      loc.col += int(i);
+      break;
+    }
+  }
+  state.problem(loc, cat("expected a number, found ", in_quotes(text), ", which holds ", invisible,
+                         ": write numbers with plain ASCII digits and separate them with spaces"));
 }
 
 }  // namespace
@@ -36,11 +57,20 @@ std::optional<double> parse_number(const Line& line, std::size_t token, ParseSta
   auto [end, ec] = read_double(text, v);
   bool complete = ec == std::errc() && end == text.data() + text.size();
   if (ec == std::errc::result_out_of_range) {
-    state.problem(loc, cat("number ", in_quotes(text), " is out of range"));
-    return std::nullopt;
+    // Too large, or too small for a double: strtod tells which (0 or a denormal for the
+    // latter). A value too small underflows to zero, which is what a float would hold anyway.
+    std::string copy(text.substr(text[0] == '+' ? 1 : 0));
+    double near = std::strtod(copy.c_str(), nullptr);
+    if (std::abs(near) > 1) {
+      state.problem(loc, cat("number ", in_quotes(text), " does not fit in a float"));
+      return std::nullopt;
+    }
+    v = std::copysign(0.0, near);
+    ec = std::errc();
+    complete = end == text.data() + text.size();
   }
   if (ec != std::errc()) {
-    state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+    not_a_number(text, loc, state);
     return std::nullopt;
   }
   if (!std::isfinite(v)) {
@@ -54,7 +84,7 @@ std::optional<double> parse_number(const Line& line, std::size_t token, ParseSta
   if (!complete) {
     std::string_view prefix(text.data(), std::size_t(end - text.data()));
     if (!state.options.lenient) {
-      state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+      not_a_number(text, loc, state);
       return std::nullopt;
     }
     state.diagnostics.warning(loc, cat("took the number ", prefix, " from ", in_quotes(text)));

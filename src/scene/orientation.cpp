@@ -1,5 +1,6 @@
 #include "raylane/scene/orientation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "raylane/core/strings.h"
@@ -23,6 +24,9 @@ std::optional<Mat3d> one_rotation(std::string_view form, const std::vector<doubl
   if (form == "z") return rotation_axis_angle({0, 0, 1}, v[0]);
   if (form == "a") {
     Vec3d axis(v[1], v[2], v[3]);
+    // Scaled by its largest component first, so a tiny axis (1e-200 …) does not square to 0.
+    double big = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
+    if (big > 0) axis = axis / big;
     double len = length(axis);
     if (!(len > 0.0) || !std::isfinite(len)) {
       state.problem(loc, "rotation axis must be non-zero");

@@ -1,9 +1,9 @@
 #include "raylane/scene/parser.h"
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 
 namespace raylane {
@@ -36,18 +36,61 @@ FileLoc Line::at(std::size_t token) const {
   return l;
 }
 
-void split_tokens(std::string_view text, std::vector<Token>& out) {
+namespace {
+
+// The commands whose second token is a file name, which may be quoted.
+bool takes_file_name(const std::vector<Token>& tokens) {
+  static constexpr std::string_view kCommands[] = {"mesh", "texture", "environment"};
+  return tokens.size() == 1 && std::find(std::begin(kCommands), std::end(kCommands),
+                                         tokens[0].text) != std::end(kCommands);
+}
+
+// A quoted name from the opening quote at `open`; `i` ends past the closing quote.
+std::optional<TokenError> read_quoted(std::string_view text, std::size_t open, std::size_t& i,
+                                      Token& token) {
+  token.quoted = true;
+  for (i = open + 1; i < text.size(); ++i) {
+    char c = text[i];
+    if (c == '"') break;
+    if (c == '\\' && i + 1 < text.size() && (text[i + 1] == '"' || text[i + 1] == '\\'))
+      c = text[++i];
+    token.unquoted.push_back(c);
+  }
+  if (i == text.size())
+    return TokenError{int(open) + 1,
+                      "expected a closing quote for this file name, found the end of the line"};
+  ++i;  // past the closing quote, which must end the token
+  if (i < text.size() && !is_space(text[i]))
+    return TokenError{int(i) + 1,
+                      cat("expected the quoted file name to end at its closing quote, found ",
+                          in_quotes(text.substr(i, 1)), " after it")};
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<TokenError> split_tokens(std::string_view text, std::vector<Token>& out) {
   out.clear();
+  if (auto nul = text.find('\0'); nul != std::string_view::npos)
+    return TokenError{int(nul) + 1, "expected text, found a NUL byte (\\x00)"};
   std::size_t i = 0;
   while (i < text.size()) {
     while (i < text.size() && is_space(text[i]))
       ++i;
     if (i == text.size() || text[i] == '#') break;
     std::size_t start = i;
-    while (i < text.size() && !is_space(text[i]))
-      ++i;
-    out.push_back({text.substr(start, i - start), int(start) + 1});
+    Token token;
+    token.col = int(start) + 1;
+    if (text[i] == '"' && takes_file_name(out)) {
+      if (auto e = read_quoted(text, start, i, token)) return e;
+    } else {
+      while (i < text.size() && !is_space(text[i]))
+        ++i;
+    }
+    token.text = text.substr(start, i - start);
+    out.push_back(std::move(token));
   }
+  return std::nullopt;
 }
 
 ParsedScene parse_scene(std::string_view text, const std::string& filename,
@@ -59,6 +102,21 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
   Line line;
   int number = 0;
   std::size_t pos = 0;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") {  // some Windows editors start UTF-8 files so
+    state.diagnostics.warning({filename, 1, 1},
+                              "skipped the UTF-8 byte-order mark \\xEF\\xBB\\xBF at the start of "
+                              "the file (save it as UTF-8 without BOM to silence this)");
+    pos = 3;
+  }
+  if (auto cr = text.find('\r'); cr != std::string_view::npos &&
+                                 text.find('\n') == std::string_view::npos &&
+                                 cr + 1 < text.size()) {
+    state.diagnostics.error({filename, 1, int(cr) + 1},
+                            "the lines of this file end in CR only (classic Mac OS); raylane "
+                            "reads LF or CRLF line ends: convert it, e.g. tr '\\r' '\\n'");
+    out.diagnostics = std::move(state.diagnostics);
+    return out;
+  }
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -72,35 +130,41 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
                             content.size(), " bytes"));
       continue;
     }
-    split_tokens(content, line.tokens);
+    if (auto e = split_tokens(content, line.tokens)) {
+      FileLoc at = line.loc;
+      at.col = e->col;
+      state.problem(at, e->message);
+      continue;
+    }
     if (!line.tokens.empty()) out.scene.command(line, state);
   }
   out.diagnostics = std::move(state.diagnostics);
+  out.input_files = std::move(state.input_files);
+  out.meshes = std::move(state.meshes);
   finish(out, state, filename);
   return out;
 }
 
 ParsedScene load_scene_file(const std::string& path, const ParseOptions& options) {
   ParsedScene out;
-  std::error_code ec;
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec || std::filesystem::is_directory(path)) {
-    out.diagnostics.error({path, 0, 0}, cat("cannot read the scene file (",
-                                            ec ? ec.message() : "it is a directory", ")"));
+  auto size = regular_file_size(path);
+  if (!size) {
+    out.diagnostics.error({path, 0, 0}, cat("cannot read the scene file: ", size.error()));
     return out;
   }
-  if (size > kMaxSceneFileBytes) {
-    out.diagnostics.error({path, 0, 0}, "scene file is larger than 1 GiB");
+  if (*size > kMaxSceneFileBytes) {
+    out.diagnostics.error({path, 0, 0},
+                          cat("the scene file has ", *size, " bytes; 1 GiB (2^30 bytes) at most"));
     return out;
   }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  if (!in && !in.eof()) {
+  auto text = read_input_file(path, kMaxSceneFileBytes, "the scene file");
+  if (!text) {
     out.diagnostics.error({path, 0, 0}, "cannot read the scene file");
     return out;
   }
-  return parse_scene(buf.str(), path, options);
+  ParsedScene parsed = parse_scene(*text, path, options);
+  parsed.input_files.insert(parsed.input_files.begin(), path);
+  return parsed;
 }
 
 ParsedScene load_builtin_scene(const ParseOptions& options) {

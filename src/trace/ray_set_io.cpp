@@ -9,6 +9,7 @@
 #include <iterator>
 
 #include "raylane/core/atomic_file.h"
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 
 namespace raylane {
@@ -32,9 +33,9 @@ struct Contents {
 
 Result<Contents> read_records(const std::string& path, const char (&magic)[8], std::size_t header,
                               std::size_t record, const char* what) {
-  std::error_code ec;
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec) return Error{cat(path, ": cannot read: ", ec.message())};
+  auto file_size = regular_file_size(path);
+  if (!file_size) return Error{cat(path, ": cannot read: ", file_size.error())};
+  uint64_t size = *file_size;
   if (size < header)
     return Error{cat(path, ": expected a ", header, "-byte header, found ", size, " bytes")};
   std::ifstream in(path, std::ios::binary);
@@ -76,6 +77,20 @@ std::string header(const char (&magic)[8], std::initializer_list<uint32_t> words
   return out;
 }
 
+// One record: a finite origin, a finite unit direction, t bounds that are numbers.
+Status check_ray(const float (&v)[8]) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(v[k]))
+      return Error{cat("expected a finite origin, found (", v[0], " ", v[1], " ", v[2], ")")};
+  double len = std::sqrt(double(v[3]) * v[3] + double(v[4]) * v[4] + double(v[5]) * v[5]);
+  if (!(std::abs(len - 1) <= kUnitDirectionTolerance))
+    return Error{cat("expected a unit direction (length 1 ± ", kUnitDirectionTolerance,
+                     "), found (", v[3], " ", v[4], " ", v[5], ") of length ", len)};
+  if (std::isnan(v[6]) || std::isnan(v[7]))
+    return Error{cat("expected t bounds that are numbers, found ", v[6], " and ", v[7])};
+  return ok_status();
+}
+
 }  // namespace
 
 Result<RaySetFile> read_ray_set(const std::string& path) {
@@ -89,6 +104,7 @@ Result<RaySetFile> read_ray_set(const std::string& path) {
   for (uint32_t i = 0; i < c->count; ++i) {
     float v[8];
     std::memcpy(v, c->bytes.data() + kRaysHeader + std::size_t(i) * kRayRecord, kRayRecord);
+    if (Status s = check_ray(v); !s) return Error{cat(path, ": ray ", i, ": ", s.error())};
     set.rays.set(i, Rayf{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
   }
   return set;

@@ -1,4 +1,4 @@
-// The body of the packet tracer, instantiated once per instruction set by
+// The body of the SIMD tracer, instantiated once per instruction set by
 // src/trace/simd_tracer_*.cpp. Include from nowhere else.
 #pragma once
 

@@ -1,6 +1,8 @@
 // `raylane diff`: the numbers of two images and the exit status scripts rely on.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "raylane/image/write_image.h"
 #include "support/cli_run.h"
 #include "support/paths.h"
@@ -33,6 +35,23 @@ TEST(CliDiff, ReportsTheDifferenceAndExitsByTolerance) {
   EXPECT_EQ(run_cli("diff missing.pfm a.pfm", dir).status, 2);
   EXPECT_EQ(run_cli("diff a.pfm", dir).status, 2);
   EXPECT_EQ(run_cli("diff a.pfm a.pfm --tol -1", dir).status, 2);
+  auto sizes = run_cli("diff small.pfm a.pfm", dir);
+  EXPECT_NE(sizes.out.find("small.pfm is 2x2 and a.pfm is 4x2"), std::string::npos) << sizes.out;
+}
+
+// A NaN or infinite pixel is a difference no tolerance forgives, and the output says so.
+TEST(CliDiff, NonFinitePixelsDifferBeyondAnyTolerance) {
+  std::string dir = temp_dir();
+  Image a(2, 2), nan(2, 2);
+  nan.set(1, 0, Vec3f(std::nanf(""), 0, 0));
+  ASSERT_TRUE(write_image(dir + "/a.pfm", a).ok());
+  ASSERT_TRUE(write_image(dir + "/nan.pfm", nan).ok());
+  for (std::string args :
+       {"diff nan.pfm a.pfm --tol 1e30", "diff a.pfm nan.pfm --tol 1e30", "diff nan.pfm nan.pfm"}) {
+    auto r = run_cli(args, dir);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("1 channel values are NaN or infinite"), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace

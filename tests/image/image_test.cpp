@@ -89,6 +89,16 @@ TEST(Rgbe, RunLengthEncodingCompresses) {
   EXPECT_EQ(back->image.at(999, 9), Vec3f(0.25f, 0.25f, 0.25f));
 }
 
+// A header announcing a wide image over a few bytes used to size its row buffer (a GiB for
+// 2^28 pixels) before reading a row; the announced rows must fit the bytes that follow.
+TEST(Rgbe, AnnouncedSizeBeyondTheDataIsRefusedBeforeAllocating) {
+  for (const char* res : {"-Y 1 +X 268435456", "-Y 16384 +X 16384", "-Y 2 +X 100"}) {
+    auto r = decode_rgbe(std::string("#?RADIANCE\n\n") + res + "\n\2\2\0\144abcd");
+    ASSERT_FALSE(r) << res;
+    EXPECT_NE(r.error().find("the header announces"), std::string::npos) << r.error();
+  }
+}
+
 TEST(Rgbe, HostileInputIsAnError) {
   std::string good = encode_rgbe(random_image(64, 4, 1));
   for (std::size_t cut : {0ul, 5ul, 40ul, good.size() / 2, good.size() - 1})

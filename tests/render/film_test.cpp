@@ -2,6 +2,9 @@
 // an uninterrupted run gives, bit for bit; films are refused for another scene or settings.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <filesystem>
 #include <fstream>
 
@@ -99,6 +102,16 @@ TEST(Film, HostileFilmFilesAreErrors) {
   std::ofstream(dir + "/text.film") << "this is not a film, but it is long enough to have a header";
   EXPECT_FALSE(load_film(dir + "/text.film").ok());
   EXPECT_FALSE(load_film(dir + "/missing.film").ok());
+
+  // Non-finite sums: damage that a resumed render would spread into its image.
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    Film damaged = f;
+    damaged.sum[4] = bad;
+    ASSERT_TRUE(save_film(dir + "/nan.film", damaged).ok());
+    auto n = load_film(dir + "/nan.film");
+    ASSERT_FALSE(n.ok());
+    EXPECT_NE(n.error().find("pixel 1 holds a non-finite sum"), std::string::npos) << n.error();
+  }
 }
 
 }  // namespace

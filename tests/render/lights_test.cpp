@@ -69,7 +69,7 @@ void check_light(const std::string& shape_line, const Vec3d& ref, const Vec3d& n
   Estimate uniform_cos = estimate(count, [&] {
     Vec3d w = sample_uniform_sphere(rng.uniform(), rng.uniform());
     Hit h = hit_light(scene, {ref, w});
-    bool emits = h.hit() && (h.front_face || h.prim.tag() == tag_of<Triangle>);
+    bool emits = h.hit() && (h.front_face || kind_two_sided(h.prim.tag()));
     return emits ? 4 * kPi * std::abs(dot(w, n)) : 0.0;
   });
   Estimate uniform_pdf = estimate(count, [&] {

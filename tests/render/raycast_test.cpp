@@ -1,5 +1,6 @@
 // Ray-casting views: every tracer and instruction set renders the same picture.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "raylane/image/metrics.h"
 #include "raylane/render/raycast.h"
@@ -73,6 +74,44 @@ TEST(Raycast, LitImageAgreesAcrossTracers) {
   EXPECT_LT(d->rmse, 0.02);
   // Direct light reaches the floor: the lit mean is far above the ambient-only level.
   EXPECT_GT(mean(scalar.image).x, 0.5);
+}
+
+// The views run their bands of rows on the threads; each band writes only its own pixels, so
+// the image is the same for any number of threads, bit for bit.
+TEST(Raycast, ImageIsTheSameForAnyThreadCount) {
+  const int threads = omp_get_max_threads();
+  for (RaycastMode mode : {RaycastMode::kLit, RaycastMode::kNormal}) {
+    omp_set_num_threads(1);
+    Rendered one = render("testscene.scn", mode, TracerKind::kPacket, best_isa());
+    omp_set_num_threads(3);
+    Rendered three = render("testscene.scn", mode, TracerKind::kPacket, best_isa());
+    EXPECT_EQ(one.image.rgb, three.image.rgb) << raycast_mode_name(mode);
+    EXPECT_EQ(one.stats.shadow_rays, three.stats.shadow_rays);
+    EXPECT_GT(one.stats.camera_rays, 0u);
+  }
+  omp_set_num_threads(threads);
+}
+
+// PNG views of depth and id (issue 13: they were all white, or two flat colours): depth spans
+// 0.1 … 1 over the hits, ids get colours that tell neighbouring rows apart, misses stay black.
+TEST(Raycast, DepthAndIdAreMappedForViewing) {
+  Image depth(3, 1);
+  depth.set(0, 0, Vec3f(2, 2, 2));
+  depth.set(1, 0, Vec3f(12, 12, 12));
+  Image d = viewable(depth, RaycastMode::kDepth);
+  EXPECT_EQ(d.at(0, 0), Vec3f(1, 1, 1));
+  EXPECT_NEAR(d.at(1, 0).x, 0.1f, 1e-6f);
+  EXPECT_EQ(d.at(2, 0), Vec3f(0, 0, 0));
+  Image id(3, 1);
+  id.set(0, 0, Vec3f(4, 7, 0));
+  id.set(1, 0, Vec3f(4, 8, 0));
+  Image v = viewable(id, RaycastMode::kId);
+  EXPECT_NE(v.at(0, 0), v.at(1, 0));
+  for (float c : {v.at(0, 0).x, v.at(0, 0).y, v.at(0, 0).z})
+    EXPECT_GE(c, 0.2f);
+  EXPECT_EQ(v.at(2, 0), Vec3f(0, 0, 0));
+  Image normal = viewable(id, RaycastMode::kNormal);
+  EXPECT_EQ(normal.rgb, id.rgb);
 }
 
 TEST(Raycast, ImageIsUpright) {

@@ -98,6 +98,20 @@ TEST(MeshGuard, AcceptsTheFullPlyGrammar) {
   EXPECT_TRUE(check_mesh_plausible(header + std::string(16, '\0'), header.size() + 16, "a.ply"));
 }
 
+// Blender 2.47 wrote a line of free text into the header without `comment` (Wuson.ply of
+// Debian's assimp-testmodels); Assimp skips it, so the guard must too.
+TEST(MeshGuard, SkipsFreeTextLinesAsAssimpDoes) {
+  std::string header =
+      "ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, source file: \n"
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  std::string ply = header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  TriangleTable table;
+  auto r = import_mesh_memory(ply, "free.ply", identity(), 0, table);
+  ASSERT_TRUE(r) << r.error();
+  EXPECT_EQ(table.size(), 1u);
+}
+
 TEST(MeshGuard, RejectsWhatIsNotPlyGrammar) {
   for (const char* bad :
        {"ply\nformat ascii 2.0\nend_header\n",

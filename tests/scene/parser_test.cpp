@@ -1,7 +1,11 @@
 // The scene language, rule by rule (docs/scene-language.md).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "scene/scene_test_util.h"
+#include "support/paths.h"
 
 namespace raylane {
 namespace {
@@ -93,11 +97,59 @@ TEST(Parser, StrictNumbers) {
                                      "t.scn:4:12: expected a finite number, found 'nan'",
                                      "t.scn:5:14: expected a finite number, found 'inf'",
                                      "t.scn:6:8: number '1e39' does not fit in a float",
-                                     "t.scn:7:12: number '1e400' is out of range",
+                                     "t.scn:7:12: number '1e400' does not fit in a float",
                                      "t.scn:8:8: expected a number, found '0,0'"));
   ASSERT_EQ(p.scene.table<Sphere>().size(), 1u);
   EXPECT_EQ(p.scene.table<Sphere>().center(0), Vec3f(1, -2, 0.3f));
   EXPECT_EQ(p.scene.table<Sphere>().r[0], 0.5f);
+}
+
+// Numbers too small for a double underflow to 0, accepted where 0 is (the spec's rule); a
+// radius positive in the text but 0 in float says so; a tiny rotation axis is still an axis.
+TEST(Parser, TinyNumbers) {
+  auto p = parse(std::string(kCameraLine) +
+                 "sphere 1e-400 -1e-400 0 1\n"
+                 "sphere 0 0 0 1e-46\n"
+                 "cylinder 0 0 0 0 0 1 1e-46\n"
+                 "sphere 0 0 0 1e-400\n"
+                 "camera 0 0 5 0.5 a 90 1e-200 1e-200 1e-200\n");
+  EXPECT_THAT(errors(p),
+              ElementsAre("t.scn:3:14: sphere radius rounds to 0 in single precision; it must be > "
+                          "0 after rounding (at least about 1.4e-45)",
+                          "t.scn:4:22: cylinder radius rounds to 0 in single precision; it must "
+                          "be > 0 after rounding (at least about 1.4e-45)",
+                          "t.scn:5:14: sphere radius must be > 0"));
+  ASSERT_EQ(p.scene.table<Sphere>().size(), 1u);
+  EXPECT_EQ(p.scene.table<Sphere>().center(0), Vec3f(0, 0, 0));
+  ASSERT_TRUE(p.scene.camera);  // the axis (1, 1, 1)/√3, not "must be non-zero"
+  EXPECT_NEAR(p.scene.camera->rotation.m[0][0], 1.0 / 3, 1e-12);
+}
+
+// Invisible bytes are shown escaped, pointed at and explained (issue 13).
+TEST(Parser, InvisibleBytesAreShownAndExplained) {
+  auto nbsp = parse(std::string(kCameraLine) + "sphere 0 0 0\xC2\xA0 1\n");
+  EXPECT_THAT(errors(nbsp),
+              ElementsAre("t.scn:2:13: expected a number, found '0\\u00A0', which holds a "
+                          "no-break space (\\u00A0): write numbers with plain ASCII digits and "
+                          "separate them with spaces"));
+  auto vt = parse(std::string(kCameraLine) + "sphere 0 0 \v0 1\n");
+  ASSERT_EQ(errors(vt).size(), 1u);
+  EXPECT_NE(errors(vt)[0].find("t.scn:2:12: expected a number, found '\\x0B0', which holds a "
+                               "vertical tab (\\x0B)"),
+            std::string::npos)
+      << errors(vt)[0];
+  auto bom = parse(std::string("\xEF\xBB\xBF") + kCameraLine);
+  EXPECT_TRUE(bom.ok());
+  ASSERT_EQ(warnings(bom).size(), 2u);  // the BOM, and no screen line
+  EXPECT_NE(warnings(bom)[0].find(
+                "t.scn:1:1: warning: skipped the UTF-8 byte-order mark \\xEF\\xBB\\xBF"),
+            std::string::npos)
+      << warnings(bom)[0];
+  auto cr = parse("camera 0 0 5 0.5\rsphere 0 0 0 1\r");
+  ASSERT_EQ(errors(cr).size(), 1u);
+  EXPECT_NE(errors(cr)[0].find("t.scn:1:17: the lines of this file end in CR only"),
+            std::string::npos)
+      << errors(cr)[0];
 }
 
 TEST(Parser, LenientTakesNumericPrefixWithWarning) {
@@ -168,17 +220,18 @@ TEST(Parser, ValueRules) {
                  "sphere 0 0 0 1e-46\n");
   EXPECT_THAT(
       errors(p),
-      ElementsAre("t.scn:2:14: sphere radius must be > 0", "t.scn:3:14: sphere radius must be > 0",
-                  "t.scn:4:13: box diagonal components must be non-zero",
-                  "t.scn:5:16: cylinder axis must be non-zero",
-                  "t.scn:6:22: cylinder radius must be > 0", "t.scn:7:24: brdf alpha must be >= 0",
-                  "t.scn:8:32: brdf ior must be > 0",
-                  "t.scn:9:6: brdf colours (Kd, Ks, Kt) must be >= 0",
-                  "t.scn:10:7: light radiance must be >= 0",
-                  "t.scn:11:8: screen size must be a whole number >= 1",
-                  "t.scn:12:8: screen size must be a whole number >= 1",
-                  "t.scn:13:8: screen has more than 2^28 pixels",
-                  "t.scn:14:14: camera ry must be > 0", "t.scn:15:14: sphere radius must be > 0"));
+      ElementsAre(
+          "t.scn:2:14: sphere radius must be > 0", "t.scn:3:14: sphere radius must be > 0",
+          "t.scn:4:13: box diagonal components must be non-zero",
+          "t.scn:5:16: cylinder axis must be non-zero", "t.scn:6:22: cylinder radius must be > 0",
+          "t.scn:7:24: brdf alpha must be >= 0", "t.scn:8:32: brdf ior must be > 0",
+          "t.scn:9:6: brdf colours (Kd, Ks, Kt) must be >= 0",
+          "t.scn:10:7: light radiance must be >= 0",
+          "t.scn:11:8: screen size must be a whole number >= 1",
+          "t.scn:12:8: screen size must be a whole number >= 1",
+          "t.scn:13:8: screen has more than 2^28 pixels", "t.scn:14:14: camera ry must be > 0",
+          "t.scn:15:14: sphere radius rounds to 0 in single precision; it must be > 0 "
+          "after rounding (at least about 1.4e-45)"));
   EXPECT_EQ(p.scene.primitive_count(), 0u);
   // A rejected shape leaves no default material behind.
   EXPECT_TRUE(p.scene.materials.empty());
@@ -265,6 +318,48 @@ TEST(Parser, MissingSceneFileIsAnError) {
   auto p = load_scene_file("no/such/scene.scn");
   ASSERT_EQ(p.diagnostics.error_count(), 1);
   EXPECT_EQ(to_string(p.diagnostics.items[0]).rfind("no/such/scene.scn: cannot read", 0), 0u);
+}
+
+// File names may be quoted to hold spaces (docs/scene-language.md, "Lines and tokens").
+TEST(SplitTokens, QuotedFileNames) {
+  std::vector<Token> t;
+  ASSERT_FALSE(split_tokens(R"(mesh "my models/a \"b\" \\.ply" 1 2)", t));
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_TRUE(t[1].quoted);
+  EXPECT_EQ(t[1].name(), R"(my models/a "b" \.ply)");
+  EXPECT_EQ(t[2].text, "1");
+  EXPECT_EQ(t[2].col, 33);
+  // Outside a file-name position a quote is an ordinary character.
+  ASSERT_FALSE(split_tokens(R"(sphere "1 2)", t));
+  EXPECT_EQ(t.size(), 3u);
+  EXPECT_FALSE(t[1].quoted);
+  auto unclosed = split_tokens(R"(mesh "a b.ply 0 0 0 1)", t);
+  ASSERT_TRUE(unclosed);
+  EXPECT_EQ(unclosed->col, 6);
+  auto junk = split_tokens(R"(mesh "a.ply"junk 0 0 0 1)", t);
+  ASSERT_TRUE(junk);
+  EXPECT_EQ(junk->col, 13);
+  auto nul = split_tokens(std::string_view("mesh a\0b", 8), t);
+  ASSERT_TRUE(nul);
+  EXPECT_EQ(nul->col, 7);
+}
+
+TEST(Parser, MeshInAFolderWithSpaces) {
+  std::string dir = testing::temp_dir();
+  std::filesystem::create_directories(dir + "/my models");
+  std::filesystem::copy_file(testing::source_path("scenes/letterX.ply"),
+                             dir + "/my models/letter x.ply");
+  std::ofstream(dir + "/s.scn") << kCameraLine << "mesh \"my models/letter x.ply\" 0 0 0 1\n";
+  auto p = load_scene_file(dir + "/s.scn");
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  EXPECT_GT(p.scene.table<Triangle>().size(), 0u);
+  ASSERT_EQ(p.meshes.size(), 1u);
+  EXPECT_EQ(p.meshes[0].file, "my models/letter x.ply");
+  std::ofstream(dir + "/bad.scn") << kCameraLine << "mesh \"my models/letter x.ply 0 0 0 1\n";
+  auto bad = load_scene_file(dir + "/bad.scn");
+  ASSERT_EQ(bad.diagnostics.error_count(), 1);
+  EXPECT_NE(errors(bad)[0].find(":2:6: expected a closing quote"), std::string::npos)
+      << errors(bad)[0];
 }
 
 TEST(SplitTokens, ColumnsAreOneBased) {

@@ -9,8 +9,9 @@
 
 namespace raylane::testing {
 
-CliRun run_cli(const std::string& args, const std::string& dir) {
-  std::string cmd = "cd '" + dir + "' && '" + cli_path() + "' " + args + " 2>&1";
+CliRun run_cli(const std::string& args, const std::string& dir, int timeout_seconds) {
+  std::string cmd = "cd '" + dir + "' && timeout -k 5 " + std::to_string(timeout_seconds) + " '" +
+                    cli_path() + "' " + args + " 2>&1";
   CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;

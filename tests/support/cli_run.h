@@ -10,7 +10,8 @@ struct CliRun {
   std::string out;  // stdout and stderr together
 };
 
-// Runs `raylane <args>` (shell words) in `dir`.
-CliRun run_cli(const std::string& args, const std::string& dir);
+// Runs `raylane <args>` (shell words) in `dir`. A run that takes longer than `timeout_seconds`
+// is killed (coreutils timeout) and reports status 124: a hang fails its test, not the suite.
+CliRun run_cli(const std::string& args, const std::string& dir, int timeout_seconds = 120);
 
 }  // namespace raylane::testing

@@ -1,5 +1,7 @@
 // The ray-set exchange files (docs/ray-sets.md): exact layout, round trips, hostile headers.
 #include <gtest/gtest.h>
+#include <array>
+#include <limits>
 
 #include <cmath>
 #include <cstring>
@@ -38,6 +40,41 @@ TEST(RaySetIo, ReadsTheSpecLayout) {
   EXPECT_EQ(r.o, Vec3f(1, 2, 3));
   EXPECT_EQ(r.d, Vec3f(0, 0, -1));
   EXPECT_EQ(r.tmax, 1e30f);
+}
+
+// The format's rays have finite origins and unit directions (docs/ray-sets.md): anything else
+// is refused with the record's index, not traced into NaNs.
+TEST(RaySetIo, RefusesRaysThatAreNotRays) {
+  struct Case {
+    std::array<float, 8> v;
+    const char* says;
+  };
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  for (const Case& c : {Case{{nan, 0, 0, 0, 0, 1, 0, 5}, "a finite origin"},
+                        Case{{0, inf, 0, 0, 0, 1, 0, 5}, "a finite origin"},
+                        Case{{0, 0, 0, 0, 0, 0, 0, 5}, "a unit direction"},
+                        Case{{0, 0, 0, 2, 0, 0, 0, 5}, "a unit direction"},
+                        Case{{0, 0, 0, 0, nan, 1, 0, 5}, "a unit direction"},
+                        Case{{0, 0, 0, 0, 0, 1, nan, 5}, "t bounds that are numbers"}}) {
+    std::string b("RAYSET1\0", 8);
+    for (uint32_t w : {2u, 0u, 0u, 0u, 0u, 0u})
+      append(b, w);
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f})  // ray 0 is fine
+      append(b, v);
+    for (float v : c.v)
+      append(b, v);
+    auto set = read_ray_set(write_bytes("bad.rays", b));
+    ASSERT_FALSE(set.ok()) << c.says;
+    EXPECT_NE(set.error().find(": ray 1: expected " + std::string(c.says)), std::string::npos)
+        << set.error();
+  }
+  // Within the tolerance: a direction normalised in float is accepted.
+  std::string b("RAYSET1\0", 8);
+  for (uint32_t w : {1u, 0u, 0u, 0u, 0u, 0u})
+    append(b, w);
+  for (float v : {0.f, 0.f, 0.f, 0.6f, 0.8f, 1e-7f, 0.f, 1.f})
+    append(b, v);
+  EXPECT_TRUE(read_ray_set(write_bytes("ok.rays", b)).ok());
 }
 
 TEST(RaySetIo, RoundTripsRaysTrianglesAndHits) {

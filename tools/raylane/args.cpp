@@ -36,7 +36,11 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
   ParsedArgs out;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a.size() < 2 || a[0] != '-' || a == "--") {
+    if (a == "--") {  // the end of the options: everything after is positional
+      out.positional.insert(out.positional.end(), args.begin() + std::ptrdiff_t(i) + 1, args.end());
+      break;
+    }
+    if (a.size() < 2 || a[0] != '-') {
       out.positional.push_back(a);
       continue;
     }
@@ -73,10 +77,17 @@ Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
   return out;
 }
 
-bool asks_for_help(const std::vector<std::string>& args) {
-  for (const std::string& a : args) {
+bool asks_for_help(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
     if (a == "--") return false;
     if (a == "--help" || a == "-h") return true;
+    // The value of an option that takes one is not a flag, even if it reads "-h".
+    const OptionSpec* spec =
+        a.rfind("--", 0) == 0 && a.find('=') == std::string::npos
+            ? find_long(specs, a.substr(2))
+            : (a.size() == 2 && a[0] == '-' ? find_short(specs, a[1]) : nullptr);
+    if (spec && spec->takes_value()) ++i;
   }
   return false;
 }
@@ -158,7 +169,8 @@ Status read_double_option(const std::string& name, const std::string& value, dou
 Result<Isa> parse_isa_option(const std::string& value) {
   if (value == "auto") return best_isa();
   auto isa = isa_from_name(value);
-  if (!isa) return Error{cat("unknown --isa ", in_quotes(value), " (sse4.2, avx2, avx512, auto)")};
+  if (!isa)
+    return Error{cat("unknown --isa ", in_quotes(value), " (", kIsaNames.list(), ", auto)")};
   if (!isa_supported(*isa)) return Error{cat("this CPU cannot run --isa ", value)};
   return *isa;
 }

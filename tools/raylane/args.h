@@ -43,8 +43,8 @@ struct ParsedArgs {
 Result<ParsedArgs> parse_args(const std::vector<std::string>& args,
                               const std::vector<OptionSpec>& specs);
 
-// `--help` or `-h` anywhere among a command's arguments.
-bool asks_for_help(const std::vector<std::string>& args);
+// `--help` or `-h` among a command's arguments (before `--`, and not as an option's value).
+bool asks_for_help(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs);
 std::string format_help(const CommandHelp& help);
 // Prints the command's help on stdout; returns exit status 0.
 int print_help(const CommandHelp& help);

@@ -21,8 +21,8 @@ int diff_command(const std::vector<std::string>& args);
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
 // stderr. Returns nothing when the scene has errors.
-std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                        bool quiet);
+std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
+                                              bool quiet);
 
 // "raylane: message" on stderr, plus a hint to --help for usage errors.
 int usage_error(const std::string& message);

@@ -4,6 +4,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "file_roles.h"
 #include "raylane/image/write_image.h"
 
 namespace raylane::cli {
@@ -20,7 +21,7 @@ const CommandHelp kConvertHelp{
 }  // namespace
 
 int convert_command(const std::vector<std::string>& args) {
-  if (asks_for_help(args)) return print_help(kConvertHelp);
+  if (asks_for_help(args, kConvertOptions)) return print_help(kConvertHelp);
   auto parsed = parse_args(args, kConvertOptions);
   if (!parsed) return usage_error(parsed.error());
   if (parsed->positional.size() != 2) return usage_error("convert takes IN and OUT");
@@ -33,9 +34,11 @@ int convert_command(const std::vector<std::string>& args) {
     opts.exposure = *v;
   }
   if (auto f = format_from_path(out); !f) return usage_error(f.error());
+  if (Status s = check_outputs_apart({{in, "the input image"}}, {{out, "the output"}}); !s)
+    return usage_error(s.error());
   auto image = read_image(in);
   if (!image) {
-    std::fprintf(stderr, "raylane: cannot read %s: %s\n", in.c_str(), image.error().c_str());
+    std::fprintf(stderr, "raylane: %s\n", image.error().c_str());
     return kExitUsage;
   }
   if (Status s = write_image(out, *image, opts); !s) {

@@ -57,10 +57,11 @@ void Progress::update(int done) {
     for (int i = 0; i < kWidth; ++i)
       bar[i] = i < fill ? '#' : '.';
     bar[kWidth] = 0;
-    std::fprintf(stderr, "\r[%s] %d/%d spp  %s elapsed  ETA %s ", bar, done, total_, el, et);
+    std::fprintf(stderr, "\r[%s] %d/%s spp  %s elapsed  ETA %s ", bar, done, total_text().c_str(),
+                 el, et);
     drawn_ = true;
   } else if (t - last_report_ >= 10 || done == total_) {  // plain lines at most every 10 s
-    std::fprintf(stderr, "%d/%d spp, %s elapsed, ETA %s\n", done, total_, el, et);
+    std::fprintf(stderr, "%d/%s spp, %s elapsed, ETA %s\n", done, total_text().c_str(), el, et);
     last_report_ = t;
   }
   std::fflush(stderr);

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <string>
 
 namespace raylane::cli {
 
@@ -16,6 +17,10 @@ class Progress {
   double elapsed() const;
 
  private:
+  // The requested spp, or "…" for a render that only a time budget ends.
+  std::string total_text() const {
+    return time_limit_ > 0 && total_ >= (1 << 24) ? "…" : std::to_string(total_);
+  }
   int total_;
   double time_limit_;
   bool quiet_, tty_;

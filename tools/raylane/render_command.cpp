@@ -10,6 +10,7 @@
 #include "args.h"
 #include "checkpoint.h"
 #include "commands.h"
+#include "file_roles.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_fallback.h"
@@ -33,9 +34,16 @@ struct RenderRequest {
   double exposure = 0;
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
+  bool spp_given = false;
+  std::vector<std::string> warnings;  // about the options, printed unless --quiet
 };
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+constexpr int kMaxSpp = 1 << 24;
+
+// Options that only the path tracer reads: given with a ray-casting view, they do nothing.
+constexpr std::string_view kPathOnlyOptions[] = {
+    "spp", "integrator", "seed", "max-depth", "time", "checkpoint", "resume", "checkpoint-every"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -105,12 +113,22 @@ const std::vector<RenderOption>& render_options() {
          r.outputs.push_back(v);
          return ok_status();
        }},
-      {{"mode", 0, "MODE", false, "path | normal | depth | albedo | id | lit", "path"}, set_mode},
+      {{"mode", 0, "MODE", false,
+        cat("path, or a ray-casting view: ", kRaycastModeNames.list(),
+            ".\n"
+            "As PNG, depth is normalised to the image's range and ids become colours;\n"
+            ".hdr and .pfm keep the raw values (t; kind tag + 1, row)"),
+        "path"},
+       set_mode},
       {{"spp", 0, "N", false, "path: samples per pixel, in progressive passes", "16"},
-       [](R& r, V v) { return read_int_option("spp", v, 1, 1 << 24, r.path_settings.spp); }},
+       [](R& r, V v) {
+         r.spp_given = true;
+         return read_int_option("spp", v, 1, kMaxSpp, r.path_settings.spp);
+       }},
       {{"integrator", 0, "I", false,
-        "path: brdf (BSDF sampling only) | nee (light sampling only) |\n"
-        "mis (both, power heuristic)",
+        cat("path: ", kIntegratorNames.list(),
+            ": BSDF sampling only; light sampling only;\n"
+            "both, weighted by the power heuristic"),
         "mis"},
        set_integrator},
       {{"seed", 0, "S", false, "path: image seed; the image is the same for any --threads", "0"},
@@ -122,7 +140,9 @@ const std::vector<RenderOption>& render_options() {
        [](R& r, V v) {
          return read_int_option("max-depth", v, 0, 1 << 16, r.path_settings.max_depth);
        }},
-      {{"time", 0, "SECONDS", false, "path: stop after the pass that ends past this budget",
+      {{"time", 0, "SECONDS", false,
+        "path: a time budget: stop after the pass that ends past it. With --spp,\n"
+        "whichever comes first; without, render until the budget is spent",
         "none"},
        set_time},
       {{"checkpoint", 0, "FILE", false,
@@ -153,11 +173,12 @@ const std::vector<RenderOption>& render_options() {
       {{"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
        [](R& r, V v) { return read_int_option("threads", v, 0, 4096, r.threads); }},
       {{"tracer", 0, "T", false,
-        "packet (SIMD packets through the BVH) | bvh (single rays, double\n"
-        "kernels) | scalar (brute force, double kernels)",
+        cat(kTracerKindNames.list(),
+            ": SIMD packets through the BVH; single rays\n"
+            "through the BVH with the double kernels; brute force with the double kernels"),
         "packet"},
        set_tracer},
-      {{"isa", 0, "I", false, "sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set",
+      {{"isa", 0, "I", false, cat(kIsaNames.list(), ", auto: the packet tracer's instruction set"),
         "auto, the widest this CPU has"},
        set_isa},
       {{"lenient", 0, "", false, "skip bad scene lines with a warning instead of failing", ""},
@@ -219,6 +240,13 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     if (Status s = check_writable(*r.checkpoints.checkpoint); !s)
       return Error{cat("cannot write --checkpoint ", *r.checkpoints.checkpoint, ": ", s.error())};
   }
+  // A time budget without --spp: render until it is spent.
+  if (r.path_settings.time_limit > 0 && !r.spp_given) r.path_settings.spp = kMaxSpp;
+  if (!r.path)
+    for (std::string_view name : kPathOnlyOptions)
+      if (parsed->has(std::string(name)))
+        r.warnings.push_back(cat("--", name, " does nothing in the ray-casting view --mode ",
+                                 raycast_mode_name(r.mode), "; it is for --mode path"));
   if (r.outputs.empty()) r.outputs.push_back(default_output(r.scene_path));
   bool has_png = false;
   for (const auto& out : r.outputs)
@@ -228,6 +256,23 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   for (const auto& out : r.outputs)
     if (auto f = format_from_path(out); !f) return Error{f.error()};
   return r;
+}
+
+// No output may be an input (the scene file, a mesh or a file it names, the --resume film)
+// or another output. A --checkpoint that is the --resume film is allowed: the film is read
+// whole first and saved again with more passes, the way a long render is continued.
+Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::string>& read) {
+  std::vector<FileRole> inputs, outputs;
+  for (std::size_t i = 0; i < read.size(); ++i)
+    inputs.push_back(
+        {read[i], i == 0 && r.scene_path ? "the scene file" : "a file the scene reads"});
+  const auto& c = r.checkpoints;
+  if (c.resume && !(c.checkpoint && same_file(*c.checkpoint, *c.resume)))
+    inputs.push_back({*c.resume, "the --resume film"});
+  for (const std::string& out : r.outputs)
+    outputs.push_back({out, "the output"});
+  if (c.checkpoint) outputs.push_back({*c.checkpoint, "the --checkpoint film"});
+  return check_outputs_apart(inputs, outputs);
 }
 
 // Every output is checked before rendering starts, so a long render is never lost to a typo.
@@ -245,12 +290,18 @@ bool outputs_writable(const RenderRequest& r) {
 }  // namespace
 
 int render_command(const std::vector<std::string>& args) {
-  if (asks_for_help(args)) return print_help(render_help());
+  if (asks_for_help(args, render_specs())) return print_help(render_help());
   auto request = read_request(args);
   if (!request) return usage_error(request.error());
   const RenderRequest& r = *request;
-  auto scene = load_scene_for_cli(r.scene_path, r.lenient, r.quiet);
-  if (!scene) return kExitUsage;
+  if (!r.quiet)
+    for (const std::string& w : r.warnings)
+      std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
+  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet);
+  if (!parsed) return kExitUsage;
+  if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
+    return usage_error(s.error());
+  Scene* scene = &parsed->scene;
   if (!outputs_writable(r)) return kExitUsage;
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
@@ -270,6 +321,11 @@ int render_command(const std::vector<std::string>& args) {
       return kExitUsage;
     }
     PathStats stats;
+    if (film->passes >= r.path_settings.spp && !r.quiet)
+      std::fprintf(stderr,
+                   "raylane: warning: the --resume film already holds %d passes and --spp asks "
+                   "for %d: nothing to render; writing the film's image as it is\n",
+                   film->passes, r.path_settings.spp);
     Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
     Checkpointer checkpointer(r.checkpoints);
     PathSettings settings = r.path_settings;
@@ -302,8 +358,11 @@ int render_command(const std::vector<std::string>& args) {
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
+  // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
+  Image view = r.path ? Image() : viewable(image, r.mode);
   for (const auto& out : r.outputs) {
-    auto saved = write_image_or_fallback(out, image, wopts);
+    bool eight_bit = format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
+    auto saved = write_image_or_fallback(out, eight_bit && !r.path ? view : image, wopts);
     if (!saved) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
       status = kExitFailure;

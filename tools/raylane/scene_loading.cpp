@@ -9,8 +9,8 @@ int usage_error(const std::string& message) {
   return kExitUsage;
 }
 
-std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                        bool quiet) {
+std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
+                                              bool quiet) {
   ParseOptions opts;
   opts.lenient = lenient;
   ParsedScene parsed = path ? load_scene_file(*path, opts) : load_builtin_scene(opts);
@@ -25,7 +25,7 @@ std::optional<Scene> load_scene_for_cli(const std::optional<std::string>& path, 
                  parsed.diagnostics.error_count() == 1 ? "" : "s");
     return std::nullopt;
   }
-  return std::move(parsed.scene);
+  return parsed;
 }
 
 }  // namespace raylane::cli

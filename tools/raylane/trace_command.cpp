@@ -10,6 +10,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "file_roles.h"
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/parallel.h"
 #include "raylane/core/strings.h"
@@ -33,7 +34,7 @@ const std::vector<OptionSpec> kTraceOptions = {
     {"output", 'o', "FILE", false, "the answers, as .hits",
      "the ray set's name with .hits, in the working directory"},
     {"repeat", 0, "N", false, "runs to take the median of", "5"},
-    {"isa", 0, "I", false, "sse4.2 | avx2 | avx512 | auto: the packet tracer's instruction set",
+    {"isa", 0, "I", false, cat(kIsaNames.list(), ", auto: the packet tracer's instruction set"),
      "auto, the widest this CPU has"},
     {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
     {"quiet", 'q', "", false, "print only errors and the written file's path", ""},
@@ -71,17 +72,19 @@ Result<TraceRequest> read_request(const std::vector<std::string>& args) {
   return r;
 }
 
-// The mesh as a scene of triangles, in the file's order.
-Result<Scene> load_mesh(const std::string& path) {
+// The mesh as a scene of triangles, in the file's order; `files` receives what was read.
+Result<Scene> load_mesh(const std::string& path, std::vector<std::string>& files) {
   Scene s;
   s.materials.push_back(Material::default_grey());
   TriangleTable& t = s.table<Triangle>();
   if (std::filesystem::path(path).extension() == ".tris") {
     auto n = read_triangle_soup(path, 0, t);
     if (!n) return Error{n.error()};
+    files.push_back(path);
   } else {
     auto n = import_mesh_file(path, MeshPlacement{}, 0, t);
-    if (!n) return Error{cat(path, ": ", n.error())};
+    if (!n) return Error{n.error()};
+    files = n->files;
   }
   return s;
 }
@@ -104,15 +107,24 @@ std::vector<HitRecord> to_records(const HitStream& hits, const Bvh& bvh, bool oc
 }  // namespace
 
 int trace_command(const std::vector<std::string>& args) {
-  if (asks_for_help(args)) return print_help(kTraceHelp);
+  if (asks_for_help(args, kTraceOptions)) return print_help(kTraceHelp);
   auto request = read_request(args);
   if (!request) return usage_error(request.error());
   const TraceRequest& r = *request;
-  auto scene = load_mesh(r.mesh);
+  // Outputs never eat inputs: the answers may not overwrite the ray set or the mesh.
+  std::vector<FileRole> inputs = {{r.rays, "the ray set"}};
+  if (Status s = check_outputs_apart(inputs, {{r.output, "the output"}}); !s)
+    return usage_error(s.error());
+  std::vector<std::string> mesh_files;
+  auto scene = load_mesh(r.mesh, mesh_files);
   if (!scene) {
     std::fprintf(stderr, "raylane: %s\n", scene.error().c_str());
     return kExitUsage;
   }
+  for (const std::string& f : mesh_files)
+    inputs.push_back({f, "a mesh file"});
+  if (Status s = check_outputs_apart(inputs, {{r.output, "the output"}}); !s)
+    return usage_error(s.error());
   auto set = read_ray_set(r.rays);
   if (!set) {
     std::fprintf(stderr, "raylane: %s\n", set.error().c_str());
@@ -132,7 +144,7 @@ int trace_command(const std::vector<std::string>& args) {
   for (int i = 0; i < r.repeat; ++i) {
     auto start = std::chrono::steady_clock::now();
     // This command owns the threads: chunks of whole packets, as one pass would make them.
-    parallel_chunks(set->rays.size(), 256, [&](std::size_t begin, std::size_t end) {
+    parallel_chunks(set->rays.size(), kTraceChunk, [&](std::size_t begin, std::size_t end) {
       tracer.trace_range(*scene, bvh, set->rays, begin, end, hits, set->occlusion());
     });
     seconds.push_back(

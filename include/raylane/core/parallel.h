@@ -10,8 +10,7 @@
 namespace raylane {
 
 // Calls f(begin, end) for consecutive chunks of [0, n) of `chunk` items (the last may be
-// shorter), on OpenMP's threads, dynamically scheduled. A multiple of 16 keeps SIMD packets
-// the same as one serial pass would make them.
+// shorter), on OpenMP's threads, dynamically scheduled (for ray streams: kTraceChunk).
 template <class F>
 void parallel_chunks(std::size_t n, std::size_t chunk, F&& f) {
   const std::ptrdiff_t count = std::ptrdiff_t(n), step = std::ptrdiff_t(chunk);

@@ -11,6 +11,9 @@ struct ImageDiff {
   double rel_mse = 0;   // mean over channels of (a − r)² / (r² + 1e-2)
   double mean_abs = 0;  // mean over channels of |a − r|
   double max_abs = 0;
+  // Channels where either image is NaN or infinite: counted, not summed; any one makes the
+  // images differ beyond every tolerance (the figures above are then +inf).
+  uint64_t nonfinite = 0;
 };
 
 // `ref` is the reference; the sizes must match. The 1e-2 in relMSE keeps dark pixels from

@@ -44,7 +44,10 @@ struct CylinderTable {
     if (!(len > 0.0)) return ParamError{3, "cylinder axis must be non-zero"};
     if (!std::isfinite(len)) return ParamError{3, "cylinder axis is too long"};
     float radius = float(p[6]);
-    if (!(radius > 0.0f)) return ParamError{6, "cylinder radius must be > 0"};
+    if (!(radius > 0.0f))
+      return ParamError{6, p[6] > 0 ? "cylinder radius rounds to 0 in single precision; it must "
+                                      "be > 0 after rounding (at least about 1.4e-45)"
+                                    : "cylinder radius must be > 0"};
     Vec3d u = ad / len;
     bx.push_back(float(p[0]));
     by.push_back(float(p[1]));

@@ -4,9 +4,8 @@
 //
 // What every kind's traits struct provides (Sphere in sphere.h is the example):
 //   using Table;                      its SoA table (append, bounds, size, columns)
-//   name, plural, keyword, param_count   for messages; the scene command and its parameter
-//                                     count
-//                                     (keyword "" and 0: no command of its own)
+//   name, plural                      for messages
+//   keyword, param_count              its scene command and parameter count ("" and 0: none)
 //   two_sided                         a surface seen, lit and emitting from both sides (else a
 //                                     closed solid: outside only)
 //   sah_test_cost                     one primitive test, relative to a BVH node visit
@@ -17,9 +16,9 @@
 //   point_light(t, i)                 the point the course's `lit` view lights from (spheres)
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -72,15 +71,17 @@ constexpr std::size_t kind_index() {
 }
 
 namespace detail {
-template <class F, class... Kinds>
-constexpr decltype(auto) dispatch_impl(PrimTag tag, F&& f, KindList<Kinds...>) {
-  using R = std::invoke_result_t<F, Sphere>;
+template <class F, class First, class... Kinds>
+constexpr decltype(auto) dispatch_impl(PrimTag tag, F&& f, KindList<First, Kinds...>) {
+  using R = std::invoke_result_t<F, First>;
   if constexpr (std::is_void_v<R>) {
     // (void): the fold is evaluated for its short-circuit, not its value (clang warns).
-    (void)((tag == tag_of<Kinds> ? (f(Kinds{}), true) : false) || ...);
+    (void)((tag == tag_of<First> ? (f(First{}), true) : false) ||
+           ((tag == tag_of<Kinds> ? (f(Kinds{}), true) : false) || ...));
   } else {
     R result{};
-    (void)((tag == tag_of<Kinds> ? (result = f(Kinds{}), true) : false) || ...);
+    (void)((tag == tag_of<First> ? (result = f(First{}), true) : false) ||
+           ((tag == tag_of<Kinds> ? (result = f(Kinds{}), true) : false) || ...));
     return result;
   }
 }
@@ -106,8 +107,10 @@ inline double kind_sah_test_cost(PrimTag tag) {
 // "sphere#12", or "none".
 inline std::string to_string(PrimRef ref) {
   if (!ref.valid()) return "none";
-  if (std::size_t(ref.tag()) >= kPrimKindCount) return "kind" + std::to_string(int(ref.tag()));
-  return std::string(kind_name(ref.tag())) + "#" + std::to_string(ref.row());
+  std::string kind = std::size_t(ref.tag()) < kPrimKindCount
+                         ? std::string(kind_name(ref.tag()))
+                         : "kind" + std::to_string(int(ref.tag()));
+  return kind + "#" + std::to_string(ref.row());
 }
 
 }  // namespace raylane

@@ -29,7 +29,10 @@ struct SphereTable {
   // p = (cx, cy, cz, r); r must be > 0 after rounding to float.
   std::optional<ParamError> append(std::span<const double, 4> p, uint32_t mat) {
     float radius = float(p[3]);
-    if (!(radius > 0.0f)) return ParamError{3, "sphere radius must be > 0"};
+    if (!(radius > 0.0f))
+      return ParamError{3, p[3] > 0 ? "sphere radius rounds to 0 in single precision; it must "
+                                      "be > 0 after rounding (at least about 1.4e-45)"
+                                    : "sphere radius must be > 0"};
     cx.push_back(float(p[0]));
     cy.push_back(float(p[1]));
     cz.push_back(float(p[2]));

@@ -13,8 +13,11 @@ namespace raylane {
 
 struct BsdfSample {
   Vec3d wi;
-  Vec3d value;  // f(wo, wi)·|cos θi|
-  double pdf = 0;
+  Vec3d value;     // f(wo, wi)·|cos θi|; for a specular sample, the sample's weight
+  double pdf = 0;  // solid-angle density; 1 for a specular sample
+  // Drawn from a Dirac lobe (index-matched transmission: wi = −wo whatever the microfacet), so
+  // value/pdf is the weight, and eval() and pdf() of wi are 0: light sampling cannot find it.
+  bool specular = false;
   bool valid() const { return pdf > 0; }
 };
 
@@ -36,6 +39,8 @@ class Bsdf {
   Vec3d schlick(double cos_om) const;
   double smith_g(const Vec3d& wi, const Vec3d& m) const;
   bool refracts(double cos_om) const;  // no total internal reflection through m
+  bool index_matched() const;          // η_o/η_i so close to 1 that transmission is a Dirac lobe
+  BsdfSample sample_index_matched(const Vec3d& m, double om) const;
 
   Vec3d kd_, ks_;
   double alpha_ = 0;

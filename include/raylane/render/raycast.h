@@ -39,4 +39,10 @@ struct RaycastStats {
 // stored top row first (Image's convention).
 Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr);
 
+// The image of a view as a person can look at it in an 8-bit file: `depth` normalised to the
+// image's range of hit distances (nearest 1, farthest 0.1, misses 0), `id` as a distinct
+// colour per primitive (misses black); other modes unchanged. HDR and PFM files keep the raw
+// values, which this does not.
+Image viewable(const Image& raw, RaycastMode mode);
+
 }  // namespace raylane

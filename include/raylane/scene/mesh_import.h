@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "raylane/core/error.h"
 #include "raylane/core/mat3.h"
@@ -21,9 +22,13 @@ struct MeshPlacement {
 struct MeshImportStats {
   uint32_t triangles = 0;           // rows appended
   uint32_t degenerate_dropped = 0;  // zero-area triangles (after placement, in float) skipped
+  std::vector<std::string> files;   // every file read: the mesh and what it names (mtllib, ...)
 };
 
 inline constexpr uint64_t kMaxMeshTriangles = uint64_t(1) << 28;
+
+// Whether Assimp reads files with this path's extension, other than .scn (our scenes).
+bool mesh_extension_known(const std::string& path);
 
 // Imports the mesh file at `path` and appends its triangles to `table` with `material`.
 // Nothing is appended on failure.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
+#include "raylane/scene/mesh_summary.h"
 
 namespace raylane {
 
@@ -28,6 +29,8 @@ struct ParseState {
   ParseOptions options;
   Diagnostics diagnostics;
   std::string scene_dir;  // mesh paths are looked up here first, then in the working dir
+  std::vector<std::string> input_files;  // every file read so far: meshes and what they name
+  std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
   int screen_line = 0, camera_line = 0, ambient_line = 0;  // 0 = not seen yet
 

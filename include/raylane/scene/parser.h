@@ -1,6 +1,7 @@
 // Reading scene files: text → Scene, with every problem reported as file:line:col.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -12,6 +13,10 @@ namespace raylane {
 struct ParsedScene {
   Scene scene;
   Diagnostics diagnostics;
+  // Every file the scene was read from: the scene file, its meshes and the files they name
+  // (outputs must be none of them).
+  std::vector<std::string> input_files;
+  std::vector<MeshSummary> meshes;  // one per `mesh` line, in order
   bool ok() const { return diagnostics.error_count() == 0; }
 };
 
@@ -29,8 +34,16 @@ ParsedScene load_scene_file(const std::string& path, const ParseOptions& options
 ParsedScene load_builtin_scene(const ParseOptions& options = {});
 inline constexpr const char* kBuiltinSceneName = "<built-in testscene.scn>";
 
+// Where a line cannot be split into tokens: the 1-based column and what is wrong.
+struct TokenError {
+  int col = 0;
+  std::string message;
+};
+
 // Splits one line into tokens (whitespace: space, tab, CR; a token starting with '#' ends
-// the line). Exposed for tests.
-void split_tokens(std::string_view text, std::vector<Token>& out);
+// the line). The file name of `mesh`, `texture` and `environment` (the second token) may be
+// double-quoted to hold spaces, with \" and \\ as escapes (docs/scene-language.md, "Lines and
+// tokens"). Exposed for tests.
+std::optional<TokenError> split_tokens(std::string_view text, std::vector<Token>& out);
 
 }  // namespace raylane

@@ -23,8 +23,13 @@ struct CameraSpec {
 };
 
 struct Token {
-  std::string_view text;
-  int col = 0;  // 1-based column of its first character
+  std::string_view text;  // as written (with the quotes of a quoted file name)
+  int col = 0;            // 1-based column of its first character
+  std::string unquoted;   // a quoted file name without its quotes and escapes
+  bool quoted = false;
+
+  // The token as a file name: unquoted if it was quoted.
+  std::string name() const { return quoted ? unquoted : std::string(text); }
 };
 
 // One non-blank, non-comment line of a scene file, split into tokens.

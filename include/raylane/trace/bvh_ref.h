@@ -1,5 +1,5 @@
 // Single-ray BVH traversal with the double-precision reference kernels: the BVH's own oracle
-// (BVH + reference kernels must equal brute force exactly) and the `--tracer scalar` path.
+// (BVH + reference kernels must equal brute force exactly) and the `--tracer bvh` path.
 #pragma once
 
 #include "raylane/bvh/bvh.h"

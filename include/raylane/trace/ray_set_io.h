@@ -16,6 +16,9 @@ namespace raylane {
 
 inline constexpr uint32_t kRaySetOcclusionFlag = 1;  // flags bit 0: any hit suffices
 inline constexpr uint64_t kMaxRaySetRecords = uint64_t(1) << 28;
+// A ray's direction must be unit length to within this (docs/ray-sets.md): a direction
+// normalised in float or double and stored as float is within 1e-6 of it.
+inline constexpr double kUnitDirectionTolerance = 1e-3;
 
 struct RaySetFile {
   RayStream rays;

@@ -27,6 +27,10 @@ enum class Traversal { kPackets, kSingleRays };
 
 std::string_view traversal_name(Traversal t);  // "packets", "rays"
 
+// Rays per chunk when a caller splits a stream over its threads: a multiple of every packet
+// width (4, 8, 16), so the packets are the ones one serial pass would make.
+inline constexpr std::size_t kTraceChunk = 256;
+
 class SimdTracer {
  public:
   // Contract: isa_supported(isa).

@@ -1,0 +1,71 @@
+// What render's flags promise (issue 13): --time is a budget, a --resume film that holds
+// enough passes and path-only flags in a ray-casting view are said, not silently ignored.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "support/cli_run.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+using testing::run_cli;
+using testing::temp_dir;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The spp an HDR file's header records (RAYLANE_SPP=N).
+int spp_of(const std::string& hdr) {
+  auto at = hdr.find("RAYLANE_SPP=");
+  return at == std::string::npos ? -1 : std::stoi(hdr.substr(at + 12));
+}
+
+void write_tiny_scene(const std::string& dir) {
+  std::ofstream(dir + "/tiny.scn") << "screen 4 4\ncamera 0 0 5 1\nbrdf 0.5 0.5 0.5 0 0 0 1\n"
+                                      "sphere 0 0 0 1\nlight 1 1 1\nsphere 0 3 3 1\n";
+}
+
+// Without --spp a budget renders until it is spent (a 4x4 image takes far more than 16
+// passes in 0.5 s); with both, whichever comes first.
+TEST(CliRenderFlags, TimeIsABudgetWithoutSpp) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  ASSERT_EQ(run_cli("render tiny.scn --time 0.5 -o t.hdr -q", dir).status, 0);
+  EXPECT_GT(spp_of(read_file(dir + "/t.hdr")), 16);
+  ASSERT_EQ(run_cli("render tiny.scn --time 60 --spp 3 -o s.hdr -q", dir).status, 0);
+  EXPECT_EQ(spp_of(read_file(dir + "/s.hdr")), 3);
+}
+
+TEST(CliRenderFlags, ResumingToNoMoreSamplesSaysSo) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  ASSERT_EQ(run_cli("render tiny.scn --spp 4 --checkpoint f.film -o a.hdr -q", dir).status, 0);
+  auto r = run_cli("render tiny.scn --spp 2 --resume f.film -o b.hdr", dir);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("already holds 4 passes and --spp asks for 2"), std::string::npos) << r.out;
+  EXPECT_EQ(spp_of(read_file(dir + "/b.hdr")), 4);
+  EXPECT_EQ(read_file(dir + "/a.hdr"), read_file(dir + "/b.hdr"));
+}
+
+TEST(CliRenderFlags, PathOnlyFlagsInARayCastingViewWarn) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto r = run_cli("render tiny.scn --mode normal --spp 64 --integrator nee -o n.hdr", dir);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("warning: --spp does nothing in the ray-casting view --mode normal"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("warning: --integrator does nothing"), std::string::npos) << r.out;
+  auto quiet = run_cli("render tiny.scn --mode normal --spp 64 -o n.hdr -q", dir);
+  EXPECT_EQ(quiet.out.find("warning"), std::string::npos) << quiet.out;
+  auto path = run_cli("render tiny.scn --spp 1 -o p.hdr", dir);
+  EXPECT_EQ(path.out.find("warning"), std::string::npos) << path.out;
+}
+
+}  // namespace
+}  // namespace raylane
