@@ -47,7 +47,8 @@ Result<Image> decode_pfm(std::string_view b) {
   };
   if (!num(w) || !num(h) || w == 0 || h == 0) return Error{"bad PFM size"};
   if (!num(scale) || scale == 0) return Error{"bad PFM scale"};
-  if (uint64_t(w) * h > kMaxImagePixels) return Error{"image has more than 2^28 pixels"};
+  if (uint64_t(w) * h > kMaxImagePixels)
+    return Error{cat("image has ", uint64_t(w) * h, " pixels; the limit is 2^28 (268435456)")};
   ++pos;  // the single whitespace character after the scale
   uint64_t need = uint64_t(w) * h * 12;
   if (pos > b.size() || b.size() - pos < need) return Error{"truncated PFM data"};

@@ -97,7 +97,8 @@ Status parse_resolution(std::string_view line, uint32_t& w, uint32_t& h) {
   if (x == std::string_view::npos || !parse_u32(line.substr(3, x - 3), h) ||
       !parse_u32(line.substr(x + 4), w) || w == 0 || h == 0)
     return Error{cat("bad resolution line ", in_quotes(line))};
-  if (uint64_t(w) * h > kMaxImagePixels) return Error{"image has more than 2^28 pixels"};
+  if (uint64_t(w) * h > kMaxImagePixels)
+    return Error{cat("image has ", uint64_t(w) * h, " pixels; the limit is 2^28 (268435456)")};
   return ok_status();
 }
 

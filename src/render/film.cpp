@@ -16,8 +16,27 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "film files are little endian");
 
-constexpr char kMagic[8] = {'R', 'L', 'F', 'I', 'L', 'M', '1', '\0'};
-constexpr std::size_t kHeader = 32;
+constexpr char kMagic1[8] = {'R', 'L', 'F', 'I', 'L', 'M', '1', '\0'};
+constexpr char kMagic2[8] = {'R', 'L', 'F', 'I', 'L', 'M', '2', '\0'};
+constexpr std::size_t kHeader1 = 32, kHeader2 = 64;
+
+// The header of either format, read into a film (sums not yet read).
+Film read_header(const char* head, bool second_format) {
+  Film f;
+  uint32_t words[4];
+  std::memcpy(words, head + 8, sizeof words);
+  std::memcpy(&f.fingerprint, head + 24, 8);
+  f.width = words[0], f.height = words[1], f.passes = int(words[2]);
+  if (second_format) {
+    f.origin.known = true;
+    f.origin.integrator = int32_t(words[3]);
+    std::memcpy(&f.origin.scene, head + 32, 8);
+    std::memcpy(&f.origin.seed, head + 40, 8);
+    std::memcpy(&f.origin.max_depth, head + 48, 4);
+    std::memcpy(&f.origin.rr_depth, head + 52, 4);
+  }
+  return f;
+}
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): enough to tell one scene or setting from another.
 struct Hasher {
@@ -48,6 +67,39 @@ Image Film::image() const {
   return img;
 }
 
+uint64_t scene_fingerprint(const Scene& scene) {
+  return film_fingerprint(scene, PathSettings{});
+}
+
+FilmOrigin film_origin(const Scene& scene, const PathSettings& settings) {
+  return {true,
+          scene_fingerprint(scene),
+          settings.seed,
+          int32_t(settings.integrator),
+          settings.max_depth,
+          settings.rr_depth};
+}
+
+std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
+  if (!film.known) return "";
+  std::vector<std::string> parts;
+  if (film.scene != run.scene)
+    parts.push_back("the scene (its shapes, materials, camera or screen)");
+  if (film.seed != run.seed)
+    parts.push_back(cat("--seed ", film.seed, " (this run: ", run.seed, ")"));
+  if (film.integrator != run.integrator)
+    parts.push_back(cat("--integrator ", integrator_name(Integrator(film.integrator)),
+                        " (this run: ", integrator_name(Integrator(run.integrator)), ")"));
+  if (film.max_depth != run.max_depth)
+    parts.push_back(cat("--max-depth ", film.max_depth, " (this run: ", run.max_depth, ")"));
+  if (film.rr_depth != run.rr_depth)
+    parts.push_back(cat("the roulette depth ", film.rr_depth, " (this run: ", run.rr_depth, ")"));
+  std::string out;
+  for (const std::string& p : parts)
+    out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
 uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
   Hasher h;
   h.value(scene.width), h.value(scene.height);
@@ -69,10 +121,16 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
 }
 
 Status save_film(const std::string& path, const Film& film) {
-  std::string out(kMagic, 8);
-  uint32_t words[4] = {film.width, film.height, uint32_t(film.passes), 0};
+  std::string out(kMagic2, 8);
+  const FilmOrigin& o = film.origin;
+  uint32_t words[4] = {film.width, film.height, uint32_t(film.passes), uint32_t(o.integrator)};
   out.append(reinterpret_cast<const char*>(words), sizeof words);
   out.append(reinterpret_cast<const char*>(&film.fingerprint), 8);
+  out.append(reinterpret_cast<const char*>(&o.scene), 8);
+  out.append(reinterpret_cast<const char*>(&o.seed), 8);
+  out.append(reinterpret_cast<const char*>(&o.max_depth), 4);
+  out.append(reinterpret_cast<const char*>(&o.rr_depth), 4);
+  out.append(8, '\0');
   out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
   return write_file_atomically(path, out);
 }
@@ -81,17 +139,19 @@ Result<Film> load_film(const std::string& path) {
   auto file_size = regular_file_size(path);
   if (!file_size) return Error{cat(path, ": cannot read: ", file_size.error())};
   uint64_t size = *file_size;
-  if (size < kHeader) return Error{cat(path, ": expected a 32-byte film header, found ", size)};
+  if (size < kHeader1) return Error{cat(path, ": expected a 32-byte film header, found ", size)};
   std::ifstream in(path, std::ios::binary);
-  char head[kHeader];
-  if (!in.read(head, kHeader)) return Error{cat(path, ": read failed")};
-  if (std::memcmp(head, kMagic, 8) != 0)
-    return Error{cat(path, ": expected a raylane film ('RLFILM1'), found another kind of file")};
-  Film f;
+  char head[kHeader2];
+  if (!in.read(head, kHeader1)) return Error{cat(path, ": read failed")};
+  bool second = std::memcmp(head, kMagic2, 8) == 0;
+  if (!second && std::memcmp(head, kMagic1, 8) != 0)
+    return Error{cat(path, ": expected a raylane film ('RLFILM2'), found another kind of file")};
+  const std::size_t kHeader = second ? kHeader2 : kHeader1;
+  if (second && (size < kHeader2 || !in.read(head + kHeader1, kHeader2 - kHeader1)))
+    return Error{cat(path, ": expected a 64-byte film header, found ", size, " bytes")};
+  Film f = read_header(head, second);
   uint32_t words[4];
   std::memcpy(words, head + 8, sizeof words);
-  std::memcpy(&f.fingerprint, head + 24, 8);
-  f.width = words[0], f.height = words[1], f.passes = int(words[2]);
   uint64_t pixels = uint64_t(f.width) * f.height;
   if (pixels == 0 || pixels > kMaxImagePixels || words[2] > (1u << 30))
     return Error{cat(path, ": expected a film of 1 … 2^28 pixels, found ", f.width, "x", f.height,

@@ -208,6 +208,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
     f.width = cam.width, f.height = cam.height, f.passes = 0;
     f.sum.assign(std::size_t(cam.width) * cam.height * 3, 0.0);
     f.fingerprint = film_fingerprint(scene, settings);
+    f.origin = film_origin(scene, settings);
   }
   PathStats total;
   total.passes = f.passes;

@@ -42,7 +42,8 @@ bool screen_command(Scene& s, const Line& line, ParseState& state) {
     }
   }
   if ((*v)[0] * (*v)[1] > double(kMaxImagePixels)) {
-    state.problem(line.at(1), "screen has more than 2^28 pixels");
+    state.problem(line.at(1), cat("screen has ", uint64_t((*v)[0] * (*v)[1]),
+                                  " pixels; the limit is 2^28 (268435456) pixels"));
     return false;
   }
   note_repeat(state.screen_line, line, state);

@@ -52,6 +52,28 @@ TEST(CliRenderFlags, ResumingToNoMoreSamplesSaysSo) {
   EXPECT_EQ(read_file(dir + "/a.hdr"), read_file(dir + "/b.hdr"));
 }
 
+// A film that does not fit this run says what differs, in the flags' own terms.
+TEST(CliRenderFlags, AResumeMismatchNamesWhatDiffers) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  ASSERT_EQ(run_cli("render tiny.scn --spp 1 --seed 3 --integrator nee --checkpoint f.film -q", dir)
+                .status,
+            0);
+  auto seed = run_cli("render tiny.scn --spp 2 --resume f.film --integrator nee -o a.hdr", dir);
+  EXPECT_EQ(seed.status, 2) << seed.out;
+  EXPECT_NE(seed.out.find("rendered with --seed 3 (this run: 0); resume with the same ones"),
+            std::string::npos)
+      << seed.out;
+  auto both =
+      run_cli("render tiny.scn --spp 2 --resume f.film --seed 3 --max-depth 5 -o a.hdr", dir);
+  EXPECT_NE(both.out.find("--integrator nee (this run: mis); --max-depth 64 (this run: 5)"),
+            std::string::npos)
+      << both.out;
+  std::ofstream(dir + "/other.scn") << "screen 4 4\ncamera 0 0 6 1\nsphere 0 0 0 1\n";
+  auto scene = run_cli("render other.scn --spp 2 --resume f.film --seed 3 --integrator nee", dir);
+  EXPECT_NE(scene.out.find("rendered with the scene (its shapes"), std::string::npos) << scene.out;
+}
+
 TEST(CliRenderFlags, PathOnlyFlagsInARayCastingViewWarn) {
   std::string dir = temp_dir();
   write_tiny_scene(dir);

@@ -79,7 +79,7 @@ TEST(Film, FingerprintFollowsWhatShapesTheSamples) {
 
 TEST(Film, HostileFilmFilesAreErrors) {
   std::string dir = testing::temp_dir();
-  Film f{2, 1, 3, std::vector<double>(6, 0.5), 42};
+  Film f{2, 1, 3, std::vector<double>(6, 0.5), 42, {}};
   ASSERT_TRUE(save_film(dir + "/ok.film", f).ok());
   auto ok = load_film(dir + "/ok.film");
   ASSERT_TRUE(ok.ok()) << ok.error();
@@ -87,13 +87,13 @@ TEST(Film, HostileFilmFilesAreErrors) {
   EXPECT_EQ(ok->passes, 3);
 
   std::filesystem::copy_file(dir + "/ok.film", dir + "/short.film");
-  std::filesystem::resize_file(dir + "/short.film", 40);
+  std::filesystem::resize_file(dir + "/short.film", 80);
   auto short_file = load_film(dir + "/short.film");
   ASSERT_FALSE(short_file.ok());
-  EXPECT_NE(short_file.error().find("a 2x1 film has 80 bytes, the file has 40"), std::string::npos)
+  EXPECT_NE(short_file.error().find("a 2x1 film has 112 bytes, the file has 80"), std::string::npos)
       << short_file.error();
 
-  Film huge{1u << 20, 1u << 20, 1, {}, 0};  // 2^40 pixels announced, 32 bytes present
+  Film huge{1u << 20, 1u << 20, 1, {}, 0, {}};  // 2^40 pixels announced, 32 bytes present
   ASSERT_TRUE(save_film(dir + "/huge.film", huge).ok());
   auto h = load_film(dir + "/huge.film");
   ASSERT_FALSE(h.ok());
@@ -102,6 +102,20 @@ TEST(Film, HostileFilmFilesAreErrors) {
   std::ofstream(dir + "/text.film") << "this is not a film, but it is long enough to have a header";
   EXPECT_FALSE(load_film(dir + "/text.film").ok());
   EXPECT_FALSE(load_film(dir + "/missing.film").ok());
+
+  // A film of the first format (a 32-byte header, no origin) is still read.
+  std::string v1("RLFILM1\0", 8);
+  for (uint32_t w : {2u, 1u, 3u, 0u})
+    v1.append(reinterpret_cast<const char*>(&w), 4);
+  uint64_t fp = 42;
+  v1.append(reinterpret_cast<const char*>(&fp), 8);
+  v1.append(reinterpret_cast<const char*>(f.sum.data()), 48);
+  std::ofstream(dir + "/v1.film", std::ios::binary) << v1;
+  auto old = load_film(dir + "/v1.film");
+  ASSERT_TRUE(old.ok()) << old.error();
+  EXPECT_EQ(old->sum, f.sum);
+  EXPECT_EQ(old->fingerprint, 42u);
+  EXPECT_FALSE(old->origin.known);
 
   // Non-finite sums: damage that a resumed render would spread into its image.
   for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {

@@ -220,18 +220,19 @@ TEST(Parser, ValueRules) {
                  "sphere 0 0 0 1e-46\n");
   EXPECT_THAT(
       errors(p),
-      ElementsAre(
-          "t.scn:2:14: sphere radius must be > 0", "t.scn:3:14: sphere radius must be > 0",
-          "t.scn:4:13: box diagonal components must be non-zero",
-          "t.scn:5:16: cylinder axis must be non-zero", "t.scn:6:22: cylinder radius must be > 0",
-          "t.scn:7:24: brdf alpha must be >= 0", "t.scn:8:32: brdf ior must be > 0",
-          "t.scn:9:6: brdf colours (Kd, Ks, Kt) must be >= 0",
-          "t.scn:10:7: light radiance must be >= 0",
-          "t.scn:11:8: screen size must be a whole number >= 1",
-          "t.scn:12:8: screen size must be a whole number >= 1",
-          "t.scn:13:8: screen has more than 2^28 pixels", "t.scn:14:14: camera ry must be > 0",
-          "t.scn:15:14: sphere radius rounds to 0 in single precision; it must be > 0 "
-          "after rounding (at least about 1.4e-45)"));
+      ElementsAre("t.scn:2:14: sphere radius must be > 0", "t.scn:3:14: sphere radius must be > 0",
+                  "t.scn:4:13: box diagonal components must be non-zero",
+                  "t.scn:5:16: cylinder axis must be non-zero",
+                  "t.scn:6:22: cylinder radius must be > 0", "t.scn:7:24: brdf alpha must be >= 0",
+                  "t.scn:8:32: brdf ior must be > 0",
+                  "t.scn:9:6: brdf colours (Kd, Ks, Kt) must be >= 0",
+                  "t.scn:10:7: light radiance must be >= 0",
+                  "t.scn:11:8: screen size must be a whole number >= 1",
+                  "t.scn:12:8: screen size must be a whole number >= 1",
+                  "t.scn:13:8: screen has 536870912 pixels; the limit is 2^28 (268435456) pixels",
+                  "t.scn:14:14: camera ry must be > 0",
+                  "t.scn:15:14: sphere radius rounds to 0 in single precision; it must be > 0 "
+                  "after rounding (at least about 1.4e-45)"));
   EXPECT_EQ(p.scene.primitive_count(), 0u);
   // A rejected shape leaves no default material behind.
   EXPECT_TRUE(p.scene.materials.empty());

@@ -15,10 +15,12 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
   if (film->width != scene.width || film->height != scene.height)
     return Error{cat(*c.resume, ": expected a ", scene.width, "x", scene.height,
                      " film for this scene, found ", film->width, "x", film->height)};
-  if (film->fingerprint != film_fingerprint(scene, settings))
-    return Error{cat(*c.resume,
-                     ": the film was rendered from another scene or with other --seed, "
-                     "--integrator or --max-depth; resume with the same ones")};
+  if (film->fingerprint != film_fingerprint(scene, settings)) {
+    std::string what = origin_difference(film->origin, film_origin(scene, settings));
+    if (what.empty()) what = "another scene or other --seed, --integrator or --max-depth";
+    return Error{
+        cat(*c.resume, ": the film was rendered with ", what, "; resume with the same ones")};
+  }
   return film;
 }
 

@@ -14,11 +14,22 @@
 
 namespace raylane {
 
+// Where a film's samples come from, part by part, so that a --resume that does not match can
+// say what differs. A film of the first format (RLFILM1) knows only its fingerprint: its
+// `known` is false.
+struct FilmOrigin {
+  bool known = false;
+  uint64_t scene = 0;  // scene_fingerprint
+  uint64_t seed = 0;
+  int32_t integrator = 0, max_depth = 0, rr_depth = 0;
+};
+
 struct Film {
   uint32_t width = 0, height = 0;
   int passes = 0;            // samples per pixel summed so far
   std::vector<double> sum;   // 3 per pixel, top row first
   uint64_t fingerprint = 0;  // of the scene and the settings whose samples these are
+  FilmOrigin origin;
 
   Image image() const;  // the mean over the passes (black before the first)
 };
@@ -27,9 +38,18 @@ struct Film {
 // and the settings that shape each sample (seed, integrator, depth, roulette) — not spp or
 // time, which only say how many passes to take.
 uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings);
+uint64_t scene_fingerprint(const Scene& scene);  // the scene's part alone
+FilmOrigin film_origin(const Scene& scene, const PathSettings& settings);
 
-// `.film` files: magic "RLFILM1\0", width, height, passes, 0 (uint32 each), fingerprint
-// (uint64), then width·height·3 float64 sums; little endian. Written atomically.
+// What differs between a film's origin and this run's, in the user's terms ("the scene",
+// "--seed 3 (this run: 0)", ...), joined by "; "; empty if nothing (or if the film does not
+// know its origin).
+std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run);
+
+// `.film` files: magic "RLFILM2\0", width, height, passes, integrator (uint32 each),
+// fingerprint, scene fingerprint, seed (uint64 each), max depth, roulette depth (uint32 each),
+// 8 zero bytes, then width·height·3 float64 sums; little endian. Written atomically. The first
+// format ("RLFILM1\0", a 32-byte header: width, height, passes, 0, fingerprint) is still read.
 Status save_film(const std::string& path, const Film& film);
 Result<Film> load_film(const std::string& path);
 
