@@ -5,6 +5,7 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <new>
@@ -110,8 +111,12 @@ class GuardedIOSystem final : public Assimp::DefaultIOSystem {
       refused_.push_back(cat(file, ": ", size.error()));
       return nullptr;
     }
-    opened_.emplace_back(file);
-    if (budget_) budget_->grow(kImportBytesPerFileByte * *size);
+    // Assimp opens a file more than once (to detect its format, then to read it): each file
+    // is recorded, and adds to the budget, once.
+    if (std::find(opened_.begin(), opened_.end(), file) == opened_.end()) {
+      opened_.emplace_back(file);
+      if (budget_) budget_->grow(kImportBytesPerFileByte * *size);
+    }
     return DefaultIOSystem::Open(file, mode);
   }
 
