@@ -1,5 +1,6 @@
 #include "raylane/render/path.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -35,12 +36,32 @@ struct ShadowQuery {
   Vec3d contribution;  // added to the path's radiance if the light is the first thing hit
 };
 
+// A phase timer that reads the clock only when the render asked for phase times.
+class PhaseClock {
+ public:
+  explicit PhaseClock(bool on) : on_(on) {
+    if (on_) last_ = std::chrono::steady_clock::now();
+  }
+  // Adds the time since the last lap to `into`.
+  void lap(double& into) {
+    if (!on_) return;
+    auto now = std::chrono::steady_clock::now();
+    into += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_;
+};
+
 struct TileContext {
   const Tracer& tracer;
   const LightSampler& lights;
   const PathSettings& settings;
   Rng rng;
   PathStats stats;
+  uint32_t light_calls;  // for timing one light sampling call in kLightTimingStride
 };
 
 const Material& material_of(const Scene& scene, const Hit& hit) {
@@ -90,8 +111,9 @@ void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
 }
 
 // Next-event estimation from one vertex: a shadow ray toward a sampled light point.
-void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
-                  const Hit& hit, std::vector<Rayd>& rays, std::vector<ShadowQuery>& queries) {
+void sample_light_untimed(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
+                          const Hit& hit, std::vector<Rayd>& rays,
+                          std::vector<ShadowQuery>& queries) {
   Rng& rng = ctx.rng;
   double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   LightSample ls = ctx.lights.sample(hit.surface.p, u0, u1, u2, u3);
@@ -105,6 +127,41 @@ void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsd
   Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
   rays.push_back({o, ls.wi});
   queries.push_back({path, ls.light, c});
+}
+
+// Light sampling's time for --stats: the clock is read around one call in this many and that
+// time scaled up; reading it around every call cost 15 % of the render and landed in this
+// phase. (Shading's time has light sampling's estimate taken out, so it carries the error.)
+constexpr uint32_t kLightTimingStride = 16;
+
+// What one clock read costs, so that a timed interval can leave it out: scaled by the stride,
+// it would otherwise add as much as the light sampling it measures. The median of a few
+// thousand back-to-back reads.
+double clock_read_seconds() {
+  static const double cost = [] {
+    constexpr int kReads = 4096;
+    std::vector<double> gaps(kReads);
+    auto last = std::chrono::steady_clock::now();
+    for (double& g : gaps) {
+      auto now = std::chrono::steady_clock::now();
+      g = std::chrono::duration<double>(now - last).count();
+      last = now;
+    }
+    std::nth_element(gaps.begin(), gaps.begin() + kReads / 2, gaps.end());
+    return gaps[kReads / 2];
+  }();
+  return cost;
+}
+
+void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
+                  const Hit& hit, std::vector<Rayd>& rays, std::vector<ShadowQuery>& queries) {
+  bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
+  PhaseClock clock(timed);
+  sample_light_untimed(ctx, path, p, bsdf, hit, rays, queries);
+  if (!timed) return;
+  double t = 0;
+  clock.lap(t);
+  ctx.stats.phases.lights += std::max(0.0, t - clock_read_seconds()) * kLightTimingStride;
 }
 
 // One vertex of a path: emission, absorption, light sampling, then the next direction.
@@ -151,12 +208,17 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
   ctx.stats.camera_rays += paths.size();
+  PathPhases& phases = ctx.stats.phases;
+  const double lights_at_start = phases.lights;
+  PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
     batch.clear();
     for (uint32_t i : live)
       batch.push_back(paths[i].ray);
     batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
+    clock.lap(phases.shade);
     ctx.tracer.closest(batch, hits);
+    clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q) {
@@ -176,6 +238,8 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
     live.swap(next_live);
     queries.swap(next_queries);
   }
+  clock.lap(phases.shade);
+  phases.shade -= phases.lights - lights_at_start;  // light sampling ran inside shading
   for (const PathState& p : paths) {
     if (!is_finite(p.radiance)) {
       ++ctx.stats.nonfinite_samples;
@@ -184,9 +248,11 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
     for (int k = 0; k < 3; ++k)
       film[p.pixel * 3 + k] += p.radiance[k];
   }
+  clock.lap(phases.film);
 }
 
 void add_stats(PathStats& into, const PathStats& s) {
+  into.phases.add(s.phases);
   into.camera_rays += s.camera_rays;
   into.bounce_rays += s.bounce_rays;
   into.shadow_rays += s.shadow_rays;
@@ -194,6 +260,11 @@ void add_stats(PathStats& into, const PathStats& s) {
 }
 
 }  // namespace
+
+void PathPhases::add(const PathPhases& o) {
+  camera += o.camera, trace_camera += o.trace_camera, trace_rest += o.trace_rest;
+  shade += o.shade, lights += o.lights, film += o.film;
+}
 
 Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats,
                   Film* film) {
@@ -220,9 +291,11 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
       std::vector<PathState> paths;
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
-        TileContext ctx{tracer, lights, settings, Rng::for_tile(settings.seed, t, pass), {}};
+        TileContext ctx{tracer, lights, settings, Rng::for_tile(settings.seed, t, pass), {}, 0};
+        PhaseClock clock(settings.time_phases);
         tile_camera_rays(cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile, ctx.rng,
                          paths);
+        clock.lap(ctx.stats.phases.camera);
         render_tile(ctx, paths, f.sum);
         add_stats(local, ctx.stats);
       }

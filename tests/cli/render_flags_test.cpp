@@ -74,6 +74,20 @@ TEST(CliRenderFlags, AResumeMismatchNamesWhatDiffers) {
   EXPECT_NE(scene.out.find("rendered with the scene (its shapes"), std::string::npos) << scene.out;
 }
 
+// --stats says where the time went, phase by phase, and changes nothing in the image.
+TEST(CliRenderFlags, StatsBreakDownTheRenderAndChangeNothing) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto r = run_cli("render tiny.scn --spp 8 --stats -o s.hdr", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* row : {"where the time went", "camera rays", "tracing camera rays",
+                          "tracing bounce + shadow rays", "shading (BSDF, roulette)",
+                          "light sampling", "film", "idle and other", "Mrays/s of tracing time"})
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+  ASSERT_EQ(run_cli("render tiny.scn --spp 8 -o p.hdr -q", dir).status, 0);
+  EXPECT_EQ(read_file(dir + "/s.hdr"), read_file(dir + "/p.hdr"));
+}
+
 TEST(CliRenderFlags, PathOnlyFlagsInARayCastingViewWarn) {
   std::string dir = temp_dir();
   write_tiny_scene(dir);

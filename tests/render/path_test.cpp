@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -70,6 +71,31 @@ TEST(PathTracer, FurnaceConvergesToTheAnalyticRadiance) {
     EXPECT_EQ(stats.nonfinite_samples, 0u);
     EXPECT_EQ(stats.passes, 64);
   }
+}
+
+// The phase times (--stats) are thread-seconds: each is ≥ 0, and together they fit in the
+// threads' wall time; light sampling, timed inside shading, is not counted twice.
+TEST(PathTracer, PhaseTimesAddUpToNoMoreThanTheThreadsTime) {
+  Scene scene = parse(kFurnace);
+  PathSettings s;
+  s.spp = 8;
+  s.time_phases = true;
+  PathStats stats;
+  auto start = std::chrono::steady_clock::now();
+  render(scene, s, &stats);
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const PathPhases& p = stats.phases;
+  for (double t : {p.camera, p.trace_camera, p.trace_rest, p.shade, p.lights, p.film})
+    EXPECT_GE(t, 0.0);
+  EXPECT_GT(p.trace_camera, 0.0);
+  EXPECT_GT(p.lights, 0.0);  // mis samples lights
+  EXPECT_GT(p.total(), 0.0);
+  EXPECT_LE(p.total(), wall * omp_get_max_threads());
+  PathSettings off = s;
+  off.time_phases = false;
+  PathStats none;
+  render(scene, off, &none);
+  EXPECT_EQ(none.phases.total(), 0.0);
 }
 
 // Glass whose index matches the air (ior 1, and 1 ± 1e-6) bends nothing: a slab of it in front

@@ -42,8 +42,9 @@ constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
-constexpr std::string_view kPathOnlyOptions[] = {
-    "spp", "integrator", "seed", "max-depth", "time", "checkpoint", "resume", "checkpoint-every"};
+constexpr std::string_view kPathOnlyOptions[] = {"spp",  "integrator", "seed",   "max-depth",
+                                                 "time", "checkpoint", "resume", "checkpoint-every",
+                                                 "stats"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -186,6 +187,14 @@ const std::vector<RenderOption>& render_options() {
          r.lenient = true;
          return ok_status();
        }},
+      {{"stats", 0, "", false,
+        "path: at the end, where the time went (camera rays, tracing, shading, light\n"
+        "sampling, film, idle) and the rays per second of each kind",
+        ""},
+       [](R& r, V) {
+         r.path_settings.time_phases = true;
+         return ok_status();
+       }},
       {{"quiet", 'q', "", false, "print only errors and the written image paths (no progress bar)",
         ""},
        [](R& r, V) {
@@ -287,6 +296,32 @@ bool outputs_writable(const RenderRequest& r) {
   return ok;
 }
 
+// `--stats`: thread-seconds per phase of the path tracer's loop, against the threads' time.
+void print_phases(const PathStats& s, double seconds, int threads) {
+  const PathPhases& p = s.phases;
+  double available = seconds * threads;
+  double idle = std::max(0.0, available - p.total());
+  std::fprintf(stderr, "where the time went (thread-seconds of %d threads × %.3f s):\n", threads,
+               seconds);
+  const std::pair<const char*, double> rows[] = {{"camera rays", p.camera},
+                                                 {"tracing camera rays", p.trace_camera},
+                                                 {"tracing bounce + shadow rays", p.trace_rest},
+                                                 {"shading (BSDF, roulette)", p.shade},
+                                                 {"light sampling", p.lights},
+                                                 {"film", p.film},
+                                                 {"idle and other", idle}};
+  for (const auto& [what, t] : rows)
+    std::fprintf(stderr, "  %-30s %9.3f s %6.1f %%\n", what, t, 100 * t / available);
+  auto rate = [](uint64_t n, double t) { return t > 0 ? n / t * 1e-6 : 0.0; };
+  std::fprintf(stderr, "  camera rays: %llu, %.2f Mrays/s of tracing time per thread\n",
+               (unsigned long long)s.camera_rays, rate(s.camera_rays, p.trace_camera));
+  std::fprintf(stderr,
+               "  bounce rays: %llu, shadow rays: %llu; together %.2f Mrays/s of tracing time "
+               "per thread\n",
+               (unsigned long long)s.bounce_rays, (unsigned long long)s.shadow_rays,
+               rate(s.bounce_rays + s.shadow_rays, p.trace_rest));
+}
+
 }  // namespace
 
 int render_command(const std::vector<std::string>& args) {
@@ -314,13 +349,13 @@ int render_command(const std::vector<std::string>& args) {
   std::string what;
   Image image;
   int spp = 1;
+  PathStats path_stats;
   if (r.path) {
     auto film = starting_film(r.checkpoints, *scene, r.path_settings);
     if (!film) {
       std::fprintf(stderr, "raylane: %s\n", film.error().c_str());
       return kExitUsage;
     }
-    PathStats stats;
     if (film->passes >= r.path_settings.spp && !r.quiet)
       std::fprintf(stderr,
                    "raylane: warning: the --resume film already holds %d passes and --spp asks "
@@ -335,13 +370,13 @@ int render_command(const std::vector<std::string>& args) {
       checkpointer.after_pass(*film);
     };
     install_interrupt_handler();
-    image = render_path(tracer, settings, &stats, &*film);
+    image = render_path(tracer, settings, &path_stats, &*film);
     checkpointer.after_pass(*film, /*final=*/true);
     progress.finish();
-    rays = stats.rays();
-    spp = stats.passes;
-    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", stats.passes, " spp",
-               interrupted() ? ", interrupted" : "");
+    rays = path_stats.rays();
+    spp = path_stats.passes;
+    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", path_stats.passes,
+               " spp", interrupted() ? ", interrupted" : "");
   } else {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);
@@ -384,6 +419,8 @@ int render_command(const std::vector<std::string>& args) {
                  std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
                  bvh.stats.build_seconds);
   }
+  if (r.path && r.path_settings.time_phases && !r.quiet)
+    print_phases(path_stats, seconds, omp_get_max_threads());
   if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
   return status;
 }

@@ -37,14 +37,28 @@ struct PathSettings {
   Integrator integrator = Integrator::kMis;
   int spp = 16;
   uint64_t seed = 0;
-  int max_depth = 64;     // bounces; Russian roulette ends nearly every path long before
-  int rr_depth = 3;       // roulette from this bounce on, survival 0.8 (the course's rule)
-  double time_limit = 0;  // seconds; 0 = none. Checked between passes.
+  int max_depth = 64;        // bounces; Russian roulette ends nearly every path long before
+  int rr_depth = 3;          // roulette from this bounce on, survival 0.8 (the course's rule)
+  double time_limit = 0;     // seconds; 0 = none. Checked between passes.
+  bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
   std::function<void(int passes_done)> on_pass;  // progress, called after each pass
 };
 
+// Thread-seconds spent in each phase of the render loop, summed over the threads (`--stats`).
+struct PathPhases {
+  double camera = 0;        // making camera rays
+  double trace_camera = 0;  // tracing the first wavefront: camera rays only
+  double trace_rest = 0;    // tracing later wavefronts: bounce and shadow rays together
+  double shade = 0;         // emission, absorption, BSDF sampling and evaluation, roulette
+  double lights = 0;        // light sampling (inside shading; not counted in `shade`)
+  double film = 0;          // adding the tile's samples to the film
+  double total() const { return camera + trace_camera + trace_rest + shade + lights + film; }
+  void add(const PathPhases& o);
+};
+
 struct PathStats {
+  PathPhases phases;  // with PathSettings::time_phases
   uint64_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
   uint64_t nonfinite_samples = 0;  // samples dropped for NaN/inf radiance (should stay 0)
   int passes = 0;                  // samples per pixel actually taken
