@@ -75,9 +75,18 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   for (std::size_t k = 0; k < lights_.size(); ++k) {
     acc += power[k] / total;
     cdf_.push_back(acc);
-    choice_[lights_[k].bits()] = power[k] / total;
+    choice_.push_back(power[k] / total);
+    by_bits_.emplace_back(lights_[k].bits(), power[k] / total);
   }
   if (!cdf_.empty()) cdf_.back() = 1.0;
+  std::sort(by_bits_.begin(), by_bits_.end());
+}
+
+std::optional<double> LightSampler::choice_of(PrimRef light) const {
+  auto it = std::lower_bound(by_bits_.begin(), by_bits_.end(),
+                             std::make_pair(light.bits(), -1.0));
+  if (it == by_bits_.end() || it->first != light.bits()) return std::nullopt;
+  return it->second;
 }
 
 LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part, double u1,
@@ -87,7 +96,7 @@ LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part
   std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
   k = std::min(k, lights_.size() - 1);
   PrimRef l = lights_[k];
-  double choice = choice_.at(l.bits());
+  double choice = choice_[k];
   s.light = l;
   s.le = Vec3d(scene_.materials[scene_.material_of(l)].emission);
   return dispatch(l.tag(), [&](auto kind) {
@@ -97,12 +106,12 @@ LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part
 }
 
 double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const {
-  auto it = choice_.find(hit.prim.bits());
-  if (it == choice_.end()) return 0;
+  std::optional<double> choice = choice_of(hit.prim);
+  if (!choice) return 0;
   PrimRef l = hit.prim;
   return dispatch(l.tag(), [&](auto kind) {
     using Kind = decltype(kind);
-    return pdf_kind<Kind>(scene_.table<Kind>(), l.row(), ref, wi, hit, it->second);
+    return pdf_kind<Kind>(scene_.table<Kind>(), l.row(), ref, wi, hit, *choice);
   });
 }
 

@@ -209,7 +209,7 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
   std::vector<Hit> hits;
   ctx.stats.camera_rays += paths.size();
   PathPhases& phases = ctx.stats.phases;
-  const double lights_at_start = phases.lights;
+  const double lights_at_start = phases.lights, shade_at_start = phases.shade;
   PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
     batch.clear();
@@ -239,7 +239,12 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
     queries.swap(next_queries);
   }
   clock.lap(phases.shade);
-  phases.shade -= phases.lights - lights_at_start;  // light sampling ran inside shading
+  // Light sampling ran inside shading: its estimate (timed on a sample of calls, so it can
+  // exceed the shading it is part of) is capped by the shading time and taken out of it.
+  double shade_here = phases.shade - shade_at_start;
+  double lights_here = std::min(phases.lights - lights_at_start, shade_here);
+  phases.lights = lights_at_start + lights_here;
+  phases.shade = shade_at_start + shade_here - lights_here;
   for (const PathState& p : paths) {
     if (!is_finite(p.radiance)) {
       ++ctx.stats.nonfinite_samples;

@@ -9,7 +9,8 @@
 // emit from both sides. Emitters reflect nothing.
 #pragma once
 
-#include <unordered_map>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "raylane/scene/scene.h"
@@ -43,9 +44,15 @@ class LightSampler {
 
  private:
   const Scene& scene_;
+  // The choice probability of the light a ray hit, or nullopt if it is not one of ours.
+  std::optional<double> choice_of(PrimRef light) const;
+
   std::vector<PrimRef> lights_;
-  std::vector<double> cdf_;                      // cumulative choice probabilities
-  std::unordered_map<uint32_t, double> choice_;  // PrimRef bits → choice probability
+  std::vector<double> cdf_;     // cumulative choice probabilities
+  std::vector<double> choice_;  // choice probability of lights_[k]
+  // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
+  // cheaper per sample than a hash lookup.
+  std::vector<std::pair<uint32_t, double>> by_bits_;
 };
 
 }  // namespace raylane
