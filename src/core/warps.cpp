@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raylane/core/fast_math.h"
+
 namespace raylane {
 
 Frame::Frame(const Vec3d& normal) : n(normal) {
@@ -14,9 +16,10 @@ Frame::Frame(const Vec3d& normal) : n(normal) {
 }
 
 Vec3d sample_cosine_hemisphere(double u1, double u2) {
-  double r = std::sqrt(u1), phi = 2 * kPi * u2;
+  double r = std::sqrt(u1);
   double z = std::sqrt(std::max(0.0, 1 - u1));
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  SinCos phi = sincos_2pi(u2);
+  return {r * phi.cos, r * phi.sin, z};
 }
 
 Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
@@ -24,14 +27,15 @@ Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
   double one_minus_cos = u1 * one_minus_cos_max;
   double cos_t = 1 - one_minus_cos;
   double sin_t = std::sqrt(std::max(0.0, one_minus_cos * (2 - one_minus_cos)));
-  double phi = 2 * kPi * u2;
-  return {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t};
+  SinCos phi = sincos_2pi(u2);
+  return {sin_t * phi.cos, sin_t * phi.sin, cos_t};
 }
 
 Vec3d sample_uniform_sphere(double u1, double u2) {
   double z = 1 - 2 * u1;
-  double r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * kPi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  double r = std::sqrt(std::max(0.0, 1 - z * z));
+  SinCos phi = sincos_2pi(u2);
+  return {r * phi.cos, r * phi.sin, z};
 }
 
 }  // namespace raylane

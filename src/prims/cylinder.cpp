@@ -1,6 +1,7 @@
 // Capped cylinders as emitters: area and area sampling.
 #include <cmath>
 
+#include "raylane/core/fast_math.h"
 #include "raylane/core/warps.h"
 #include "raylane/prims/cylinder.h"
 
@@ -16,8 +17,9 @@ AreaSample Cylinder::sample_area(const Table& t, uint32_t i, double u_part, doub
   double h = length(axis), r = t.r[i];
   Frame f(axis / h);
   double side = 2 * kPi * r * h, cap = kPi * r * r;
-  double pick = u_part * (side + 2 * cap), phi = 2 * kPi * u2;
-  Vec3d radial = f.s * std::cos(phi) + f.t * std::sin(phi);
+  double pick = u_part * (side + 2 * cap);
+  SinCos phi = sincos_2pi(u2);
+  Vec3d radial = f.s * phi.cos + f.t * phi.sin;
   if (pick < side) return {base + f.n * (u1 * h) + radial * r, radial};
   bool top = pick >= side + cap;
   return {base + (top ? axis : Vec3d(0, 0, 0)) + radial * (r * std::sqrt(u1)), top ? f.n : -f.n};

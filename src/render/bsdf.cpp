@@ -42,7 +42,8 @@ Bsdf::Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo)
 }
 
 Vec3d Bsdf::schlick(double cos_om) const {
-  double c = std::pow(1 - std::min(1.0, std::abs(cos_om)), 5);
+  double x = 1 - std::min(1.0, std::abs(cos_om)), x2 = x * x;
+  double c = x2 * x2 * x;  // (1 − cos)^5 by multiplication: std::pow does not inline it
   return ks_ + (Vec3d(1, 1, 1) - ks_) * c;
 }
 
@@ -81,28 +82,28 @@ bool Bsdf::refracts(double cos_om) const {
   return 1 - eta * eta * (1 - cos_om * cos_om) >= 0;
 }
 
-// D·G·F/(4|cos θi||cos θo|)·|cos θi|, with F scaled per channel by fresnel_scale's choice:
-// +1 gives F (the reflection lobe), −1 gives 1 − F (light the transmission lobe would have
-// refracted, reflected instead by total internal reflection, so the two lobes sum to one).
-Vec3d Bsdf::reflection(const Vec3d& m, const Vec3d& wi, double fresnel_scale) const {
-  double d = phong_d(dot(m, n_), alpha_);
+// D·G·F/(4|cos θi||cos θo|)·|cos θi| for microfacet density d, with F scaled per channel by
+// fresnel_scale's choice: +1 gives F (the reflection lobe), −1 gives 1 − F (light the
+// transmission lobe would have refracted, reflected instead by total internal reflection, so
+// the two lobes sum to one).
+Vec3d Bsdf::reflection(const Vec3d& m, const Vec3d& wi, double d, double fresnel_scale) const {
   if (d == 0) return {0, 0, 0};
   Vec3d f = schlick(dot(wo_, m));
   if (fresnel_scale < 0) f = Vec3d(1, 1, 1) - f;
   return f * (d * smith_g(wi, m) / (4 * cos_o_));
 }
 
-Vec3d Bsdf::eval(const Vec3d& wi) const {
-  Vec3d out(0, 0, 0);
+// cos^α θm, shared by D(m) and the warp's density of m (sampling.h): one pow per evaluation.
+double Bsdf::cos_power(const Vec3d& m) const {
+  double c = dot(m, n_);
+  return c > 0 ? std::pow(c, alpha_) : 0.0;
+}
+
+BsdfEval Bsdf::evaluate(const Vec3d& wi) const {
+  BsdfEval out;
   if (sum_ == 0) return out;
   double cos_i = dot(wi, n_);
-  if (cos_i > 0) {
-    if (pd_ > 0) out += kd_ * (cos_i / kPi);
-    Vec3d m = normalize(wi + wo_);
-    if (pr_ > 0) out += reflection(m, wi, 1);
-    if (pt_ > 0 && !refracts(dot(wo_, m))) out += reflection(m, wi, -1);
-    return out;
-  }
+  if (cos_i > 0) return evaluate_reflection(wi, cos_i);
   if (!(cos_i < 0) || pt_ == 0 || index_matched()) return out;
   // Walter et al. 2007, eqs. 16 and 21: the generalised half vector and the BTDF, radiance
   // scaled by η_o² (the viewer's side).
@@ -113,37 +114,34 @@ Vec3d Bsdf::eval(const Vec3d& wi) const {
   if (dot(m, n_) < 0) m = -m;
   double om = dot(wo_, m), im = dot(wi, m);
   if (!(om > 0 && im < 0) || !refracts(om)) return out;
-  double d = phong_d(dot(m, n_), alpha_);
   double den = eta_o_ * om + eta_i_ * im;
-  if (d == 0 || den == 0) return out;
-  double s = d * smith_g(wi, m) * std::abs(im) * om * eta_o_ * eta_o_ / (cos_o_ * den * den);
-  return (Vec3d(1, 1, 1) - schlick(om)) * s;
+  if (den == 0) return out;
+  double cp = cos_power(m);
+  double d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
+  if (d > 0) {
+    double s = d * smith_g(wi, m) * std::abs(im) * om * eta_o_ * eta_o_ / (cos_o_ * den * den);
+    out.f = (Vec3d(1, 1, 1) - schlick(om)) * s;
+  }
+  out.pdf = pt_ * pm * eta_i_ * eta_i_ * std::abs(im) / (den * den);  // Walter eq. 17
+  return out;
 }
 
-double Bsdf::pdf(const Vec3d& wi) const {
-  if (sum_ == 0) return 0;
-  double cos_i = dot(wi, n_);
-  if (cos_i > 0) {
-    double p = pd_ * cos_i / kPi;
-    Vec3d m = normalize(wi + wo_);
-    double im = dot(wi, m);
-    double pm = phong_normal_pdf(dot(m, n_), alpha_);
-    double lobe = pm > 0 && im > 0 ? pm / (4 * im) : 0.0;  // Walter eq. 14
-    double w = pr_ + (pt_ > 0 && !refracts(dot(wo_, m)) ? pt_ : 0.0);
-    return p + w * lobe;  // the warp's density of m, Jacobian 1/(4|wi·m|)
-  }
-  if (!(cos_i < 0) || pt_ == 0 || index_matched()) return 0;
-  Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
-  double len = length(m);
-  if (!(len > 0)) return 0;
-  m = m / len;
-  if (dot(m, n_) < 0) m = -m;
-  double om = dot(wo_, m), im = dot(wi, m);
-  if (!(om > 0 && im < 0) || !refracts(om)) return 0;
-  double den = eta_o_ * om + eta_i_ * im;
-  if (den == 0) return 0;
-  double pm = phong_normal_pdf(dot(m, n_), alpha_);
-  return pt_ * pm * eta_i_ * eta_i_ * std::abs(im) / (den * den);  // Walter eq. 17
+BsdfEval Bsdf::evaluate_reflection(const Vec3d& wi, double cos_i) const {
+  BsdfEval out;
+  if (pd_ > 0) out.f = kd_ * (cos_i / kPi);
+  out.pdf = pd_ * cos_i / kPi;
+  if (pr_ == 0 && pt_ == 0) return out;
+  Vec3d m = normalize(wi + wo_);
+  double cp = cos_power(m);
+  double d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
+  bool reflects_transmission = pt_ > 0 && !refracts(dot(wo_, m));  // total internal reflection
+  if (pr_ > 0) out.f += reflection(m, wi, d, 1);
+  if (reflects_transmission) out.f += reflection(m, wi, d, -1);
+  double im = dot(wi, m);
+  double lobe = pm > 0 && im > 0 ? pm / (4 * im) : 0.0;  // Walter eq. 14
+  double w = pr_ + (reflects_transmission ? pt_ : 0.0);
+  out.pdf += w * lobe;  // the warp's density of m, Jacobian 1/(4|wi·m|)
+  return out;
 }
 
 BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
@@ -171,12 +169,10 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
   double len = length(s.wi);
   if (!(len > 0) || !std::isfinite(len)) return s;
   s.wi = s.wi / len;
-  s.pdf = pdf(s.wi);
-  if (!(s.pdf > 0) || !std::isfinite(s.pdf)) {
-    s.pdf = 0;
-    return s;
-  }
-  s.value = eval(s.wi);
+  BsdfEval e = evaluate(s.wi);
+  if (!(e.pdf > 0) || !std::isfinite(e.pdf)) return s;
+  s.pdf = e.pdf;
+  s.value = e.f;
   return s;
 }
 

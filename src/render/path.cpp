@@ -118,11 +118,10 @@ void sample_light_untimed(TileContext& ctx, uint32_t path, const PathState& p, c
   double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   LightSample ls = ctx.lights.sample(hit.surface.p, u0, u1, u2, u3);
   if (!ls.valid()) return;
-  Vec3d f = bsdf.eval(ls.wi);
-  if (f == Vec3d(0, 0, 0)) return;
-  double w =
-      ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, bsdf.pdf(ls.wi)) : 1.0;
-  Vec3d c = p.beta * f * ls.le * (w / ls.pdf);
+  BsdfEval e = bsdf.evaluate(ls.wi);
+  if (e.f == Vec3d(0, 0, 0)) return;
+  double w = ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, e.pdf) : 1.0;
+  Vec3d c = p.beta * e.f * ls.le * (w / ls.pdf);
   if (!is_finite(c)) return;
   Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
   rays.push_back({o, ls.wi});

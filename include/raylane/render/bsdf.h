@@ -21,21 +21,30 @@ struct BsdfSample {
   bool valid() const { return pdf > 0; }
 };
 
+struct BsdfEval {
+  Vec3d f{0, 0, 0};  // f(wo, wi)·|cos θi|
+  double pdf = 0;    // the density sample() has of drawing wi
+};
+
 class Bsdf {
  public:
   // `ns` is the unit shading normal pointing out of the solid (or by the triangle's winding):
   // its side tells entering (wo·ns > 0: from outside, η = 1/ior) from leaving.
   Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo);
 
-  Vec3d eval(const Vec3d& wi) const;
-  double pdf(const Vec3d& wi) const;
+  // Both at once: they share the half vector, its lobe density and its Fresnel term.
+  BsdfEval evaluate(const Vec3d& wi) const;
+  Vec3d eval(const Vec3d& wi) const { return evaluate(wi).f; }
+  double pdf(const Vec3d& wi) const { return evaluate(wi).pdf; }
   // u0 picks the lobe, (u1, u2) warp the direction. An invalid sample (pdf 0) must be skipped.
   BsdfSample sample(double u0, double u1, double u2) const;
 
   bool black() const { return sum_ == 0; }  // no lobe at all (e.g. wo in the surface plane)
 
  private:
-  Vec3d reflection(const Vec3d& m, const Vec3d& wi, double fresnel_scale) const;
+  BsdfEval evaluate_reflection(const Vec3d& wi, double cos_i) const;  // wi on wo's side
+  Vec3d reflection(const Vec3d& m, const Vec3d& wi, double d, double fresnel_scale) const;
+  double cos_power(const Vec3d& m) const;
   Vec3d schlick(double cos_om) const;
   double smith_g(const Vec3d& wi, const Vec3d& m) const;
   bool refracts(double cos_om) const;  // no total internal reflection through m
