@@ -34,6 +34,7 @@ Film read_header(const char* head, bool second_format) {
     std::memcpy(&f.origin.seed, head + 40, 8);
     std::memcpy(&f.origin.max_depth, head + 48, 4);
     std::memcpy(&f.origin.rr_depth, head + 52, 4);
+    std::memcpy(&f.origin.sampler, head + 56, 4);  // 0 (MT19937) in films from before samplers
   }
   return f;
 }
@@ -77,7 +78,8 @@ FilmOrigin film_origin(const Scene& scene, const PathSettings& settings) {
           settings.seed,
           int32_t(settings.integrator),
           settings.max_depth,
-          settings.rr_depth};
+          settings.rr_depth,
+          int32_t(settings.sampler)};
 }
 
 std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
@@ -92,6 +94,9 @@ std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
                         " (this run: ", integrator_name(Integrator(run.integrator)), ")"));
   if (film.max_depth != run.max_depth)
     parts.push_back(cat("--max-depth ", film.max_depth, " (this run: ", run.max_depth, ")"));
+  if (film.sampler != run.sampler)
+    parts.push_back(cat("--sampler ", sampler_name(Sampler(film.sampler)),
+                        " (this run: ", sampler_name(Sampler(run.sampler)), ")"));
   if (film.rr_depth != run.rr_depth)
     parts.push_back(cat("the roulette depth ", film.rr_depth, " (this run: ", run.rr_depth, ")"));
   std::string out;
@@ -117,6 +122,8 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
   });
   h.value(settings.integrator), h.value(settings.seed);
   h.value(settings.max_depth), h.value(settings.rr_depth);
+  // Hashed only when not the course's generator, so films from before samplers still fit.
+  if (settings.sampler != Sampler::kMt19937) h.value(settings.sampler);
   return h.h;
 }
 
@@ -130,7 +137,8 @@ Status save_film(const std::string& path, const Film& film) {
   out.append(reinterpret_cast<const char*>(&o.seed), 8);
   out.append(reinterpret_cast<const char*>(&o.max_depth), 4);
   out.append(reinterpret_cast<const char*>(&o.rr_depth), 4);
-  out.append(8, '\0');
+  out.append(reinterpret_cast<const char*>(&o.sampler), 4);
+  out.append(4, '\0');
   out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
   return write_file_atomically(path, out);
 }
@@ -156,6 +164,13 @@ Result<Film> load_film(const std::string& path) {
   if (pixels == 0 || pixels > kMaxImagePixels || words[2] > (1u << 30))
     return Error{cat(path, ": expected a film of 1 … 2^28 pixels, found ", f.width, "x", f.height,
                      " with ", words[2], " passes")};
+  // The origin's enums are named in messages: a damaged header must not index past the names.
+  const FilmOrigin& o = f.origin;
+  if (o.integrator < 0 || std::size_t(o.integrator) >= kIntegratorNames.names.size() ||
+      o.sampler < 0 || std::size_t(o.sampler) >= kSamplerNames.names.size())
+    return Error{cat(path, ": expected an integrator below ", kIntegratorNames.names.size(),
+                     " and a sampler below ", kSamplerNames.names.size(), " in the header, found ",
+                     o.integrator, " and ", o.sampler)};
   if (size != kHeader + pixels * 24)
     return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", kHeader + pixels * 24,
                      " bytes, the file has ", size)};

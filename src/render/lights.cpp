@@ -83,8 +83,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
 }
 
 std::optional<double> LightSampler::choice_of(PrimRef light) const {
-  auto it = std::lower_bound(by_bits_.begin(), by_bits_.end(),
-                             std::make_pair(light.bits(), -1.0));
+  auto it = std::lower_bound(by_bits_.begin(), by_bits_.end(), std::make_pair(light.bits(), -1.0));
   if (it == by_bits_.end() || it->first != light.bits()) return std::nullopt;
   return it->second;
 }

@@ -1,8 +1,10 @@
 #include "raylane/render/path.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/bsdf.h"
@@ -11,6 +13,7 @@
 #include "raylane/render/lights.h"
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
+#include "raylane/render/sobol.h"
 
 namespace raylane {
 
@@ -28,6 +31,7 @@ struct PathState {
   double prev_pdf = 0;         // the BSDF density of the ray's direction
   bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
   std::size_t pixel = 0;
+  uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
 };
 
 struct ShadowQuery {
@@ -55,14 +59,52 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_;
 };
 
+// A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
+// once they have grown to a tile's size.
+struct ThreadBuffers {
+  std::vector<PathState> paths;
+  std::vector<uint32_t> live, next_live;  // paths still going, by index
+  std::vector<Rayd> batch, shadow_rays;
+  std::vector<ShadowQuery> queries, next_queries;
+  std::vector<Hit> hits;
+  TraceScratch scratch;
+};
+
 struct TileContext {
+  ThreadBuffers& buffers;
   const Tracer& tracer;
   const LightSampler& lights;
   const PathSettings& settings;
   Rng rng;
   PathStats stats;
   uint32_t light_calls;  // for timing one light sampling call in kLightTimingStride
+  uint32_t pass;
 };
+
+// A path's decisions and the Sobol group each draws from (4 dimensions per group, the two
+// that warp a direction or a point first, so that they get the (0, 2)-sequence's
+// stratification). The MT19937 sampler ignores the groups and draws in call order.
+struct Dims {
+  static constexpr uint32_t camera = 0;  // (jitter x, jitter y, -, -)
+  static uint32_t light(int depth) { return 1 + 2 * uint32_t(depth); }  // (u1, u2, light, part)
+  static uint32_t bsdf(int depth) { return 2 + 2 * uint32_t(depth); }   // (u1, u2, lobe, roulette)
+};
+
+// A decision's numbers: the whole Sobol group at once, or, from MT19937, one number per
+// component listed in `order`, drawn in that order (the order the course's code drew them).
+std::array<double, 4> draw(TileContext& ctx, const PathState& p, uint32_t group,
+                           std::initializer_list<int> order) {
+  if (ctx.settings.sampler == Sampler::kSobol) return sobol_group(p.pixel_seed, ctx.pass, group);
+  std::array<double, 4> u{};
+  for (int c : order)
+    u[c] = ctx.rng.uniform();
+  return u;
+}
+
+// Roulette's number: the BSDF group's last component, drawn from MT19937 only when needed.
+double roulette_uniform(TileContext& ctx, const std::array<double, 4>& bsdf_group) {
+  return ctx.settings.sampler == Sampler::kSobol ? bsdf_group[3] : ctx.rng.uniform();
+}
 
 const Material& material_of(const Scene& scene, const Hit& hit) {
   return scene.materials[scene.material_of(hit.prim)];
@@ -80,7 +122,7 @@ Vec3d beer(const Material& m, const Hit& hit) {
 }
 
 // Jittered camera rays for one tile, 4×4 blocks at a time (y counts up in the pixel grid).
-void tile_camera_rays(const Camera& cam, uint32_t x0, uint32_t y0, Rng& rng,
+void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
                       std::vector<PathState>& paths) {
   paths.clear();
   uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
@@ -89,9 +131,10 @@ void tile_camera_rays(const Camera& cam, uint32_t x0, uint32_t y0, Rng& rng,
       for (uint32_t y = by; y < std::min(by + kBlock, y1); ++y)
         for (uint32_t x = bx; x < std::min(bx + kBlock, x1); ++x) {
           PathState p;
-          double jx = rng.uniform(), jy = rng.uniform();
-          p.ray = cam.ray_through(x + jx, y + jy);
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
+          p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
+          auto u = draw(ctx, p, Dims::camera, {0, 1});
+          p.ray = cam.ray_through(x + u[0], y + u[1]);
           paths.push_back(p);
         }
 }
@@ -112,11 +155,10 @@ void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
 
 // Next-event estimation from one vertex: a shadow ray toward a sampled light point.
 void sample_light_untimed(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
-                          const Hit& hit, std::vector<Rayd>& rays,
+                          const Hit& hit, int depth, std::vector<Rayd>& rays,
                           std::vector<ShadowQuery>& queries) {
-  Rng& rng = ctx.rng;
-  double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-  LightSample ls = ctx.lights.sample(hit.surface.p, u0, u1, u2, u3);
+  auto u = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+  LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1]);
   if (!ls.valid()) return;
   BsdfEval e = bsdf.evaluate(ls.wi);
   if (e.f == Vec3d(0, 0, 0)) return;
@@ -153,10 +195,11 @@ double clock_read_seconds() {
 }
 
 void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
-                  const Hit& hit, std::vector<Rayd>& rays, std::vector<ShadowQuery>& queries) {
+                  const Hit& hit, int depth, std::vector<Rayd>& rays,
+                  std::vector<ShadowQuery>& queries) {
   bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
   PhaseClock clock(timed);
-  sample_light_untimed(ctx, path, p, bsdf, hit, rays, queries);
+  sample_light_untimed(ctx, path, p, bsdf, hit, depth, rays, queries);
   if (!timed) return;
   double t = 0;
   clock.lap(t);
@@ -178,14 +221,13 @@ bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
   Bsdf bsdf(m, hit.surface.ns, wo);
   if (bsdf.black() || depth >= ctx.settings.max_depth) return false;
   if (ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty())
-    sample_light(ctx, path, p, bsdf, hit, shadow_rays, queries);
-  Rng& rng = ctx.rng;
-  double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-  BsdfSample s = bsdf.sample(u0, u1, u2);
+    sample_light(ctx, path, p, bsdf, hit, depth, shadow_rays, queries);
+  auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
+  BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
   if (!s.valid()) return false;
   p.beta = p.beta * s.value / s.pdf;
   if (depth + 1 >= ctx.settings.rr_depth) {
-    if (rng.uniform() >= kRouletteSurvival) return false;
+    if (roulette_uniform(ctx, u) >= kRouletteSurvival) return false;
     p.beta = p.beta / kRouletteSurvival;
   }
   if (!is_finite(p.beta) || p.beta == Vec3d(0, 0, 0)) return false;
@@ -199,13 +241,14 @@ bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
 
 // One sample for every pixel of a tile, bounce by bounce. Each wavefront holds the
 // continuation rays of the live paths and the shadow rays of the previous vertices.
-void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<double>& film) {
-  std::vector<uint32_t> live(paths.size()), next_live;
+void render_tile(TileContext& ctx, std::vector<double>& film) {
+  ThreadBuffers& b = ctx.buffers;
+  auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch] = b;
+  live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
     live[i] = i;
-  std::vector<Rayd> batch, shadow_rays;
-  std::vector<ShadowQuery> queries, next_queries;
-  std::vector<Hit> hits;
+  shadow_rays.clear();
+  queries.clear();
   ctx.stats.camera_rays += paths.size();
   PathPhases& phases = ctx.stats.phases;
   const double lights_at_start = phases.lights, shade_at_start = phases.shade;
@@ -216,16 +259,19 @@ void render_tile(TileContext& ctx, std::vector<PathState>& paths, std::vector<do
       batch.push_back(paths[i].ray);
     batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
     clock.lap(phases.shade);
-    ctx.tracer.closest(batch, hits);
+    ctx.tracer.closest(batch, hits, live.size(), scratch);  // shadow rays need no surface
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q) {
-      const Hit& h = hits[live.size() + q];
+      Hit& h = hits[live.size() + q];
       // Visible when the first thing met is the light's emitting side (convex solids are
       // sampled on faces toward the vertex only, so no other face of theirs is in between).
-      bool seen =
-          h.hit() && h.prim == queries[q].light && (h.front_face || kind_two_sided(h.prim.tag()));
+      bool seen = h.hit() && h.prim == queries[q].light;
+      if (seen && !kind_two_sided(h.prim.tag())) {
+        ctx.tracer.complete(batch[live.size() + q], h);
+        seen = h.front_face;
+      }
       if (seen) paths[queries[q].path].radiance += queries[q].contribution;
     }
     shadow_rays.clear();
@@ -292,15 +338,17 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
 #pragma omp parallel
     {
       PathStats local;
-      std::vector<PathState> paths;
+      ThreadBuffers buffers;
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
-        TileContext ctx{tracer, lights, settings, Rng::for_tile(settings.seed, t, pass), {}, 0};
+        TileContext ctx{
+            buffers, tracer, lights,        settings, Rng::for_tile(settings.seed, t, pass),
+            {},      0,      uint32_t(pass)};
         PhaseClock clock(settings.time_phases);
-        tile_camera_rays(cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile, ctx.rng,
-                         paths);
+        tile_camera_rays(ctx, cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile,
+                         buffers.paths);
         clock.lap(ctx.stats.phases.camera);
-        render_tile(ctx, paths, f.sum);
+        render_tile(ctx, f.sum);
         add_stats(local, ctx.stats);
       }
 #pragma omp critical

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/strings.h"
 #include "raylane/render/path.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
@@ -54,23 +55,29 @@ constexpr const char* kFurnace =
     "screen 16 16\ncamera 0 0 0.7 0.3 x 180\n"
     "brdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 0 0 1\nlight 5 5 5\nsphere 0 0 0 0.5\n";
 
+constexpr Sampler kSamplers[] = {Sampler::kMt19937, Sampler::kSobol};
+
+// Each pixel is an independent estimate for either sampler (Sobol scrambles per pixel), so the
+// spread over pixels gives the standard error of the mean.
 TEST(PathTracer, FurnaceConvergesToTheAnalyticRadiance) {
-  for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
-    Scene scene = parse(kFurnace);
-    PathSettings s;
-    s.integrator = integrator;
-    s.spp = 64;
-    s.seed = 5;
-    PathStats stats;
-    PixelStats p = pixel_stats(render(scene, s, &stats));
-    SCOPED_TRACE(std::string(integrator_name(integrator)));
-    std::printf("furnace %s: %.5f ± %.5f (expected 1)\n",
-                std::string(integrator_name(integrator)).c_str(), p.mean, p.sigma);
-    EXPECT_NEAR(p.mean, 1.0, 4 * p.sigma);
-    EXPECT_LT(p.sigma, 0.02);  // the test has power: 4σ well under the quantity tested
-    EXPECT_EQ(stats.nonfinite_samples, 0u);
-    EXPECT_EQ(stats.passes, 64);
-  }
+  for (Sampler sampler : kSamplers)
+    for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
+      Scene scene = parse(kFurnace);
+      PathSettings s;
+      s.integrator = integrator;
+      s.sampler = sampler;
+      s.spp = 64;
+      s.seed = 5;
+      PathStats stats;
+      PixelStats p = pixel_stats(render(scene, s, &stats));
+      std::string what = cat(integrator_name(integrator), "/", sampler_name(sampler));
+      SCOPED_TRACE(what);
+      std::printf("furnace %s: %.5f ± %.5f (expected 1)\n", what.c_str(), p.mean, p.sigma);
+      EXPECT_NEAR(p.mean, 1.0, 4 * p.sigma);
+      EXPECT_LT(p.sigma, 0.02);  // the test has power: 4σ well under the quantity tested
+      EXPECT_EQ(stats.nonfinite_samples, 0u);
+      EXPECT_EQ(stats.passes, 64);
+    }
 }
 
 // The phase times (--stats) are thread-seconds: each is ≥ 0, and together they fit in the
@@ -134,30 +141,34 @@ constexpr const char* kDirect =
 
 TEST(PathTracer, DirectLightMatchesTheAnalyticIrradiance) {
   const double expected = 0.5 * 2 * (0.5 / 3) * (0.5 / 3);
-  for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
-    Scene scene = parse(kDirect);
-    PathSettings s;
-    s.integrator = integrator;
-    s.spp = integrator == Integrator::kBrdf ? 256 : 16;
-    s.seed = 9;
-    PathStats stats;
-    PixelStats p = pixel_stats(render(scene, s, &stats));
-    std::printf("direct %s: %.6f ± %.6f (expected %.6f)\n",
-                std::string(integrator_name(integrator)).c_str(), p.mean, p.sigma, expected);
-    SCOPED_TRACE(std::string(integrator_name(integrator)));
-    EXPECT_NEAR(p.mean, expected, 4 * p.sigma);
-    EXPECT_LT(p.sigma, 0.03 * expected);
-    EXPECT_EQ(stats.nonfinite_samples, 0u);
-  }
+  for (Sampler sampler : kSamplers)
+    for (Integrator integrator : {Integrator::kBrdf, Integrator::kNee, Integrator::kMis}) {
+      Scene scene = parse(kDirect);
+      PathSettings s;
+      s.integrator = integrator;
+      s.sampler = sampler;
+      s.spp = integrator == Integrator::kBrdf ? 256 : 16;
+      s.seed = 9;
+      PathStats stats;
+      PixelStats p = pixel_stats(render(scene, s, &stats));
+      std::string what = cat(integrator_name(integrator), "/", sampler_name(sampler));
+      std::printf("direct %s: %.6f ± %.6f (expected %.6f)\n", what.c_str(), p.mean, p.sigma,
+                  expected);
+      SCOPED_TRACE(what);
+      EXPECT_NEAR(p.mean, expected, 4 * p.sigma);
+      EXPECT_LT(p.sigma, 0.03 * expected);
+      EXPECT_EQ(stats.nonfinite_samples, 0u);
+    }
 }
 
-Image render_testscene(int threads, uint64_t seed) {
+Image render_testscene(int threads, uint64_t seed, Sampler sampler) {
   auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
   EXPECT_TRUE(p.ok());
   p.scene.width = 48, p.scene.height = 36;
   PathSettings s;
   s.spp = 2;
   s.seed = seed;
+  s.sampler = sampler;
   int before = omp_get_max_threads();
   omp_set_num_threads(threads);
   Image img = render(p.scene, s);
@@ -166,16 +177,19 @@ Image render_testscene(int threads, uint64_t seed) {
 }
 
 TEST(PathTracer, ImageIsTheSameForAnyThreadCount) {
-  Image one = render_testscene(1, 42), two = render_testscene(2, 42),
-        three = render_testscene(3, 42);
-  ASSERT_EQ(one.rgb.size(), two.rgb.size());
-  EXPECT_EQ(std::memcmp(one.rgb.data(), two.rgb.data(), one.rgb.size() * sizeof(float)), 0);
-  EXPECT_EQ(std::memcmp(one.rgb.data(), three.rgb.data(), one.rgb.size() * sizeof(float)), 0);
-  Image other = render_testscene(2, 43);
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < one.rgb.size(); ++i)
-    differ += one.rgb[i] != other.rgb[i];
-  EXPECT_GT(differ, one.rgb.size() / 2);  // another seed: most lit channels change
+  for (Sampler sampler : kSamplers) {
+    SCOPED_TRACE(std::string(sampler_name(sampler)));
+    Image one = render_testscene(1, 42, sampler), two = render_testscene(2, 42, sampler),
+          three = render_testscene(3, 42, sampler);
+    ASSERT_EQ(one.rgb.size(), two.rgb.size());
+    EXPECT_EQ(std::memcmp(one.rgb.data(), two.rgb.data(), one.rgb.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(one.rgb.data(), three.rgb.data(), one.rgb.size() * sizeof(float)), 0);
+    Image other = render_testscene(2, 43, sampler);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < one.rgb.size(); ++i)
+      differ += one.rgb[i] != other.rgb[i];
+    EXPECT_GT(differ, one.rgb.size() / 2);  // another seed: most lit channels change
+  }
 }
 
 // The later course projects' materials (glass with absorption, mirror, glossy table) on the
@@ -191,14 +205,17 @@ TEST(PathTracer, GlassAndMirrorRenderFinite) {
       m.ior = 1.25f;
     if (m.alpha == 200) m.ks = {0.255f, 0.24f, 0.09f};  // the glossy table
   }
-  PathSettings s;
-  s.spp = 4;
-  PathStats stats;
-  Image img = render(scene, s, &stats);
-  EXPECT_EQ(stats.nonfinite_samples, 0u);
-  for (float v : img.rgb)
-    ASSERT_TRUE(std::isfinite(v) && v >= 0);
-  EXPECT_GT(stats.bounce_rays, stats.camera_rays);
+  for (Sampler sampler : kSamplers) {
+    PathSettings s;
+    s.spp = 4;
+    s.sampler = sampler;
+    PathStats stats;
+    Image img = render(scene, s, &stats);
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+    for (float v : img.rgb)
+      ASSERT_TRUE(std::isfinite(v) && v >= 0);
+    EXPECT_GT(stats.bounce_rays, stats.camera_rays);
+  }
 }
 
 }  // namespace

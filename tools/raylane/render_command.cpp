@@ -42,9 +42,9 @@ constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
-constexpr std::string_view kPathOnlyOptions[] = {"spp",  "integrator", "seed",   "max-depth",
-                                                 "time", "checkpoint", "resume", "checkpoint-every",
-                                                 "stats"};
+constexpr std::string_view kPathOnlyOptions[] = {
+    "spp",        "integrator", "sampler",          "seed", "max-depth", "time",
+    "checkpoint", "resume",     "checkpoint-every", "stats"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -68,6 +68,13 @@ Status set_integrator(RenderRequest& r, const std::string& v) {
   if (!i)
     return Error{cat("unknown --integrator ", in_quotes(v), " (", kIntegratorNames.list(), ")")};
   r.path_settings.integrator = *i;
+  return ok_status();
+}
+
+Status set_sampler(RenderRequest& r, const std::string& v) {
+  auto s = sampler_from_name(v);
+  if (!s) return Error{cat("unknown --sampler ", in_quotes(v), " (", kSamplerNames.list(), ")")};
+  r.path_settings.sampler = *s;
   return ok_status();
 }
 
@@ -132,6 +139,12 @@ const std::vector<RenderOption>& render_options() {
             "both, weighted by the power heuristic"),
         "mis"},
        set_integrator},
+      {{"sampler", 0, "S", false,
+        cat("path: ", kSamplerNames.list(),
+            ": the course's MT19937-64; Owen-scrambled Sobol\n"
+            "(less noise per sample; docs/design.md, \"Samplers\")"),
+        "sobol"},
+       set_sampler},
       {{"seed", 0, "S", false, "path: image seed; the image is the same for any --threads", "0"},
        [](R& r, V v) {
          return read_int_option("seed", v, 0, std::numeric_limits<long>::max(),
@@ -375,8 +388,9 @@ int render_command(const std::vector<std::string>& args) {
     progress.finish();
     rays = path_stats.rays();
     spp = path_stats.passes;
-    what = cat("path/", integrator_name(r.path_settings.integrator), ", ", path_stats.passes,
-               " spp", interrupted() ? ", interrupted" : "");
+    what = cat("path/", integrator_name(r.path_settings.integrator), "/",
+               sampler_name(r.path_settings.sampler), ", ", path_stats.passes, " spp",
+               interrupted() ? ", interrupted" : "");
   } else {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);

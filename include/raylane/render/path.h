@@ -4,7 +4,8 @@
 // continuation and shadow rays go through the Tracer in one batch (so through the packet
 // tracer), camera rays in 4×4 blocks. Passes of one sample per pixel run over the whole image
 // (OpenMP over tiles); tile t of pass k draws from its own MT19937-64 stream seeded from
-// (seed, t, k), so an image is bit-identical for any number of threads.
+// (seed, t, k), or each pixel's decisions come from its own scrambled Sobol sequence, so an
+// image is bit-identical for any number of threads.
 #pragma once
 
 #include <atomic>
@@ -33,8 +34,23 @@ inline std::string_view integrator_name(Integrator integrator) {
   return kIntegratorNames.name(integrator);
 }
 
+// Where a path's random numbers come from (docs/design.md, "Samplers").
+enum class Sampler {
+  kMt19937,  // the course's MT19937-64: one stream per (seed, tile, pass), drawn in order
+  kSobol,    // Owen-scrambled Sobol (render/sobol.h): a function of (seed, pixel, pass, decision)
+};
+
+inline constexpr EnumNames<Sampler, 2> kSamplerNames{{"mt19937", "sobol"}};
+inline std::optional<Sampler> sampler_from_name(std::string_view name) {
+  return kSamplerNames.from_name(name);
+}
+inline std::string_view sampler_name(Sampler sampler) {
+  return kSamplerNames.name(sampler);
+}
+
 struct PathSettings {
   Integrator integrator = Integrator::kMis;
+  Sampler sampler = Sampler::kSobol;
   int spp = 16;
   uint64_t seed = 0;
   int max_depth = 64;        // bounces; Russian roulette ends nearly every path long before

@@ -27,6 +27,13 @@ inline std::string_view tracer_kind_name(TracerKind kind) {
   return kTracerKindNames.name(kind);
 }
 
+// Buffers a caller keeps between batches so that tracing allocates nothing once they have
+// grown (one per thread: the render loop keeps one per tile context).
+struct TraceScratch {
+  RayStream rays;
+  HitStream hits;
+};
+
 class Tracer {
  public:
   Tracer(const Scene& scene, const Bvh& bvh, TracerKind kind, Isa isa = best_isa())
@@ -36,6 +43,12 @@ class Tracer {
   // the ray as traced). SIMD rays are traced in float: origins and directions are rounded
   // first, and the surface is computed for the rounded ray, so t and the point agree.
   void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) const;
+  // The same, with the caller's scratch, and surfaces only for rays[0, with_surface): the
+  // rest (shadow rays, say) get prim and t alone; complete() fills in one of them later.
+  void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits, std::size_t with_surface,
+               TraceScratch& scratch) const;
+  // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
+  void complete(const Rayd& ray, Hit& hit) const;
 
   const Scene& scene() const { return scene_; }
   TracerKind kind() const { return kind_; }

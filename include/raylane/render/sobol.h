@@ -1,0 +1,29 @@
+// Owen-scrambled Sobol points for the path tracer (Burley 2020, "Practical Hash-based Owen
+// Scrambling", JCGT 9(4)): the first four Sobol dimensions, each scrambled by a hash that acts
+// as a nested uniform (Owen) scramble, and the point index itself shuffled the same way per
+// group of four dimensions ("padding"), so that groups — a path's decisions at different
+// bounces — are independent while each group keeps the Sobol net's stratification. Every value
+// is a function of (seed, index, group, component): no state, so a pixel's samples do not
+// depend on the thread or the order they are drawn in.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace raylane {
+
+// The 32-bit Sobol point of `index` in dimension d = 0..3 (dimension 0 is van der Corput's
+// radical inverse; 1..3 use Joe and Kuo's 2008 direction numbers, "Constructing Sobol
+// sequences with better two-dimensional projections", SIAM J. Sci. Comput. 30(5)).
+uint32_t sobol_point(uint32_t index, int d);
+
+// A nested uniform scramble of x's bits by `seed`: bit k is flipped by a hash of the bits above
+// it, so every dyadic interval maps to another of the same size (what keeps a net a net).
+uint32_t owen_scramble(uint32_t x, uint32_t seed);
+
+// Point `index` of the scrambled 4-D Sobol group `group` for the pixel whose seed is `seed`,
+// each component in [0, 1) with 32-bit resolution. Components 0 and 1 together form a
+// (0, 2)-sequence: the first 2^m points stratify every dyadic rectangle of area 2^-m.
+std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group);
+
+}  // namespace raylane

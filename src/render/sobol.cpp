@@ -1,0 +1,103 @@
+#include "raylane/render/sobol.h"
+
+#include <array>
+
+#include "raylane/render/rng.h"
+
+namespace raylane {
+
+namespace {
+
+using Matrix = std::array<uint32_t, 32>;  // column k: the bits index bit k contributes
+
+// Sobol's recurrence for one dimension (Bratley and Fox 1988, "Algorithm 659"): a primitive
+// polynomial of degree s with inner coefficients a (bit s−2 is the coefficient of x^(s−1)),
+// initial odd integers m_1..m_s, then m_k = 2a_1·m_(k−1) ⊕ 2²a_2·m_(k−2) ⊕ … ⊕ 2^s·m_(k−s) ⊕
+// m_(k−s); direction number k is m_k/2^k, held as m_k shifted to bit 31.
+constexpr Matrix sobol_matrix(int s, uint32_t a, std::array<uint32_t, 3> m_init) {
+  std::array<uint32_t, 32> m{};
+  for (int k = 0; k < s; ++k)
+    m[k] = m_init[k];
+  for (int k = s; k < 32; ++k) {
+    uint32_t v = m[k - s] ^ (m[k - s] << s);
+    for (int j = 1; j < s; ++j)
+      if ((a >> (s - 1 - j)) & 1) v ^= m[k - j] << j;
+    m[k] = v;
+  }
+  Matrix out{};
+  for (int k = 0; k < 32; ++k)
+    out[k] = m[k] << (31 - k);
+  return out;
+}
+
+// Dimension 0 is the radical inverse (every m_k = 1); 1..3 are Joe and Kuo's first three
+// (their file new-joe-kuo-6.21201: x + 1; x² + x + 1 with m = 1, 3; x³ + x + 1 with 1, 3, 1).
+constexpr std::array<Matrix, 4> kMatrices = [] {
+  Matrix radical{};
+  for (int k = 0; k < 32; ++k)
+    radical[k] = 1u << (31 - k);
+  return std::array<Matrix, 4>{radical, sobol_matrix(1, 0, {1, 0, 0}),
+                               sobol_matrix(2, 1, {1, 3, 0}), sobol_matrix(3, 1, {1, 3, 1})};
+}();
+
+// The matrix-vector product over GF(2) by bytes: entry [d][b][v] is the XOR of the columns
+// 8b … 8b+7 of dimension d that byte value v selects, so a point takes 4 lookups, not 32 steps.
+using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 4>;
+constexpr ByteTables kByteTables = [] {
+  ByteTables t{};
+  for (int d = 0; d < 4; ++d)
+    for (int b = 0; b < 4; ++b)
+      for (uint32_t v = 0; v < 256; ++v)
+        for (int k = 0; k < 8; ++k)
+          if ((v >> k) & 1) t[d][b][v] ^= kMatrices[d][8 * b + k];
+  return t;
+}();
+
+uint32_t reverse_bits(uint32_t x) {
+  x = (x << 16) | (x >> 16);
+  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+}
+
+// Laine and Karras 2011 ("Stratified sampling for stochastic transparency") observed that
+// x ↦ x ⊕ (x·even) and x ↦ x + seed change each bit by a function of the bits below it only;
+// on the bit-reversed value that is a nested uniform scramble. The constants are Burley's
+// (2020, §3), chosen for how well they mix.
+uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+}  // namespace
+
+uint32_t sobol_point(uint32_t index, int d) {
+  const auto& t = kByteTables[d];
+  return t[0][index & 0xff] ^ t[1][(index >> 8) & 0xff] ^ t[2][(index >> 16) & 0xff] ^
+         t[3][index >> 24];
+}
+
+uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(scramble_reversed(reverse_bits(x), seed));
+}
+
+std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group) {
+  uint64_t group_seed = mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
+  // The index is shuffled per group (a scramble of its bits is a permutation of every aligned
+  // block of 2^m indices), so groups are independent yet each block of 2^m samples is still
+  // the same net.
+  uint32_t shuffled = owen_scramble(index, uint32_t(group_seed));
+  std::array<double, 4> u;
+  for (int c = 0; c < 4; ++c) {
+    uint32_t dim_seed = uint32_t(mix64(group_seed + uint64_t(c + 1)));
+    u[c] = owen_scramble(sobol_point(shuffled, c), dim_seed) * 0x1p-32;
+  }
+  return u;
+}
+
+}  // namespace raylane
