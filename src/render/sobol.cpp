@@ -40,22 +40,48 @@ constexpr std::array<Matrix, 4> kMatrices = [] {
                                sobol_matrix(2, 1, {1, 3, 0}), sobol_matrix(3, 1, {1, 3, 1})};
 }();
 
-// The matrix-vector product over GF(2) by bytes: entry [d][b][v] is the XOR of the columns
-// 8b … 8b+7 of dimension d that byte value v selects, so a point takes 4 lookups, not 32 steps.
+// The matrix-vector product over GF(2) by bytes, in the bit-reversed domain the scrambles work
+// in: entry [d][b][v] is the XOR of the bit-reversed columns 31 − (8b + k) of dimension d for
+// the bits k of byte b of a reversed index. So reverse(point(i)) = XOR of 4 lookups on
+// reverse(i), and a sample needs one reversal per scramble instead of two.
 using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 4>;
-constexpr ByteTables kByteTables = [] {
+
+constexpr uint32_t reversed(uint32_t x) {
+  uint32_t r = 0;
+  for (int k = 0; k < 32; ++k)
+    r |= ((x >> k) & 1u) << (31 - k);
+  return r;
+}
+
+constexpr ByteTables kReversedTables = [] {
   ByteTables t{};
   for (int d = 0; d < 4; ++d)
     for (int b = 0; b < 4; ++b)
       for (uint32_t v = 0; v < 256; ++v)
         for (int k = 0; k < 8; ++k)
-          if ((v >> k) & 1) t[d][b][v] ^= kMatrices[d][8 * b + k];
+          if ((v >> k) & 1) t[d][b][v] ^= reversed(kMatrices[d][31 - (8 * b + k)]);
   return t;
 }();
 
+uint32_t reversed_point(uint32_t reversed_index, int d) {
+  const auto& t = kReversedTables[d];
+  uint32_t r = reversed_index;
+  return t[0][r & 0xff] ^ t[1][(r >> 8) & 0xff] ^ t[2][(r >> 16) & 0xff] ^ t[3][r >> 24];
+}
+
+// A 32-bit integer hash with good avalanche (Wellons 2018, "Prospecting for hash functions",
+// the constants of his "lowbias32"): seeds for the scrambles of one group's components.
+uint32_t hash32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
 uint32_t reverse_bits(uint32_t x) {
-  x = (x << 16) | (x >> 16);
-  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = __builtin_bswap32(x);
   x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
   x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
   return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
@@ -77,9 +103,7 @@ uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
 }  // namespace
 
 uint32_t sobol_point(uint32_t index, int d) {
-  const auto& t = kByteTables[d];
-  return t[0][index & 0xff] ^ t[1][(index >> 8) & 0xff] ^ t[2][(index >> 16) & 0xff] ^
-         t[3][index >> 24];
+  return reverse_bits(reversed_point(reverse_bits(index), d));
 }
 
 uint32_t owen_scramble(uint32_t x, uint32_t seed) {
@@ -90,12 +114,13 @@ std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group)
   uint64_t group_seed = mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
   // The index is shuffled per group (a scramble of its bits is a permutation of every aligned
   // block of 2^m indices), so groups are independent yet each block of 2^m samples is still
-  // the same net.
-  uint32_t shuffled = owen_scramble(index, uint32_t(group_seed));
+  // the same net. Everything stays bit-reversed until the last step.
+  uint32_t shuffled = scramble_reversed(reverse_bits(index), uint32_t(group_seed));
+  uint32_t seeds = uint32_t(group_seed >> 32);
   std::array<double, 4> u;
-  for (int c = 0; c < 4; ++c) {
-    uint32_t dim_seed = uint32_t(mix64(group_seed + uint64_t(c + 1)));
-    u[c] = owen_scramble(sobol_point(shuffled, c), dim_seed) * 0x1p-32;
+  for (int c = 0; c < 4; ++c) {  // the four are independent: their latencies overlap
+    uint32_t v = scramble_reversed(reversed_point(shuffled, c), hash32(seeds + uint32_t(c)));
+    u[c] = reverse_bits(v) * 0x1p-32;
   }
   return u;
 }
