@@ -1,5 +1,6 @@
 // Whole path-traced renders, timed (issue 14's yardstick): samples per second — pixels ×
-// passes over wall time — of the course scene and its glass and mirror variants, per
+// passes over wall time — of the course scene, its glass and mirror variants and a large mesh
+// (the benchmark's 1.31M-triangle displaced icosphere, glossy, under a sphere light), per
 // integrator, on 1 and all threads. One pass at the scene's own resolution per iteration,
 // each with its own seed, so every iteration does the same kind of work.
 //
@@ -12,6 +13,7 @@
 #include <mutex>
 #include <string>
 
+#include "icosphere.h"
 #include "raylane/bvh/bvh.h"
 #include "raylane/render/path.h"
 #include "raylane/scene/parser.h"
@@ -24,7 +26,18 @@ struct RenderScene {
   Bvh bvh;
 };
 
-// The course scene (built in) or scenes/<name>.scn, loaded and built once.
+// bench/scenes/icosphere.scn with the mesh made in memory (the file needs an export first).
+ParsedScene icosphere_scene() {
+  ParsedScene p = parse_scene(
+      "screen 320 240\ncamera 0 -4 0 0.5 x 90\nlight 30 30 30\nsphere -3 -4 4 0.5\n"
+      "brdf 0.7 0.7 0.7 0.2 0.2 0.2 50\n",
+      "icosphere.scn");
+  if (p.ok())
+    add_displaced_icosphere(p.scene.table<Triangle>(), 8, uint32_t(p.scene.materials.size() - 1));
+  return p;
+}
+
+// The course scene (built in), the icosphere or scenes/<name>.scn, loaded and built once.
 const RenderScene* render_scene(const std::string& name) {
   static std::mutex mutex;
   static std::map<std::string, std::unique_ptr<RenderScene>> cache;
@@ -32,9 +45,12 @@ const RenderScene* render_scene(const std::string& name) {
   auto& slot = cache[name];
   if (!slot) {
     auto s = std::make_unique<RenderScene>();
-    s->parsed = name == "testscene"
-                    ? load_builtin_scene()
-                    : load_scene_file(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".scn");
+    if (name == "testscene")
+      s->parsed = load_builtin_scene();
+    else if (name == "icosphere")
+      s->parsed = icosphere_scene();
+    else
+      s->parsed = load_scene_file(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".scn");
     if (!s->parsed.ok()) return nullptr;
     s->bvh = build_bvh(s->parsed.scene);
     slot = std::move(s);
@@ -66,7 +82,7 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
 
 void register_all() {
   const int all = omp_get_num_procs();
-  for (const char* scene : {"testscene", "testscene-glass", "testscene-mirror"})
+  for (const char* scene : {"testscene", "testscene-glass", "testscene-mirror", "icosphere"})
     for (Integrator integrator : {Integrator::kMis, Integrator::kNee, Integrator::kBrdf})
       for (int threads : {1, all}) {
         std::string name = std::string("render/") + scene + "/" +

@@ -69,6 +69,10 @@ TEST(CliRenderFlags, AResumeMismatchNamesWhatDiffers) {
   EXPECT_NE(both.out.find("--integrator nee (this run: mis); --max-depth 64 (this run: 5)"),
             std::string::npos)
       << both.out;
+  auto sampler = run_cli(
+      "render tiny.scn --spp 2 --resume f.film --seed 3 --integrator nee --sampler mt19937", dir);
+  EXPECT_NE(sampler.out.find("--sampler sobol (this run: mt19937)"), std::string::npos)
+      << sampler.out;
   std::ofstream(dir + "/other.scn") << "screen 4 4\ncamera 0 0 6 1\nsphere 0 0 0 1\n";
   auto scene = run_cli("render other.scn --spp 2 --resume f.film --seed 3 --integrator nee", dir);
   EXPECT_NE(scene.out.find("rendered with the scene (its shapes"), std::string::npos) << scene.out;

@@ -49,6 +49,7 @@ TEST(Film, ResumedRenderIsTheUninterruptedRender) {
   auto loaded = load_film(path);
   ASSERT_TRUE(loaded.ok()) << loaded.error();
   EXPECT_EQ(loaded->fingerprint, film_fingerprint(r.scene, settings(5)));
+  EXPECT_EQ(loaded->origin.sampler, int32_t(settings(5).sampler));
   PathStats stats;
   Image resumed = render_path(tracer, settings(5), &stats, &*loaded);
   EXPECT_EQ(stats.passes, 5);
@@ -66,7 +67,11 @@ TEST(Film, FingerprintFollowsWhatShapesTheSamples) {
   EXPECT_EQ(film_fingerprint(r.scene, s), base);
   for (auto change : {+[](PathSettings& p) { p.seed = 8; },
                       +[](PathSettings& p) { p.integrator = Integrator::kNee; },
-                      +[](PathSettings& p) { p.max_depth = 5; }}) {
+                      +[](PathSettings& p) { p.max_depth = 5; },
+                      +[](PathSettings& p) {
+                        p.sampler =
+                            p.sampler == Sampler::kSobol ? Sampler::kMt19937 : Sampler::kSobol;
+                      }}) {
     PathSettings t = settings(4);
     change(t);
     EXPECT_NE(film_fingerprint(r.scene, t), base);
@@ -116,6 +121,19 @@ TEST(Film, HostileFilmFilesAreErrors) {
   EXPECT_EQ(old->sum, f.sum);
   EXPECT_EQ(old->fingerprint, 42u);
   EXPECT_FALSE(old->origin.known);
+
+  // The origin's enums out of range: named in messages, so refused before anything indexes
+  // their names with them.
+  for (int field : {0, 1}) {
+    Film damaged = f;
+    damaged.origin.known = true;
+    (field == 0 ? damaged.origin.integrator : damaged.origin.sampler) = 7;
+    ASSERT_TRUE(save_film(dir + "/enum.film", damaged).ok());
+    auto e = load_film(dir + "/enum.film");
+    ASSERT_FALSE(e.ok());
+    EXPECT_NE(e.error().find(field == 0 ? "found 7 and 0" : "found 0 and 7"), std::string::npos)
+        << e.error();
+  }
 
   // Non-finite sums: damage that a resumed render would spread into its image.
   for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
