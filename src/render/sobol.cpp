@@ -1,6 +1,7 @@
 #include "raylane/render/sobol.h"
 
 #include <array>
+#include <bit>
 
 #include "raylane/render/rng.h"
 
@@ -54,12 +55,19 @@ constexpr uint32_t reversed(uint32_t x) {
 }
 
 constexpr ByteTables kReversedTables = [] {
+  // Built incrementally (entry v is entry v without its lowest bit, XOR that bit's column)
+  // from the reversed columns, to stay well inside compilers' constexpr step limits.
+  std::array<Matrix, 4> columns{};
+  for (int d = 0; d < 4; ++d)
+    for (int k = 0; k < 32; ++k)
+      columns[d][k] = reversed(kMatrices[d][31 - k]);
   ByteTables t{};
   for (int d = 0; d < 4; ++d)
     for (int b = 0; b < 4; ++b)
-      for (uint32_t v = 0; v < 256; ++v)
-        for (int k = 0; k < 8; ++k)
-          if ((v >> k) & 1) t[d][b][v] ^= reversed(kMatrices[d][31 - (8 * b + k)]);
+      for (uint32_t v = 1; v < 256; ++v) {
+        int low = std::countr_zero(v);
+        t[d][b][v] = t[d][b][v & (v - 1)] ^ columns[d][8 * b + low];
+      }
   return t;
 }();
 
