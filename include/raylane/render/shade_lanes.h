@@ -1,0 +1,64 @@
+// The course's BSDF (render/bsdf.h) for a whole wavefront of shading points at once, in float
+// SIMD lanes (issue 14; docs/design.md, "Shading in lanes"): each point's sample of the next
+// direction and its evaluation toward a sampled light point, with every lobe computed in every
+// lane and the lane's choice selected, so that lanes never diverge. The double-precision Bsdf
+// stays the reference (tests/render/shade_lanes_test.cpp holds the lanes to it) and shades
+// what the lanes do not: index-matched transmission, a Dirac lobe.
+//
+// Baseline code includes this header; the kernels live in per-ISA translation units
+// (src/render/shade_lanes_<isa>.cpp), picked at run time like the tracer's.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "raylane/scene/material.h"
+#include "raylane/simd/isa.h"
+
+namespace raylane {
+
+// The scene's materials as float columns the lanes gather from, with what Bsdf's constructor
+// derives per hit computed once per material.
+struct LaneMaterials {
+  explicit LaneMaterials(const std::vector<Material>& materials);
+
+  std::array<std::vector<float>, 3> kd, ks;
+  std::vector<float> pd, pr, pt;  // lobe probabilities |Kd|/s, |Ks|/s, |Kt|/s (all 0: black)
+  std::vector<float> alpha, ior;
+  std::vector<float> d_scale;   // (α+2)/(2π): D(m) = d_scale·cos^α θm
+  std::vector<float> pm_scale;  // (α+1)/(2π): the warp's density of m
+  std::vector<float> g1_scale;  // √(α/2 + 1): the Smith G1 approximation's a = g1_scale·cot θv
+  std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission)
+};
+
+// One wavefront's shading points in float columns. Fill rows [0, size) with resize() and the
+// set_* calls, run shade_lanes(), read the outputs. Rows past size up to the lane width are
+// padding the kernel may compute and nobody reads.
+struct ShadeBatch {
+  using Column = std::vector<float>;
+  // Inputs.
+  std::vector<int32_t> material;   // a row of LaneMaterials with in_lanes = 1
+  std::array<Column, 3> n, wo;     // unit shading normal (out of the solid), unit wo
+  Column u_lobe, u1, u2;           // the BSDF sample's numbers in [0, 1)
+  std::array<Column, 3> light_wi;  // a unit direction to evaluate, or 0 for none
+  // Outputs of the sample: direction, f·|cos θi| and density (0: no sample).
+  std::array<Column, 3> wi, value;
+  Column pdf;
+  // Outputs of the evaluation at light_wi: f·|cos θi| and the density sampling has of it.
+  std::array<Column, 3> light_f;
+  Column light_pdf;
+
+  std::size_t size() const { return size_; }
+  // Rows [0, n), padded to a multiple of 16 lanes; keeps the capacity (no allocation once grown).
+  void resize(std::size_t n);
+
+ private:
+  std::size_t size_ = 0;
+};
+
+// Samples and evaluates every row of the batch with the kernel compiled for `isa`.
+void shade_lanes(Isa isa, const LaneMaterials& materials, ShadeBatch& batch);
+
+}  // namespace raylane

@@ -1,0 +1,77 @@
+#include "raylane/render/shade_lanes.h"
+
+#include <cmath>
+
+#include "raylane/core/vec3.h"
+#include "raylane/core/warps.h"
+
+namespace raylane {
+
+namespace detail {
+void shade_lanes_sse42(const LaneMaterials&, ShadeBatch&);
+void shade_lanes_avx2(const LaneMaterials&, ShadeBatch&);
+void shade_lanes_avx512(const LaneMaterials&, ShadeBatch&);
+}  // namespace detail
+
+namespace {
+
+constexpr std::size_t kMaxWidth = 16;  // AVX-512's float lanes: every batch is padded to it
+
+// Bsdf's own test (bsdf.cpp, kIndexMatchedContrast): transmission at η_o/η_i within 1e-5 of 1
+// is a Dirac lobe, which the double Bsdf samples.
+bool index_matched_transmission(const Material& m) {
+  bool transmits = length(Vec3d(m.kt)) > 0;
+  return transmits && std::abs(1 / double(m.ior) - 1) <= 1e-5;
+}
+
+}  // namespace
+
+LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
+  // Row 0 must exist: the batch's padding rows gather from it.
+  std::vector<Material> rows = materials.empty() ? std::vector<Material>{Material{}} : materials;
+  for (const Material& m : rows) {
+    for (int k = 0; k < 3; ++k)
+      kd[k].push_back(m.kd[k]), ks[k].push_back(m.ks[k]);
+    double d = length(Vec3d(m.kd)), r = length(Vec3d(m.ks)), t = length(Vec3d(m.kt));
+    double sum = d + r + t;
+    pd.push_back(sum > 0 ? float(d / sum) : 0.0f);
+    pr.push_back(sum > 0 ? float(r / sum) : 0.0f);
+    pt.push_back(sum > 0 ? float(t / sum) : 0.0f);
+    double a = m.alpha;
+    alpha.push_back(m.alpha);
+    ior.push_back(m.ior);
+    d_scale.push_back(float((a + 2) / (2 * kPi)));
+    pm_scale.push_back(float((a + 1) / (2 * kPi)));
+    g1_scale.push_back(float(std::sqrt(0.5 * a + 1)));
+    in_lanes.push_back(index_matched_transmission(m) ? 0 : 1);
+  }
+}
+
+void ShadeBatch::resize(std::size_t rows) {
+  size_ = rows;
+  std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
+  material.resize(padded, 0);
+  for (Column* c : {&u_lobe, &u1, &u2, &pdf, &light_pdf})
+    c->resize(padded, 0.5f);
+  for (auto* v : {&n, &wo, &light_wi, &wi, &value, &light_f})
+    for (int k = 0; k < 3; ++k)
+      (*v)[k].resize(padded, k == 2 ? 1.0f : 0.0f);
+  // Padding rows: a unit normal and wo, no light direction; what the kernel makes of them is
+  // finite and unread.
+  for (std::size_t i = rows; i < padded; ++i) {
+    material[i] = 0;
+    for (int k = 0; k < 3; ++k) {
+      n[k][i] = wo[k][i] = k == 2 ? 1.0f : 0.0f;
+      light_wi[k][i] = 0.0f;
+    }
+  }
+}
+
+void shade_lanes(Isa isa, const LaneMaterials& materials, ShadeBatch& batch) {
+  auto* fn = isa == Isa::kAvx512 ? detail::shade_lanes_avx512
+             : isa == Isa::kAvx2 ? detail::shade_lanes_avx2
+                                 : detail::shade_lanes_sse42;
+  fn(materials, batch);
+}
+
+}  // namespace raylane

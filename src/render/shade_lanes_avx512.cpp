@@ -1,0 +1,13 @@
+// The lane BSDF compiled for one instruction set (flags set in CMakeLists.txt).
+#include "render/shade_lanes_impl.h"
+
+static_assert(XSIMD_WITH_AVX512BW,
+              "this file must be compiled with the flags of its instruction set");
+
+namespace raylane::detail {
+
+void shade_lanes_avx512(const LaneMaterials& materials, ShadeBatch& batch) {
+  shade_lanes_range<xsimd::avx512bw>(materials, batch);
+}
+
+}  // namespace raylane::detail

@@ -1,0 +1,228 @@
+// The body of the lane BSDF (render/shade_lanes.h), instantiated once per instruction set by
+// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. It is Bsdf (src/render/bsdf.cpp)
+// rewritten for lanes: every branch of the scalar code becomes a mask, both sides of each are
+// computed and the lane's side is selected, so a NaN or inf on the side not taken never
+// reaches a result (selects, never multiplications by a mask).
+#pragma once
+
+#include "raylane/render/shade_lanes.h"
+#include "raylane/simd/lane_math.h"
+
+namespace raylane::detail {
+
+template <class A>
+using F = simd::Floats<A>;
+template <class A>
+using M = simd::Mask<A>;
+
+template <class A>
+struct V3 {
+  F<A> x, y, z;
+};
+
+template <class A>
+V3<A> operator+(const V3<A>& a, const V3<A>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class A>
+V3<A> operator-(const V3<A>& a, const V3<A>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class A>
+V3<A> operator*(const V3<A>& a, const F<A>& s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+template <class A>
+F<A> dot(const V3<A>& a, const V3<A>& b) {
+  return simd::fma(a.x, b.x, simd::fma(a.y, b.y, a.z * b.z));
+}
+template <class A>
+V3<A> select(const M<A>& m, const V3<A>& a, const V3<A>& b) {
+  return {simd::select(m, a.x, b.x), simd::select(m, a.y, b.y), simd::select(m, a.z, b.z)};
+}
+template <class A>
+M<A> finite(const F<A>& v) {
+  return xsimd::abs(v) <= F<A>(3.40282347e38f);  // false for NaN and ±inf
+}
+
+template <class A>
+V3<A> load3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
+  return {simd::load<A>(c[0].data() + i), simd::load<A>(c[1].data() + i),
+          simd::load<A>(c[2].data() + i)};
+}
+template <class A>
+void store3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const V3<A>& v) {
+  simd::store<A>(c[0].data() + i, v.x);
+  simd::store<A>(c[1].data() + i, v.y);
+  simd::store<A>(c[2].data() + i, v.z);
+}
+
+// f·|cos θi| per channel and the sampling density, as Bsdf::evaluate's BsdfEval.
+template <class A>
+struct LaneEval {
+  F<A> f[3], pdf;
+};
+
+// Walter et al. 2007, eq. 27 for the Phong lobe, as g1() in bsdf.cpp: 0 for a back-facing
+// microfacet, 1 where a = √(α/2+1)·cot θv exceeds 1.6 (or sin θv = 0: a = inf), else the
+// rational approximation.
+template <class A>
+F<A> g1(const F<A>& cos_v, const F<A>& cos_vm, const F<A>& g1_scale) {
+  const F<A> one(1.0f);
+  F<A> sin_v = xsimd::sqrt(xsimd::max(F<A>(0.0f), one - cos_v * cos_v));
+  F<A> a = g1_scale * xsimd::abs(cos_v) / sin_v;
+  F<A> r =
+      (F<A>(3.535f) * a + F<A>(2.181f) * a * a) / (one + F<A>(2.276f) * a + F<A>(2.577f) * a * a);
+  r = simd::select(a > F<A>(1.6f), one, r);
+  return simd::select(cos_vm * cos_v > F<A>(0.0f), r, F<A>(0.0f));
+}
+
+// One batch of W shading points: the material's columns gathered, and what Bsdf's constructor
+// derives from the normal and wo.
+template <class A>
+struct LaneBsdf {
+  F<A> kd[3], ks[3], pd, pr, pt, alpha, d_scale, pm_scale, g1_scale;
+  V3<A> n, wo;
+  F<A> cos_o, eta_o, eta_i;
+  M<A> live;  // dot(ns, wo) is finite and not 0 (the scalar Bsdf's black() otherwise)
+
+  LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i) {
+    auto idx = simd::load<A>(b.material.data() + i);
+    auto gather = [&](const std::vector<float>& col) { return F<A>::gather(col.data(), idx); };
+    for (int k = 0; k < 3; ++k)
+      kd[k] = gather(m.kd[k]), ks[k] = gather(m.ks[k]);
+    pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt), alpha = gather(m.alpha);
+    d_scale = gather(m.d_scale), pm_scale = gather(m.pm_scale), g1_scale = gather(m.g1_scale);
+    F<A> ior = gather(m.ior);
+    V3<A> ns = load3<A>(b.n, i);
+    wo = load3<A>(b.wo, i);
+    F<A> c = dot(ns, wo);
+    M<A> entering = c > F<A>(0.0f);
+    n = select(entering, ns, V3<A>{-ns.x, -ns.y, -ns.z});
+    cos_o = xsimd::abs(c);
+    eta_o = simd::select(entering, F<A>(1.0f), ior);
+    eta_i = simd::select(entering, ior, F<A>(1.0f));
+    live = finite<A>(c) & (c != F<A>(0.0f)) & (pd + pr + pt > F<A>(0.0f));
+  }
+
+  M<A> refracts(const F<A>& cos_om) const {
+    F<A> eta = eta_o / eta_i;
+    return F<A>(1.0f) - eta * eta * (F<A>(1.0f) - cos_om * cos_om) >= F<A>(0.0f);
+  }
+
+  F<A> cos_power(const V3<A>& m) const {
+    F<A> c = dot(m, n);
+    return simd::select(c > F<A>(0.0f), simd::pow_unit<A>(xsimd::max(c, F<A>(0.0f)), alpha),
+                        F<A>(0.0f));
+  }
+
+  LaneEval<A> evaluate(const V3<A>& wi) const;
+  V3<A> sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const;
+};
+
+template <class A>
+LaneEval<A> LaneBsdf<A>::evaluate(const V3<A>& wi) const {
+  const F<A> zero(0.0f), one(1.0f), inv_pi(0.318309886183790671538f);
+  F<A> cos_i = dot(wi, n);
+  M<A> reflect_side = cos_i > zero;
+  // The microfacet normal: the half vector on wo's side, the generalised one (Walter eq. 16)
+  // for transmission, turned to n's side.
+  V3<A> h = wi + wo;
+  V3<A> ht = (wo * eta_o + wi * eta_i) * F<A>(-1.0f);
+  V3<A> m = select(reflect_side, h, ht);
+  F<A> len = xsimd::sqrt(dot(m, m));
+  m = m * (one / len);
+  m = select(dot(m, n) < zero, m * F<A>(-1.0f), m);
+  F<A> cp = cos_power(m);
+  F<A> d = d_scale * cp, pm = pm_scale * cp;
+  F<A> om = dot(wo, m), im = dot(wi, m);
+  F<A> g = g1<A>(cos_i, im, g1_scale) * g1<A>(cos_o, om, g1_scale);
+  F<A> x = one - xsimd::min(one, xsimd::abs(om)), x2 = x * x, c5 = x2 * x2 * x;  // Schlick
+  M<A> refr = refracts(om);
+  // Reflection (Bsdf::evaluate_reflection): diffuse, the reflection lobe with F, and what
+  // total internal reflection sends back of the transmission lobe with 1 − F.
+  M<A> tir = (pt > zero) & !refr;
+  F<A> spec = d * g / (F<A>(4.0f) * cos_o);
+  F<A> lobe = simd::select((pm > zero) & (im > zero), pm / (F<A>(4.0f) * im), zero);
+  F<A> pdf_r = pd * cos_i * inv_pi + (pr + simd::select(tir, pt, zero)) * lobe;
+  // Transmission (Walter eqs. 21 and 17, radiance scaled by η_o²).
+  F<A> den = eta_o * om + eta_i * im;
+  M<A> transmits = (cos_i < zero) & (pt > zero) & (len > zero) & (om > zero) & (im < zero) & refr &
+                   (den != zero);
+  F<A> inv_den2 = one / (den * den), abs_im = xsimd::abs(im);
+  F<A> st = d * g * abs_im * om * eta_o * eta_o * inv_den2 / cos_o;
+  F<A> pdf_t = pt * pm * eta_i * eta_i * abs_im * inv_den2;
+  LaneEval<A> out;
+  for (int k = 0; k < 3; ++k) {
+    F<A> fresnel = ks[k] + (one - ks[k]) * c5;
+    F<A> f_r = kd[k] * cos_i * inv_pi + simd::select(pr > zero, fresnel * spec, zero) +
+               simd::select(tir, (one - fresnel) * spec, zero);
+    F<A> f_t = (one - fresnel) * st;
+    out.f[k] = simd::select(live & reflect_side, f_r, simd::select(live & transmits, f_t, zero));
+  }
+  out.pdf = simd::select(live & reflect_side, pdf_r, simd::select(live & transmits, pdf_t, zero));
+  return out;
+}
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (as core/warps.cpp's Frame):
+// local (x, y, z) around n to world.
+template <class A>
+V3<A> to_world(const V3<A>& n, const V3<A>& v) {
+  const F<A> one(1.0f);
+  F<A> sign = xsimd::copysign(one, n.z);
+  F<A> a = F<A>(-1.0f) / (sign + n.z);
+  F<A> b = n.x * n.y * a;
+  V3<A> s{one + sign * n.x * n.x * a, sign * b, -sign * n.x};
+  V3<A> t{b, sign + n.y * n.y * a, -n.y};
+  return s * v.x + t * v.y + n * v.z;
+}
+
+// Bsdf::sample: u0 picks the lobe; (u1, u2) warp a cosine-weighted direction (Malley) or a
+// microfacet normal by the course's cos θm = u1^(1/(α+1)) (sampling.h), reflected or refracted.
+template <class A>
+V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const {
+  const F<A> zero(0.0f), one(1.0f);
+  simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
+  M<A> diffuse = u0 < pd;
+  F<A> cos_m = simd::pow_unit<A>(u1, one / (alpha + one));
+  F<A> sin_t =
+      simd::select(diffuse, xsimd::sqrt(u1), xsimd::sqrt(xsimd::max(zero, one - cos_m * cos_m)));
+  F<A> cos_t = simd::select(diffuse, xsimd::sqrt(xsimd::max(zero, one - u1)), cos_m);
+  V3<A> dir = to_world<A>(n, V3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
+  // The glossy lobes: dir is the microfacet normal m.
+  F<A> om = dot(wo, dir);
+  V3<A> reflected = dir * (F<A>(2.0f) * om) - wo;
+  F<A> eta = eta_o / eta_i;
+  F<A> k = one - eta * eta * (one - om * om);
+  M<A> refract = (u0 >= pd + pr) & refracts(om);
+  V3<A> refracted = dir * (eta * om - xsimd::sqrt(xsimd::max(k, zero))) - wo * eta;
+  M<A> glossy_ok = (om > zero) & ((refract & (dot(refracted, n) < zero)) |
+                                  ((!refract) & (dot(reflected, n) > zero)));
+  V3<A> wi = select(diffuse, dir, select(refract, refracted, reflected));
+  F<A> len = xsimd::sqrt(dot(wi, wi));
+  valid = live & (diffuse | glossy_ok) & (len > zero) & finite<A>(len);
+  return wi * (one / len);
+}
+
+template <class A>
+void shade_lanes_range(const LaneMaterials& materials, ShadeBatch& b) {
+  constexpr std::size_t W = simd::kWidth<A>;
+  for (std::size_t i = 0; i < b.size(); i += W) {
+    LaneBsdf<A> bsdf(materials, b, i);
+    M<A> valid;
+    V3<A> wi = bsdf.sample(simd::load<A>(b.u_lobe.data() + i), simd::load<A>(b.u1.data() + i),
+                           simd::load<A>(b.u2.data() + i), valid);
+    LaneEval<A> e = bsdf.evaluate(wi);
+    valid = valid & (e.pdf > F<A>(0.0f)) & finite<A>(e.pdf);
+    store3<A>(b.wi, i, wi);
+    for (int k = 0; k < 3; ++k)
+      simd::store<A>(b.value[k].data() + i, simd::select(valid, e.f[k], F<A>(0.0f)));
+    simd::store<A>(b.pdf.data() + i, simd::select(valid, e.pdf, F<A>(0.0f)));
+    LaneEval<A> l = bsdf.evaluate(load3<A>(b.light_wi, i));
+    for (int k = 0; k < 3; ++k)
+      simd::store<A>(b.light_f[k].data() + i, l.f[k]);
+    simd::store<A>(b.light_pdf.data() + i, l.pdf);
+  }
+}
+
+}  // namespace raylane::detail

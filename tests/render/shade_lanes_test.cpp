@@ -1,0 +1,285 @@
+// The lane BSDF (render/shade_lanes.h) against the double Bsdf, at every instruction set this
+// CPU has: its evaluation within a float error bound away from the model's branch points, its
+// samples the double's samples of the same numbers, its directions distributed by the double
+// density (chi-square), and no NaN out of degenerate rows.
+#include "raylane/render/shade_lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "chi2.h"
+#include "raylane/core/strings.h"
+#include "raylane/render/bsdf.h"
+#include "raylane/render/rng.h"
+#include "raylane/render/sampling.h"
+
+namespace raylane {
+namespace {
+
+constexpr double kU = 0x1p-24;
+
+Material make_material(Vec3f kd, Vec3f ks, float alpha, Vec3f kt = {0, 0, 0}, float ior = 1) {
+  Material m;
+  m.kd = kd, m.ks = ks, m.alpha = alpha, m.kt = kt, m.ior = ior;
+  return m;
+}
+
+// Every lobe and their mixtures, shininess from rough to 4000, and glass both ways.
+std::vector<Material> test_materials() {
+  return {make_material({0.7f, 0.5f, 0.3f}, {0, 0, 0}, 0),
+          make_material({0, 0, 0}, {0.9f, 0.8f, 0.7f}, 1),
+          make_material({0.4f, 0.3f, 0.2f}, {0.3f, 0.3f, 0.3f}, 30),
+          make_material({0.1f, 0.1f, 0.1f}, {0.5f, 0.6f, 0.7f}, 4000),
+          make_material({0, 0, 0}, {0.04f, 0.04f, 0.04f}, 200, {1, 1, 1}, 1.5f),
+          make_material({0, 0, 0}, {0, 0, 0}, 50, {0.9f, 0.8f, 0.9f}, 1.33f),
+          make_material({0.2f, 0.2f, 0.2f}, {0.1f, 0.1f, 0.1f}, 5, {0.5f, 0.5f, 0.5f}, 2.4f)};
+}
+
+Vec3f random_unit(Rng& rng) {
+  Vec3d d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+  return Vec3f(normalize(Vec3d(Vec3f(d))));
+}
+
+Vec3d column3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
+  return {c[0][i], c[1][i], c[2][i]};
+}
+void set3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const Vec3f& v) {
+  for (int k = 0; k < 3; ++k)
+    c[k][i] = v[k];
+}
+
+// A batch of random rows: random material, normal, wo, light direction and numbers.
+ShadeBatch random_batch(std::size_t rows, int materials, uint64_t seed) {
+  Rng rng(seed);
+  ShadeBatch b;
+  b.resize(rows);
+  for (std::size_t i = 0; i < rows; ++i) {
+    b.material[i] = int32_t(rng.uniform() * materials);
+    set3(b.n, i, random_unit(rng));
+    set3(b.wo, i, random_unit(rng));
+    set3(b.light_wi, i, random_unit(rng));
+    b.u_lobe[i] = float(rng.uniform()), b.u1[i] = float(rng.uniform());
+    b.u2[i] = float(rng.uniform());
+  }
+  return b;
+}
+
+// Where the double model has a branch or a singularity within `margin` of this input, float
+// may take the other side: such rows are left out of the comparison (and counted).
+bool near_a_branch(const Material& m, const Vec3d& ns, const Vec3d& wo, const Vec3d& wi) {
+  constexpr double margin = 1e-3;
+  double c = dot(ns, wo);
+  Vec3d n = c > 0 ? ns : -ns;
+  double eta_o = c > 0 ? 1 : m.ior, eta_i = c > 0 ? m.ior : 1, eta = eta_o / eta_i;
+  double cos_i = dot(wi, n), cos_o = std::abs(c);
+  Vec3d h = cos_i > 0 ? wi + wo : -(wo * eta_o + wi * eta_i);
+  double len = length(h), om = dot(wo, h) / len, im = dot(wi, h) / len;
+  double k = 1 - eta * eta * (1 - om * om);
+  auto a = [&](double cv) {
+    return std::sqrt(0.5 * m.alpha + 1) * std::abs(cv) / std::sqrt(1 - cv * cv);
+  };
+  double den = eta_o * om + eta_i * im;
+  return std::abs(cos_i) < margin || cos_o < margin || std::abs(om) < margin ||
+         std::abs(im) < margin || std::abs(k) < margin || std::abs(a(cos_i) - 1.6) < margin ||
+         std::abs(a(cos_o) - 1.6) < margin || std::abs(dot(h, n)) / len < margin || len < margin ||
+         std::abs(den) < margin * (eta_o + eta_i);
+}
+
+// The float error bound of one evaluation, relative to the largest channel: 64 roundings for
+// the arithmetic of the model (each of its ~40 operations rounds once, and none cancels away
+// from the branch points), the lane pow's bound (simd/lane_math.h) at t = α·log2 cos θm, and
+// cos θm's own float error (≤ 8·2^-24 absolute: the half vector's sum, normalisation and dot)
+// raised to the power α, relative α·8·2^-24/cos θm, which the generalised half vector of
+// transmission divides by its length's cancellation. Where the lobe weighs by 1 − F
+// (transmission, total internal reflection), Schlick's 1 − F = (1 − Ks)(1 − (1 − |wo·m|)^5)
+// cancels: (1 − |wo·m|)^5 carries 20·2^-24 absolute (five times wo·m's 4), relative to 1 − F.
+// And the cosines θi and θo, dot products with ≤ 4·2^-24 absolute error, are relative to
+// their size (a grazing light direction).
+double evaluation_bound(const Material& m, const Vec3d& ns, const Vec3d& wo, const Vec3d& wi) {
+  double c = dot(ns, wo);
+  Vec3d n = c > 0 ? ns : -ns;
+  double eta_o = c > 0 ? 1 : m.ior, eta_i = c > 0 ? m.ior : 1, eta = eta_o / eta_i;
+  bool reflect = dot(wi, n) > 0;
+  Vec3d h = reflect ? wi + wo : -(wo * eta_o + wi * eta_i);
+  double scale = reflect ? 2 : eta_o + eta_i;
+  Vec3d mf = normalize(h);
+  double cos_m = std::abs(dot(mf, n)), om = std::abs(dot(wo, mf));
+  double cancel = scale / length(h);
+  double t = m.alpha * std::abs(std::log2(cos_m));
+  bool tir = length(Vec3d(m.kt)) > 0 && 1 - eta * eta * (1 - om * om) < 0;
+  double one_minus_f = 1 - std::pow(1 - om, 5);
+  double schlick = !reflect || tir ? 20 / one_minus_f : 0;
+  double cosines = 4 / std::abs(dot(wi, n)) + 4 / std::abs(c);
+  return kU * (64 + 3 + 3.5 * t + 8 * m.alpha * cancel / cos_m + schlick + cosines);
+}
+
+// The lanes flush cos^α θm below 2^-126 to 0 (simd/lane_math.h); scaled by D's (α+2)/(2π)
+// ≤ 640 and by 1/(4 cos θo) ≤ 250 or transmission's η²/den² ≤ 2000 (away from the branch
+// points), what may vanish is below 2^-126·640·2000 < 1e-31.
+constexpr double kFlushed = 1e-31;
+
+TEST(ShadeLanes, EvaluationMatchesTheDoubleBsdf) {
+  std::vector<Material> materials = test_materials();
+  LaneMaterials lane_materials(materials);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    ShadeBatch b = random_batch(1 << 16, int(materials.size()), 1);
+    shade_lanes(isa, lane_materials, b);
+    std::size_t compared = 0, skipped = 0;
+    double worst = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const Material& m = materials[b.material[i]];
+      Vec3d ns = column3(b.n, i), wo = column3(b.wo, i), wi = column3(b.light_wi, i);
+      if (near_a_branch(m, ns, wo, wi)) {
+        ++skipped;
+        continue;
+      }
+      ++compared;
+      BsdfEval ref = Bsdf(m, ns, wo).evaluate(wi);
+      Vec3d f = column3(b.light_f, i);
+      double bound = evaluation_bound(m, ns, wo, wi);
+      double scale = std::max({ref.f.x, ref.f.y, ref.f.z});
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_LE(std::abs(f[k] - ref.f[k]), bound * scale + kFlushed)
+            << "row " << i << " channel " << k;
+        worst = std::max(worst, std::abs(f[k] - ref.f[k]) / (bound * scale + kFlushed));
+      }
+      ASSERT_LE(std::abs(b.light_pdf[i] - ref.pdf), bound * ref.pdf + kFlushed) << "row " << i;
+    }
+    std::printf("%s: %zu rows compared, %zu near a branch; worst error %.3f of its bound\n",
+                std::string(isa_name(isa)).c_str(), compared, skipped, worst);
+    EXPECT_LT(skipped, compared / 20);  // the comparison covers the model, not its edges
+    EXPECT_GT(worst, 0.0);
+  }
+}
+
+// The float error of a sampled direction. Diffuse: a few roundings (16·2^-24). Glossy: the
+// microfacet's sin θm = √(1 − cos²θm) loses digits where the lobe is narrow, 2·2^-24/sin θm;
+// reflecting through m doubles that, refracting scales it by up to 1 + η, and the refraction's
+// √k (k = 1 − η²(1 − (wo·m)²)) adds 2^-24·η²/√k.
+double direction_bound(const Material& m, const Vec3d& ns, const Vec3d& wo, double u0, double u1,
+                       double u2) {
+  double c = dot(ns, wo);
+  Vec3d n = c > 0 ? ns : -ns;
+  double eta = c > 0 ? 1 / double(m.ior) : double(m.ior);
+  double d = length(Vec3d(m.kd)), total = d + length(Vec3d(m.ks)) + length(Vec3d(m.kt));
+  if (u0 < d / total) return 16 * kU;
+  Vec3d local = sample_phong_normal(u1, u2, m.alpha);
+  Vec3d mf = Frame(n).to_world(local);
+  double sin_m = std::max(1e-6, std::sqrt(std::max(0.0, 1 - local.z * local.z)));
+  double om = dot(wo, mf), k = 1 - eta * eta * (1 - om * om);
+  double refraction = k > 0 ? eta * eta / std::sqrt(k) : 0;
+  return kU * (16 + 2 * (1 + eta) * (16 + 2 / sin_m) + refraction);
+}
+
+// The lane sample of the numbers (u0, u1, u2) is the double sample of the same numbers: the
+// same lobe, a direction within float's error, and its value and density the evaluation's.
+TEST(ShadeLanes, SamplesAreTheDoubleSamplesOfTheSameNumbers) {
+  std::vector<Material> materials = test_materials();
+  LaneMaterials lane_materials(materials);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    ShadeBatch b = random_batch(1 << 16, int(materials.size()), 2);
+    shade_lanes(isa, lane_materials, b);
+    std::size_t agree = 0, compared = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const Material& m = materials[b.material[i]];
+      Vec3d ns = column3(b.n, i), wo = column3(b.wo, i);
+      Bsdf bsdf(m, ns, wo);
+      BsdfSample ref = bsdf.sample(b.u_lobe[i], b.u1[i], b.u2[i]);
+      bool lane_valid = b.pdf[i] > 0;
+      Vec3d wi = column3(b.wi, i);
+      if (ref.valid() && near_a_branch(m, ns, wo, ref.wi)) continue;
+      ++compared;
+      if (lane_valid != ref.valid()) continue;  // counted below: rare at a lobe's very edge
+      ++agree;
+      if (!ref.valid()) continue;
+      ASSERT_LE(length(wi - ref.wi), direction_bound(m, ns, wo, b.u_lobe[i], b.u1[i], b.u2[i]))
+          << "row " << i;
+      BsdfEval e = bsdf.evaluate(wi);
+      double bound = evaluation_bound(m, ns, wo, wi);
+      ASSERT_LE(std::abs(b.pdf[i] - e.pdf), bound * e.pdf) << "row " << i;
+    }
+    EXPECT_GE(agree, compared - compared / 1000) << agree << " of " << compared;
+  }
+}
+
+// The lane sampler's directions against the double density (tests/render/chi2.h), for a
+// diffuse-glossy mixture and a glass seen from outside and from inside.
+TEST(ShadeLanes, SampledDirectionsFollowTheDoubleDensity) {
+  std::vector<Material> materials = {
+      make_material({0.5f, 0.4f, 0.3f}, {0.3f, 0.3f, 0.3f}, 10),
+      make_material({0, 0, 0}, {0.04f, 0.04f, 0.04f}, 30, {1, 1, 1}, 1.5f)};
+  LaneMaterials lane_materials(materials);
+  const Vec3d n(0, 0, 1);
+  struct Case {
+    int material;
+    Vec3d wo;
+  };
+  const Case cases[] = {{0, normalize(Vec3d(0.5, -0.2, 0.7))},
+                        {1, normalize(Vec3d(0.3, 0.1, 1))},
+                        {1, normalize(Vec3d(-0.2, 0.3, -1))}};
+  const double level = testing::sidak_level(0.01, 3);
+  Isa isa = best_isa();
+  for (const Case& c : cases) {
+    testing::Chi2Setup setup;
+    ShadeBatch b;
+    b.resize(std::size_t(setup.samples));
+    Rng rng(40 + c.material);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      b.material[i] = c.material;
+      set3(b.n, i, Vec3f(n));
+      set3(b.wo, i, Vec3f(c.wo));
+      b.u_lobe[i] = float(rng.uniform()), b.u1[i] = float(rng.uniform());
+      b.u2[i] = float(rng.uniform());
+    }
+    shade_lanes(isa, lane_materials, b);
+    std::size_t next = 0;
+    auto sample = [&](Rng&) -> std::optional<Vec3d> {
+      std::size_t i = next++;
+      if (!(b.pdf[i] > 0)) return std::nullopt;
+      return column3(b.wi, i);
+    };
+    Bsdf bsdf(materials[c.material], n, Vec3d(Vec3f(c.wo)));
+    auto pdf = [&](const Vec3d& w) { return bsdf.pdf(w); };
+    testing::Chi2Result r = testing::chi2_test(setup, sample, pdf, 7);
+    EXPECT_FALSE(r.zero_cell_hit);
+    EXPECT_GT(r.p_value, level) << "chi2 = " << r.statistic << " with " << r.dof << " dof";
+  }
+}
+
+// Degenerate rows — wo in the surface plane, no light direction, padding — give zeros, never NaN.
+TEST(ShadeLanes, DegenerateRowsGiveNoSampleAndNoNaN) {
+  std::vector<Material> materials = test_materials();
+  LaneMaterials lane_materials(materials);
+  for (Isa isa : supported_isas()) {
+    ShadeBatch b = random_batch(37, int(materials.size()), 3);  // 37: partly filled batches
+    for (std::size_t i = 0; i < b.size(); i += 2) {
+      set3(b.wo, i, Vec3f(1, 0, 0));
+      set3(b.n, i, Vec3f(0, 0, 1));
+      set3(b.light_wi, i, Vec3f(0, 0, 0));
+    }
+    shade_lanes(isa, lane_materials, b);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(b.pdf[i]) && std::isfinite(b.light_pdf[i])) << i;
+      for (int k = 0; k < 3; ++k)
+        ASSERT_TRUE(std::isfinite(b.value[k][i]) && std::isfinite(b.light_f[k][i])) << i;
+      if (i % 2 == 0) {
+        EXPECT_EQ(b.pdf[i], 0.0f) << i;
+        EXPECT_EQ(b.light_pdf[i], 0.0f) << i;
+      }
+    }
+  }
+}
+
+TEST(ShadeLanes, IndexMatchedTransmissionStaysWithTheDoubleBsdf) {
+  LaneMaterials m({make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.0f),
+                   make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.5f),
+                   make_material({0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0, {0, 0, 0}, 1.0f)});
+  EXPECT_EQ(m.in_lanes, (std::vector<uint8_t>{0, 1, 1}));
+}
+
+}  // namespace
+}  // namespace raylane
