@@ -1,8 +1,8 @@
 # SIMD stays behind its wall (docs/design.md, "SIMD and the instruction sets"): the parser,
 # the renderers, the image code and the program compile without xsimd. Reads the compiler's
 # dependency records through `ninja -t deps` and fails if any object of those stages depends
-# on an xsimd header — and, so that the check itself can fail, if the per-ISA tracer objects
-# do not.
+# on an xsimd header — and, so that the check itself can fail, if the per-ISA objects (tracer
+# and lane BSDF) do not.
 execute_process(COMMAND ${NINJA} -C ${BUILD} -t deps OUTPUT_VARIABLE deps RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "ninja -t deps failed: ${rc}")
@@ -28,7 +28,7 @@ foreach(line IN LISTS lines)
     endif()
   elseif(line MATCHES "xsimd")
     if(walled)
-      message(FATAL_ERROR "${target} depends on ${line}: xsimd outside the SIMD tracer")
+      message(FATAL_ERROR "${target} depends on ${line}: xsimd outside the per-ISA units")
     endif()
     if(isa_object AND NOT counted)
       math(EXPR isa_objects_with_xsimd "${isa_objects_with_xsimd} + 1")

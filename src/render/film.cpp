@@ -35,6 +35,7 @@ Film read_header(const char* head, bool second_format) {
     std::memcpy(&f.origin.max_depth, head + 48, 4);
     std::memcpy(&f.origin.rr_depth, head + 52, 4);
     std::memcpy(&f.origin.sampler, head + 56, 4);  // 0 (MT19937) in films from before samplers
+    std::memcpy(&f.origin.shading, head + 60, 4);  // 0 (double) in films from before lanes
   }
   return f;
 }
@@ -79,7 +80,8 @@ FilmOrigin film_origin(const Scene& scene, const PathSettings& settings) {
           int32_t(settings.integrator),
           settings.max_depth,
           settings.rr_depth,
-          int32_t(settings.sampler)};
+          int32_t(settings.sampler),
+          int32_t(settings.shading)};
 }
 
 std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
@@ -97,6 +99,9 @@ std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
   if (film.sampler != run.sampler)
     parts.push_back(cat("--sampler ", sampler_name(Sampler(film.sampler)),
                         " (this run: ", sampler_name(Sampler(run.sampler)), ")"));
+  if (film.shading != run.shading)
+    parts.push_back(cat("--shading ", shading_name(Shading(film.shading)),
+                        " (this run: ", shading_name(Shading(run.shading)), ")"));
   if (film.rr_depth != run.rr_depth)
     parts.push_back(cat("the roulette depth ", film.rr_depth, " (this run: ", run.rr_depth, ")"));
   std::string out;
@@ -124,6 +129,7 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
   h.value(settings.max_depth), h.value(settings.rr_depth);
   // Hashed only when not the course's generator, so films from before samplers still fit.
   if (settings.sampler != Sampler::kMt19937) h.value(settings.sampler);
+  if (settings.shading != Shading::kDouble) h.value(settings.shading);  // likewise
   return h.h;
 }
 
@@ -138,7 +144,7 @@ Status save_film(const std::string& path, const Film& film) {
   out.append(reinterpret_cast<const char*>(&o.max_depth), 4);
   out.append(reinterpret_cast<const char*>(&o.rr_depth), 4);
   out.append(reinterpret_cast<const char*>(&o.sampler), 4);
-  out.append(4, '\0');
+  out.append(reinterpret_cast<const char*>(&o.shading), 4);
   out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
   return write_file_atomically(path, out);
 }
@@ -167,10 +173,12 @@ Result<Film> load_film(const std::string& path) {
   // The origin's enums are named in messages: a damaged header must not index past the names.
   const FilmOrigin& o = f.origin;
   if (o.integrator < 0 || std::size_t(o.integrator) >= kIntegratorNames.names.size() ||
-      o.sampler < 0 || std::size_t(o.sampler) >= kSamplerNames.names.size())
+      o.sampler < 0 || std::size_t(o.sampler) >= kSamplerNames.names.size() || o.shading < 0 ||
+      std::size_t(o.shading) >= kShadingNames.names.size())
     return Error{cat(path, ": expected an integrator below ", kIntegratorNames.names.size(),
-                     " and a sampler below ", kSamplerNames.names.size(), " in the header, found ",
-                     o.integrator, " and ", o.sampler)};
+                     ", a sampler below ", kSamplerNames.names.size(), " and a shading below ",
+                     kShadingNames.names.size(), " in the header, found ", o.integrator, ", ",
+                     o.sampler, " and ", o.shading)};
   if (size != kHeader + pixels * 24)
     return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", kHeader + pixels * 24,
                      " bytes, the file has ", size)};

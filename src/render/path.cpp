@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/bsdf.h"
@@ -13,6 +14,7 @@
 #include "raylane/render/lights.h"
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
+#include "raylane/render/shade_lanes.h"
 #include "raylane/render/sobol.h"
 
 namespace raylane {
@@ -61,6 +63,15 @@ class PhaseClock {
 
 // A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
 // once they have grown to a tile's size.
+// A vertex waiting for the lanes: its row in the ShadeBatch is its index in `lane_rows`.
+struct LaneRow {
+  uint32_t path;  // index into the tile's paths
+  uint32_t hit;   // index into the wavefront's hits
+  LightSample light;
+  double u_roulette;
+  std::array<double, 4> u;  // the BSDF group: (u1, u2, lobe, roulette)
+};
+
 struct ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
@@ -68,6 +79,14 @@ struct ThreadBuffers {
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
   TraceScratch scratch;
+  std::vector<LaneRow> lane_rows;
+  ShadeBatch shade;
+};
+
+// What shading in lanes needs besides the settings (unused with Shading::kDouble).
+struct LaneShading {
+  const LaneMaterials& materials;
+  Isa isa;
 };
 
 struct TileContext {
@@ -75,6 +94,7 @@ struct TileContext {
   const Tracer& tracer;
   const LightSampler& lights;
   const PathSettings& settings;
+  const LaneShading& lanes;
   Rng rng;
   PathStats stats;
   uint32_t light_calls;  // for timing one light sampling call in kLightTimingStride
@@ -104,10 +124,6 @@ std::array<double, 4> draw(TileContext& ctx, const PathState& p, uint32_t group,
 // Roulette's number: the BSDF group's last component, drawn from MT19937 only when needed.
 double roulette_uniform(TileContext& ctx, const std::array<double, 4>& bsdf_group) {
   return ctx.settings.sampler == Sampler::kSobol ? bsdf_group[3] : ctx.rng.uniform();
-}
-
-const Material& material_of(const Scene& scene, const Hit& hit) {
-  return scene.materials[scene.material_of(hit.prim)];
 }
 
 // Beer's law inside a transmissive solid (the course: exp(t·ln Kt) per channel, applied to the
@@ -153,23 +169,6 @@ void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
   p.radiance += p.beta * le * w;
 }
 
-// Next-event estimation from one vertex: a shadow ray toward a sampled light point.
-void sample_light_untimed(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
-                          const Hit& hit, int depth, std::vector<Rayd>& rays,
-                          std::vector<ShadowQuery>& queries) {
-  auto u = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
-  LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1]);
-  if (!ls.valid()) return;
-  BsdfEval e = bsdf.evaluate(ls.wi);
-  if (e.f == Vec3d(0, 0, 0)) return;
-  double w = ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, e.pdf) : 1.0;
-  Vec3d c = p.beta * e.f * ls.le * (w / ls.pdf);
-  if (!is_finite(c)) return;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
-  rays.push_back({o, ls.wi});
-  queries.push_back({path, ls.light, c});
-}
-
 // Light sampling's time for --stats: the clock is read around one call in this many and that
 // time scaled up; reading it around every call cost 15 % of the render and landed in this
 // phase. (Shading's time has light sampling's estimate taken out, so it carries the error.)
@@ -194,40 +193,61 @@ double clock_read_seconds() {
   return cost;
 }
 
-void sample_light(TileContext& ctx, uint32_t path, const PathState& p, const Bsdf& bsdf,
-                  const Hit& hit, int depth, std::vector<Rayd>& rays,
-                  std::vector<ShadowQuery>& queries) {
-  bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
-  PhaseClock clock(timed);
-  sample_light_untimed(ctx, path, p, bsdf, hit, depth, rays, queries);
-  if (!timed) return;
-  double t = 0;
-  clock.lap(t);
-  ctx.stats.phases.lights += std::max(0.0, t - clock_read_seconds()) * kLightTimingStride;
+bool samples_lights(const TileContext& ctx) {
+  return ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty();
 }
 
-// One vertex of a path: emission, absorption, light sampling, then the next direction.
-// Returns false when the path ends here.
-bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit, int depth,
-                  std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
-  if (!hit.hit()) return false;
-  const Material& m = material_of(ctx.tracer.scene(), hit);
+// Next-event estimation's point on a light, seen from this vertex (invalid: none).
+LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit, int depth) {
+  bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
+  PhaseClock clock(timed);
+  auto u = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+  LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1]);
+  if (timed) {
+    double t = 0;
+    clock.lap(t);
+    ctx.stats.phases.lights += std::max(0.0, t - clock_read_seconds()) * kLightTimingStride;
+  }
+  return ls;
+}
+
+// The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
+void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
+                      const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
+  if (f == Vec3d(0, 0, 0)) return;
+  double w = ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0;
+  Vec3d c = p.beta * f * ls.le * (w / ls.pdf);
+  if (!is_finite(c)) return;
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
+  ctx.buffers.shadow_rays.push_back({o, ls.wi});
+  ctx.buffers.next_queries.push_back({path, ls.light, c});
+}
+
+// Where the path meets a surface: emission if it is an emitter (which ends the path, emitters
+// reflect nothing), else Beer's law on the segment just travelled. The material's row if the
+// path may scatter here.
+std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
+  if (!hit.hit()) return std::nullopt;
+  const Scene& scene = ctx.tracer.scene();
+  uint32_t row = scene.material_of(hit.prim);
+  const Material& m = scene.materials[row];
   if (m.is_light) {
     add_emission(ctx, p, hit, depth);
-    return false;  // emitters reflect nothing
+    return std::nullopt;
   }
   p.beta = p.beta * beer(m, hit);
-  Vec3d wo = -p.ray.d;
-  Bsdf bsdf(m, hit.surface.ns, wo);
-  if (bsdf.black() || depth >= ctx.settings.max_depth) return false;
-  if (ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty())
-    sample_light(ctx, path, p, bsdf, hit, depth, shadow_rays, queries);
-  auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
-  BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
+  if (depth >= ctx.settings.max_depth) return std::nullopt;
+  return row;
+}
+
+// After the BSDF's sample: the throughput, Russian roulette, the next ray. False when the
+// path ends here.
+bool continue_path(PathState& p, const Hit& hit, int depth, const BsdfSample& s, double u_roulette,
+                   const PathSettings& settings) {
   if (!s.valid()) return false;
   p.beta = p.beta * s.value / s.pdf;
-  if (depth + 1 >= ctx.settings.rr_depth) {
-    if (roulette_uniform(ctx, u) >= kRouletteSurvival) return false;
+  if (depth + 1 >= settings.rr_depth) {
+    if (u_roulette >= kRouletteSurvival) return false;
     p.beta = p.beta / kRouletteSurvival;
   }
   if (!is_finite(p.beta) || p.beta == Vec3d(0, 0, 0)) return false;
@@ -239,11 +259,105 @@ bool shade_vertex(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
   return true;
 }
 
+// One vertex with the double Bsdf: light sampling, then the next direction.
+bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
+                         const Material& m, int depth) {
+  Bsdf bsdf(m, hit.surface.ns, -p.ray.d);
+  if (bsdf.black()) return false;
+  if (samples_lights(ctx)) {
+    LightSample ls = sample_light_point(ctx, p, hit, depth);
+    if (ls.valid()) {
+      BsdfEval e = bsdf.evaluate(ls.wi);
+      queue_shadow_ray(ctx, path, p, hit, ls, e.f, e.pdf);
+    }
+  }
+  auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
+  BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
+  if (!s.valid()) return false;
+  double u_roulette = depth + 1 >= ctx.settings.rr_depth ? roulette_uniform(ctx, u) : 0.0;
+  return continue_path(p, hit, depth, s, u_roulette, ctx.settings);
+}
+
+// A vertex for the lanes: its numbers and light point drawn now, in the order the double
+// shading draws them, its row filled in shade_in_lanes. Nothing when nothing reflects here.
+void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
+                    const PathState& p, const Hit& hit, int depth) {
+  const LaneMaterials& lm = ctx.lanes.materials;
+  double c = dot(hit.surface.ns, p.ray.d);
+  if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
+    return;  // Bsdf::black()
+  LaneRow row{path, hit_index, {}, 0, {}};
+  if (samples_lights(ctx)) row.light = sample_light_point(ctx, p, hit, depth);
+  row.u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
+  if (depth + 1 >= ctx.settings.rr_depth) row.u_roulette = roulette_uniform(ctx, row.u);
+  ctx.buffers.lane_rows.push_back(row);
+}
+
+// The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
+void shade_in_lanes(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  ShadeBatch& sb = b.shade;
+  sb.resize(b.lane_rows.size());
+  const Scene& scene = ctx.tracer.scene();
+  for (std::size_t r = 0; r < b.lane_rows.size(); ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    const Hit& hit = b.hits[row.hit];
+    const Vec3d wo = -b.paths[row.path].ray.d;
+    sb.material[r] = int32_t(scene.material_of(hit.prim));
+    const Vec3d light_wi = row.light.valid() ? row.light.wi : Vec3d(0, 0, 0);
+    for (int k = 0; k < 3; ++k) {
+      sb.n[k][r] = float(hit.surface.ns[k]);
+      sb.wo[k][r] = float(wo[k]);
+      sb.light_wi[k][r] = float(light_wi[k]);
+    }
+    sb.u_lobe[r] = float(row.u[2]), sb.u1[r] = float(row.u[0]), sb.u2[r] = float(row.u[1]);
+  }
+  shade_lanes(ctx.lanes.isa, ctx.lanes.materials, sb);
+  for (std::size_t r = 0; r < b.lane_rows.size(); ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    PathState& p = b.paths[row.path];
+    const Hit& hit = b.hits[row.hit];
+    if (row.light.valid()) {
+      Vec3d f(sb.light_f[0][r], sb.light_f[1][r], sb.light_f[2][r]);
+      queue_shadow_ray(ctx, row.path, p, hit, row.light, f, sb.light_pdf[r]);
+    }
+    BsdfSample s;
+    s.wi = Vec3d(sb.wi[0][r], sb.wi[1][r], sb.wi[2][r]);
+    s.value = Vec3d(sb.value[0][r], sb.value[1][r], sb.value[2][r]);
+    s.pdf = sb.pdf[r];
+    if (continue_path(p, hit, depth, s, row.u_roulette, ctx.settings))
+      b.next_live.push_back(row.path);
+  }
+}
+
+// Shades the wavefront's vertices: each live path's hit, in lanes where the settings and the
+// material allow, one by one in double otherwise. Fills next_live, shadow_rays, next_queries.
+void shade_wavefront(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  b.lane_rows.clear();
+  const bool lanes = ctx.settings.shading == Shading::kFloat;
+  for (std::size_t k = 0; k < b.live.size(); ++k) {
+    uint32_t path = b.live[k];
+    PathState& p = b.paths[path];
+    const Hit& hit = b.hits[k];
+    std::optional<uint32_t> material = arrive(ctx, p, hit, depth);
+    if (!material) continue;
+    if (lanes && ctx.lanes.materials.in_lanes[*material]) {
+      queue_lane_row(ctx, path, uint32_t(k), *material, p, hit, depth);
+      continue;
+    }
+    const Material& m = ctx.tracer.scene().materials[*material];
+    if (shade_vertex_double(ctx, path, p, hit, m, depth)) b.next_live.push_back(path);
+  }
+  if (!b.lane_rows.empty()) shade_in_lanes(ctx, depth);
+}
+
 // One sample for every pixel of a tile, bounce by bounce. Each wavefront holds the
 // continuation rays of the live paths and the shadow rays of the previous vertices.
 void render_tile(TileContext& ctx, std::vector<double>& film) {
   ThreadBuffers& b = ctx.buffers;
-  auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch] = b;
+  auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch,
+         lane_rows, shade] = b;
   live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
     live[i] = i;
@@ -277,9 +391,7 @@ void render_tile(TileContext& ctx, std::vector<double>& film) {
     shadow_rays.clear();
     next_queries.clear();
     next_live.clear();
-    for (std::size_t k = 0; k < live.size(); ++k)
-      if (shade_vertex(ctx, live[k], paths[live[k]], hits[k], depth, shadow_rays, next_queries))
-        next_live.push_back(live[k]);
+    shade_wavefront(ctx, depth);
     live.swap(next_live);
     queries.swap(next_queries);
   }
@@ -321,6 +433,8 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   const Scene& scene = tracer.scene();
   Camera cam = Camera::from_scene(scene);
   LightSampler lights(scene);
+  LaneMaterials lane_materials(scene.materials);
+  const LaneShading lanes{lane_materials, tracer.isa()};
   uint32_t tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
   const std::ptrdiff_t tiles = std::ptrdiff_t(tiles_x) * tiles_y;
   Film own;
@@ -341,9 +455,9 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
       ThreadBuffers buffers;
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
-        TileContext ctx{
-            buffers, tracer, lights,        settings, Rng::for_tile(settings.seed, t, pass),
-            {},      0,      uint32_t(pass)};
+        TileContext ctx{buffers,  tracer, lights,
+                        settings, lanes,  Rng::for_tile(settings.seed, t, pass),
+                        {},       0,      uint32_t(pass)};
         PhaseClock clock(settings.time_phases);
         tile_camera_rays(ctx, cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile,
                          buffers.paths);

@@ -50,6 +50,7 @@ TEST(Film, ResumedRenderIsTheUninterruptedRender) {
   ASSERT_TRUE(loaded.ok()) << loaded.error();
   EXPECT_EQ(loaded->fingerprint, film_fingerprint(r.scene, settings(5)));
   EXPECT_EQ(loaded->origin.sampler, int32_t(settings(5).sampler));
+  EXPECT_EQ(loaded->origin.shading, int32_t(settings(5).shading));
   PathStats stats;
   Image resumed = render_path(tracer, settings(5), &stats, &*loaded);
   EXPECT_EQ(stats.passes, 5);
@@ -65,13 +66,16 @@ TEST(Film, FingerprintFollowsWhatShapesTheSamples) {
   PathSettings s = settings(4);
   s.time_limit = 3;
   EXPECT_EQ(film_fingerprint(r.scene, s), base);
-  for (auto change : {+[](PathSettings& p) { p.seed = 8; },
-                      +[](PathSettings& p) { p.integrator = Integrator::kNee; },
-                      +[](PathSettings& p) { p.max_depth = 5; },
-                      +[](PathSettings& p) {
-                        p.sampler =
-                            p.sampler == Sampler::kSobol ? Sampler::kMt19937 : Sampler::kSobol;
-                      }}) {
+  for (auto change :
+       {+[](PathSettings& p) { p.seed = 8; },
+        +[](PathSettings& p) { p.integrator = Integrator::kNee; },
+        +[](PathSettings& p) { p.max_depth = 5; },
+        +[](PathSettings& p) {
+          p.sampler = p.sampler == Sampler::kSobol ? Sampler::kMt19937 : Sampler::kSobol;
+        },
+        +[](PathSettings& p) {
+          p.shading = p.shading == Shading::kFloat ? Shading::kDouble : Shading::kFloat;
+        }}) {
     PathSettings t = settings(4);
     change(t);
     EXPECT_NE(film_fingerprint(r.scene, t), base);
@@ -124,15 +128,18 @@ TEST(Film, HostileFilmFilesAreErrors) {
 
   // The origin's enums out of range: named in messages, so refused before anything indexes
   // their names with them.
-  for (int field : {0, 1}) {
+  for (int field : {0, 1, 2}) {
     Film damaged = f;
     damaged.origin.known = true;
-    (field == 0 ? damaged.origin.integrator : damaged.origin.sampler) = 7;
+    damaged.origin.integrator = damaged.origin.sampler = damaged.origin.shading = 0;
+    int32_t* words[] = {&damaged.origin.integrator, &damaged.origin.sampler,
+                        &damaged.origin.shading};
+    *words[field] = 7;
     ASSERT_TRUE(save_film(dir + "/enum.film", damaged).ok());
     auto e = load_film(dir + "/enum.film");
     ASSERT_FALSE(e.ok());
-    EXPECT_NE(e.error().find(field == 0 ? "found 7 and 0" : "found 0 and 7"), std::string::npos)
-        << e.error();
+    const char* expected[] = {"found 7, 0 and 0", "found 0, 7 and 0", "found 0, 0 and 7"};
+    EXPECT_NE(e.error().find(expected[field]), std::string::npos) << e.error();
   }
 
   // Non-finite sums: damage that a resumed render would spread into its image.

@@ -43,8 +43,8 @@ constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
-    "spp",        "integrator", "sampler",          "seed", "max-depth", "time",
-    "checkpoint", "resume",     "checkpoint-every", "stats"};
+    "spp",  "integrator", "sampler", "shading",          "seed", "max-depth",
+    "time", "checkpoint", "resume",  "checkpoint-every", "stats"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -75,6 +75,13 @@ Status set_sampler(RenderRequest& r, const std::string& v) {
   auto s = sampler_from_name(v);
   if (!s) return Error{cat("unknown --sampler ", in_quotes(v), " (", kSamplerNames.list(), ")")};
   r.path_settings.sampler = *s;
+  return ok_status();
+}
+
+Status set_shading(RenderRequest& r, const std::string& v) {
+  auto s = shading_from_name(v);
+  if (!s) return Error{cat("unknown --shading ", in_quotes(v), " (", kShadingNames.list(), ")")};
+  r.path_settings.shading = *s;
   return ok_status();
 }
 
@@ -145,6 +152,13 @@ const std::vector<RenderOption>& render_options() {
             "(less noise per sample; docs/design.md, \"Samplers\")"),
         "sobol"},
        set_sampler},
+      {{"shading", 0, "S", false,
+        cat("path: ", kShadingNames.list(),
+            ": the double-precision BSDF one vertex at a time;\n"
+            "a wavefront's vertices at once in float SIMD lanes (docs/design.md,\n"
+            "\"Shading in lanes\")"),
+        "float"},
+       set_shading},
       {{"seed", 0, "S", false, "path: image seed; the image is the same for any --threads", "0"},
        [](R& r, V v) {
          return read_int_option("seed", v, 0, std::numeric_limits<long>::max(),
@@ -389,8 +403,8 @@ int render_command(const std::vector<std::string>& args) {
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
-               sampler_name(r.path_settings.sampler), ", ", path_stats.passes, " spp",
-               interrupted() ? ", interrupted" : "");
+               sampler_name(r.path_settings.sampler), "/", shading_name(r.path_settings.shading),
+               ", ", path_stats.passes, " spp", interrupted() ? ", interrupted" : "");
   } else {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);

@@ -23,6 +23,7 @@ struct FilmOrigin {
   uint64_t seed = 0;
   int32_t integrator = 0, max_depth = 0, rr_depth = 0;
   int32_t sampler = 0;  // Sampler; 0 (MT19937) in films written before there was a choice
+  int32_t shading = 0;  // Shading; 0 (double) in films written before there was a choice
 };
 
 struct Film {
@@ -48,8 +49,9 @@ FilmOrigin film_origin(const Scene& scene, const PathSettings& settings);
 std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run);
 
 // `.film` files: magic "RLFILM2\0", width, height, passes, integrator (uint32 each),
-// fingerprint, scene fingerprint, seed (uint64 each), max depth, roulette depth, sampler
-// (uint32 each; the sampler's word was 0 before there was a choice), 4 zero bytes, then
+// fingerprint, scene fingerprint, seed (uint64 each), max depth, roulette depth, sampler,
+// shading (uint32 each; the sampler's and the shading's words were 0 before there was a
+// choice), then
 // width·height·3 float64 sums; little endian. Written atomically. The first
 // format ("RLFILM1\0", a 32-byte header: width, height, passes, 0, fingerprint) is still read.
 Status save_film(const std::string& path, const Film& film);

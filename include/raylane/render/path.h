@@ -48,9 +48,24 @@ inline std::string_view sampler_name(Sampler sampler) {
   return kSamplerNames.name(sampler);
 }
 
+// Where the BSDF is sampled and evaluated (docs/design.md, "Shading in lanes").
+enum class Shading {
+  kDouble,  // the double Bsdf, one vertex at a time (films from before the choice: 0)
+  kFloat,   // a wavefront's vertices at once in float SIMD lanes (render/shade_lanes.h)
+};
+
+inline constexpr EnumNames<Shading, 2> kShadingNames{{"double", "float"}};
+inline std::optional<Shading> shading_from_name(std::string_view name) {
+  return kShadingNames.from_name(name);
+}
+inline std::string_view shading_name(Shading shading) {
+  return kShadingNames.name(shading);
+}
+
 struct PathSettings {
   Integrator integrator = Integrator::kMis;
   Sampler sampler = Sampler::kSobol;
+  Shading shading = Shading::kFloat;
   int spp = 16;
   uint64_t seed = 0;
   int max_depth = 64;        // bounces; Russian roulette ends nearly every path long before
