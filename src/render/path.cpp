@@ -6,6 +6,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <optional>
+#include <span>
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/bsdf.h"
@@ -69,7 +70,8 @@ struct LaneRow {
   uint32_t hit;   // index into the wavefront's hits
   LightSample light;
   double u_roulette;
-  std::array<double, 4> u;  // the BSDF group: (u1, u2, lobe, roulette)
+  std::array<double, 4> u;        // the BSDF group: (u1, u2, lobe, roulette)
+  std::array<double, 4> u_light;  // the light group: (u1, u2, light, part)
 };
 
 struct ThreadBuffers {
@@ -79,8 +81,10 @@ struct ThreadBuffers {
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
   TraceScratch scratch;
-  std::vector<LaneRow> lane_rows;
+  std::vector<LaneRow> lane_rows;  // rows [0, lane_count) are this wavefront's
+  std::size_t lane_count = 0;
   ShadeBatch shade;
+  SobolBatch sobol;
 };
 
 // What shading in lanes needs besides the settings (unused with Shading::kDouble).
@@ -88,6 +92,10 @@ struct LaneShading {
   const LaneMaterials& materials;
   Isa isa;
 };
+
+std::span<LaneRow> queued(ThreadBuffers& b) {
+  return {b.lane_rows.data(), b.lane_count};
+}
 
 struct TileContext {
   ThreadBuffers& buffers;
@@ -197,11 +205,11 @@ bool samples_lights(const TileContext& ctx) {
   return ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty();
 }
 
-// Next-event estimation's point on a light, seen from this vertex (invalid: none).
-LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit, int depth) {
+// Next-event estimation's point on a light, seen from this vertex, for the light group's
+// numbers u (invalid: none).
+LightSample sample_light_with(TileContext& ctx, const Hit& hit, const std::array<double, 4>& u) {
   bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
   PhaseClock clock(timed);
-  auto u = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
   LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1]);
   if (timed) {
     double t = 0;
@@ -209,6 +217,10 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& 
     ctx.stats.phases.lights += std::max(0.0, t - clock_read_seconds()) * kLightTimingStride;
   }
   return ls;
+}
+
+LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit, int depth) {
+  return sample_light_with(ctx, hit, draw(ctx, p, Dims::light(depth), {2, 3, 0, 1}));
 }
 
 // The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
@@ -278,28 +290,70 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hi
   return continue_path(p, hit, depth, s, u_roulette, ctx.settings);
 }
 
-// A vertex for the lanes: its numbers and light point drawn now, in the order the double
-// shading draws them, its row filled in shade_in_lanes. Nothing when nothing reflects here.
+// A vertex for the lanes (its numbers come in draw_lane_rows). Nothing when nothing reflects
+// here.
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
-                    const PathState& p, const Hit& hit, int depth) {
+                    const PathState& p, const Hit& hit) {
   const LaneMaterials& lm = ctx.lanes.materials;
   double c = dot(hit.surface.ns, p.ray.d);
   if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
     return;  // Bsdf::black()
-  LaneRow row{path, hit_index, {}, 0, {}};
-  if (samples_lights(ctx)) row.light = sample_light_point(ctx, p, hit, depth);
-  row.u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
-  if (depth + 1 >= ctx.settings.rr_depth) row.u_roulette = roulette_uniform(ctx, row.u);
-  ctx.buffers.lane_rows.push_back(row);
+  // Rows are reused, not built: a value-initialised LaneRow (176 bytes) per vertex cost 4 % of
+  // a render in zeroing and copying. draw_lane_rows sets the rest.
+  ThreadBuffers& b = ctx.buffers;
+  if (b.lane_count == b.lane_rows.size()) b.lane_rows.emplace_back();
+  LaneRow& row = b.lane_rows[b.lane_count++];
+  row.path = path, row.hit = hit_index;
+  row.light.pdf = 0;
+}
+
+// The numbers of one Sobol group for every queued vertex, from the lanes.
+template <class Store>
+void sobol_for_rows(TileContext& ctx, uint32_t group, Store store) {
+  SobolBatch& sb = ctx.buffers.sobol;
+  sobol_groups(ctx.lanes.isa, ctx.pass, group, sb);
+  for (std::size_t r = 0; r < ctx.buffers.lane_count; ++r)
+    store(ctx.buffers.lane_rows[r],
+          std::array<double, 4>{sb.u[0][r] * 0x1p-32, sb.u[1][r] * 0x1p-32, sb.u[2][r] * 0x1p-32,
+                                sb.u[3][r] * 0x1p-32});
+}
+
+// The queued vertices' numbers — Sobol groups for all of them at once in lanes, or MT19937
+// row by row in the double shading's order (light, BSDF, roulette) — then their light points.
+void draw_lane_rows(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  const bool lights = samples_lights(ctx), roulette = depth + 1 >= ctx.settings.rr_depth;
+  if (ctx.settings.sampler == Sampler::kSobol) {
+    b.sobol.resize(b.lane_count);
+    for (std::size_t r = 0; r < b.lane_count; ++r)
+      b.sobol.seed[r] = b.paths[b.lane_rows[r].path].pixel_seed;
+    if (lights)
+      sobol_for_rows(ctx, Dims::light(depth), [](LaneRow& row, auto u) { row.u_light = u; });
+    sobol_for_rows(ctx, Dims::bsdf(depth), [](LaneRow& row, auto u) {
+      row.u = u;
+      row.u_roulette = u[3];
+    });
+  } else {
+    for (LaneRow& row : queued(b)) {
+      const PathState& p = b.paths[row.path];
+      if (lights) row.u_light = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+      row.u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
+      if (roulette) row.u_roulette = ctx.rng.uniform();
+    }
+  }
+  if (lights)
+    for (LaneRow& row : queued(b))
+      row.light = sample_light_with(ctx, b.hits[row.hit], row.u_light);
 }
 
 // The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
 void shade_in_lanes(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
+  draw_lane_rows(ctx, depth);
   ShadeBatch& sb = b.shade;
-  sb.resize(b.lane_rows.size());
+  sb.resize(b.lane_count);
   const Scene& scene = ctx.tracer.scene();
-  for (std::size_t r = 0; r < b.lane_rows.size(); ++r) {
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
     const LaneRow& row = b.lane_rows[r];
     const Hit& hit = b.hits[row.hit];
     const Vec3d wo = -b.paths[row.path].ray.d;
@@ -313,7 +367,7 @@ void shade_in_lanes(TileContext& ctx, int depth) {
     sb.u_lobe[r] = float(row.u[2]), sb.u1[r] = float(row.u[0]), sb.u2[r] = float(row.u[1]);
   }
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, sb);
-  for (std::size_t r = 0; r < b.lane_rows.size(); ++r) {
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
     const LaneRow& row = b.lane_rows[r];
     PathState& p = b.paths[row.path];
     const Hit& hit = b.hits[row.hit];
@@ -334,7 +388,7 @@ void shade_in_lanes(TileContext& ctx, int depth) {
 // material allow, one by one in double otherwise. Fills next_live, shadow_rays, next_queries.
 void shade_wavefront(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
-  b.lane_rows.clear();
+  b.lane_count = 0;
   const bool lanes = ctx.settings.shading == Shading::kFloat;
   for (std::size_t k = 0; k < b.live.size(); ++k) {
     uint32_t path = b.live[k];
@@ -343,13 +397,13 @@ void shade_wavefront(TileContext& ctx, int depth) {
     std::optional<uint32_t> material = arrive(ctx, p, hit, depth);
     if (!material) continue;
     if (lanes && ctx.lanes.materials.in_lanes[*material]) {
-      queue_lane_row(ctx, path, uint32_t(k), *material, p, hit, depth);
+      queue_lane_row(ctx, path, uint32_t(k), *material, p, hit);
       continue;
     }
     const Material& m = ctx.tracer.scene().materials[*material];
     if (shade_vertex_double(ctx, path, p, hit, m, depth)) b.next_live.push_back(path);
   }
-  if (!b.lane_rows.empty()) shade_in_lanes(ctx, depth);
+  if (b.lane_count > 0) shade_in_lanes(ctx, depth);
 }
 
 // One sample for every pixel of a tile, bounce by bounce. Each wavefront holds the
@@ -357,7 +411,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
 void render_tile(TileContext& ctx, std::vector<double>& film) {
   ThreadBuffers& b = ctx.buffers;
   auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch,
-         lane_rows, shade] = b;
+         lane_rows, lane_count, shade, sobol] = b;
   live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
     live[i] = i;

@@ -1,5 +1,7 @@
-// The lane BSDF compiled for one instruction set (flags set in CMakeLists.txt).
+// The render loop's lanes compiled for one instruction set (flags set in CMakeLists.txt): the
+// BSDF and the Sobol groups.
 #include "render/shade_lanes_impl.h"
+#include "render/sobol_lanes_impl.h"
 
 static_assert(XSIMD_WITH_FMA3_AVX2,
               "this file must be compiled with the flags of its instruction set");
@@ -8,6 +10,10 @@ namespace raylane::detail {
 
 void shade_lanes_avx2(const LaneMaterials& materials, ShadeBatch& batch) {
   shade_lanes_range<xsimd::fma3<xsimd::avx2>>(materials, batch);
+}
+
+void sobol_groups_avx2(uint32_t reversed_index, SobolBatch& batch) {
+  sobol_groups_range<xsimd::fma3<xsimd::avx2>>(reversed_index, batch);
 }
 
 }  // namespace raylane::detail

@@ -88,7 +88,7 @@ struct LaneBsdf {
 
   LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i) {
     auto idx = simd::load<A>(b.material.data() + i);
-    auto gather = [&](const std::vector<float>& col) { return F<A>::gather(col.data(), idx); };
+    auto gather = [&](const std::vector<float>& col) { return simd::gather<A>(col.data(), idx); };
     for (int k = 0; k < 3; ++k)
       kd[k] = gather(m.kd[k]), ks[k] = gather(m.ks[k]);
     pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt), alpha = gather(m.alpha);

@@ -108,7 +108,47 @@ uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
   return x;
 }
 
+// A group's 64-bit seed for a pixel: its low half scrambles the index, its high half seeds the
+// components' scrambles.
+uint64_t group_seed_of(uint64_t seed, uint32_t group) {
+  return mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
+}
+
 }  // namespace
+
+namespace detail {
+void sobol_groups_sse42(uint32_t reversed_index, SobolBatch& batch);
+void sobol_groups_avx2(uint32_t reversed_index, SobolBatch& batch);
+void sobol_groups_avx512(uint32_t reversed_index, SobolBatch& batch);
+
+const uint32_t* sobol_byte_tables() {
+  return &kReversedTables[0][0][0];
+}
+}  // namespace detail
+
+void SobolBatch::resize(std::size_t rows) {
+  size_ = rows;
+  std::size_t padded = (rows + 15) / 16 * 16;
+  seed.resize(padded, 0);
+  scramble.resize(padded, 0);
+  component.resize(padded, 0);
+  for (auto& c : u)
+    c.resize(padded, 0);
+}
+
+// The group seeds are 64-bit hashes (mix64), done here a row at a time; the lanes do the rest
+// in 32 bits, as sobol_group does.
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch) {
+  for (std::size_t i = 0; i < batch.seed.size(); ++i) {
+    uint64_t g = group_seed_of(batch.seed[i], group);
+    batch.scramble[i] = uint32_t(g);
+    batch.component[i] = uint32_t(g >> 32);
+  }
+  auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
+             : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
+                                 : detail::sobol_groups_sse42;
+  fn(reverse_bits(index), batch);
+}
 
 uint32_t sobol_point(uint32_t index, int d) {
   return reverse_bits(reversed_point(reverse_bits(index), d));
@@ -119,7 +159,7 @@ uint32_t owen_scramble(uint32_t x, uint32_t seed) {
 }
 
 std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group) {
-  uint64_t group_seed = mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
+  uint64_t group_seed = group_seed_of(seed, group);
   // The index is shuffled per group (a scramble of its bits is a permutation of every aligned
   // block of 2^m indices), so groups are independent yet each block of 2^m samples is still
   // the same net. Everything stays bit-reversed until the last step.

@@ -6,6 +6,8 @@
 #include <random>
 #include <vector>
 
+#include "raylane/render/rng.h"
+
 namespace raylane {
 namespace {
 
@@ -111,6 +113,33 @@ TEST(Sobol, IntegratesASmoothFunctionFarBetterThanRandom) {
       s += u[0] * u[1];
     }
     EXPECT_NEAR(s / 1024, 0.25, 1e-4) << seed;
+  }
+}
+
+}  // namespace
+}  // namespace raylane
+
+namespace raylane {
+namespace {
+
+// The lanes compute sobol_group for many pixels at once: bit for bit the scalar values, at
+// every instruction set this CPU has, for partly filled batches too.
+TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    SobolBatch b;
+    b.resize(37);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      b.seed[i] = mix64(i * 7919 + 3);
+    for (uint32_t index : {0u, 1u, 5u, 1000u, 0xfffffffeu})
+      for (uint32_t group : {0u, 1u, 9u}) {
+        sobol_groups(isa, index, group, b);
+        for (std::size_t i = 0; i < b.size(); ++i) {
+          std::array<double, 4> ref = sobol_group(b.seed[i], index, group);
+          for (int c = 0; c < 4; ++c)
+            ASSERT_EQ(b.u[c][i] * 0x1p-32, ref[c]) << "row " << i << " component " << c;
+        }
+      }
   }
 }
 

@@ -9,6 +9,9 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
+
+#include "raylane/simd/isa.h"
 
 namespace raylane {
 
@@ -25,5 +28,25 @@ uint32_t owen_scramble(uint32_t x, uint32_t seed);
 // each component in [0, 1) with 32-bit resolution. Components 0 and 1 together form a
 // (0, 2)-sequence: the first 2^m points stratify every dyadic rectangle of area 2^-m.
 std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group);
+
+// sobol_group for many pixels at once, in SIMD lanes: after sobol_groups(), row i's component
+// c is u[c][i]·2^-32, bit for bit sobol_group(seed[i], index, group)[c].
+struct SobolBatch {
+  std::vector<uint64_t> seed;                 // rows [0, size): the pixels' seeds
+  std::array<std::vector<uint32_t>, 4> u;     // the 32-bit components
+  std::vector<uint32_t> scramble, component;  // per row: the index's and components' seeds
+  std::size_t size() const { return size_; }
+  void resize(std::size_t rows);  // padded to 16 lanes; keeps the capacity
+
+ private:
+  std::size_t size_ = 0;
+};
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch);
+
+namespace detail {
+// The byte tables of the first four dimensions, [dimension][byte][value], in the
+// bit-reversed domain (sobol.cpp): what the lanes gather from.
+const uint32_t* sobol_byte_tables();
+}  // namespace detail
 
 }  // namespace raylane

@@ -125,6 +125,42 @@ inline Floats<A> load_first(const float* p, int n) {
   }
 }
 
+template <class A>
+using UInts = xsimd::batch<uint32_t, A>;
+
+// base[idx[i]] per lane: the gather instructions named directly (xsimd 8.1's gather for a
+// float or int batch indexed by int32 fell back to one insert per lane on AVX-512 in the
+// render's profile); SSE4.2 has none, so it loads lane by lane.
+template <class A>
+inline Floats<A> gather(const float* base, const Ints<A>& idx) {
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_i32gather_ps(__m512i(idx), base, 4));
+  } else if constexpr (kWidth<A> == 8) {
+    return Floats<A>(_mm256_i32gather_ps(base, __m256i(idx), 4));
+  } else {
+    alignas(16) int32_t i[4];
+    alignas(16) float v[4];
+    idx.store_aligned(i);
+    for (int k = 0; k < 4; ++k)
+      v[k] = base[i[k]];
+    return Floats<A>::load_aligned(v);
+  }
+}
+template <class A>
+inline UInts<A> gather(const uint32_t* base, const UInts<A>& idx) {
+  if constexpr (kWidth<A> == 16) {
+    return UInts<A>(_mm512_i32gather_epi32(__m512i(idx), base, 4));
+  } else if constexpr (kWidth<A> == 8) {
+    return UInts<A>(_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), __m256i(idx), 4));
+  } else {
+    alignas(16) uint32_t i[4], v[4];
+    idx.store_aligned(i);
+    for (int k = 0; k < 4; ++k)
+      v[k] = base[i[k]];
+    return UInts<A>::load_aligned(v);
+  }
+}
+
 // 0, 1, …, W − 1.
 template <class A>
 inline Ints<A> lane_index() {
