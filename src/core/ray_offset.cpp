@@ -13,8 +13,8 @@ Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng,
   Vec3d o = p + offset;
   // Round away from p so the offset is not lost to rounding (pbrt-v4 OffsetRayOrigin).
   for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0) o[i] = std::nextafter(o[i], INFINITY);
-    if (offset[i] < 0) o[i] = std::nextafter(o[i], -INFINITY);
+    if (offset[i] > 0) o[i] = next_double_up(o[i]);
+    if (offset[i] < 0) o[i] = next_double_down(o[i]);
   }
   return o;
 }

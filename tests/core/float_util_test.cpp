@@ -79,3 +79,33 @@ TEST(Gamma, MatchesDefinition) {
 
 }  // namespace
 }  // namespace raylane
+
+namespace raylane {
+namespace {
+
+// The double steps are std::nextafter toward ±inf, on special values and on random bit
+// patterns of every exponent.
+TEST(NextDouble, IsNextafterTowardInfinity) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> values = {0.0,     -0.0,     1.0,
+                                -1.0,    DBL_MAX,  -DBL_MAX,
+                                DBL_MIN, -DBL_MIN, std::numeric_limits<double>::denorm_min(),
+                                inf,     -inf};
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 100000; ++i) {
+    double v = std::bit_cast<double>(rng());
+    if (!std::isnan(v)) values.push_back(v);
+  }
+  for (double v : values) {
+    EXPECT_EQ(std::bit_cast<uint64_t>(next_double_up(v)),
+              std::bit_cast<uint64_t>(std::nextafter(v, inf)))
+        << v;
+    EXPECT_EQ(std::bit_cast<uint64_t>(next_double_down(v)),
+              std::bit_cast<uint64_t>(std::nextafter(v, -inf)))
+        << v;
+  }
+  EXPECT_TRUE(std::isnan(next_double_up(std::nan(""))));
+}
+
+}  // namespace
+}  // namespace raylane

@@ -38,6 +38,24 @@ inline float next_float_down(float v) {
   return std::bit_cast<float>(bits);
 }
 
+// The same for double: std::nextafter(v, ±inf) without the libm call (it was 1.7 % of a
+// render, once per offset ray origin component).
+inline double next_double_up(double v) {
+  if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return v;
+  if (v == 0.0) return std::numeric_limits<double>::denorm_min();
+  uint64_t bits = std::bit_cast<uint64_t>(v);
+  bits = v > 0.0 ? bits + 1 : bits - 1;
+  return std::bit_cast<double>(bits);
+}
+
+inline double next_double_down(double v) {
+  if (std::isnan(v) || v == -std::numeric_limits<double>::infinity()) return v;
+  if (v == 0.0) return -std::numeric_limits<double>::denorm_min();
+  uint64_t bits = std::bit_cast<uint64_t>(v);
+  bits = v > 0.0 ? bits - 1 : bits + 1;
+  return std::bit_cast<double>(bits);
+}
+
 // Maps a float onto a monotonic integer line (−0 and +0 both map to 0), so the distance in
 // ulps between two floats is the difference of their keys.
 inline int64_t float_ordered_key(float v) {
