@@ -68,6 +68,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     double w = (le.x + le.y + le.z) / 3 * area_of(scene, l);
     if (!(w > 0) || !std::isfinite(w)) continue;
     lights_.push_back(l);
+    le_.push_back(le);
     power.push_back(w);
     total += w;
   }
@@ -88,20 +89,65 @@ std::optional<double> LightSampler::choice_of(PrimRef light) const {
   return it->second;
 }
 
+std::size_t LightSampler::pick(double u_light) const {
+  std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
+  return std::min(k, lights_.size() - 1);
+}
+
 LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part, double u1,
                                  double u2) const {
   LightSample s;
   if (lights_.empty()) return s;
-  std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
-  k = std::min(k, lights_.size() - 1);
+  std::size_t k = pick(u_light);
   PrimRef l = lights_[k];
-  double choice = choice_[k];
   s.light = l;
-  s.le = Vec3d(scene_.materials[scene_.material_of(l)].emission);
+  s.le = le_[k];
   return dispatch(l.tag(), [&](auto kind) {
     using Kind = decltype(kind);
-    return sample_kind<Kind>(scene_.table<Kind>(), l.row(), ref, choice, u_part, u1, u2, s);
+    return sample_kind<Kind>(scene_.table<Kind>(), l.row(), ref, choice_[k], u_part, u1, u2, s);
   });
+}
+
+void LightSampler::sample_many(Isa isa, LightQueries& q) const {
+  q.cone_rows.clear();
+  q.cone_choice.clear();
+  for (std::size_t r = 0; r < q.size(); ++r) {
+    const auto& u = q.u[r];
+    LightSample& s = q.out[r];
+    if (lights_.empty() || lights_[pick(u[2])].tag() != tag_of<Sphere>) {
+      s = sample(q.ref[r], u[2], u[3], u[0], u[1]);
+      continue;
+    }
+    std::size_t k = pick(u[2]);
+    s.light = lights_[k];
+    s.le = le_[k];
+    s.pdf = 0;
+    q.cone_rows.push_back(uint32_t(r));
+    q.cone_choice.push_back(choice_[k]);
+  }
+  ConeBatch& cb = q.cones;
+  cb.resize(q.cone_rows.size());
+  const SphereTable& spheres = scene_.table<Sphere>();
+  for (std::size_t j = 0; j < cb.size(); ++j) {
+    uint32_t r = q.cone_rows[j], row = q.out[r].light.row();
+    for (int k = 0; k < 3; ++k)
+      cb.ref[k][j] = q.ref[r][k], cb.center[k][j] = spheres.center(row)[k];
+    cb.radius[j] = spheres.r[row], cb.u1[j] = q.u[r][0], cb.u2[j] = q.u[r][1];
+  }
+  sample_cones(isa, cb);
+  for (std::size_t j = 0; j < cb.size(); ++j) {
+    uint32_t r = q.cone_rows[j];
+    LightSample& s = q.out[r];
+    if (!(cb.solid_angle[j] > 0)) {  // inside the sphere: by area, as sample() does
+      s = sample_kind<Sphere>(spheres, s.light.row(), q.ref[r], q.cone_choice[j], q.u[r][3],
+                              q.u[r][0], q.u[r][1], s);
+      continue;
+    }
+    s.wi = Vec3d(cb.wi[0][j], cb.wi[1][j], cb.wi[2][j]);
+    s.dist = cb.dist[j];
+    s.p = q.ref[r] + s.wi * s.dist;
+    s.pdf = q.cone_choice[j] / cb.solid_angle[j];
+  }
 }
 
 double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const {

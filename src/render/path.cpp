@@ -8,6 +8,8 @@
 #include <optional>
 #include <span>
 
+#include <omp.h>
+
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/bsdf.h"
 #include "raylane/render/camera.h"
@@ -85,6 +87,7 @@ struct ThreadBuffers {
   std::size_t lane_count = 0;
   ShadeBatch shade;
   SobolBatch sobol;
+  LightQueries light_queries;
 };
 
 // What shading in lanes needs besides the settings (unused with Shading::kDouble).
@@ -307,6 +310,22 @@ void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_
   row.light.pdf = 0;
 }
 
+// The queued vertices' light points, all at once (sphere lights in lanes).
+void sample_lights_in_lanes(TileContext& ctx) {
+  ThreadBuffers& b = ctx.buffers;
+  PhaseClock clock(ctx.settings.time_phases);
+  LightQueries& q = b.light_queries;
+  q.resize(b.lane_count);
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    q.ref[r] = b.hits[b.lane_rows[r].hit].surface.p;
+    q.u[r] = b.lane_rows[r].u_light;
+  }
+  ctx.lights.sample_many(ctx.lanes.isa, q);
+  for (std::size_t r = 0; r < b.lane_count; ++r)
+    b.lane_rows[r].light = q.out[r];
+  clock.lap(ctx.stats.phases.lights);
+}
+
 // The numbers of one Sobol group for every queued vertex, from the lanes.
 template <class Store>
 void sobol_for_rows(TileContext& ctx, uint32_t group, Store store) {
@@ -341,9 +360,7 @@ void draw_lane_rows(TileContext& ctx, int depth) {
       if (roulette) row.u_roulette = ctx.rng.uniform();
     }
   }
-  if (lights)
-    for (LaneRow& row : queued(b))
-      row.light = sample_light_with(ctx, b.hits[row.hit], row.u_light);
+  if (lights) sample_lights_in_lanes(ctx);
 }
 
 // The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
@@ -411,7 +428,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
 void render_tile(TileContext& ctx, std::vector<double>& film) {
   ThreadBuffers& b = ctx.buffers;
   auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch,
-         lane_rows, lane_count, shade, sobol] = b;
+         lane_rows, lane_count, shade, sobol, light_queries] = b;
   live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
     live[i] = i;
@@ -436,10 +453,8 @@ void render_tile(TileContext& ctx, std::vector<double>& film) {
       // Visible when the first thing met is the light's emitting side (convex solids are
       // sampled on faces toward the vertex only, so no other face of theirs is in between).
       bool seen = h.hit() && h.prim == queries[q].light;
-      if (seen && !kind_two_sided(h.prim.tag())) {
-        ctx.tracer.complete(batch[live.size() + q], h);
-        seen = h.front_face;
-      }
+      if (seen && !kind_two_sided(h.prim.tag()))
+        seen = ctx.tracer.front_face(batch[live.size() + q], h);
       if (seen) paths[queries[q].path].radiance += queries[q].contribution;
     }
     shadow_rays.clear();
@@ -502,11 +517,13 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   PathStats total;
   total.passes = f.passes;
   auto start = std::chrono::steady_clock::now();
+  // Each thread's buffers live across passes: regrown every pass, they cost 2-thread scaling.
+  std::vector<ThreadBuffers> per_thread(static_cast<std::size_t>(omp_get_max_threads()));
   for (int pass = f.passes; pass < settings.spp; ++pass) {
 #pragma omp parallel
     {
       PathStats local;
-      ThreadBuffers buffers;
+      ThreadBuffers& buffers = per_thread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
         TileContext ctx{buffers,  tracer, lights,

@@ -1,5 +1,6 @@
 // The render loop's lanes compiled for one instruction set (flags set in CMakeLists.txt): the
-// BSDF and the Sobol groups.
+// BSDF, the Sobol groups and the sphere lights' cones.
+#include "render/light_lanes_impl.h"
 #include "render/shade_lanes_impl.h"
 #include "render/sobol_lanes_impl.h"
 
@@ -14,6 +15,10 @@ void shade_lanes_avx2(const LaneMaterials& materials, ShadeBatch& batch) {
 
 void sobol_groups_avx2(uint32_t reversed_index, SobolBatch& batch) {
   sobol_groups_range<xsimd::fma3<xsimd::avx2>>(reversed_index, batch);
+}
+
+void sample_cones_avx2(ConeBatch& batch) {
+  sample_cones_range<xsimd::fma3<xsimd::avx2>>(batch);
 }
 
 }  // namespace raylane::detail

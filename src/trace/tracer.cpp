@@ -1,5 +1,7 @@
 #include "raylane/trace/tracer.h"
 
+#include <algorithm>
+
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/bvh_ref.h"
@@ -30,6 +32,39 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   h.front_face = dot(traced.d, h.surface.ng) < 0;
 }
 
+bool Tracer::front_face(const Rayd& ray, const Hit& h) const {
+  if (!h.hit()) return false;
+  if (h.prim.tag() == tag_of<Sphere>) {
+    // The sign of dot(d, ng) with ng = (p − c)/|p − c|: the division changes no sign.
+    Rayd traced = as_traced(ray, kind_);
+    Vec3d c(scene_.table<Sphere>().center(h.prim.row()));
+    return dot(traced.d, traced.at(h.t) - c) < 0;
+  }
+  Hit full = h;
+  complete(ray, full);
+  return full.front_face;
+}
+
+void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const {
+  for (auto& rows : scratch.by_kind)
+    rows.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (hits[i].hit()) scratch.by_kind[std::size_t(hits[i].prim.tag())].push_back(uint32_t(i));
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    const typename Kind::Table& table = scene_.table<Kind>();
+    for (uint32_t i : scratch.by_kind[kind_index<Kind>()]) {
+      Hit& h = hits[i];
+      // The float ray from the stream the packet tracer read, not as_traced(rays[i]): GCC 12's
+      // SLP vectoriser dropped the double → float → double round trip when as_traced was
+      // inlined into this loop (-O2 and -O3; tests/trace/tracer_test.cpp caught it).
+      Rayd traced = ray_cast<double>(scratch.rays.get(i));
+      h.surface = surface_ref(table, h.prim.row(), traced, h.t);
+      h.front_face = dot(traced.d, h.surface.ng) < 0;
+    }
+  });
+}
+
 void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
                      std::size_t with_surface, TraceScratch& scratch) const {
   const std::size_t n = rays.size();
@@ -50,8 +85,8 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
     if (out.prim[i] == PrimRef::kInvalidBits) continue;
     hits[i].prim = PrimRef::from_bits(out.prim[i]);
     hits[i].t = out.t[i];
-    if (i < with_surface) complete(rays[i], hits[i]);
   }
+  complete_by_kind(hits, std::min(with_surface, n), scratch);
 }
 
 }  // namespace raylane

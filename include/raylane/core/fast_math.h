@@ -18,28 +18,31 @@ namespace fast_math_detail {
 
 // Taylor polynomials of sin and cos about 0 (Horner form), for |a| ≤ π/4: the first omitted
 // terms are below a^17/17! ≤ 4.6e-17 and a^18/18! ≤ 2e-18, under half an ulp of the results.
-inline double sin_poly(double a) {
-  double a2 = a * a;
-  double p = -1.0 / 1307674368000;  // −1/15!
-  p = p * a2 + 1.0 / 6227020800;    // 1/13!
-  p = p * a2 - 1.0 / 39916800;      // −1/11!
-  p = p * a2 + 1.0 / 362880;        // 1/9!
-  p = p * a2 - 1.0 / 5040;          // −1/7!
+// Templates so that double SIMD lanes (render/light_lanes.h) evaluate the same polynomials.
+template <class T>
+T sin_poly(T a) {
+  T a2 = a * a;
+  T p = T(-1.0 / 1307674368000);  // −1/15!
+  p = p * a2 + 1.0 / 6227020800;  // 1/13!
+  p = p * a2 - 1.0 / 39916800;    // −1/11!
+  p = p * a2 + 1.0 / 362880;      // 1/9!
+  p = p * a2 - 1.0 / 5040;        // −1/7!
   p = p * a2 + 1.0 / 120;
   p = p * a2 - 1.0 / 6;
   return a + a * a2 * p;
 }
 
-inline double cos_poly(double a) {
-  double a2 = a * a;
-  double p = 1.0 / 20922789888000;  // 1/16!
-  p = p * a2 - 1.0 / 87178291200;   // −1/14!
-  p = p * a2 + 1.0 / 479001600;     // 1/12!
-  p = p * a2 - 1.0 / 3628800;       // −1/10!
-  p = p * a2 + 1.0 / 40320;         // 1/8!
+template <class T>
+T cos_poly(T a) {
+  T a2 = a * a;
+  T p = T(1.0 / 20922789888000);   // 1/16!
+  p = p * a2 - 1.0 / 87178291200;  // −1/14!
+  p = p * a2 + 1.0 / 479001600;    // 1/12!
+  p = p * a2 - 1.0 / 3628800;      // −1/10!
+  p = p * a2 + 1.0 / 40320;        // 1/8!
   p = p * a2 - 1.0 / 720;
   p = p * a2 + 1.0 / 24;
-  return 1 - 0.5 * a2 + a2 * a2 * p;
+  return T(1.0) - T(0.5) * a2 + a2 * a2 * p;
 }
 
 }  // namespace fast_math_detail

@@ -103,12 +103,18 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
   double entry = -std::numeric_limits<double>::infinity();
   int entry_axis = -1, exit_axis = -1;
   double exit = std::numeric_limits<double>::infinity();
+  // Selects, not branches: which axis wins is data the branch predictor cannot learn (a
+  // render's hits land on every face), and this runs for every hit on a box.
   for (int k = 0; k < 3; ++k) {
-    if (tn[k] > entry) entry = tn[k], entry_axis = k;
-    if (tf[k] < exit) exit = tf[k], exit_axis = k;
+    bool nearer = tn[k] > entry, farther = tf[k] < exit;
+    entry = nearer ? tn[k] : entry;
+    entry_axis = nearer ? k : entry_axis;
+    exit = farther ? tf[k] : exit;
+    exit_axis = farther ? k : exit_axis;
   }
   // The nearer end of the interval: t may come from a float kernel, so never compare exactly.
-  bool entering = entry_axis >= 0 && (exit_axis < 0 || std::abs(t - entry) <= std::abs(t - exit));
+  bool entering =
+      (entry_axis >= 0) & ((exit_axis < 0) | (std::abs(t - entry) <= std::abs(t - exit)));
   int axis = entering ? entry_axis : (exit_axis >= 0 ? exit_axis : 0);
   bool neg = std::signbit(ray.d[axis]);
   Vec3d n(0, 0, 0), p = ray.at(t);

@@ -9,10 +9,12 @@
 // emit from both sides. Emitters reflect nothing.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "raylane/render/light_lanes.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/hit.h"
 
@@ -28,6 +30,20 @@ struct LightSample {
   bool valid() const { return pdf > 0; }
 };
 
+// Many shading points' light samples at once (a path tracer's wavefront), with the buffers
+// reused between calls: resize, fill ref and u, call LightSampler::sample_many, read out.
+struct LightQueries {
+  std::vector<Vec3d> ref;                // the shading points
+  std::vector<std::array<double, 4>> u;  // their numbers: (u1, u2, u_light, u_part)
+  std::vector<LightSample> out;
+  void resize(std::size_t n) { ref.resize(n), u.resize(n), out.resize(n); }
+  std::size_t size() const { return ref.size(); }
+  // The lanes' rows: which query each is and its light's choice probability.
+  ConeBatch cones;
+  std::vector<uint32_t> cone_rows;
+  std::vector<double> cone_choice;
+};
+
 class LightSampler {
  public:
   explicit LightSampler(const Scene& scene);
@@ -35,6 +51,9 @@ class LightSampler {
 
   // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
   LightSample sample(const Vec3d& ref, double u_light, double u_part, double u1, double u2) const;
+  // sample() for every query: sphere lights seen from outside by their cones in double lanes
+  // (render/light_lanes.h, the same formulas), the rest one by one.
+  void sample_many(Isa isa, LightQueries& q) const;
 
   // The density sample() would have had for direction wi from ref, hitting `hit` on a light.
   double pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const;
@@ -44,12 +63,15 @@ class LightSampler {
 
  private:
   const Scene& scene_;
+  // The index in lights_ of the light u_light picks (by power).
+  std::size_t pick(double u_light) const;
   // The choice probability of the light a ray hit, or nullopt if it is not one of ours.
   std::optional<double> choice_of(PrimRef light) const;
 
   std::vector<PrimRef> lights_;
   std::vector<double> cdf_;     // cumulative choice probabilities
   std::vector<double> choice_;  // choice probability of lights_[k]
+  std::vector<Vec3d> le_;       // emission of lights_[k]
   // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
   // cheaper per sample than a hash lookup.
   std::vector<std::pair<uint32_t, double>> by_bits_;

@@ -5,12 +5,14 @@
 // tile loop owns the threads (core/parallel.h).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string_view>
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/enum_names.h"
+#include "raylane/prims/prim_list.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/hit.h"
 #include "raylane/trace/simd_tracer.h"
@@ -32,6 +34,7 @@ inline std::string_view tracer_kind_name(TracerKind kind) {
 struct TraceScratch {
   RayStream rays;
   HitStream hits;
+  std::array<std::vector<uint32_t>, kPrimKindCount> by_kind;  // hits awaiting their surface
 };
 
 class Tracer {
@@ -49,12 +52,19 @@ class Tracer {
                TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
+  // Whether the ray meets its hit's surface from the front (hit.front_face after complete()),
+  // without the surface where the kind allows: a shadow ray needs only this.
+  bool front_face(const Rayd& ray, const Hit& hit) const;
 
   const Scene& scene() const { return scene_; }
   TracerKind kind() const { return kind_; }
   Isa isa() const { return simd_.isa(); }
 
  private:
+  // complete() for hits[0, n) of a packet trace whose float rays are in scratch.rays, kind by
+  // kind (one branch on the kind per batch, not per hit).
+  void complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const;
+
   const Scene& scene_;
   const Bvh& bvh_;
   TracerKind kind_;

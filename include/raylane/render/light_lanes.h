@@ -1,0 +1,41 @@
+// Points on sphere lights by the cone each subtends (Sphere::sample_subtended), for a whole
+// wavefront's vertices at once in double SIMD lanes (issue 14: the scalar routine and its warps
+// were 11 % of a render). The formulas are the scalar ones, in the same precision: the lanes
+// change the speed, not the error analysis (tests/render/light_lanes_test.cpp holds them to the
+// scalar routine). LightSampler::sample_many routes sphere lights here.
+//
+// Baseline code includes this header; the kernel lives in the per-ISA translation units
+// src/render/shade_lanes_<isa>.cpp, picked at run time like the tracer's.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "raylane/simd/isa.h"
+
+namespace raylane {
+
+// Fill rows [0, size) after resize(), run sample_cones(), read the outputs. Rows past size up
+// to the lane width are padding the kernel computes and nobody reads.
+struct ConeBatch {
+  using Column = std::vector<double>;
+  // Inputs: the shading point, the sphere, the two numbers of the cone's warp.
+  std::array<Column, 3> ref, center;
+  Column radius, u1, u2;
+  // Outputs: the unit direction, the distance to the sphere along it and the cone's solid
+  // angle; solid_angle 0 where ref is not outside the sphere (the caller samples by area).
+  std::array<Column, 3> wi;
+  Column dist, solid_angle;
+
+  std::size_t size() const { return size_; }
+  // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.
+  void resize(std::size_t n);
+
+ private:
+  std::size_t size_ = 0;
+};
+
+void sample_cones(Isa isa, ConeBatch& batch);
+
+}  // namespace raylane

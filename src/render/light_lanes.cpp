@@ -1,0 +1,38 @@
+#include "raylane/render/light_lanes.h"
+
+namespace raylane {
+
+namespace detail {
+void sample_cones_sse42(ConeBatch&);
+void sample_cones_avx2(ConeBatch&);
+void sample_cones_avx512(ConeBatch&);
+}  // namespace detail
+
+namespace {
+constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
+}
+
+void ConeBatch::resize(std::size_t rows) {
+  size_ = rows;
+  std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
+  for (auto* v : {&ref, &center, &wi})
+    for (Column& c : *v)
+      c.resize(padded);
+  for (Column* c : {&radius, &u1, &u2, &dist, &solid_angle})
+    c->resize(padded);
+  // Padding rows: a unit sphere two units from the origin, finite for the kernel.
+  for (std::size_t i = rows; i < padded; ++i) {
+    for (int k = 0; k < 3; ++k)
+      ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;
+    radius[i] = 1, u1[i] = u2[i] = 0.5;
+  }
+}
+
+void sample_cones(Isa isa, ConeBatch& batch) {
+  auto* fn = isa == Isa::kAvx512 ? detail::sample_cones_avx512
+             : isa == Isa::kAvx2 ? detail::sample_cones_avx2
+                                 : detail::sample_cones_sse42;
+  fn(batch);
+}
+
+}  // namespace raylane

@@ -1,0 +1,141 @@
+// Sphere lights' cones in double lanes (render/light_lanes.h) against the scalar
+// Sphere::sample_subtended they transcribe, bit for bit at every instruction set this CPU has,
+// and LightSampler::sample_many against sample() on a scene with every kind of light.
+#include "raylane/render/light_lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+
+#include "raylane/core/strings.h"
+#include "raylane/core/warps.h"
+#include "raylane/render/lights.h"
+#include "raylane/render/rng.h"
+#include "raylane/scene/parser.h"
+
+namespace raylane {
+namespace {
+
+// The lanes compute the scalar code's operations in its order, and the build compiles with
+// -ffp-contract=off (CMakeLists.txt), so no multiply and add fuse on either side: every
+// result must be the scalar one bit for bit, at every instruction set.
+bool same(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+bool same(const Vec3d& a, const Vec3d& b) {
+  return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
+}
+
+struct Case {
+  Vec3d ref;
+  uint32_t sphere;
+  double u1, u2;
+};
+
+// Random spheres (radii from 1e-6 to 10) seen from 1 + 1e-9 radii away out to 100 radii, and
+// from inside; the warp's numbers include the ends of [0, 1] and the quarter turns.
+std::vector<Case> random_cases(SphereTable& spheres, int count, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<Case> cases;
+  const double edge[] = {0, 0.25, 0.5, 0.75, 1 - 0x1p-53};
+  for (int i = 0; i < count; ++i) {
+    double r = std::pow(10.0, -6 + 7 * rng.uniform());
+    double c[4] = {20 * rng.uniform() - 10, 20 * rng.uniform() - 10, 20 * rng.uniform() - 10, r};
+    EXPECT_FALSE(spheres.append(std::span<const double, 4>(c, 4), 0).has_value());
+    uint32_t row = uint32_t(spheres.size() - 1);
+    double gap = i % 10 == 0 ? -rng.uniform() : std::pow(10.0, -9 + 11 * rng.uniform());
+    Vec3d dir = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    Vec3d center(spheres.center(row));
+    double rr = spheres.r[row];
+    double u1 = i % 7 == 0 ? edge[i % 5] : rng.uniform();
+    double u2 = i % 3 == 0 ? edge[(i / 3) % 5] : rng.uniform();
+    cases.push_back({center + dir * (rr * (1 + gap)), row, u1, u2});
+  }
+  return cases;
+}
+
+ConeBatch batch_of(const SphereTable& spheres, const std::vector<Case>& cases) {
+  ConeBatch b;
+  b.resize(cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    for (int k = 0; k < 3; ++k)
+      b.ref[k][i] = c.ref[k], b.center[k][i] = spheres.center(c.sphere)[k];
+    b.radius[i] = spheres.r[c.sphere], b.u1[i] = c.u1, b.u2[i] = c.u2;
+  }
+  return b;
+}
+
+TEST(LightLanes, ConesAreTheScalarSphereSamples) {
+  SphereTable spheres;
+  std::vector<Case> cases = random_cases(spheres, 20000, 7);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    ConeBatch b = batch_of(spheres, cases);
+    sample_cones(isa, b);
+    int outside = 0, failures = 0;
+    for (std::size_t i = 0; i < cases.size() && failures < 10; ++i) {
+      const Case& c = cases[i];
+      auto s = Sphere::sample_subtended(spheres, c.sphere, c.ref, c.u1, c.u2);
+      if (!s) {
+        failures += !(b.solid_angle[i] == 0);
+        EXPECT_EQ(b.solid_angle[i], 0) << "row " << i << " is inside its sphere";
+        continue;
+      }
+      ++outside;
+      Vec3d wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
+      bool ok =
+          same(wi, s->wi) && same(b.dist[i], s->dist) && same(b.solid_angle[i], s->solid_angle);
+      failures += !ok;
+      EXPECT_TRUE(ok) << "row " << i << ": lanes wi " << wi.x << " " << wi.y << " " << wi.z
+                      << " dist " << b.dist[i] << " solid " << b.solid_angle[i] << "; scalar wi "
+                      << s->wi.x << " " << s->wi.y << " " << s->wi.z << " dist " << s->dist
+                      << " solid " << s->solid_angle;
+    }
+    EXPECT_GT(outside, 15000);  // most rows sample the cone; about a tenth are inside
+  }
+}
+
+// A scene with a sphere, a box, a cylinder and a triangle light (the last two by area), and
+// shading points around them, some inside the sphere light (by area too).
+TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
+  auto parsed = parse_scene(
+      "camera 0 0 0 1\nlight 5 5 5\nsphere 0 3 0 0.5\nlight 1 2 3\nbox 2 2 2 1 0.5 0.25\n"
+      "light 2 2 2\ncylinder -2 1 0 0 1 0 0.3\nbrdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 -1 0 0.2\n",
+      "lights.scn");
+  ASSERT_TRUE(parsed.ok());
+  LightSampler lights(parsed.scene);
+  Rng rng(3);
+  LightQueries q;
+  q.resize(4000);
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    q.ref[i] = i % 20 == 0
+                   ? Vec3d(0, 3, 0.1 * rng.uniform())
+                   : Vec3d(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
+    q.u[i] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+  }
+  int kinds_seen[4] = {};
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    lights.sample_many(isa, q);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const auto& u = q.u[i];
+      LightSample want = lights.sample(q.ref[i], u[2], u[3], u[0], u[1]);
+      const LightSample& got = q.out[i];
+      ASSERT_EQ(got.light, want.light) << "query " << i;
+      ASSERT_EQ(got.valid(), want.valid()) << "query " << i;
+      ++kinds_seen[std::size_t(got.light.tag())];
+      if (!want.valid()) continue;
+      EXPECT_EQ(got.le, want.le);
+      EXPECT_TRUE(same(got.wi, want.wi) && same(got.pdf, want.pdf) && same(got.p, want.p) &&
+                  same(got.dist, want.dist))
+          << "query " << i;
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
+}
+
+}  // namespace
+}  // namespace raylane
