@@ -1,0 +1,119 @@
+// A wavefront's vertices shaded at once: their numbers (Sobol groups in lanes), their light
+// points (render/lights.h, sample_many), their BSDFs in float lanes (render/shade_lanes.h),
+// then each vertex's shadow ray and next ray (render/path_loop.h).
+#include <cmath>
+
+#include "render/path_loop.h"
+
+namespace raylane::path_detail {
+
+namespace {
+
+// The queued vertices' light points, all at once (sphere lights in lanes).
+void sample_lights_in_lanes(TileContext& ctx) {
+  ThreadBuffers& b = ctx.buffers;
+  PhaseClock clock(ctx.settings.time_phases);
+  LightQueries& q = b.light_queries;
+  q.resize(b.lane_count);
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    q.ref[r] = b.hits[b.lane_rows[r].hit].surface.p;
+    q.u[r] = b.lane_rows[r].u_light;
+  }
+  ctx.lights.sample_many(ctx.lanes.isa, q);
+  for (std::size_t r = 0; r < b.lane_count; ++r)
+    b.lane_rows[r].light = q.out[r];
+  clock.lap(ctx.stats.phases.lights);
+}
+
+// The numbers of one Sobol group for every queued vertex, from the lanes.
+template <class Store>
+void sobol_for_rows(TileContext& ctx, uint32_t group, Store store) {
+  SobolBatch& sb = ctx.buffers.sobol;
+  sobol_groups(ctx.lanes.isa, ctx.pass, group, sb);
+  for (std::size_t r = 0; r < ctx.buffers.lane_count; ++r)
+    store(ctx.buffers.lane_rows[r],
+          std::array<double, 4>{sb.u[0][r] * 0x1p-32, sb.u[1][r] * 0x1p-32, sb.u[2][r] * 0x1p-32,
+                                sb.u[3][r] * 0x1p-32});
+}
+
+// The queued vertices' numbers — Sobol groups for all of them at once in lanes, or MT19937
+// row by row in the double shading's order (light, BSDF, roulette) — then their light points.
+void draw_lane_rows(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  const bool lights = samples_lights(ctx), roulette = depth + 1 >= ctx.settings.rr_depth;
+  if (ctx.settings.sampler == Sampler::kSobol) {
+    b.sobol.resize(b.lane_count);
+    for (std::size_t r = 0; r < b.lane_count; ++r)
+      b.sobol.seed[r] = b.paths[b.lane_rows[r].path].pixel_seed;
+    if (lights)
+      sobol_for_rows(ctx, Dims::light(depth), [](LaneRow& row, auto u) { row.u_light = u; });
+    sobol_for_rows(ctx, Dims::bsdf(depth), [](LaneRow& row, auto u) {
+      row.u = u;
+      row.u_roulette = u[3];
+    });
+  } else {
+    for (LaneRow& row : queued(b)) {
+      const PathState& p = b.paths[row.path];
+      if (lights) row.u_light = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+      row.u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
+      if (roulette) row.u_roulette = ctx.rng.uniform();
+    }
+  }
+  if (lights) sample_lights_in_lanes(ctx);
+}
+
+}  // namespace
+
+void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
+                    const PathState& p, const Hit& hit) {
+  const LaneMaterials& lm = ctx.lanes.materials;
+  double c = dot(hit.surface.ns, p.ray.d);
+  if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
+    return;  // Bsdf::black()
+  // Rows are reused, not built: a value-initialised LaneRow (176 bytes) per vertex cost 4 % of
+  // a render in zeroing and copying. draw_lane_rows sets the rest.
+  ThreadBuffers& b = ctx.buffers;
+  if (b.lane_count == b.lane_rows.size()) b.lane_rows.emplace_back();
+  LaneRow& row = b.lane_rows[b.lane_count++];
+  row.path = path, row.hit = hit_index;
+  row.light.pdf = 0;
+}
+
+void shade_in_lanes(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  draw_lane_rows(ctx, depth);
+  ShadeBatch& sb = b.shade;
+  sb.resize(b.lane_count);
+  const Scene& scene = ctx.tracer.scene();
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    const Hit& hit = b.hits[row.hit];
+    const Vec3d wo = -b.paths[row.path].ray.d;
+    sb.material[r] = int32_t(scene.material_of(hit.prim));
+    const Vec3d light_wi = row.light.valid() ? row.light.wi : Vec3d(0, 0, 0);
+    for (int k = 0; k < 3; ++k) {
+      sb.n[k][r] = float(hit.surface.ns[k]);
+      sb.wo[k][r] = float(wo[k]);
+      sb.light_wi[k][r] = float(light_wi[k]);
+    }
+    sb.u_lobe[r] = float(row.u[2]), sb.u1[r] = float(row.u[0]), sb.u2[r] = float(row.u[1]);
+  }
+  shade_lanes(ctx.lanes.isa, ctx.lanes.materials, sb);
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    PathState& p = b.paths[row.path];
+    const Hit& hit = b.hits[row.hit];
+    if (row.light.valid()) {
+      Vec3d f(sb.light_f[0][r], sb.light_f[1][r], sb.light_f[2][r]);
+      queue_shadow_ray(ctx, row.path, p, hit, row.light, f, sb.light_pdf[r]);
+    }
+    BsdfSample s;
+    s.wi = Vec3d(sb.wi[0][r], sb.wi[1][r], sb.wi[2][r]);
+    s.value = Vec3d(sb.value[0][r], sb.value[1][r], sb.value[2][r]);
+    s.pdf = sb.pdf[r];
+    if (continue_path(p, hit, depth, s, row.u_roulette, ctx.settings))
+      b.next_live.push_back(row.path);
+  }
+}
+
+}  // namespace raylane::path_detail

@@ -1,0 +1,154 @@
+// The path tracer's render loop, shared by its files (include from src/render/path*.cpp only):
+// a tile's paths and buffers, the context every step gets, and the steps one file hands
+// another. path.cpp runs tiles and wavefronts, path_vertex.cpp shades vertices one by one in
+// double (and holds what both shadings share), path_lanes.cpp shades a wavefront's vertices in
+// lanes.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "raylane/render/bsdf.h"
+#include "raylane/render/lights.h"
+#include "raylane/render/path.h"
+#include "raylane/render/rng.h"
+#include "raylane/render/shade_lanes.h"
+#include "raylane/render/sobol.h"
+
+namespace raylane::path_detail {
+
+inline constexpr uint32_t kTile = 16;  // pixels per tile side: 256 paths per wavefront
+inline constexpr uint32_t kBlock = 4;  // camera rays in 4×4 blocks: one coherent packet
+inline constexpr double kRouletteSurvival = 0.8;
+
+struct PathState {
+  Rayd ray;
+  Vec3d beta{1, 1, 1};  // throughput
+  Vec3d radiance{0, 0, 0};
+  Vec3d prev_p;                // the vertex the ray left (for the light pdf of MIS)
+  double prev_pdf = 0;         // the BSDF density of the ray's direction
+  bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
+  std::size_t pixel = 0;
+  uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
+};
+
+struct ShadowQuery {
+  uint32_t path;
+  PrimRef light;
+  Vec3d contribution;  // added to the path's radiance if the light is the first thing hit
+};
+
+// A phase timer that reads the clock only when the render asked for phase times.
+class PhaseClock {
+ public:
+  explicit PhaseClock(bool on) : on_(on) {
+    if (on_) last_ = std::chrono::steady_clock::now();
+  }
+  // Adds the time since the last lap to `into`.
+  void lap(double& into) {
+    if (!on_) return;
+    auto now = std::chrono::steady_clock::now();
+    into += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
+// once they have grown to a tile's size.
+// A vertex waiting for the lanes: its row in the ShadeBatch is its index in `lane_rows`.
+struct LaneRow {
+  uint32_t path;  // index into the tile's paths
+  uint32_t hit;   // index into the wavefront's hits
+  LightSample light;
+  double u_roulette;
+  std::array<double, 4> u;        // the BSDF group: (u1, u2, lobe, roulette)
+  std::array<double, 4> u_light;  // the light group: (u1, u2, light, part)
+};
+
+struct ThreadBuffers {
+  std::vector<PathState> paths;
+  std::vector<uint32_t> live, next_live;  // paths still going, by index
+  std::vector<Rayd> batch, shadow_rays;
+  std::vector<ShadowQuery> queries, next_queries;
+  std::vector<Hit> hits;
+  TraceScratch scratch;
+  std::vector<LaneRow> lane_rows;  // rows [0, lane_count) are this wavefront's
+  std::size_t lane_count = 0;
+  ShadeBatch shade;
+  SobolBatch sobol;
+  LightQueries light_queries;
+};
+
+// What shading in lanes needs besides the settings (unused with Shading::kDouble).
+struct LaneShading {
+  const LaneMaterials& materials;
+  Isa isa;
+};
+
+inline std::span<LaneRow> queued(ThreadBuffers& b) {
+  return {b.lane_rows.data(), b.lane_count};
+}
+
+struct TileContext {
+  ThreadBuffers& buffers;
+  const Tracer& tracer;
+  const LightSampler& lights;
+  const PathSettings& settings;
+  const LaneShading& lanes;
+  Rng rng;
+  PathStats stats;
+  uint32_t light_calls;  // for timing one light sampling call in kLightTimingStride
+  uint32_t pass;
+};
+
+// A path's decisions and the Sobol group each draws from (4 dimensions per group, the two
+// that warp a direction or a point first, so that they get the (0, 2)-sequence's
+// stratification). The MT19937 sampler ignores the groups and draws in call order.
+struct Dims {
+  static constexpr uint32_t camera = 0;  // (jitter x, jitter y, -, -)
+  static uint32_t light(int depth) { return 1 + 2 * uint32_t(depth); }  // (u1, u2, light, part)
+  static uint32_t bsdf(int depth) { return 2 + 2 * uint32_t(depth); }   // (u1, u2, lobe, roulette)
+};
+
+// A decision's numbers: the whole Sobol group at once, or, from MT19937, one number per
+// component listed in `order`, drawn in that order (the order the course's code drew them).
+inline std::array<double, 4> draw(TileContext& ctx, const PathState& p, uint32_t group,
+                                  std::initializer_list<int> order) {
+  if (ctx.settings.sampler == Sampler::kSobol) return sobol_group(p.pixel_seed, ctx.pass, group);
+  std::array<double, 4> u{};
+  for (int c : order)
+    u[c] = ctx.rng.uniform();
+  return u;
+}
+
+// path_vertex.cpp: what a vertex does with either shading.
+bool samples_lights(const TileContext& ctx);
+// The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
+void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
+                      const LightSample& ls, const Vec3d& f, double bsdf_pdf);
+// After the BSDF's sample: the throughput, Russian roulette, the next ray. False when the
+// path ends here.
+bool continue_path(PathState& p, const Hit& hit, int depth, const BsdfSample& s, double u_roulette,
+                   const PathSettings& settings);
+// Shades the wavefront's vertices: each live path's hit, in lanes where the settings and the
+// material allow, one by one in double otherwise. Fills next_live, shadow_rays, next_queries.
+void shade_wavefront(TileContext& ctx, int depth);
+
+// path_lanes.cpp.
+// A vertex for the lanes (its numbers come in shade_in_lanes). Nothing when nothing reflects
+// here.
+void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
+                    const PathState& p, const Hit& hit);
+// The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
+void shade_in_lanes(TileContext& ctx, int depth);
+
+}  // namespace raylane::path_detail
