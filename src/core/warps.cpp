@@ -31,6 +31,20 @@ Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
   return {sin_t * phi.cos, sin_t * phi.sin, cos_t};
 }
 
+Vec3d sample_concentric_disc(double u1, double u2) {
+  double a = 2 * u1 - 1, b = 2 * u2 - 1;
+  if (a == 0 && b == 0) return {0, 0, 0};
+  // The larger of |a|, |b| is the radius; the other gives the angle within its eighth of the
+  // ring, π/4·(small/large), measured from the large one's axis.
+  double r, phi;
+  if (std::abs(a) > std::abs(b)) {
+    r = a, phi = kPi / 4 * (b / a);
+  } else {
+    r = b, phi = kPi / 2 - kPi / 4 * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi), 0};
+}
+
 Vec3d sample_uniform_sphere(double u1, double u2) {
   double z = 1 - 2 * u1;
   double r = std::sqrt(std::max(0.0, 1 - z * z));

@@ -1,5 +1,7 @@
 #include "raylane/render/camera.h"
 
+#include "raylane/core/warps.h"
+
 namespace raylane {
 
 Camera Camera::from_scene(const Scene& scene) {
@@ -13,7 +15,18 @@ Camera Camera::from_scene(const Scene& scene) {
   c.height = scene.height;
   c.ry = spec.ry;
   c.rx = spec.ry * double(scene.width) / double(scene.height);
+  c.lens_radius = scene.lens.radius;
+  c.focus = scene.lens.focus;
   return c;
+}
+
+Rayd Camera::ray_through_lens(double x, double y, double u1, double u2) const {
+  if (!has_lens()) return ray_through(x, y);
+  double dx = 2 * x / width - 1, dy = 2 * y / height - 1;
+  Vec3d in_focus = eye + (right * (dx * rx) + up * (dy * ry) + forward) * focus;
+  Vec3d disc = sample_concentric_disc(u1, u2) * lens_radius;
+  Vec3d o = eye + right * disc.x + up * disc.y;
+  return {o, normalize(in_focus - o)};
 }
 
 }  // namespace raylane

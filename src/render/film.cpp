@@ -116,6 +116,7 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
   if (scene.camera) {
     h.value(scene.camera->eye), h.value(scene.camera->ry), h.value(scene.camera->rotation);
   }
+  if (scene.lens.radius > 0) h.value(scene.lens.radius), h.value(scene.lens.focus);
   for (const Material& m : scene.materials) {
     h.value(m.kd), h.value(m.ks), h.value(m.kt), h.value(m.alpha), h.value(m.ior);
     h.value(m.emission), h.value(m.is_light);

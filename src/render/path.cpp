@@ -27,8 +27,10 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
           PathState p;
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
           p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
-          auto u = draw(ctx, p, Dims::camera, {0, 1});
-          p.ray = cam.ray_through(x + u[0], y + u[1]);
+          // The lens's numbers only with a lens: a pinhole render draws what it always drew.
+          auto u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
+                                  : draw(ctx, p, Dims::camera, {0, 1});
+          p.ray = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
           paths.push_back(p);
         }
 }

@@ -114,7 +114,7 @@ struct TileContext {
 // that warp a direction or a point first, so that they get the (0, 2)-sequence's
 // stratification). The MT19937 sampler ignores the groups and draws in call order.
 struct Dims {
-  static constexpr uint32_t camera = 0;  // (jitter x, jitter y, -, -)
+  static constexpr uint32_t camera = 0;  // (jitter x, jitter y, lens u1, lens u2)
   static uint32_t light(int depth) { return 1 + 2 * uint32_t(depth); }  // (u1, u2, light, part)
   static uint32_t bsdf(int depth) { return 2 + 2 * uint32_t(depth); }   // (u1, u2, lobe, roulette)
 };

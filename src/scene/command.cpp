@@ -66,6 +66,22 @@ bool camera_command(Scene& s, const Line& line, ParseState& state) {
   return true;
 }
 
+bool lens_command(Scene& s, const Line& line, ParseState& state) {
+  auto v = parse_numbers(line, 1, 2, true, state);
+  if (!v) return false;
+  if (!((*v)[0] >= 0)) {
+    state.problem(line.at(1), "lens radius must be >= 0 (0 is the pinhole)");
+    return false;
+  }
+  if (!((*v)[1] > 0)) {
+    state.problem(line.at(2), "lens focus distance must be > 0");
+    return false;
+  }
+  note_repeat(state.lens_line, line, state);
+  s.lens = LensSpec{(*v)[0], (*v)[1]};
+  return true;
+}
+
 bool ambient_command(Scene& s, const Line& line, ParseState& state) {
   auto v = parse_numbers(line, 1, 3, true, state);
   if (!v) return false;
@@ -168,6 +184,7 @@ bool Scene::command(const Line& line, ParseState& state) {
   if (word == "screen") return screen_command(*this, line, state);
   if (word == "camera") return camera_command(*this, line, state);
   if (word == "ambient") return ambient_command(*this, line, state);
+  if (word == "lens") return lens_command(*this, line, state);
   if (word == "brdf") return brdf_command(*this, line, state);
   if (word == "light") return light_command(*this, line, state);
   if (word == "mesh") return mesh_command(*this, line, state);

@@ -1,7 +1,10 @@
 // The camera of the course (docs/scene-language.md, "Camera and image orientation").
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "raylane/render/camera.h"
+#include "raylane/render/rng.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 
@@ -25,6 +28,36 @@ TEST(Camera, TestSceneLooksAtTheTable) {
   EXPECT_NEAR(p.y, -0.22, 0.02);
   EXPECT_NEAR(p.z, 0.27, 0.02);
   EXPECT_GT(c.up.z, 0.0);
+}
+
+// Without a lens the thin-lens ray is the pinhole ray bit for bit; with one, every ray for a
+// grid point starts on the aperture disc around the eye (in the right-up plane) and passes
+// through the pinhole ray's point at `focus` along the forward axis.
+TEST(Camera, ThinLensRaysMeetInThePlaneInFocus) {
+  Camera c = test_scene_camera();
+  Rng rng(9);
+  for (int i = 0; i < 1000; ++i) {
+    double x = rng.uniform() * c.width, y = rng.uniform() * c.height;
+    Rayd pin = c.ray_through(x, y), lens = c.ray_through_lens(x, y, rng.uniform(), rng.uniform());
+    ASSERT_TRUE(pin.o == lens.o && pin.d == lens.d);
+  }
+  c.lens_radius = 0.05, c.focus = 2.5;
+  double widest = 0;
+  for (int i = 0; i < 1000; ++i) {
+    double x = rng.uniform() * c.width, y = rng.uniform() * c.height;
+    Rayd pin = c.ray_through(x, y);
+    Rayd r = c.ray_through_lens(x, y, rng.uniform(), rng.uniform());
+    Vec3d off = r.o - c.eye;
+    EXPECT_LE(length(off), c.lens_radius * (1 + 1e-12));
+    EXPECT_NEAR(dot(off, c.forward), 0, 1e-15);
+    widest = std::max(widest, length(off));
+    // Where the pinhole ray crosses the plane in focus (forward distance `focus`).
+    Vec3d f = pin.at(c.focus / dot(pin.d, c.forward));
+    double t = dot(f - r.o, r.d);
+    EXPECT_LT(length(r.at(t) - f), 1e-12 * c.focus);
+    EXPECT_NEAR(length(r.d), 1, 1e-15);
+  }
+  EXPECT_GT(widest, 0.9 * c.lens_radius);  // the aperture is used, not just its centre
 }
 
 TEST(Camera, FrameIsOrthonormalAndFieldOfViewMatchesRy) {

@@ -203,6 +203,31 @@ TEST(PathTracer, ImageIsTheSameForAnyThreadCount) {
     }
 }
 
+// `lens 0 d` is the pinhole: the same image bit for bit, with either sampler (the lens draws
+// no numbers of its own then). A real aperture changes the image.
+TEST(PathTracer, ZeroApertureLensIsThePinholeImage) {
+  for (Sampler sampler : kSamplers) {
+    SCOPED_TRACE(sampler_name(sampler));
+    auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
+    ASSERT_TRUE(p.ok());
+    p.scene.width = 32, p.scene.height = 24;
+    PathSettings s;
+    s.spp = 2;
+    s.sampler = sampler;
+    Image pinhole = render(p.scene, s);
+    p.scene.lens = LensSpec{0, 1.5};
+    Image zero = render(p.scene, s);
+    EXPECT_EQ(std::memcmp(pinhole.rgb.data(), zero.rgb.data(), pinhole.rgb.size() * sizeof(float)),
+              0);
+    p.scene.lens = LensSpec{0.2, 1.5};
+    Image blurred = render(p.scene, s);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < pinhole.rgb.size(); ++i)
+      differ += pinhole.rgb[i] != blurred.rgb[i];
+    EXPECT_GT(differ, pinhole.rgb.size() / 2);
+  }
+}
+
 // The later course projects' materials (glass with absorption, mirror, glossy table) on the
 // test scene: no NaN or inf sample, and light gets through the glass.
 TEST(PathTracer, GlassAndMirrorRenderFinite) {

@@ -58,6 +58,24 @@ TEST(Parser, ReadsEveryCommand) {
   EXPECT_EQ(s.primitive_count(), 3u);
 }
 
+TEST(Parser, LensTakesRadiusAndFocusAndTheLastLineWins) {
+  auto p = parse(std::string(kCameraLine) + "lens 0.1 3\nlens 0.05 2.5\n");
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  EXPECT_EQ(p.scene.lens.radius, 0.05);
+  EXPECT_EQ(p.scene.lens.focus, 2.5);
+  int repeats = 0;
+  for (const std::string& w : warnings(p))
+    repeats += w == "t.scn:3:1: warning: lens given again (first on line 2): the last one wins";
+  EXPECT_EQ(repeats, 1);
+  EXPECT_EQ(parse(kCameraLine).scene.lens.radius, 0);  // the pinhole by default
+  EXPECT_THAT(errors(parse(std::string(kCameraLine) + "lens -0.1 3\n")),
+              ElementsAre("t.scn:2:6: lens radius must be >= 0 (0 is the pinhole)"));
+  EXPECT_THAT(errors(parse(std::string(kCameraLine) + "lens 0.1 0\n")),
+              ElementsAre("t.scn:2:10: lens focus distance must be > 0"));
+  EXPECT_EQ(errors(parse(std::string(kCameraLine) + "lens 0.1\n")).size(), 1u);
+  EXPECT_EQ(errors(parse(std::string(kCameraLine) + "lens 0.1 2 3\n")).size(), 1u);
+}
+
 TEST(Parser, CommentsBlankLinesTabsAndCrlf) {
   auto p = parse(std::string(kCameraLine) +
                  "# a comment line\n"

@@ -122,6 +122,8 @@ int info_command(const std::vector<std::string>& args) {
   std::printf("screen: %u x %u\n", s.width, s.height);
   const CameraSpec& c = *s.camera;
   std::printf("camera: eye (%g %g %g), ry %g\n", c.eye.x, c.eye.y, c.eye.z, c.ry);
+  if (s.lens.radius > 0)
+    std::printf("lens: aperture radius %g, in focus at %g\n", s.lens.radius, s.lens.focus);
   std::printf("ambient: (%g %g %g)\n", s.ambient.x, s.ambient.y, s.ambient.z);
   print_bounds("bounds", scene_bounds(s));
   print_meshes(loaded->meshes);

@@ -31,6 +31,12 @@ inline double cosine_hemisphere_pdf(double cos_theta) {
 // cones); pdf = 1 / (2π·(1 − cos θmax)).
 Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max);
 
+// A uniform point on the unit disc, by Shirley and Chiu's concentric map (1997, "A
+// low-distortion map between disk and square"): squares of the [-1, 1]² grid go to rings, so
+// the square's stratification survives (no polar map's pinch at the centre); pdf = 1/π.
+// Returned as (x, y, 0).
+Vec3d sample_concentric_disc(double u1, double u2);
+
 // A uniform direction on the unit sphere; pdf = 1/(4π).
 Vec3d sample_uniform_sphere(double u1, double u2);
 

@@ -32,7 +32,7 @@ struct ParseState {
   std::vector<std::string> input_files;  // every file read so far: meshes and what they name
   std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
-  int screen_line = 0, camera_line = 0, ambient_line = 0;  // 0 = not seen yet
+  int screen_line = 0, camera_line = 0, ambient_line = 0, lens_line = 0;  // 0 = not seen yet
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);

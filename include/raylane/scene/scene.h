@@ -22,6 +22,13 @@ struct CameraSpec {
   Mat3d rotation;   // right = R·x, up = R·y, forward = R·(−z)
 };
 
+// Thin-lens depth of field (`lens r d`): aperture radius and the distance from the eye to the
+// plane in focus, along the forward axis. radius 0 is the pinhole.
+struct LensSpec {
+  double radius = 0;
+  double focus = 1;
+};
+
 struct Token {
   std::string_view text;  // as written (with the quotes of a quoted file name)
   int col = 0;            // 1-based column of its first character
@@ -46,6 +53,7 @@ struct Scene {
 
   uint32_t width = kDefaultWidth, height = kDefaultHeight;
   std::optional<CameraSpec> camera;
+  LensSpec lens;
   Vec3f ambient{0.0f, 0.0f, 0.0f};
   std::vector<Material> materials;
   PrimTables tables;
