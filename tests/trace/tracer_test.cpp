@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "raylane/core/warps.h"
@@ -15,16 +16,27 @@ namespace raylane {
 namespace {
 
 // Rays from random points of the course scene's room (some inside its solids, so back faces
-// are met too) in uniform directions.
-std::vector<Rayd> random_rays(const Bvh& bvh, int count) {
+// are met too): three in four in uniform directions, one in four toward a random triangle's
+// centroid (the letters are small: uniform directions alone may miss them).
+std::vector<Rayd> random_rays(const Scene& scene, const Bvh& bvh, int count) {
   Rng rng(5);
   Bounds3f b = bvh.nodes[0].bounds();
+  const TriangleTable& tris = scene.table<Triangle>();
   std::vector<Rayd> rays;
   for (int i = 0; i < count; ++i) {
     Vec3d o;
-    for (int k = 0; k < 3; ++k)
-      o[k] = b.lo[k] + (b.hi[k] - b.lo[k]) * rng.uniform();
-    rays.push_back({o, sample_uniform_sphere(rng.uniform(), rng.uniform())});
+    for (int k = 0; k < 3; ++k) {
+      double u = rng.uniform();
+      o[k] = b.lo[k] + (b.hi[k] - b.lo[k]) * u;
+    }
+    double u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3d d = sample_uniform_sphere(u1, u2);
+    if (i % 4 == 0 && tris.size() > 0) {
+      auto row = uint32_t(std::min<double>(u1 * double(tris.size()), double(tris.size() - 1)));
+      Vec3d c = (Vec3d(tris.p0(row)) + Vec3d(tris.p1(row)) + Vec3d(tris.p2(row))) / 3.0;
+      d = normalize(c - o);
+    }
+    rays.push_back({o, d});
   }
   return rays;
 }
@@ -38,7 +50,7 @@ TEST(Tracer, BatchSurfacesAndFacingAreTheOneByOneAnswers) {
   ASSERT_TRUE(parsed.ok());
   Bvh bvh = build_bvh(parsed.scene);
   Tracer tracer(parsed.scene, bvh, TracerKind::kPacket);
-  std::vector<Rayd> rays = random_rays(bvh, 20000);
+  std::vector<Rayd> rays = random_rays(parsed.scene, bvh, 20000);
   std::vector<Hit> hits;
   tracer.closest(rays, hits);
   int back = 0, kinds[kPrimKindCount] = {};
