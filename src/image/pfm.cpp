@@ -35,27 +35,37 @@ std::string encode_pfm(const Image& image) {
   return out;
 }
 
-Result<Image> decode_pfm(std::string_view b) {
+Result<PfmHeader> parse_pfm_header(std::string_view b) {
   std::size_t pos = 0;
   if (token(b, pos) != "PF") return Error{"not a colour PFM file (no PF magic)"};
-  uint32_t w = 0, h = 0;
-  double scale = 0;
+  PfmHeader h;
   auto num = [&](auto& v) {
     std::string_view t = token(b, pos);
     auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     return ec == std::errc() && p == t.data() + t.size();
   };
-  if (!num(w) || !num(h) || w == 0 || h == 0) return Error{"bad PFM size"};
-  if (!num(scale) || scale == 0) return Error{"bad PFM scale"};
-  if (uint64_t(w) * h > kMaxImagePixels)
-    return Error{cat("image has ", uint64_t(w) * h, " pixels; the limit is 2^28 (268435456)")};
-  ++pos;  // the single whitespace character after the scale
-  uint64_t need = uint64_t(w) * h * 12;
-  if (pos > b.size() || b.size() - pos < need) return Error{"truncated PFM data"};
-  Image img(w, h);
-  bool swap = scale > 0;  // positive scale: big endian
-  for (uint32_t row = 0; row < h; ++row) {
-    uint32_t y = h - 1 - row;
+  if (!num(h.width) || !num(h.height) || h.width == 0 || h.height == 0)
+    return Error{"bad PFM size"};
+  if (!num(h.scale) || h.scale == 0) return Error{"bad PFM scale"};
+  if (uint64_t(h.width) * h.height > kMaxImagePixels)
+    return Error{
+        cat("image has ", uint64_t(h.width) * h.height, " pixels; the limit is 2^28 (268435456)")};
+  h.data_offset = pos + 1;  // the single whitespace character after the scale
+  uint64_t need = uint64_t(h.width) * h.height * 12;
+  if (h.data_offset > b.size() || b.size() - h.data_offset < need)
+    return Error{"truncated PFM data"};
+  return h;
+}
+
+Result<Image> decode_pfm(std::string_view b) {
+  auto h = parse_pfm_header(b);
+  if (!h) return Error{h.error()};
+  const uint32_t w = h->width, ht = h->height;
+  std::size_t pos = h->data_offset;
+  Image img(w, ht);
+  bool swap = h->scale > 0;  // positive scale: big endian
+  for (uint32_t row = 0; row < ht; ++row) {
+    uint32_t y = ht - 1 - row;
     for (std::size_t k = 0; k < std::size_t(w) * 3; ++k) {
       uint32_t bits;
       std::memcpy(&bits, b.data() + pos, 4);

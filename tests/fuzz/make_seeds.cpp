@@ -1,12 +1,15 @@
-// Writes the small seed inputs of the RGBE and mesh fuzzers into OUTDIR/rgbe and OUTDIR/mesh
-// (generated, so no binaries are committed), plus the PLY files named after OUTDIR (the
-// course's letters). Mesh seeds start with the fuzzer's format byte (0: PLY, 1: OBJ).
+// Writes the small seed inputs of the RGBE, mesh and image fuzzers into OUTDIR/rgbe, OUTDIR/mesh
+// and OUTDIR/image (generated, so no binaries are committed), plus copies of the files named
+// after OUTDIR: PLY files (the course's letters) as mesh seeds, any other file (an image of
+// Debian's assimp-testmodels, if installed) as an image seed. Mesh seeds start with the fuzzer's
+// format byte (0: PLY, 1: OBJ), image seeds with the name byte (1: a .tga name).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "raylane/image/pfm.h"
 #include "raylane/image/rgbe.h"
 
 namespace {
@@ -60,26 +63,66 @@ void mesh_seeds(const fs::path& dir) {
   put(dir / "square.obj", std::string(1, '\1') + kObj);
 }
 
-void copy_ply_seed(const fs::path& from, const fs::path& dir) {
+// A TGA (type 2: uncompressed true colour, 24 bits, bottom-up) and a BMP (24 bits, bottom-up,
+// rows padded to 4 bytes) of a 2×2 image, after the formats' published header layouts.
+std::string tga_2x2() {
+  std::string s(18, '\0');
+  s[2] = 2, s[12] = 2, s[14] = 2, s[16] = 24;
+  for (int i = 0; i < 4; ++i)
+    s += std::string{char(40 * i), char(200 - 40 * i), char(90)};
+  return s;
+}
+
+std::string le32(uint32_t v) {
+  return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)};
+}
+
+std::string bmp_2x2() {
+  std::string pixels;
+  for (int row = 0; row < 2; ++row)
+    pixels +=
+        std::string{char(10 * row), char(250), char(60), char(0), char(120), char(30), '\0', '\0'};
+  std::string s = "BM" + le32(54 + uint32_t(pixels.size())) + le32(0) + le32(54);
+  s += le32(40) + le32(2) + le32(2) + std::string{1, 0, 24, 0} + le32(0) +
+       le32(uint32_t(pixels.size())) + le32(2835) + le32(2835) + le32(0) + le32(0);
+  return s + pixels;
+}
+
+void image_seeds(const fs::path& dir) {
+  put(dir / "rle.hdr", std::string(1, '\0') + raylane::encode_rgbe(gradient(16, 4)));
+  put(dir / "flat.pfm", std::string(1, '\0') + raylane::encode_pfm(gradient(3, 2)));
+  put(dir / "small.tga", std::string(1, '\1') + tga_2x2());
+  put(dir / "small.bmp", std::string(1, '\0') + bmp_2x2());
+}
+
+void copy_seed(const fs::path& from, const fs::path& dir, char prefix) {
   std::ifstream in(from, std::ios::binary);
+  if (!in) return;  // an optional seed that is not installed here
   std::ostringstream bytes;
   bytes << in.rdbuf();
-  put(dir / from.filename(), std::string(1, '\0') + bytes.str());
+  put(dir / from.filename(), std::string(1, prefix) + bytes.str());
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: make_seeds OUTDIR [PLY...]\n");
+    std::fprintf(stderr, "usage: make_seeds OUTDIR [PLY or image...]\n");
     return 2;
   }
   fs::path out(argv[1]);
   fs::create_directories(out / "rgbe");
   fs::create_directories(out / "mesh");
+  fs::create_directories(out / "image");
   rgbe_seeds(out / "rgbe");
   mesh_seeds(out / "mesh");
-  for (int i = 2; i < argc; ++i)
-    copy_ply_seed(argv[i], out / "mesh");
+  image_seeds(out / "image");
+  for (int i = 2; i < argc; ++i) {
+    fs::path p(argv[i]);
+    if (p.extension() == ".ply")
+      copy_seed(p, out / "mesh", '\0');
+    else
+      copy_seed(p, out / "image", p.extension() == ".tga" ? '\1' : '\0');
+  }
   return 0;
 }

@@ -3,6 +3,8 @@
 // HDRShop format definition).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -11,7 +13,15 @@
 
 namespace raylane {
 
+struct PfmHeader {
+  uint32_t width = 0, height = 0;
+  double scale = 0;             // its sign gives the byte order
+  std::size_t data_offset = 0;  // where the pixels start
+};
+
 std::string encode_pfm(const Image& image);
+// The header, checked: a size within the limit and a file long enough to hold its pixels.
+Result<PfmHeader> parse_pfm_header(std::string_view bytes);
 Result<Image> decode_pfm(std::string_view bytes);
 
 }  // namespace raylane

@@ -1,0 +1,50 @@
+// Reading textures and environments: PNG, JPEG, TGA, BMP and Radiance HDR through stb_image
+// (Debian's libstb-dev), PFM through raylane's own reader (image/pfm.h). Integer images are
+// sRGB-encoded and come back linear; float images are linear already (docs/scene-language.md,
+// "Beyond project 4: textures, environment light, lens").
+//
+// Decoders are guarded as the mesh importer is (docs/design.md, "Images in"): the size a
+// header announces is checked against the limit on pixels and against what a file of this
+// length can hold in its format before anything is decoded, and stb_image's own allocations
+// run under a budget, so a short file cannot make it allocate gigabytes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "raylane/core/error.h"
+#include "raylane/image/image.h"
+
+namespace raylane {
+
+inline constexpr uint64_t kMaxImageFileBytes = uint64_t(1) << 30;
+
+enum class InputFormat { kPng, kJpeg, kBmp, kTga, kHdr, kPfm };
+
+struct InputImageInfo {
+  InputFormat format = InputFormat::kPng;
+  uint32_t width = 0, height = 0;
+  int channels = 0;       // as stored (1 grey … 4 RGBA); the reader keeps RGB
+  bool is_float = false;  // HDR and PFM: linear; otherwise sRGB-encoded integers
+  bool is_16bit = false;  // 16-bit PNG
+};
+
+std::string_view input_format_name(InputFormat f);
+
+// The header only: format, size, channels; the same checks as decode_input_image makes before it
+// decodes. `name` is the file's name, for the TGA fallback (TGA has no magic number).
+Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name);
+// The whole image as linear RGB, top row first; alpha is dropped, grey becomes RGB. Pixels
+// that are negative, NaN or infinite are an error.
+Result<Image> decode_input_image(std::string_view bytes, std::string_view name);
+
+// A file, read through read_input_file (regular files only, kMaxImageFileBytes at most).
+// Errors start with the path.
+Result<InputImageInfo> read_input_image_info(const std::string& path);
+Result<Image> read_input_image(const std::string& path);
+
+// The sRGB transfer function's inverse (IEC 61966-2-1): encoded value in [0, 1] → linear.
+double srgb_to_linear(double encoded);
+
+}  // namespace raylane

@@ -1,0 +1,217 @@
+#include "raylane/image/input_image.h"
+
+#include <array>
+#include <cmath>
+
+#include "image/stb_decode.h"
+#include "raylane/core/input_file.h"
+#include "raylane/core/strings.h"
+#include "raylane/image/pfm.h"
+
+namespace raylane {
+
+namespace {
+
+bool starts_with(std::string_view b, std::string_view magic) {
+  return b.substr(0, magic.size()) == magic;
+}
+
+bool ends_with_tga(std::string_view name) {
+  if (name.size() < 4) return false;
+  std::string_view ext = name.substr(name.size() - 4);
+  return ext[0] == '.' && (ext[1] | 0x20) == 't' && (ext[2] | 0x20) == 'g' &&
+         (ext[3] | 0x20) == 'a';
+}
+
+// The format by its magic number; TGA, which has none, by the file's extension.
+Result<InputFormat> format_of(std::string_view b, std::string_view name) {
+  if (starts_with(b, "\x89PNG\r\n\x1a\n")) return InputFormat::kPng;
+  if (starts_with(b, "\xff\xd8\xff")) return InputFormat::kJpeg;
+  if (starts_with(b, "BM")) return InputFormat::kBmp;
+  if (starts_with(b, "#?RADIANCE") || starts_with(b, "#?RGBE")) return InputFormat::kHdr;
+  if (starts_with(b, "PF\n") || starts_with(b, "PF\r") || starts_with(b, "PF "))
+    return InputFormat::kPfm;
+  if (ends_with_tga(name)) return InputFormat::kTga;
+  return Error{"not an image raylane reads (PNG, JPEG, TGA, BMP, Radiance HDR or colour PFM)"};
+}
+
+// The most pixels a file of the format can describe per byte of it, so that a header announcing
+// more than the file can hold is refused before anything is decoded:
+// - PNG: deflate expands at most 1032:1 (RFC 1951: a 258-byte match costs at least 2 bits), and
+//   a pixel takes at least 1 bit (1-bit grey): 8·1032;
+// - JPEG: every 8×8 block of the first component costs at least one bit (its DC code is a
+//   Huffman code of length ≥ 1, ITU T.81 F.1.2.1): 64·8;
+// - BMP (stb reads uncompressed ones only): 1 bit per pixel at least;
+// - TGA: an RLE packet of 1 header byte and 1 pixel byte repeats up to 128 pixels;
+// - Radiance HDR: a run of up to 127 bytes costs 2 bytes, in each of 4 components.
+uint64_t max_pixels_per_byte(InputFormat f) {
+  switch (f) {
+    case InputFormat::kPng:
+      return 8 * 1032;
+    case InputFormat::kJpeg:
+      return 64 * 8;
+    case InputFormat::kBmp:
+      return 8;
+    case InputFormat::kTga:
+      return 64;
+    case InputFormat::kHdr:
+      return 16;
+    case InputFormat::kPfm:
+      return 1;
+  }
+  return 1;
+}
+
+Status check_size(const InputImageInfo& info, uint64_t file_bytes) {
+  uint64_t pixels = uint64_t(info.width) * info.height;
+  if (info.width == 0 || info.height == 0) return Error{"the image is empty (0 pixels)"};
+  if (pixels > kMaxImagePixels)
+    return Error{cat("the image has ", info.width, "x", info.height,
+                     " pixels; the limit is 2^28 (268435456)")};
+  // A small allowance covers headers and tiny images, whose few bytes are mostly header.
+  if (pixels > max_pixels_per_byte(info.format) * file_bytes + 4096)
+    return Error{cat("the header announces ", info.width, "x", info.height, " pixels, more than ",
+                     file_bytes, " bytes of ", input_format_name(info.format), " can hold")};
+  return ok_status();
+}
+
+Result<InputImageInfo> probe_stb(std::string_view bytes, InputFormat format) {
+  stb::Header h;
+  std::string why;
+  if (!stb::probe(bytes, h, why))
+    return Error{cat("unreadable ", input_format_name(format), " header: ", why)};
+  InputImageInfo info;
+  info.format = format;
+  info.width = uint32_t(h.width), info.height = uint32_t(h.height);
+  info.channels = h.channels;
+  info.is_float = h.is_hdr;
+  info.is_16bit = h.is_16bit;
+  return info;
+}
+
+Result<InputImageInfo> probe_pfm(std::string_view bytes) {
+  auto h = parse_pfm_header(bytes);
+  if (!h) return Error{h.error()};
+  InputImageInfo info;
+  info.format = InputFormat::kPfm;
+  info.width = h->width, info.height = h->height;
+  info.channels = 3;
+  info.is_float = true;
+  return info;
+}
+
+const std::array<float, 256>& srgb_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i)
+      t[i] = float(srgb_to_linear(i / 255.0));
+    return t;
+  }();
+  return table;
+}
+
+Result<Image> to_linear(const InputImageInfo& info, const stb::Pixels& px) {
+  Image img(info.width, info.height);
+  const std::size_t n = img.rgb.size();
+  if (info.is_float) {
+    for (std::size_t i = 0; i < n; ++i)
+      img.rgb[i] = px.f32[i];
+  } else if (info.is_16bit) {
+    for (std::size_t i = 0; i < n; ++i)
+      img.rgb[i] = float(srgb_to_linear(px.u16[i] / 65535.0));
+  } else {
+    const auto& table = srgb_table();
+    for (std::size_t i = 0; i < n; ++i)
+      img.rgb[i] = table[px.u8[i]];
+  }
+  return img;
+}
+
+Status check_pixels(const Image& img) {
+  for (std::size_t i = 0; i < img.rgb.size(); ++i) {
+    float v = img.rgb[i];
+    if (!(v >= 0) || !std::isfinite(v)) {
+      std::size_t pixel = i / 3;
+      return Error{cat("pixel (", pixel % img.width, ", ", pixel / img.width, ") is ", v,
+                       ": image values must be finite and >= 0")};
+    }
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+std::string_view input_format_name(InputFormat f) {
+  switch (f) {
+    case InputFormat::kPng:
+      return "PNG";
+    case InputFormat::kJpeg:
+      return "JPEG";
+    case InputFormat::kBmp:
+      return "BMP";
+    case InputFormat::kTga:
+      return "TGA";
+    case InputFormat::kHdr:
+      return "Radiance HDR";
+    case InputFormat::kPfm:
+      return "PFM";
+  }
+  return "image";
+}
+
+double srgb_to_linear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name) {
+  if (bytes.empty()) return Error{"the file is empty"};
+  if (bytes.size() > kMaxImageFileBytes) return Error{"the file is larger than 1 GiB"};
+  auto format = format_of(bytes, name);
+  if (!format) return Error{format.error()};
+  auto info = *format == InputFormat::kPfm ? probe_pfm(bytes) : probe_stb(bytes, *format);
+  if (!info) return info;
+  if (auto s = check_size(*info, bytes.size()); !s) return Error{s.error()};
+  return info;
+}
+
+Result<Image> decode_input_image(std::string_view bytes, std::string_view name) {
+  auto info = probe_input_image(bytes, name);
+  if (!info) return Error{info.error()};
+  Result<Image> img = Error{""};
+  if (info->format == InputFormat::kPfm) {
+    img = decode_pfm(bytes);
+  } else {
+    stb::Header h{int(info->width), int(info->height), info->channels, info->is_16bit,
+                  info->is_float};
+    // stb holds the file's compressed data, the decoded samples in their stored channels and
+    // then in 3, each at most twice over while its buffer grows: 8 samples of 4 bytes per pixel
+    // and 4 bytes per file byte bound all of that.
+    uint64_t budget = uint64_t(info->width) * info->height * 32 + 4 * bytes.size() + (1u << 20);
+    stb::Pixels px;
+    std::string why;
+    if (!stb::decode(bytes, h, budget, px, why))
+      return Error{cat("cannot decode the ", input_format_name(info->format), " data: ", why)};
+    img = to_linear(*info, px);
+  }
+  if (!img) return img;
+  if (auto s = check_pixels(*img); !s) return Error{s.error()};
+  return img;
+}
+
+Result<InputImageInfo> read_input_image_info(const std::string& path) {
+  auto bytes = read_input_file(path, kMaxImageFileBytes, "the image");
+  if (!bytes) return Error{bytes.error()};
+  auto info = probe_input_image(*bytes, path);
+  if (!info) return Error{cat(path, ": ", info.error())};
+  return info;
+}
+
+Result<Image> read_input_image(const std::string& path) {
+  auto bytes = read_input_file(path, kMaxImageFileBytes, "the image");
+  if (!bytes) return Error{bytes.error()};
+  auto img = decode_input_image(*bytes, path);
+  if (!img) return Error{cat(path, ": ", img.error())};
+  return img;
+}
+
+}  // namespace raylane

@@ -1,0 +1,27 @@
+// libFuzzer target: bytes → a texture or environment image (every format raylane reads) or an
+// error. The first byte picks the file name (odd: "input.tga", since TGA is known by its
+// extension alone); the rest is the file. A decoded image must have the size its header
+// announced, within the pixel limit, and hold only finite values >= 0.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+#include "raylane/image/read_input_image.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  std::string_view name = (data[0] & 1) ? "input.tga" : "input";
+  std::string_view bytes(reinterpret_cast<const char*>(data + 1), size - 1);
+  auto info = raylane::probe_input_image(bytes, name);
+  auto image = raylane::decode_input_image(bytes, name);
+  if (!image) return 0;
+  if (!info) std::abort();  // decoding succeeded where probing failed
+  if (image->width != info->width || image->height != info->height) std::abort();
+  if (uint64_t(image->width) * image->height > raylane::kMaxImagePixels) std::abort();
+  if (image->rgb.size() != std::size_t(image->width) * image->height * 3) std::abort();
+  for (float v : image->rgb)
+    if (!(v >= 0) || !std::isfinite(v)) std::abort();
+  return 0;
+}
