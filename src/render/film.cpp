@@ -120,6 +120,11 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
   for (const Material& m : scene.materials) {
     h.value(m.kd), h.value(m.ks), h.value(m.kt), h.value(m.alpha), h.value(m.ior);
     h.value(m.emission), h.value(m.is_light);
+    if (m.texture >= 0) h.value(m.texture);  // only when textured: older films still fit
+  }
+  for (const Texture& t : scene.textures) {
+    h.value(t.image.width), h.value(t.image.height);
+    h.column(t.image.rgb);
   }
   PrimKinds::for_each([&](auto kind) {
     // columns() hands out references for writing too; here they are only read.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raylane/render/texturing.h"
+
 namespace raylane {
 
 namespace {
@@ -38,6 +40,7 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const Vec3d
   if (Kind::two_sided) cos_l = std::abs(cos_l);
   if (!(cos_l > 0)) return s;  // the back of a solid emitter
   s.p = a.p;
+  s.n = a.n;
   s.pdf = choice * d2 / (cos_l * Kind::area(t, row));
   if (!std::isfinite(s.pdf)) s.pdf = 0;
   return s;
@@ -64,11 +67,14 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double total = 0;
   std::vector<double> power;
   for (PrimRef l : scene.lights) {
-    Vec3d le(scene.materials[scene.material_of(l)].emission);
-    double w = (le.x + le.y + le.z) / 3 * area_of(scene, l);
+    const Material& m = scene.materials[scene.material_of(l)];
+    Vec3d le(m.emission);
+    Vec3d mean_le = m.texture >= 0 ? le * scene.textures[m.texture].mean : le;
+    double w = (mean_le.x + mean_le.y + mean_le.z) / 3 * area_of(scene, l);
     if (!(w > 0) || !std::isfinite(w)) continue;
     lights_.push_back(l);
     le_.push_back(le);
+    textured_.push_back(m.texture >= 0);
     power.push_back(w);
     total += w;
   }
@@ -102,10 +108,18 @@ LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part
   PrimRef l = lights_[k];
   s.light = l;
   s.le = le_[k];
-  return dispatch(l.tag(), [&](auto kind) {
+  s = dispatch(l.tag(), [&](auto kind) {
     using Kind = decltype(kind);
     return sample_kind<Kind>(scene_.table<Kind>(), l.row(), ref, choice_[k], u_part, u1, u2, s);
   });
+  if (textured_[k]) apply_texture(k, s);
+  return s;
+}
+
+void LightSampler::apply_texture(std::size_t k, LightSample& s) const {
+  if (!s.valid()) return;
+  const Material& m = scene_.materials[scene_.material_of(lights_[k])];
+  s.le = s.le * texture_factor(scene_, m, lights_[k], Surface{s.p, s.n, s.n});
 }
 
 void LightSampler::sample_many(Isa isa, LightQueries& q) const {
@@ -148,6 +162,11 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     s.p = q.ref[r] + s.wi * s.dist;
     s.pdf = q.cone_choice[j] / cb.solid_angle[j];
   }
+  if (std::find(textured_.begin(), textured_.end(), 1) == textured_.end()) return;
+  for (uint32_t r : q.cone_rows) {  // the rest went through sample(), which applied theirs
+    std::size_t k = pick(q.u[r][2]);
+    if (textured_[k]) apply_texture(k, q.out[r]);
+  }
 }
 
 double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const {
@@ -164,7 +183,7 @@ Vec3d LightSampler::emitted(const Hit& hit) const {
   const Material& m = scene_.materials[scene_.material_of(hit.prim)];
   if (!m.is_light) return {0, 0, 0};
   if (!kind_two_sided(hit.prim.tag()) && !hit.front_face) return {0, 0, 0};
-  return Vec3d(m.emission);
+  return Vec3d(m.emission) * texture_factor(scene_, m, hit.prim, hit.surface);
 }
 
 }  // namespace raylane

@@ -5,6 +5,7 @@
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/sampling.h"
+#include "raylane/render/texturing.h"
 #include "render/path_loop.h"
 
 namespace raylane::path_detail {
@@ -102,7 +103,11 @@ std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, i
 
 // One vertex with the double Bsdf: light sampling, then the next direction.
 bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
-                         const Material& m, int depth) {
+                         const Material& material, int depth) {
+  // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
+  Material m = material;
+  if (m.texture >= 0)
+    m.kd = Vec3f(Vec3d(m.kd) * texture_factor(ctx.tracer.scene(), m, hit.prim, hit.surface));
   Bsdf bsdf(m, hit.surface.ns, -p.ray.d);
   if (bsdf.black()) return false;
   if (samples_lights(ctx)) {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "raylane/core/ray_offset.h"
+#include "raylane/render/texturing.h"
 
 namespace raylane {
 
@@ -22,6 +23,18 @@ const Material& material_of(const Scene& scene, const Hit& hit) {
   return scene.materials[scene.material_of(hit.prim)];
 }
 
+// Kd at the hit (0 on a light), times the material's texture there.
+Vec3d albedo(const Scene& scene, const Hit& hit) {
+  const Material& m = material_of(scene, hit);
+  return to_d(m.kd) * texture_factor(scene, m, hit.prim, hit.surface);
+}
+
+// A light's radiance at the hit, times its texture there.
+Vec3d radiance(const Scene& scene, const Hit& hit) {
+  const Material& m = material_of(scene, hit);
+  return to_d(m.emission) * texture_factor(scene, m, hit.prim, hit.surface);
+}
+
 Vec3d shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
   if (!hit.hit()) return {0, 0, 0};
   switch (mode) {
@@ -30,7 +43,13 @@ Vec3d shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
     case RaycastMode::kDepth:
       return {hit.t, hit.t, hit.t};
     case RaycastMode::kAlbedo:
-      return to_d(material_of(scene, hit).kd);
+      return albedo(scene, hit);
+    case RaycastMode::kUv: {
+      TexCoord t = texcoord_of(scene, hit.prim, hit.surface);
+      return {t.u, t.v, 0};
+    }
+    case RaycastMode::kPosition:
+      return hit.surface.p;
     case RaycastMode::kId:
       return {double(uint32_t(hit.prim.tag()) + 1), double(hit.prim.row()), 0.0};
     case RaycastMode::kLit:
@@ -64,7 +83,8 @@ Vec3d shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::
                       std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
   if (!hit.hit()) return {0, 0, 0};
   const Material& m = material_of(scene, hit);
-  if (m.is_light) return to_d(m.emission);
+  if (m.is_light) return radiance(scene, hit);
+  const Vec3d kd = albedo(scene, hit);
   Vec3d n = hit.front_face ? hit.surface.ns : -hit.surface.ns;
   Vec3d v = -normalize(ray.d);
   Vec3d origin = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, v);
@@ -80,9 +100,9 @@ Vec3d shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::
     double spec = std::pow(std::max(0.0, dot(r, v)), double(m.alpha));
     Vec3d le = to_d(scene.materials[scene.material_of(light)].emission);
     shadow_rays.push_back({origin, l, 0.0, dist});
-    queries.push_back({pixel, light, le * (to_d(m.kd) * nl + to_d(m.ks) * spec)});
+    queries.push_back({pixel, light, le * (kd * nl + to_d(m.ks) * spec)});
   }
-  return to_d(scene.ambient) * to_d(m.kd);
+  return to_d(scene.ambient) * kd;
 }
 
 // Camera rays for rows [y0, y0 + rows) of the pixel grid (y up), in 4×4 tiles; `pixel`

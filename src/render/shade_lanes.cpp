@@ -43,7 +43,8 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     d_scale.push_back(float((a + 2) / (2 * kPi)));
     pm_scale.push_back(float((a + 1) / (2 * kPi)));
     g1_scale.push_back(float(std::sqrt(0.5 * a + 1)));
-    in_lanes.push_back(index_matched_transmission(m) ? 0 : 1);
+    // Textured Kd varies per hit: the double Bsdf shades it (issue 15 left lanes for later).
+    in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
   }
 }
 

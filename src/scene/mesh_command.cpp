@@ -10,6 +10,9 @@
 
 namespace raylane {
 
+// texture_command.cpp: the row of Scene::textures for an image file, read once.
+Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path);
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -21,39 +24,62 @@ const std::string* find_memory_file(const ParseState& state, const std::string& 
   return nullptr;
 }
 
-// "A mesh path is looked up relative to the directory of the scene file first, then the
-// working directory." The first path that exists is taken, whatever it is: the import then
-// says if it is no regular file (a FIFO, a directory), rather than "not found".
-std::optional<std::string> find_mesh_file(const ParseState& state, const std::string& name) {
-  std::vector<fs::path> candidates;
-  fs::path p(name);
-  if (p.is_absolute()) {
-    candidates.push_back(p);
-  } else {
-    if (!state.scene_dir.empty()) candidates.push_back(fs::path(state.scene_dir) / p);
-    candidates.push_back(p);
-  }
-  for (const auto& c : candidates) {
-    std::error_code ec;
-    if (fs::exists(c, ec)) return c.string();
-  }
-  return std::nullopt;
-}
-
 Result<MeshImportStats> import(const ParseState& state, const std::string& name,
                                const MeshPlacement& placement, uint32_t material,
-                               TriangleTable& table) {
+                               TriangleTable& table, const MaterialChooser& choose) {
   if (const std::string* bytes = find_memory_file(state, name))
     return import_mesh_memory(*bytes, name, placement, material, table);
-  auto path = find_mesh_file(state, name);
-  if (!path) {
-    std::string where = state.scene_dir.empty()
-                            ? std::string("the working directory")
-                            : cat("'", state.scene_dir, "' and the working directory");
-    return Error{cat("mesh file ", quote_path(name), " not found (looked in ", where, ")")};
-  }
-  return import_mesh_file(*path, placement, material, table);
+  auto path = find_input_file(state, name);
+  if (!path) return Error{cat("mesh file ", where_looked(state, name))};
+  return import_mesh_file(*path, placement, material, table, choose);
 }
+
+// The materials a mesh file's own textures make (docs/scene-language.md, "UV conventions"):
+// a copy of the line's material per texture, numbered after the scene's materials (and
+// after the default one a mesh before any material line creates), and added to the scene only
+// if the import succeeds. A texture that cannot be used is a warning: those triangles keep the
+// line's material.
+struct MeshTextures {
+  Scene& scene;
+  ParseState& state;
+  const Line& line;
+  uint32_t material;                                  // the line's material
+  uint32_t next_index;                                // the index the next copy gets
+  std::vector<std::pair<uint32_t, uint32_t>> copies;  // (texture row, material index)
+
+  uint32_t choose(const std::string& texture) {
+    if (texture.empty()) return material;
+    std::string mesh = line.tokens[1].name();
+    if (texture[0] == '*') {
+      warn(cat("mesh ", quote_path(mesh), " embeds its texture ", quote_path(texture),
+               ", which raylane does not read: the mesh renders untextured"));
+      return material;
+    }
+    auto row = texture_row(scene, state, texture);
+    if (!row) {
+      warn(cat("mesh ", quote_path(mesh), " names texture ", quote_path(texture),
+               ", which cannot be used: ", row.error(), "; the mesh renders untextured"));
+      return material;
+    }
+    for (const auto& [tex, index] : copies)
+      if (tex == *row) return index;
+    copies.emplace_back(*row, next_index);
+    return next_index++;
+  }
+
+  void warn(std::string message) { state.diagnostics.warning(line.at(1), std::move(message)); }
+
+  // After a successful import: the copies, in the order their indices were given.
+  void add_copies() {
+    for (const auto& [tex, index] : copies) {
+      Material m = scene.materials[material];
+      m.texture = int32_t(tex);
+      m.mesh_copy_of = int32_t(material);
+      scene.materials.push_back(m);
+      (void)index;
+    }
+  }
+};
 
 }  // namespace
 
@@ -78,13 +104,17 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   // The material index is only committed (a default one created) if the import succeeds.
   bool had_material = state.current_material.has_value();
   uint32_t mat = had_material ? *state.current_material : uint32_t(s.materials.size());
-  auto stats = import(state, name, placement, mat, table);
+  uint32_t first_copy = uint32_t(s.materials.size()) + (had_material ? 0 : 1);
+  MeshTextures textures{s, state, line, mat, first_copy, {}};
+  auto stats = import(state, name, placement, mat, table,
+                      [&](const std::string& texture) { return textures.choose(texture); });
   if (!stats) {
     state.problem(line.at(1), stats.error());
     return false;
   }
   state.input_files.insert(state.input_files.end(), stats->files.begin(), stats->files.end());
-  MeshSummary summary{name, line.loc, stats->triangles, stats->degenerate_dropped, {}};
+  MeshSummary summary{name,          line.loc, stats->triangles, stats->degenerate_dropped, mat,
+                      stats->has_uv, {}};
   for (uint32_t r = first_row; r < table.size(); ++r)
     summary.bounds.extend(table.bounds(r));
   state.meshes.push_back(std::move(summary));
@@ -95,10 +125,11 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
     s.materials.push_back(Material::default_grey());
     state.current_material = mat;
   }
+  textures.add_copies();
   if (stats->degenerate_dropped > 0)
     state.diagnostics.warning(line.at(1), cat("skipped ", stats->degenerate_dropped,
                                               " zero-area triangles of ", quote_path(name)));
-  if (s.materials[mat].is_light)
+  if (s.materials[mat].is_light)  // its copies emit too
     for (uint32_t r = first_row; r < table.size(); ++r)
       s.lights.push_back(PrimRef(tag_of<Triangle>, r));
   return true;

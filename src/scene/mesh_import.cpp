@@ -183,13 +183,47 @@ uint64_t count_triangles(const aiScene& scene) {
   return n;
 }
 
+// The texture a material names for its diffuse colour (glTF's base colour where that is how
+// Assimp reports it), resolved next to the mesh file; empty for none.
+std::string diffuse_texture(const aiMaterial& m, const std::string& mesh_path) {
+  aiString name;
+  if (m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS &&
+      m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS)
+    return "";
+  std::string file(name.C_Str());
+  if (file.empty() || file[0] == '*') return file;  // embedded: "*N"
+  std::filesystem::path p(file);
+  if (p.is_relative()) p = std::filesystem::path(mesh_path).parent_path() / p;
+  return p.lexically_normal().string();
+}
+
+// The scene material of each of the file's materials that a mesh uses.
+std::vector<uint32_t> choose_materials(const aiScene& scene, const std::string& mesh_path,
+                                       uint32_t material, const MaterialChooser& choose) {
+  std::vector<uint32_t> out(scene.mNumMaterials, material);
+  if (!choose) return out;
+  std::vector<bool> used(scene.mNumMaterials, false);
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    if (scene.mMeshes[m]->mMaterialIndex < scene.mNumMaterials)
+      used[scene.mMeshes[m]->mMaterialIndex] = true;
+  for (unsigned k = 0; k < scene.mNumMaterials; ++k)
+    if (used[k]) out[k] = choose(diffuse_texture(*scene.mMaterials[k], mesh_path));
+  return out;
+}
+
+bool has_uvs(const aiMesh& mesh) {
+  return mesh.mTextureCoords[0] != nullptr && mesh.mNumUVComponents[0] >= 2;
+}
+
 // Appends the placed triangles of one mesh; faces that are not triangles are skipped.
 void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
                  TriangleTable& table, MeshImportStats& stats) {
+  const bool uv = has_uvs(mesh);
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
     if (face.mNumIndices != 3) continue;
     std::array<Vec3f, 3> p, n;
+    std::array<TexCoord, 3> t{};
     bool bad_index = false;
     for (int k = 0; k < 3; ++k) {
       unsigned i = face.mIndices[k];
@@ -201,6 +235,10 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
       Vec3d nk = mesh.mNormals ? pl.rotation * to_vec(mesh.mNormals[i]) : Vec3d();
       double len = length(nk);
       n[k] = len > 0 && std::isfinite(len) ? Vec3f(nk / len) : Vec3f();
+      if (uv) {
+        const aiVector3D& c = mesh.mTextureCoords[0][i];
+        t[k] = {std::isfinite(c.x) ? c.x : 0.0, std::isfinite(c.y) ? c.y : 0.0};
+      }
     }
     if (bad_index) continue;
     Vec3d ng = cross(Vec3d(p[1]) - Vec3d(p[0]), Vec3d(p[2]) - Vec3d(p[0]));
@@ -211,14 +249,14 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
     // A vertex without a usable normal takes the face normal.
     for (auto& nk : n)
       if (nk == Vec3f()) nk = Vec3f(normalize(ng));
-    table.append(p, n, material);
+    table.append(p, n, material, &t);
     ++stats.triangles;
   }
 }
 
 Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
                                 const MeshPlacement& placement, uint32_t material,
-                                TriangleTable& table) {
+                                TriangleTable& table, const MaterialChooser& choose) {
   if (std::string bad = first_nonfinite_vertex(*scene); !bad.empty())
     return Error{
         cat("mesh ", quote_path(name), ": expected finite vertex coordinates, found ", bad)};
@@ -228,9 +266,20 @@ Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
   if (total > kMaxMeshTriangles || table.size() + total > PrimRef::kMaxRows)
     return Error{cat("mesh ", quote_path(name), " has too many triangles (", total, ")")};
   MeshImportStats stats;
-  table_reserve(table, table.size() + total);
+  stats.has_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    append_mesh(*scene->mMeshes[m], placement, material, table, stats);
+    stats.has_uv = stats.has_uv && has_uvs(*scene->mMeshes[m]);
+  std::vector<uint32_t> materials = choose_materials(*scene, name, material, choose);
+  table_reserve(table, table.size() + total);
+  // UV columns appear with the first mesh that has UVs; the scene drops them again at its end
+  // if no textured material uses them (Scene::resolve_textures).
+  if (stats.has_uv && !table.has_uv()) table.add_uv_columns();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene->mMeshes[m];
+    uint32_t mat =
+        mesh.mMaterialIndex < materials.size() ? materials[mesh.mMaterialIndex] : material;
+    append_mesh(mesh, placement, mat, table, stats);
+  }
   if (stats.triangles == 0)
     return Error{cat("mesh ", quote_path(name), " has only zero-area triangles (",
                      stats.degenerate_dropped, ")")};
@@ -250,9 +299,9 @@ std::string read_head(const std::string& path) {
 // convert(), with running out of memory for the table an error rather than an exception.
 Result<MeshImportStats> convert_or_fail(const aiScene* scene, const std::string& name,
                                         const MeshPlacement& placement, uint32_t material,
-                                        TriangleTable& table) {
+                                        TriangleTable& table, const MaterialChooser& choose = {}) {
   try {
-    return convert(scene, name, placement, material, table);
+    return convert(scene, name, placement, material, table, choose);
   } catch (const std::bad_alloc&) {
     return Error{cat("out of memory storing the triangles of mesh ", quote_path(name))};
   }
@@ -267,7 +316,8 @@ bool mesh_extension_known(const std::string& path) {
 }
 
 Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlacement& placement,
-                                         uint32_t material, TriangleTable& table) {
+                                         uint32_t material, TriangleTable& table,
+                                         const MaterialChooser& choose) {
   auto size = regular_file_size(path);
   if (!size) return Error{cat("cannot read mesh ", quote_path(path), ": ", size.error())};
   if (Status s = check_mesh_plausible(read_head(path), *size, path); !s) return Error{s.error()};
@@ -278,7 +328,7 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
   auto scene =
       read_within_budget(importer, path, 0, io, [&] { return importer.ReadFile(path, 0); });
   if (!scene) return Error{scene.error() + io->refusals()};
-  auto stats = convert_or_fail(*scene, path, placement, material, table);
+  auto stats = convert_or_fail(*scene, path, placement, material, table, choose);
   if (!stats) return Error{stats.error()};
   stats->files = io->opened();
   return stats;

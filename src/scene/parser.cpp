@@ -18,6 +18,12 @@ bool is_space(char c) {
 
 // Checks what only the whole file can tell: a camera is required, the screen has a default.
 void finish(ParsedScene& out, ParseState& state, const std::string& filename) {
+  out.scene.resolve_textures();
+  for (const MeshSummary& mesh : state.meshes)
+    if (!mesh.has_uv && out.scene.materials[mesh.material].texture >= 0)
+      out.diagnostics.warning(mesh.loc, cat("mesh ", quote_path(mesh.file),
+                                            " has no texture coordinates: its textured material "
+                                            "reads the texture at (0, 0)"));
   if (state.screen_line == 0)
     out.diagnostics.warning({filename, 0, 0}, "no screen line: using 400x300");
   if (state.camera_line == 0) out.diagnostics.error({filename, 0, 0}, "no camera line");

@@ -1,7 +1,7 @@
 // Reading textures and environments: PNG, JPEG, TGA, BMP and Radiance HDR through stb_image
 // (Debian's libstb-dev), PFM through raylane's own reader (image/pfm.h). Integer images are
 // sRGB-encoded and come back linear; float images are linear already (docs/scene-language.md,
-// "Beyond project 4: textures, environment light, lens").
+// "Beyond project 4: textures, environment, lens").
 //
 // Decoders are guarded as the mesh importer is (docs/design.md, "Images in"): the size a
 // header announces is checked against the limit on pixels and against what a file of this

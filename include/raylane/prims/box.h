@@ -124,4 +124,14 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
   return {p, n, n};
 }
 
+// On the face normal to axis k, u and v run 0 → 1 across it along the other two axes in x, y, z
+// order (normal to x: u along y, v along z; to y: x, z; to z: x, y).
+inline TexCoord texcoord_ref(const BoxTable& b, uint32_t i, const Surface& s) {
+  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  int k = s.ng.x != 0 ? 0 : (s.ng.y != 0 ? 1 : 2);
+  int a = k == 0 ? 1 : 0, c = k == 2 ? 1 : 2;
+  auto across = [&](int axis) { return (s.p[axis] - lo[axis]) / (hi[axis] - lo[axis]); };
+  return {across(a), across(c)};
+}
+
 }  // namespace raylane

@@ -3,6 +3,7 @@
 // cylinder_packet.h.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
+#include "raylane/core/warps.h"
 #include "raylane/prims/prim_ref.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
@@ -151,6 +153,24 @@ inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, 
     n = radial / rlen;
   }
   return {p, n, n};
+}
+
+// The side: u = the angle around the axis / 2π, from the axis's Frame (core/warps.h, Duff et
+// al. 2017: it depends on the axis alone) s towards t; v = 0 at the base to 1 at the top.
+// The caps: u, v = 0.5 + (the point's s and t coordinates from the cap's centre) / 2r.
+inline TexCoord texcoord_ref(const CylinderTable& c, uint32_t i, const Surface& s) {
+  Vec3d axis(c.axis(i));
+  double h = length(axis);
+  Frame f(axis / h);
+  Vec3d local = f.to_local(s.p - Vec3d(c.base(i)));
+  if (std::abs(dot(s.ng, f.n)) > 0.5) {  // a cap: its normal is ±axis
+    double two_r = 2.0 * c.r[i];
+    return {0.5 + local.x / two_r, 0.5 + local.y / two_r};
+  }
+  double phi = std::atan2(local.y, local.x);
+  if (phi < 0) phi += 2 * kPi;
+  double u = phi / (2 * kPi);
+  return {u < 1 ? u : 0.0, std::clamp(local.z / h, 0.0, 1.0)};
 }
 
 }  // namespace raylane

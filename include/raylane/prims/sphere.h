@@ -2,7 +2,9 @@
 // kernel is in sphere_packet.h.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -11,6 +13,7 @@
 
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
+#include "raylane/core/warps.h"
 #include "raylane/prims/prim_ref.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
@@ -90,6 +93,17 @@ inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, do
   Vec3d c(s.center(i));
   Vec3d n = normalize(ray.at(t) - c);
   return {c + n * double(s.r[i]), n, n};
+}
+
+// u = φ/2π with φ = atan2(y, x) in [0, 2π), v = 1 − θ/π with θ from +Z, of the point relative
+// to the centre in world axes (the point alone: light sampling has no normal for it).
+inline TexCoord texcoord_ref(const SphereTable& t, uint32_t i, const Surface& s) {
+  Vec3d d = normalize(s.p - Vec3d(t.center(i)));
+  double phi = std::atan2(d.y, d.x);
+  if (phi < 0) phi += 2 * kPi;
+  double u = phi / (2 * kPi);
+  double theta = std::acos(std::clamp(d.z, -1.0, 1.0));
+  return {u < 1 ? u : 0.0, 1 - theta / kPi};
 }
 
 }  // namespace raylane

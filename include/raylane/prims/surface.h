@@ -12,6 +12,13 @@ struct Surface {
   Vec3d ns;  // unit shading normal (interpolated for mesh triangles; = ng otherwise)
 };
 
+// Texture coordinates (docs/scene-language.md, "Beyond project 4: textures, environment, lens"): u
+// to the right, v up the image; computed per kind by texcoord_ref only where a textured material
+// needs them.
+struct TexCoord {
+  double u = 0, v = 0;
+};
+
 // A point on a primitive's surface and its unit outward normal (by the winding for triangles).
 struct AreaSample {
   Vec3d p, n;

@@ -1,5 +1,7 @@
 // Helpers shared by the SoA tables. Every table exposes `auto columns()` (a std::tie of its
-// column vectors); these work on any table through it.
+// column vectors); these work on any table through it. A table may also have optional columns
+// (`auto optional_columns()`), empty unless a scene needs them (mesh UVs): they are permuted
+// and counted when they hold rows, and never reserved ahead.
 #pragma once
 
 #include <cstddef>
@@ -26,12 +28,18 @@ void permute_column(std::vector<T>& c, std::span<const uint32_t> order) {
 
 template <class Table>
 std::size_t table_bytes(Table& t) {
-  return std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.columns());
+  std::size_t bytes = std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.columns());
+  if constexpr (requires { t.optional_columns(); })
+    bytes += std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.optional_columns());
+  return bytes;
 }
 
 template <class Table>
 void table_permute(Table& t, std::span<const uint32_t> order) {
   std::apply([&](auto&... c) { (permute_column(c, order), ...); }, t.columns());
+  if constexpr (requires { t.optional_columns(); })
+    std::apply([&](auto&... c) { ((c.empty() ? void() : permute_column(c, order)), ...); },
+               t.optional_columns());
 }
 
 template <class Table>

@@ -21,15 +21,30 @@
 namespace raylane {
 
 // Vertices as given (the watertight test works on vertices relative to the ray origin, so it
-// wants p0, p1, p2 rather than edges), and per-vertex shading normals.
+// wants p0, p1, p2 rather than edges), and per-vertex shading normals. Texture coordinates of
+// the vertices are optional columns: empty unless some mesh has UVs and a textured material
+// (Scene::drop_unused_uvs empties them again if no triangle's material is textured); rows of
+// meshes without UVs hold (0, 0).
 struct TriangleTable {
   std::vector<float> p0x, p0y, p0z, p1x, p1y, p1z, p2x, p2y, p2z;
   std::vector<float> n0x, n0y, n0z, n1x, n1y, n1z, n2x, n2y, n2z;
   std::vector<uint32_t> material;
+  std::vector<float> t0u, t0v, t1u, t1v, t2u, t2v;
 
   auto columns() {
     return std::tie(p0x, p0y, p0z, p1x, p1y, p1z, p2x, p2y, p2z, n0x, n0y, n0z, n1x, n1y, n1z, n2x,
                     n2y, n2z, material);
+  }
+  auto optional_columns() { return std::tie(t0u, t0v, t1u, t1v, t2u, t2v); }
+  bool has_uv() const { return uv_columns_; }
+  // UV columns for every row so far, (0, 0) at each vertex; rows appended later get theirs.
+  void add_uv_columns() {
+    uv_columns_ = true;
+    std::apply([&](auto&... c) { (c.assign(size(), 0.0f), ...); }, optional_columns());
+  }
+  void drop_uv_columns() {
+    uv_columns_ = false;
+    std::apply([](auto&... c) { (std::vector<float>().swap(c), ...); }, optional_columns());
   }
   std::size_t size() const { return p0x.size(); }
   Vec3f p0(uint32_t i) const { return {p0x[i], p0y[i], p0z[i]}; }
@@ -39,7 +54,9 @@ struct TriangleTable {
   Vec3f n1(uint32_t i) const { return {n1x[i], n1y[i], n1z[i]}; }
   Vec3f n2(uint32_t i) const { return {n2x[i], n2y[i], n2z[i]}; }
 
-  void append(const std::array<Vec3f, 3>& p, const std::array<Vec3f, 3>& n, uint32_t mat) {
+  // A row; its UVs (if the table has UV columns) are `uv`, or (0, 0) without.
+  void append(const std::array<Vec3f, 3>& p, const std::array<Vec3f, 3>& n, uint32_t mat,
+              const std::array<TexCoord, 3>* uv = nullptr) {
     p0x.push_back(p[0].x), p0y.push_back(p[0].y), p0z.push_back(p[0].z);
     p1x.push_back(p[1].x), p1y.push_back(p[1].y), p1z.push_back(p[1].z);
     p2x.push_back(p[2].x), p2y.push_back(p[2].y), p2z.push_back(p[2].z);
@@ -47,6 +64,11 @@ struct TriangleTable {
     n1x.push_back(n[1].x), n1y.push_back(n[1].y), n1z.push_back(n[1].z);
     n2x.push_back(n[2].x), n2y.push_back(n[2].y), n2z.push_back(n[2].z);
     material.push_back(mat);
+    if (!uv_columns_) return;
+    std::array<TexCoord, 3> t = uv ? *uv : std::array<TexCoord, 3>{};
+    t0u.push_back(float(t[0].u)), t0v.push_back(float(t[0].v));
+    t1u.push_back(float(t[1].u)), t1v.push_back(float(t[1].v));
+    t2u.push_back(float(t[2].u)), t2v.push_back(float(t[2].v));
   }
 
   // Vertices are exact floats: their min and max need no rounding.
@@ -57,6 +79,9 @@ struct TriangleTable {
     b.extend(p2(i));
     return b;
   }
+
+ private:
+  bool uv_columns_ = false;
 };
 
 struct Triangle {
@@ -130,6 +155,21 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   Vec3d ns = b0 * Vec3d(tri.n0(i)) + b1 * Vec3d(tri.n1(i)) + b2 * Vec3d(tri.n2(i));
   double len = length(ns);
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
+}
+
+// The vertices' UVs interpolated with the barycentrics of the hit point, found from the point
+// by least squares on the edges (exact for a point in the plane; the point of a hit is within
+// rounding of it). (0, 0) for a table without UVs.
+inline TexCoord texcoord_ref(const TriangleTable& tri, uint32_t i, const Surface& s) {
+  if (!tri.has_uv()) return {};
+  Vec3d p0(tri.p0(i)), e1 = Vec3d(tri.p1(i)) - p0, e2 = Vec3d(tri.p2(i)) - p0, q = s.p - p0;
+  double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+  double q1 = dot(q, e1), q2 = dot(q, e2);
+  double det = d11 * d22 - d12 * d12;
+  if (!(det > 0)) return {tri.t0u[i], tri.t0v[i]};
+  double b1 = (d22 * q1 - d12 * q2) / det, b2 = (d11 * q2 - d12 * q1) / det, b0 = 1 - b1 - b2;
+  return {b0 * tri.t0u[i] + b1 * tri.t1u[i] + b2 * tri.t2u[i],
+          b0 * tri.t0v[i] + b1 * tri.t1v[i] + b2 * tri.t2v[i]};
 }
 
 }  // namespace raylane

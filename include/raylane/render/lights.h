@@ -6,7 +6,8 @@
 // samples from its bright ones.
 //
 // Emission model: solids (spheres, boxes, cylinders) emit from their outside only; triangles
-// emit from both sides. Emitters reflect nothing.
+// emit from both sides. Emitters reflect nothing. A textured emitter's radiance is Le times its
+// image at the point; its power is estimated with the image's mean.
 #pragma once
 
 #include <array>
@@ -23,6 +24,7 @@ namespace raylane {
 struct LightSample {
   PrimRef light = PrimRef::invalid();
   Vec3d p;          // the point on the light
+  Vec3d n;          // its outward normal, where sampled by area (0 from a sphere's cone)
   Vec3d wi;         // unit direction from the reference point to p
   double dist = 0;  // |p − reference point|
   Vec3d le;         // the radiance arriving along −wi
@@ -69,9 +71,12 @@ class LightSampler {
   std::optional<double> choice_of(PrimRef light) const;
 
   std::vector<PrimRef> lights_;
-  std::vector<double> cdf_;     // cumulative choice probabilities
-  std::vector<double> choice_;  // choice probability of lights_[k]
-  std::vector<Vec3d> le_;       // emission of lights_[k]
+  std::vector<double> cdf_;        // cumulative choice probabilities
+  std::vector<double> choice_;     // choice probability of lights_[k]
+  std::vector<Vec3d> le_;          // emission of lights_[k]
+  std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
+  // s.le times the light's texture at s.p, for a textured light.
+  void apply_texture(std::size_t k, LightSample& s) const;
   // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
   // cheaper per sample than a hash lookup.
   std::vector<std::pair<uint32_t, double>> by_bits_;

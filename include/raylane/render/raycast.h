@@ -14,15 +14,17 @@
 namespace raylane {
 
 enum class RaycastMode {
-  kNormal,  // (N + 1) / 2 of the shading normal
-  kDepth,   // the hit distance t in every channel; 0 for a miss
-  kAlbedo,  // Kd
-  kId,      // (kind tag + 1, row index, 0); 0 for a miss
-  kLit,     // ambient·Kd plus a Phong term from each emitting sphere's centre, shadowed
+  kNormal,    // (N + 1) / 2 of the shading normal
+  kDepth,     // the hit distance t in every channel; 0 for a miss
+  kAlbedo,    // Kd, times the material's texture at the hit
+  kId,        // (kind tag + 1, row index, 0); 0 for a miss
+  kLit,       // ambient·Kd plus a Phong term from each emitting sphere's centre, shadowed
+  kUv,        // (u, v, 0) of the hit's texture coordinates (prims/<kind>.h, texcoord_ref)
+  kPosition,  // the hit point
 };
 
-inline constexpr EnumNames<RaycastMode, 5> kRaycastModeNames{
-    {"normal", "depth", "albedo", "id", "lit"}};
+inline constexpr EnumNames<RaycastMode, 7> kRaycastModeNames{
+    {"normal", "depth", "albedo", "id", "lit", "uv", "position"}};
 inline std::optional<RaycastMode> raycast_mode_from_name(std::string_view name) {
   return kRaycastModeNames.from_name(name);
 }

@@ -30,7 +30,8 @@ struct LaneMaterials {
   std::vector<float> d_scale;   // (α+2)/(2π): D(m) = d_scale·cos^α θm
   std::vector<float> pm_scale;  // (α+1)/(2π): the warp's density of m
   std::vector<float> g1_scale;  // √(α/2 + 1): the Smith G1 approximation's a = g1_scale·cot θv
-  std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission)
+  std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission,
+                                  // a textured Kd)
 };
 
 // One wavefront's shading points in float columns. Fill rows [0, size) with resize() and the

@@ -1,6 +1,9 @@
 // Materials of the course: a reflecting `brdf` (diffuse Kd, specular Ks, Phong exponent alpha,
-// transmission Kt, index of refraction) or an emitting `light` (radiance).
+// transmission Kt, index of refraction) or an emitting `light` (radiance), either one optionally
+// textured: the image multiplies Kd, or the radiance.
 #pragma once
+
+#include <cstdint>
 
 #include "raylane/core/vec3.h"
 
@@ -14,6 +17,11 @@ struct Material {
   float ior = 1.0f;
   Vec3f emission{0.0f, 0.0f, 0.0f};
   bool is_light = false;
+  int32_t texture = -1;  // index into Scene::textures, or none
+  // A mesh file's own texture makes a copy of the `mesh` line's material for its triangles;
+  // the copy keeps the index of that material (-1 for a material of the scene file), and
+  // takes that material's `texture` instead if it has one by the end of the file.
+  int32_t mesh_copy_of = -1;
 
   static Material default_grey() { return {}; }
 };

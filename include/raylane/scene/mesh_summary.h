@@ -14,6 +14,8 @@ struct MeshSummary {
   std::string file;
   FileLoc loc;
   uint32_t triangles = 0, degenerate_dropped = 0;
+  uint32_t material = 0;  // the `mesh` line's material
+  bool has_uv = false;    // every triangle has texture coordinates
   Bounds3f bounds;
 };
 

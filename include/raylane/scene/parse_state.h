@@ -32,11 +32,19 @@ struct ParseState {
   std::vector<std::string> input_files;  // every file read so far: meshes and what they name
   std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
+  std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
   int screen_line = 0, camera_line = 0, ambient_line = 0, lens_line = 0;  // 0 = not seen yet
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);
 };
+
+// Where an input a line names is found: "relative to the directory of the scene file first,
+// then the working directory"; an absolute path as it is. The first path that exists is taken,
+// whatever it is (a reader then says if it is no regular file, rather than "not found").
+std::optional<std::string> find_input_file(const ParseState& state, const std::string& name);
+// "'a.png' (looked in 'dir' and the working directory)", for a not-found message.
+std::string where_looked(const ParseState& state, const std::string& name);
 
 // Reads one token as a number: a complete decimal float that is finite and fits in a float
 // (docs/scene-language.md, "Lines and tokens"). Under --lenient a numeric prefix is taken

@@ -13,6 +13,7 @@
 #include "raylane/core/mat3.h"
 #include "raylane/prims/prim_list.h"
 #include "raylane/scene/material.h"
+#include "raylane/scene/texture.h"
 
 namespace raylane {
 
@@ -56,6 +57,7 @@ struct Scene {
   LensSpec lens;
   Vec3f ambient{0.0f, 0.0f, 0.0f};
   std::vector<Material> materials;
+  std::vector<Texture> textures;  // images the materials refer to, each file once
   PrimTables tables;
   std::vector<PrimRef> lights;  // every primitive whose material emits
 
@@ -78,6 +80,10 @@ struct Scene {
   // Validates one line and applies it: a setting, a material, or rows appended to a table.
   // Problems go to state.diagnostics; returns false if the line was rejected.
   bool command(const Line& line, ParseState& state);
+
+  // After the last line: mesh materials' copies take their material's own `texture`, and the
+  // triangles' UV columns go if no triangle's material is textured.
+  void resolve_textures();
 };
 
 }  // namespace raylane

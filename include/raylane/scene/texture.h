@@ -1,0 +1,26 @@
+// Image textures (docs/scene-language.md, "Beyond project 4: textures, environment, lens"): the
+// scene keeps each image once, as linear RGB; materials refer to them by index. Looked up at (u, v)
+// with u to the right and v UP the image (v = 0 is the file's bottom row), repeating, bilinear
+// between texel centres.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "raylane/core/vec3.h"
+#include "raylane/image/image.h"
+
+namespace raylane {
+
+struct Texture {
+  std::string file;  // as found (for messages and `raylane info`)
+  Image image;       // linear RGB, top row first
+  Vec3d mean;        // the average texel: what a textured emitter's power is estimated with
+};
+
+Texture make_texture(std::string file, Image image);
+
+// The bilinear value at (u, v), repeating in both directions.
+Vec3d texture_lookup(const Image& image, double u, double v);
+
+}  // namespace raylane

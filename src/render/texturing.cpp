@@ -1,0 +1,18 @@
+#include "raylane/render/texturing.h"
+
+namespace raylane {
+
+TexCoord texcoord_of(const Scene& scene, PrimRef prim, const Surface& surface) {
+  return dispatch(prim.tag(), [&](auto kind) {
+    using Kind = decltype(kind);
+    return texcoord_ref(scene.table<Kind>(), prim.row(), surface);
+  });
+}
+
+Vec3d texture_factor(const Scene& scene, const Material& m, PrimRef prim, const Surface& surface) {
+  if (m.texture < 0) return {1, 1, 1};
+  TexCoord t = texcoord_of(scene, prim, surface);
+  return texture_lookup(scene.textures[m.texture].image, t.u, t.v);
+}
+
+}  // namespace raylane

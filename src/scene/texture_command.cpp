@@ -1,0 +1,93 @@
+// The `texture file` command, and what it shares with meshes that name their own textures:
+// finding an input next to the scene file, reading each image once.
+#include <filesystem>
+
+#include "raylane/core/strings.h"
+#include "raylane/image/input_image.h"
+#include "raylane/scene/parse_state.h"
+#include "raylane/scene/scene.h"
+
+namespace raylane {
+
+namespace fs = std::filesystem;
+
+std::optional<std::string> find_input_file(const ParseState& state, const std::string& name) {
+  std::vector<fs::path> candidates;
+  fs::path p(name);
+  if (p.is_absolute()) {
+    candidates.push_back(p);
+  } else {
+    if (!state.scene_dir.empty()) candidates.push_back(fs::path(state.scene_dir) / p);
+    candidates.push_back(p);
+  }
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (fs::exists(c, ec)) return c.string();
+  }
+  return std::nullopt;
+}
+
+std::string where_looked(const ParseState& state, const std::string& name) {
+  std::string where = state.scene_dir.empty()
+                          ? std::string("the working directory")
+                          : cat("'", state.scene_dir, "' and the working directory");
+  return cat(quote_path(name), " not found (looked in ", where, ")");
+}
+
+// The row of Scene::textures holding the image at `path`, read now if it is new.
+Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path) {
+  for (const auto& [file, row] : state.texture_files)
+    if (file == path) return row;
+  auto image = read_input_image(path);
+  if (!image) return Error{image.error()};
+  s.textures.push_back(make_texture(path, std::move(*image)));
+  uint32_t row = uint32_t(s.textures.size() - 1);
+  state.texture_files.emplace_back(path, row);
+  state.input_files.push_back(path);
+  return row;
+}
+
+bool texture_command(Scene& s, const Line& line, ParseState& state) {
+  if (line.tokens.size() != 2) {
+    state.problem(
+        line.at(line.tokens.size() < 2 ? 1 : 2),
+        cat("texture takes one file name, found ", line.tokens.size() - 1, " parameters"));
+    return false;
+  }
+  if (!state.current_material) {
+    state.problem(line.at(0),
+                  "texture before any material line: it attaches to the current brdf or light");
+    return false;
+  }
+  std::string name = line.tokens[1].name();
+  auto path = find_input_file(state, name);
+  if (!path) {
+    state.problem(line.at(1), cat("texture ", where_looked(state, name)));
+    return false;
+  }
+  auto row = texture_row(s, state, *path);
+  if (!row) {
+    state.problem(line.at(1), cat("cannot use texture ", quote_path(name), ": ", row.error()));
+    return false;
+  }
+  Material& m = s.materials[*state.current_material];
+  if (m.texture >= 0)
+    state.diagnostics.warning(
+        line.at(0), cat("the material already has texture ", quote_path(s.textures[m.texture].file),
+                        ": this one replaces it"));
+  m.texture = int32_t(*row);
+  return true;
+}
+
+void Scene::resolve_textures() {
+  for (Material& m : materials)
+    if (m.mesh_copy_of >= 0 && materials[m.mesh_copy_of].texture >= 0)
+      m.texture = materials[m.mesh_copy_of].texture;
+  TriangleTable& tri = table<Triangle>();
+  if (!tri.has_uv()) return;
+  for (uint32_t mat : tri.material)
+    if (materials[mat].texture >= 0) return;
+  tri.drop_uv_columns();
+}
+
+}  // namespace raylane
