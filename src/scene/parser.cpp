@@ -19,7 +19,7 @@ bool is_space(char c) {
 // Checks what only the whole file can tell: a camera is required, the screen has a default.
 void finish(ParsedScene& out, ParseState& state, const std::string& filename) {
   out.scene.resolve_textures();
-  for (const MeshSummary& mesh : state.meshes)
+  for (const MeshSummary& mesh : out.meshes)
     if (!mesh.has_uv && out.scene.materials[mesh.material].texture >= 0)
       out.diagnostics.warning(mesh.loc, cat("mesh ", quote_path(mesh.file),
                                             " has no texture coordinates: its textured material "

@@ -27,6 +27,23 @@ void print_tables(Scene& s) {
                   bytes);
   });
   std::printf("  %-10s %10zu rows %12zu bytes\n", "total", s.primitive_count(), total);
+  if (s.table<Triangle>().has_uv())
+    std::printf("  (triangles include %zu bytes of texture coordinates)\n",
+                s.table<Triangle>().t0u.size() * 6 * sizeof(float));
+}
+
+void print_textures(const Scene& s) {
+  if (s.textures.empty()) return;
+  std::size_t total = 0;
+  std::printf("textures: %zu\n", s.textures.size());
+  for (std::size_t i = 0; i < s.textures.size(); ++i) {
+    const Texture& t = s.textures[i];
+    std::size_t bytes = t.image.rgb.size() * sizeof(float);
+    total += bytes;
+    std::printf("  %2zu %u x %u, %zu bytes: %s\n", i, t.image.width, t.image.height, bytes,
+                quote_path(t.file).c_str());
+  }
+  std::printf("  total %zu bytes\n", total);
 }
 
 void print_materials(const Scene& s) {
@@ -34,12 +51,15 @@ void print_materials(const Scene& s) {
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
     const Material& m = s.materials[i];
     if (m.is_light) {
-      std::printf("  %2zu light  Le (%g %g %g)\n", i, m.emission.x, m.emission.y, m.emission.z);
+      std::printf("  %2zu light  Le (%g %g %g)", i, m.emission.x, m.emission.y, m.emission.z);
     } else {
-      std::printf("  %2zu brdf   Kd (%g %g %g) Ks (%g %g %g) alpha %g Kt (%g %g %g) ior %g\n", i,
+      std::printf("  %2zu brdf   Kd (%g %g %g) Ks (%g %g %g) alpha %g Kt (%g %g %g) ior %g", i,
                   m.kd.x, m.kd.y, m.kd.z, m.ks.x, m.ks.y, m.ks.z, m.alpha, m.kt.x, m.kt.y, m.kt.z,
                   m.ior);
     }
+    if (m.texture >= 0) std::printf(", texture %d", m.texture);
+    if (m.mesh_copy_of >= 0) std::printf(" (material %d with its mesh's texture)", m.mesh_copy_of);
+    std::printf("\n");
   }
 }
 
@@ -129,6 +149,7 @@ int info_command(const std::vector<std::string>& args) {
   print_meshes(loaded->meshes);
   print_tables(s);
   print_materials(s);
+  print_textures(s);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
   Bvh bvh = build_bvh(s);
   const BvhStats& b = bvh.stats;
