@@ -1,0 +1,158 @@
+// The environment light's image-side math (docs/scene-language.md, "Equirectangular environment
+// mapping"): the radiance s·E(d) an escaping ray sees, and importance sampling of directions
+// ∝ luminance × sin θ with the matching solid-angle density, as pbrt-v4's ImageInfiniteLight
+// and Cycles' background light do. The parser, the light sampler and the path tracer build on
+// it; this module knows only the image, the scale and the orientation.
+//
+// Mapping (pbrt-v4's equirectangular convention, Z up): a point (u, v) ∈ [0, 1)² of the image,
+// u from the left and v from the TOP, has φ = 2πu, θ = πv and the image-space direction
+// (sin θ cos φ, sin θ sin φ, cos θ); the orientation R turns it into the world,
+// d_world = R·d_image. The top row therefore looks along R·(0, 0, 1).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "raylane/core/mat3.h"
+#include "raylane/core/vec3.h"
+#include "raylane/core/warps.h"
+#include "raylane/image/image.h"
+
+namespace raylane {
+
+// Rec. 709 luminance of linear RGB (ITU-R BT.709 primaries, Y row).
+inline double rec709_luminance(const Vec3d& rgb) {
+  return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
+}
+
+// A piecewise-constant density over [0, 1) with n equal cells, sampled by inverting its CDF
+// (PBRT 3rd ed. §13.3.1; pbrt-v4's PiecewiseConstant1D). Cells of zero weight are never
+// sampled, so a sampled x always has pdf(x) > 0.
+class PiecewiseConstant1D {
+ public:
+  PiecewiseConstant1D() = default;
+  // f: the cells' weights, finite and ≥ 0 (negative values are taken as their magnitude).
+  explicit PiecewiseConstant1D(std::vector<double> f);
+
+  // x in [0, 1) with density pdf(x), found by inverting the CDF at u ∈ [0, 1) (1 is clamped
+  // below 1). The cell and the density are returned as well; when the weights are all zero,
+  // x = u and *pdf = 0 (nothing can be sampled; callers treat it as invalid).
+  double sample_continuous(double u, double* pdf = nullptr, uint32_t* cell = nullptr) const;
+  // The density at x: f[cell(x)] / integral(); 0 outside [0, 1) or when integral() is 0.
+  double pdf(double x) const;
+  // The density of a whole cell (cell < size()), and its weight as given (after abs).
+  double pdf_of_cell(uint32_t cell) const { return integral_ > 0 ? func_[cell] / integral_ : 0; }
+  double value(uint32_t cell) const { return func_[cell]; }
+  // ∫₀¹ f = Σ f / n, the normaliser (and the 2-D marginal's weight of this row).
+  double integral() const { return integral_; }
+  uint32_t size() const { return uint32_t(func_.size()); }
+  // The memory the tables hold, for memory reports.
+  std::size_t bytes() const { return (func_.capacity() + cdf_.capacity()) * sizeof(double); }
+
+ private:
+  std::vector<double> func_;  // the weights
+  std::vector<double> cdf_;   // n + 1 values from 0 to exactly 1 (all 0 when integral_ is 0)
+  double integral_ = 0;
+};
+
+// A piecewise-constant density over [0, 1)² on an nu × nv grid: v drawn from the marginal
+// over rows, then u from that row's conditional (pbrt-v4's PiecewiseConstant2D; PBRT 3rd ed.
+// §13.6.7). The joint density of a cell is f(u, v) / ∫∫f.
+class PiecewiseConstant2D {
+ public:
+  struct Sample {
+    double u = 0, v = 0;  // the point in [0, 1)²
+    double pdf = 0;       // its density in (u, v) measure; 0 = invalid
+    uint32_t cell_u = 0, cell_v = 0;
+  };
+
+  PiecewiseConstant2D() = default;
+  // f: nu·nv weights, row-major (f[iv·nu + iu]), finite and ≥ 0.
+  PiecewiseConstant2D(const std::vector<double>& f, uint32_t nu, uint32_t nv);
+
+  // u2 picks the row (marginal), u1 the column within it (conditional).
+  Sample sample(double u1, double u2) const;
+  // The density sample() has at (u, v); 0 outside [0, 1)².
+  double pdf(double u, double v) const;
+  // ∫∫ f over [0, 1)²: 0 means nothing can be sampled.
+  double integral() const { return marginal_.integral(); }
+  std::size_t bytes() const;
+
+ private:
+  double pdf_of_cells(uint32_t iu, uint32_t iv) const;  // f / ∫∫f of one cell
+
+  std::vector<PiecewiseConstant1D> conditional_;  // one per row, over u
+  PiecewiseConstant1D marginal_;                  // over v, weights = the rows' integrals
+};
+
+struct EnvironmentSample {
+  Vec3d wi;        // unit world direction toward the environment
+  Vec3d le;        // the radiance s·E(wi) arriving along −wi
+  double pdf = 0;  // solid-angle density; 0 = invalid (black map, or a pole)
+  bool valid() const { return pdf > 0; }
+};
+
+class EnvironmentMap {
+ public:
+  // image: linear RGB, top row first, at least 1×1, every value finite and ≥ 0 (the image
+  // reader checks that); scale s > 0; rotation R, orthonormal (an orientation's matrix).
+  // Total all the same, so no input can put a NaN into a render: an empty image, or one whose
+  // buffer does not match its size, becomes a black 1×1 map; a negative or non-finite texel
+  // becomes 0; a scale that is not finite and > 0 makes the map black.
+  EnvironmentMap(Image image, double scale, const Mat3d& rotation);
+
+  // s·E(d) for a ray leaving the scene along dir_world (any length > 0): bilinear between
+  // texel centres, repeating in u (across φ = 0) and clamped in v (at the poles), as the
+  // scene language's textures filter.
+  Vec3d radiance(const Vec3d& dir_world) const;
+  // s·E at image coordinates (u, v) ∈ [0, 1)²: the same filter, without the direction.
+  Vec3d radiance_uv(double u, double v) const;
+
+  // A direction drawn ∝ luminance × sin θ (piecewise constant over the pixels) from u1, u2 ∈
+  // [0, 1): pdf = pdf_uv / (2π² sin θ), the Jacobian of (u, v) ↦ direction being
+  // dω = sin θ dθ dφ = 2π² sin θ du dv (PBRT 3rd ed. §14.2.4). Invalid (pdf 0) when the map
+  // is black or the point falls exactly on a pole (sin θ = 0).
+  EnvironmentSample sample(double u1, double u2) const;
+  // The density sample() has for dir_world (any length > 0), for MIS weights: 0 when the map
+  // is black, at the poles, or for a zero vector.
+  double pdf(const Vec3d& dir_world) const;
+  // False when the map is black: sample() is then always invalid and pdf() always 0.
+  bool can_sample() const { return distribution_.integral() > 0; }
+
+  // The flux the environment sends through a disc of the scene's bounding radius r,
+  // Φ = π r² · ∫ s·lum(E(ω)) dω (pbrt-v4's ImageInfiniteLight::Phi), for choosing lights by
+  // power. Luminance with Rec. 709 weights; the integral is the bilinear map's, in closed
+  // form (environment.cpp, luminance_sphere_integral). 0 for a black map.
+  double power_estimate(double scene_radius) const;
+  // The mean of s·lum(E) over the sphere, ∫ s·lum(E) dω / 4π.
+  double average_luminance() const { return luminance_integral_ / (4 * kPi); }
+
+  uint32_t width() const { return image_.width; }
+  uint32_t height() const { return image_.height; }
+  double scale() const { return scale_; }
+  const Mat3d& rotation() const { return rotation_; }
+  // Memory held: the image and the sampling tables.
+  std::size_t bytes() const;
+
+ private:
+  // The image point (u, v) of an image-space direction, and its sin θ (0 at the poles or for
+  // a zero vector).
+  struct ImagePoint {
+    double u, v, sin_theta;
+  };
+  static ImagePoint to_image_point(const Vec3d& d_image);
+  Vec3d to_image(const Vec3d& d_world) const;  // Rᵀ·d: R is orthonormal
+  Vec3d texel(uint32_t x, uint32_t y) const;   // unscaled RGB in double
+  void build_distribution();
+  // ∫ lum(E) dω over the sphere (unscaled), from the texels' luminances lum (row-major).
+  double luminance_sphere_integral(const std::vector<double>& lum) const;
+
+  Image image_;
+  double scale_;
+  Mat3d rotation_;
+  PiecewiseConstant2D distribution_;  // ∝ cell-average luminance × sin θ of the row centre
+  double luminance_integral_ = 0;     // ∫ s·lum(E) dω
+};
+
+}  // namespace raylane

@@ -1,0 +1,290 @@
+#include "raylane/render/environment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace raylane {
+
+namespace {
+
+// The largest double below 1: where an x or u that rounded up to 1 is put back into [0, 1).
+constexpr double kOneMinusEpsilon = 0x1.fffffffffffffp-1;
+
+// The weights of a texel and its two neighbours in the average of the linear interpolation
+// (between texel centres) over one cell: on the cell's left half the cell's own texel weighs
+// 1/2…1 against its left neighbour, 3/4 on average; the same on the right half.
+constexpr double kSide = 1.0 / 8, kCentre = 3.0 / 4;
+
+uint32_t wrap(int64_t i, uint32_t n) {
+  int64_t m = i % int64_t(n);
+  return uint32_t(m < 0 ? m + n : m);
+}
+uint32_t clamp_index(int64_t i, uint32_t n) {
+  return uint32_t(std::clamp<int64_t>(i, 0, int64_t(n) - 1));
+}
+
+// ∫ m(v)·2π² sin(πv) dv over [va, vb] for m linear from ma at va to mb at vb, in closed form:
+// ∫ sin(πv) dv = −cos(πv)/π and ∫ v sin(πv) dv = (sin(πv) − πv cos(πv))/π².
+double band_integral(double va, double vb, double ma, double mb) {
+  if (!(vb > va)) return 0;
+  double slope = (mb - ma) / (vb - va), offset = ma - slope * va;
+  auto antiderivative = [&](double v) {
+    double c = std::cos(kPi * v), s = std::sin(kPi * v);
+    return -2 * kPi * offset * c + 2 * slope * (s - kPi * v * c);
+  };
+  return antiderivative(vb) - antiderivative(va);
+}
+
+// The image as the constructor's contract promises it: a size that matches the buffer, at
+// least 1×1, texels finite and ≥ 0.
+Image sanitized(Image image) {
+  if (image.width == 0 || image.height == 0 ||
+      image.rgb.size() != std::size_t(image.width) * image.height * 3)
+    return Image(1, 1);
+  for (float& c : image.rgb)
+    if (!(c >= 0 && std::isfinite(c))) c = 0;
+  return image;
+}
+
+// The cell of x ∈ [0, 1) among n, against the same edges k/n (rounded) that sampling keeps x
+// between: x·n alone may round across an edge.
+uint32_t cell_of(double x, uint32_t n) {
+  uint32_t c = std::min(n - 1, uint32_t(x * n));
+  if (c > 0 && x < double(c) / n) return c - 1;
+  if (c + 1 < n && x >= double(c + 1) / n) return c + 1;
+  return c;
+}
+
+}  // namespace
+
+// --- PiecewiseConstant1D ---
+
+PiecewiseConstant1D::PiecewiseConstant1D(std::vector<double> f) : func_(std::move(f)) {
+  if (func_.empty()) func_.push_back(0);
+  const std::size_t n = func_.size();
+  cdf_.assign(n + 1, 0.0);
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    func_[i] = std::isfinite(func_[i]) ? std::abs(func_[i]) : 0.0;
+    sum += func_[i];
+    cdf_[i + 1] = sum;
+  }
+  integral_ = sum / double(n);
+  if (!(sum > 0)) return;  // all zero: the CDF stays 0 and nothing is sampled
+  // A cell of weight 0 adds nothing to the running sum, so its CDF step is exactly empty and
+  // the search in sample_continuous can never land in it; the last entry is sum/sum = 1.
+  for (double& c : cdf_)
+    c /= sum;
+}
+
+double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* cell) const {
+  const uint32_t n = size();
+  u = std::clamp(u, 0.0, kOneMinusEpsilon);
+  if (!(integral_ > 0)) {
+    if (pdf) *pdf = 0;
+    if (cell) *cell = std::min(n - 1, uint32_t(u * n));
+    return u;
+  }
+  // The cell i with cdf[i] ≤ u < cdf[i + 1]: cdf[0] = 0 ≤ u and u < 1 = cdf[n] bound it.
+  auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+  uint32_t i = uint32_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin() - 1, 0, n - 1));
+  double du = (u - cdf_[i]) / (cdf_[i + 1] - cdf_[i]);  // the step is > 0 (see the constructor)
+  if (pdf) *pdf = func_[i] / integral_;
+  if (cell) *cell = i;
+  // i/n ≤ x < (i + 1)/n as cell_of sees the edges, though du or the division round up.
+  double x = (double(i) + du) / n, end = double(i + 1) / n;
+  return x < end ? x : std::nextafter(end, 0.0);
+}
+
+double PiecewiseConstant1D::pdf(double x) const {
+  if (!(x >= 0 && x < 1) || !(integral_ > 0)) return 0;
+  return pdf_of_cell(cell_of(x, size()));
+}
+
+// --- PiecewiseConstant2D ---
+
+PiecewiseConstant2D::PiecewiseConstant2D(const std::vector<double>& f, uint32_t nu, uint32_t nv) {
+  nu = std::max(nu, 1u), nv = std::max(nv, 1u);
+  conditional_.reserve(nv);
+  std::vector<double> row_weights(nv);
+  for (uint32_t v = 0; v < nv; ++v) {
+    std::vector<double> row(nu, 0.0);
+    for (uint32_t u = 0; u < nu; ++u) {
+      std::size_t k = std::size_t(v) * nu + u;
+      if (k < f.size()) row[u] = f[k];
+    }
+    conditional_.emplace_back(std::move(row));
+    row_weights[v] = conditional_.back().integral();
+  }
+  marginal_ = PiecewiseConstant1D(std::move(row_weights));
+}
+
+PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) const {
+  Sample s;
+  double pdf_v = 0, pdf_u = 0;
+  s.v = marginal_.sample_continuous(u2, &pdf_v, &s.cell_v);
+  s.u = conditional_[s.cell_v].sample_continuous(u1, &pdf_u, &s.cell_u);
+  // The joint density f / ∫∫f, written as pdf() writes it so the two agree bit for bit.
+  s.pdf = (pdf_v > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
+  return s;
+}
+
+double PiecewiseConstant2D::pdf(double u, double v) const {
+  if (!(u >= 0 && u < 1 && v >= 0 && v < 1) || !(integral() > 0)) return 0;
+  uint32_t nv = marginal_.size(), nu = conditional_[0].size();
+  return pdf_of_cells(cell_of(u, nu), cell_of(v, nv));
+}
+
+double PiecewiseConstant2D::pdf_of_cells(uint32_t iu, uint32_t iv) const {
+  // f / ∫∫f, with ∫∫f = Σf / (nu·nv) = the marginal's integral.
+  return conditional_[iv].value(iu) / integral();
+}
+
+std::size_t PiecewiseConstant2D::bytes() const {
+  std::size_t b = marginal_.bytes() + conditional_.capacity() * sizeof(PiecewiseConstant1D);
+  for (const auto& c : conditional_)
+    b += c.bytes();
+  return b;
+}
+
+// --- EnvironmentMap ---
+
+EnvironmentMap::EnvironmentMap(Image image, double scale, const Mat3d& rotation)
+    : image_(sanitized(std::move(image))),
+      scale_(scale > 0 && std::isfinite(scale) ? scale : 0.0),
+      rotation_(rotation) {
+  build_distribution();
+}
+
+Vec3d EnvironmentMap::texel(uint32_t x, uint32_t y) const {
+  return Vec3d(image_.at(x, y));
+}
+
+Vec3d EnvironmentMap::to_image(const Vec3d& d) const {
+  return {dot(rotation_.col(0), d), dot(rotation_.col(1), d), dot(rotation_.col(2), d)};
+}
+
+EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const Vec3d& d) {
+  if (!is_finite(d)) return {0, 0, 0};
+  double rxy = std::hypot(d.x, d.y), len = std::hypot(rxy, d.z);
+  if (!(len > 0)) return {0, 0, 0};
+  double phi = std::atan2(d.y, d.x);  // (−π, π]; 0 for a direction along ±z
+  if (phi < 0) phi += 2 * kPi;
+  double u = phi / (2 * kPi);
+  if (u >= 1) u -= 1;  // φ just below 0 rounds to 2π: the same place as u = 0
+  double v = std::min(std::atan2(rxy, d.z) / kPi, kOneMinusEpsilon);
+  return {u, v, rxy / len};
+}
+
+Vec3d EnvironmentMap::radiance_uv(double u, double v) const {
+  if (!(std::isfinite(u) && std::isfinite(v))) return {0, 0, 0};
+  const uint32_t w = image_.width, h = image_.height;
+  // Texel centres sit at (i + 0.5)/w: interpolate between the two around x (and y).
+  double x = (u - std::floor(u)) * w - 0.5, y = std::clamp(v, 0.0, 1.0) * h - 0.5;
+  double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+  uint32_t xa = wrap(int64_t(x0), w), xb = wrap(int64_t(x0) + 1, w);
+  uint32_t ya = clamp_index(int64_t(y0), h), yb = clamp_index(int64_t(y0) + 1, h);
+  Vec3d top = texel(xa, ya) * (1 - fx) + texel(xb, ya) * fx;
+  Vec3d bottom = texel(xa, yb) * (1 - fx) + texel(xb, yb) * fx;
+  return (top * (1 - fy) + bottom * fy) * scale_;
+}
+
+Vec3d EnvironmentMap::radiance(const Vec3d& dir_world) const {
+  ImagePoint p = to_image_point(to_image(dir_world));
+  return radiance_uv(p.u, p.v);
+}
+
+EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
+  EnvironmentSample s;
+  s.wi = rotation_ * Vec3d(0, 0, 1);
+  PiecewiseConstant2D::Sample uv = distribution_.sample(u1, u2);
+  if (!(uv.pdf > 0)) return s;
+  double phi = 2 * kPi * uv.u, theta = kPi * uv.v;
+  double sin_theta = std::sin(theta);
+  if (!(sin_theta > 0)) return s;  // exactly on the top pole: no density in solid angle
+  Vec3d d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta));
+  s.wi = rotation_ * d;
+  s.le = radiance_uv(uv.u, uv.v);
+  s.pdf = uv.pdf / (2 * kPi * kPi * sin_theta);
+  return s;
+}
+
+double EnvironmentMap::pdf(const Vec3d& dir_world) const {
+  if (!can_sample()) return 0;
+  ImagePoint p = to_image_point(to_image(dir_world));
+  if (!(p.sin_theta > 0)) return 0;
+  return distribution_.pdf(p.u, p.v) / (2 * kPi * kPi * p.sin_theta);
+}
+
+// Φ = π r² ∫ s·lum(E(ω)) dω: the light arriving from each direction ω is a parallel beam, and
+// the part of it that can reach the scene crosses the disc of radius r facing ω (area π r²)
+// around the scene's bounding sphere (pbrt-v4's ImageInfiniteLight::Phi, which sums the same
+// over its equal-area texels).
+double EnvironmentMap::power_estimate(double scene_radius) const {
+  double r = std::isfinite(scene_radius) ? scene_radius : 0.0;
+  return kPi * r * r * luminance_integral_;
+}
+
+std::size_t EnvironmentMap::bytes() const {
+  return sizeof(*this) + image_.rgb.capacity() * sizeof(float) + distribution_.bytes();
+}
+
+// The sampling weights. The lookup is bilinear, so a texel lights the cells around its own
+// (up to half a cell into each neighbour): a weight built from each texel alone (pbrt-v4's
+// choice, which suits its nearest-texel lookup) would be 0 in a black cell next to a bright
+// one where radiance() is not, and MIS would then miss that light. Each cell's weight is
+// instead the exact average over the cell of the bilinear luminance — separable weights
+// (1/8, 3/4, 1/8) over the 3×3 texels around it, wrapping in u and clamping in v as the
+// lookup does — which is > 0 wherever radiance() is > 0 in the cell (every weight is > 0 and
+// Rec. 709's are too). Times sin θ of the row's centre, the Jacobian of (u, v) ↦ ω up to the
+// constant 2π² (pbrt-v4 likewise takes the Jacobian at the cell centre).
+void EnvironmentMap::build_distribution() {
+  const uint32_t w = image_.width, h = image_.height;
+  std::vector<double> lum(std::size_t(w) * h), across(std::size_t(w) * h);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x)
+      lum[std::size_t(y) * w + x] = rec709_luminance(texel(x, y));
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const double* row = &lum[std::size_t(y) * w];
+      across[std::size_t(y) * w + x] =
+          kSide * row[wrap(int64_t(x) - 1, w)] + kCentre * row[x] + kSide * row[wrap(x + 1, w)];
+    }
+  std::vector<double> weight(std::size_t(w) * h);
+  for (uint32_t y = 0; y < h; ++y) {
+    const double* up = &across[std::size_t(clamp_index(int64_t(y) - 1, h)) * w];
+    const double* mid = &across[std::size_t(y) * w];
+    const double* down = &across[std::size_t(clamp_index(int64_t(y) + 1, h)) * w];
+    // The scale only multiplies the density's weights (it cancels), so it enters as "black
+    // or not": multiplying by it could overflow for a huge s.
+    double sin_theta = scale_ > 0 ? std::sin(kPi * (y + 0.5) / h) : 0.0;
+    for (uint32_t x = 0; x < w; ++x)
+      weight[std::size_t(y) * w + x] =
+          (kSide * up[x] + kCentre * mid[x] + kSide * down[x]) * sin_theta;
+  }
+  distribution_ = PiecewiseConstant2D(weight, w, h);
+  luminance_integral_ = scale_ * luminance_sphere_integral(lum);
+}
+
+// ∫ lum(E(ω)) dω over the sphere for the bilinear map, exactly: over a whole turn in u the
+// interpolation between texel centres integrates to the row's mean, so ∫ E du is the linear
+// interpolation of the row means in v (constant above the first and below the last centre,
+// as the lookup clamps), integrated against dω = 2π² sin(πv) du dv in closed form.
+double EnvironmentMap::luminance_sphere_integral(const std::vector<double>& lum) const {
+  const uint32_t w = image_.width, h = image_.height;
+  std::vector<double> mean(h, 0.0);
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x)
+      mean[y] += lum[std::size_t(y) * w + x];
+    mean[y] /= w;
+  }
+  auto centre = [&](uint32_t y) { return (y + 0.5) / h; };
+  double total = band_integral(0, centre(0), mean[0], mean[0]);
+  for (uint32_t y = 0; y + 1 < h; ++y)
+    total += band_integral(centre(y), centre(y + 1), mean[y], mean[y + 1]);
+  total += band_integral(centre(h - 1), 1, mean[h - 1], mean[h - 1]);
+  return std::max(0.0, total);
+}
+
+}  // namespace raylane
