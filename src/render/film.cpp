@@ -122,6 +122,10 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
     h.value(m.emission), h.value(m.is_light);
     if (m.texture >= 0) h.value(m.texture);  // only when textured: older films still fit
   }
+  if (const auto& env = scene.environment) {
+    h.value(env->scale), h.value(env->rotation), h.value(env->image.width);
+    h.value(env->image.height), h.column(env->image.rgb);
+  }
   for (const Texture& t : scene.textures) {
     h.value(t.image.width), h.value(t.image.height);
     h.column(t.image.rgb);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "raylane/render/texturing.h"
 
@@ -66,6 +67,16 @@ double pdf_kind(const typename Kind::Table& t, uint32_t row, const Vec3d& ref, c
 LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double total = 0;
   std::vector<double> power;
+  double env_power = 0;
+  if (scene.environment) {
+    const EnvironmentSpec& e = *scene.environment;
+    env_.emplace(e.image, e.scale, e.rotation);
+    Bounds3f b = scene.bounds();
+    double radius = b.empty() ? 1.0 : 0.5 * length(Vec3d(b.hi) - Vec3d(b.lo));
+    env_power = env_->can_sample() ? env_->power_estimate(std::max(radius, 1e-3)) : 0.0;
+    if (!std::isfinite(env_power)) env_power = 0;
+    total += env_power;
+  }
   for (PrimRef l : scene.lights) {
     const Material& m = scene.materials[scene.material_of(l)];
     Vec3d le(m.emission);
@@ -85,6 +96,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     choice_.push_back(power[k] / total);
     by_bits_.emplace_back(lights_[k].bits(), power[k] / total);
   }
+  if (env_power > 0) {  // the environment comes last: u_light above every shape's share
+    env_choice_ = env_power / total;
+    cdf_.push_back(1.0);
+  }
   if (!cdf_.empty()) cdf_.back() = 1.0;
   std::sort(by_bits_.begin(), by_bits_.end());
 }
@@ -97,14 +112,26 @@ std::optional<double> LightSampler::choice_of(PrimRef light) const {
 
 std::size_t LightSampler::pick(double u_light) const {
   std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
-  return std::min(k, lights_.size() - 1);
+  return std::min(k, cdf_.size() - 1);
+}
+
+LightSample LightSampler::sample_environment(double u1, double u2) const {
+  LightSample s;
+  EnvironmentSample e = env_->sample(u1, u2);
+  if (!e.valid()) return s;
+  s.wi = e.wi;
+  s.dist = std::numeric_limits<double>::infinity();
+  s.le = e.le;
+  s.pdf = env_choice_ * e.pdf;
+  return s;
 }
 
 LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part, double u1,
                                  double u2) const {
   LightSample s;
-  if (lights_.empty()) return s;
+  if (empty()) return s;
   std::size_t k = pick(u_light);
+  if (k == lights_.size()) return sample_environment(u1, u2);
   PrimRef l = lights_[k];
   s.light = l;
   s.le = le_[k];
@@ -128,7 +155,8 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   for (std::size_t r = 0; r < q.size(); ++r) {
     const auto& u = q.u[r];
     LightSample& s = q.out[r];
-    if (lights_.empty() || lights_[pick(u[2])].tag() != tag_of<Sphere>) {
+    std::size_t picked = empty() ? 0 : pick(u[2]);
+    if (picked == lights_.size() || lights_[picked].tag() != tag_of<Sphere>) {
       s = sample(q.ref[r], u[2], u[3], u[0], u[1]);
       continue;
     }

@@ -64,8 +64,9 @@ void render_tile(TileContext& ctx, std::vector<double>& film) {
       Hit& h = hits[live.size() + q];
       // Visible when the first thing met is the light's emitting side (convex solids are
       // sampled on faces toward the vertex only, so no other face of theirs is in between).
-      bool seen = h.hit() && h.prim == queries[q].light;
-      if (seen && !kind_two_sided(h.prim.tag()))
+      // The environment's shadow rays (no light primitive) see it when they meet nothing.
+      bool seen = queries[q].light.valid() ? h.hit() && h.prim == queries[q].light : !h.hit();
+      if (seen && h.hit() && !kind_two_sided(h.prim.tag()))
         seen = ctx.tracer.front_face(batch[live.size() + q], h);
       if (seen) paths[queries[q].path].radiance += queries[q].contribution;
     }

@@ -42,6 +42,19 @@ void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
   p.radiance += p.beta * le * w;
 }
 
+// What a path gains when its ray leaves the scene: the environment, weighted as add_emission
+// weighs an emitter (its density for MIS is the environment's).
+void add_escape(TileContext& ctx, PathState& p, int depth) {
+  Vec3d le = ctx.lights.escaped(p.ray.d);
+  if (le == Vec3d(0, 0, 0)) return;
+  double w = 1;
+  bool sampled_light_too = depth > 0 && !p.prev_specular;
+  if (sampled_light_too && ctx.settings.integrator == Integrator::kNee) w = 0;
+  if (sampled_light_too && ctx.settings.integrator == Integrator::kMis)
+    w = power_heuristic(p.prev_pdf, ctx.lights.environment_pdf(p.ray.d));
+  p.radiance += p.beta * le * w;
+}
+
 // Light sampling's time for --stats: the clock is read around one call in this many and that
 // time scaled up; reading it around every call cost 15 % of the render and landed in this
 // phase. (Shading's time has light sampling's estimate taken out, so it carries the error.)
@@ -88,7 +101,10 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& 
 // reflect nothing), else Beer's law on the segment just travelled. The material's row if the
 // path may scatter here.
 std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
-  if (!hit.hit()) return std::nullopt;
+  if (!hit.hit()) {
+    add_escape(ctx, p, depth);
+    return std::nullopt;
+  }
   const Scene& scene = ctx.tracer.scene();
   uint32_t row = scene.material_of(hit.prim);
   const Material& m = scene.materials[row];

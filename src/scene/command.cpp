@@ -179,6 +179,7 @@ bool primitive(Scene& s, const Line& line, ParseState& state) {
 
 bool mesh_command(Scene& s, const Line& line, ParseState& state);
 bool texture_command(Scene& s, const Line& line, ParseState& state);
+bool environment_command(Scene& s, const Line& line, ParseState& state);
 
 bool Scene::command(const Line& line, ParseState& state) {
   std::string_view word = line.tokens[0].text;
@@ -190,6 +191,7 @@ bool Scene::command(const Line& line, ParseState& state) {
   if (word == "light") return light_command(*this, line, state);
   if (word == "mesh") return mesh_command(*this, line, state);
   if (word == "texture") return texture_command(*this, line, state);
+  if (word == "environment") return environment_command(*this, line, state);
   bool handled = false, accepted = false;
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);

@@ -16,6 +16,16 @@ uint32_t Scene::material_of(PrimRef ref) const {
   });
 }
 
+Bounds3f Scene::bounds() const {
+  Bounds3f b;
+  PrimKinds::for_each([&](auto kind) {
+    const auto& t = table<decltype(kind)>();
+    for (uint32_t i = 0; i < t.size(); ++i)
+      b.extend(t.bounds(i));
+  });
+  return b;
+}
+
 std::vector<std::vector<uint32_t>> Scene::permute(const std::vector<std::vector<uint32_t>>& order) {
   std::vector<std::vector<uint32_t>> new_row(kPrimKindCount);
   PrimKinds::for_each([&](auto kind) {

@@ -1,9 +1,11 @@
-// The `texture file` command, and what it shares with meshes that name their own textures:
-// finding an input next to the scene file, reading each image once.
+// The `texture file` and `environment file s <orientation>` commands, and what they share with
+// meshes that name their own textures: finding an input next to the scene file, reading each image
+// once.
 #include <filesystem>
 
 #include "raylane/core/strings.h"
 #include "raylane/image/input_image.h"
+#include "raylane/scene/orientation.h"
 #include "raylane/scene/parse_state.h"
 #include "raylane/scene/scene.h"
 
@@ -76,6 +78,43 @@ bool texture_command(Scene& s, const Line& line, ParseState& state) {
         line.at(0), cat("the material already has texture ", quote_path(s.textures[m.texture].file),
                         ": this one replaces it"));
   m.texture = int32_t(*row);
+  return true;
+}
+
+// `environment file s <orientation>`.
+bool environment_command(Scene& s, const Line& line, ParseState& state) {
+  if (line.tokens.size() < 3) {
+    state.problem(line.at(line.tokens.size()),
+                  cat("environment takes a file name and a scale s, found ", line.tokens.size() - 1,
+                      " parameters"));
+    return false;
+  }
+  auto scale = parse_number(line, 2, state);
+  if (!scale) return false;
+  if (!(*scale > 0)) {
+    state.problem(line.at(2), cat("environment scale must be > 0, found ", line.tokens[2].text));
+    return false;
+  }
+  auto rotation = parse_orientation(line, 3, state);
+  if (!rotation) return false;
+  std::string name = line.tokens[1].name();
+  auto path = find_input_file(state, name);
+  if (!path) {
+    state.problem(line.at(1), cat("environment ", where_looked(state, name)));
+    return false;
+  }
+  auto image = read_input_image(*path);
+  if (!image) {
+    state.problem(line.at(1),
+                  cat("cannot use environment ", quote_path(name), ": ", image.error()));
+    return false;
+  }
+  if (state.environment_line != 0)
+    state.diagnostics.warning(line.at(0), cat("environment given again (first on line ",
+                                              state.environment_line, "): the last one wins"));
+  state.environment_line = line.loc.line;
+  state.input_files.push_back(*path);
+  s.environment = EnvironmentSpec{*path, std::move(*image), *scale, *rotation};
   return true;
 }
 

@@ -86,16 +86,6 @@ void print_bounds(const char* label, const Bounds3f& b) {
               b.hi.z);
 }
 
-Bounds3f scene_bounds(const Scene& s) {
-  Bounds3f b;
-  PrimKinds::for_each([&](auto kind) {
-    const auto& t = s.table<decltype(kind)>();
-    for (uint32_t i = 0; i < t.size(); ++i)
-      b.extend(t.bounds(i));
-  });
-  return b;
-}
-
 void print_meshes(const std::vector<MeshSummary>& meshes) {
   for (const MeshSummary& m : meshes) {
     std::printf("mesh %s (line %d): %u triangles", quote_path(m.file).c_str(), m.loc.line,
@@ -145,7 +135,7 @@ int info_command(const std::vector<std::string>& args) {
   if (s.lens.radius > 0)
     std::printf("lens: aperture radius %g, in focus at %g\n", s.lens.radius, s.lens.focus);
   std::printf("ambient: (%g %g %g)\n", s.ambient.x, s.ambient.y, s.ambient.z);
-  print_bounds("bounds", scene_bounds(s));
+  print_bounds("bounds", s.bounds());
   print_meshes(loaded->meshes);
   print_tables(s);
   print_materials(s);

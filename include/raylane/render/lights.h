@@ -5,6 +5,10 @@
 // proportional to its power (mean of Le's channels × area), so a scene's dim lamps do not take
 // samples from its bright ones.
 //
+// The environment (`environment`, render/environment.h) is one more light, chosen by its power
+// π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
+// flux an infinite light sends through the scene; docs/design.md, "The environment light").
+//
 // Emission model: solids (spheres, boxes, cylinders) emit from their outside only; triangles
 // emit from both sides. Emitters reflect nothing. A textured emitter's radiance is Le times its
 // image at the point; its power is estimated with the image's mean.
@@ -15,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "raylane/render/environment.h"
 #include "raylane/render/light_lanes.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/hit.h"
@@ -22,11 +27,11 @@
 namespace raylane {
 
 struct LightSample {
-  PrimRef light = PrimRef::invalid();
-  Vec3d p;          // the point on the light
+  PrimRef light = PrimRef::invalid();  // invalid for the environment
+  Vec3d p;                             // the point on the light
   Vec3d n;          // its outward normal, where sampled by area (0 from a sphere's cone)
   Vec3d wi;         // unit direction from the reference point to p
-  double dist = 0;  // |p − reference point|
+  double dist = 0;  // |p − reference point|; infinite for the environment
   Vec3d le;         // the radiance arriving along −wi
   double pdf = 0;   // solid-angle density, including the choice of the light
   bool valid() const { return pdf > 0; }
@@ -49,7 +54,7 @@ struct LightQueries {
 class LightSampler {
  public:
   explicit LightSampler(const Scene& scene);
-  bool empty() const { return lights_.empty(); }
+  bool empty() const { return lights_.empty() && !env_choice_; }
 
   // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
   LightSample sample(const Vec3d& ref, double u_light, double u_part, double u1, double u2) const;
@@ -63,6 +68,12 @@ class LightSampler {
   // The radiance a ray sees where it hits an emitter (0 from behind a solid emitter).
   Vec3d emitted(const Hit& hit) const;
 
+  // What a ray that leaves the scene along d sees (0 without an environment), and the density
+  // sample() has for that direction (for MIS).
+  Vec3d escaped(const Vec3d& d) const { return env_ ? env_->radiance(d) : Vec3d(0, 0, 0); }
+  double environment_pdf(const Vec3d& d) const { return env_choice_ * (env_ ? env_->pdf(d) : 0.0); }
+  const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
+
  private:
   const Scene& scene_;
   // The index in lights_ of the light u_light picks (by power).
@@ -70,6 +81,11 @@ class LightSampler {
   // The choice probability of the light a ray hit, or nullopt if it is not one of ours.
   std::optional<double> choice_of(PrimRef light) const;
 
+  // The environment's direction for the numbers u1, u2 (choice: its choice probability).
+  LightSample sample_environment(double u1, double u2) const;
+
+  std::optional<EnvironmentMap> env_;
+  double env_choice_ = 0;  // its choice probability; it is light index lights_.size()
   std::vector<PrimRef> lights_;
   std::vector<double> cdf_;        // cumulative choice probabilities
   std::vector<double> choice_;     // choice probability of lights_[k]

@@ -34,6 +34,7 @@ struct ParseState {
   std::optional<uint32_t> current_material;
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
   int screen_line = 0, camera_line = 0, ambient_line = 0, lens_line = 0;  // 0 = not seen yet
+  int environment_line = 0;
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);

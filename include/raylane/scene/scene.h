@@ -30,6 +30,16 @@ struct LensSpec {
   double focus = 1;
 };
 
+// An environment light (`environment file s <orientation>`): the image as read (linear RGB,
+// top row first), its scale s > 0 and the orientation R that turns the image's directions
+// into the world (docs/scene-language.md, "Equirectangular environment mapping").
+struct EnvironmentSpec {
+  std::string file;
+  Image image;
+  double scale = 1;
+  Mat3d rotation;
+};
+
 struct Token {
   std::string_view text;  // as written (with the quotes of a quoted file name)
   int col = 0;            // 1-based column of its first character
@@ -60,6 +70,7 @@ struct Scene {
   std::vector<Texture> textures;  // images the materials refer to, each file once
   PrimTables tables;
   std::vector<PrimRef> lights;  // every primitive whose material emits
+  std::optional<EnvironmentSpec> environment;
 
   template <class Kind>
   typename Kind::Table& table() {
@@ -70,6 +81,7 @@ struct Scene {
     return std::get<kind_index<Kind>()>(tables);
   }
   std::size_t primitive_count() const;
+  Bounds3f bounds() const;  // of every primitive (empty for none)
   uint32_t material_of(PrimRef ref) const;
 
   // Reorders the rows of every table: new row i of kind k is old row order[k][i] (order[k] is
