@@ -132,9 +132,13 @@ TEST(EnvironmentLight, UpwardPlaneUnderACapMatchesTheIrradianceIntegral) {
       std::printf("cap '%s' %s: %.5f ± %.5f (expected %.5f)\n", c.orientation,
                   integrator_name(integrator).data(), e.mean, e.sigma, expected);
       EXPECT_NEAR(e.mean, expected, 4 * e.sigma + 1e-9) << c.orientation;
-      if (expected > 0) EXPECT_LT(e.sigma, 0.05 * expected) << c.orientation;
+      if (expected > 0) {
+        EXPECT_LT(e.sigma, 0.05 * expected) << c.orientation;
+      }
     }
-    if (c.orientation[0] == 'x' && c.orientation[2] == '1') EXPECT_EQ(expected, 0.0);
+    if (std::string(c.orientation) == "x 180") {
+      EXPECT_EQ(expected, 0.0);  // the cap under the plane: nothing reaches it
+    }
   }
 }
 
