@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "raylane/image/read_input_image.h"
+#include "raylane/image/input_image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   if (size == 0) return 0;

@@ -95,7 +95,7 @@ TEST(InputImage, HdrAndPfmAreLinear) {
   }
 }
 
-TEST(InputImage, TgaBmpAndJpegOfTheAssimpModelsDecode) {
+TEST(InputImage, PngTgaAndBmpOfTheAssimpModelsDecode) {
   const std::string models = RAYLANE_ASSIMP_MODELS;
   if (!fs::exists(models)) GTEST_SKIP() << "assimp-testmodels is not installed";
   int decoded = 0;
@@ -105,6 +105,13 @@ TEST(InputImage, TgaBmpAndJpegOfTheAssimpModelsDecode) {
       c = char(std::tolower(c));
     if (ext != ".png" && ext != ".jpg" && ext != ".tga" && ext != ".bmp") continue;
     auto img = read_input_image(e.path().string());
+    if (ext == ".jpg") {  // refused, with a reason (docs/design.md, "Images in")
+      EXPECT_FALSE(img);
+      if (!img) {
+        EXPECT_NE(img.error().find("JPEG images are not read yet"), std::string::npos);
+      }
+      continue;
+    }
     if (!img) {
       ADD_FAILURE() << img.error();
       continue;
@@ -112,7 +119,7 @@ TEST(InputImage, TgaBmpAndJpegOfTheAssimpModelsDecode) {
     EXPECT_GT(img->width, 0u);
     ++decoded;
   }
-  EXPECT_GE(decoded, 60);  // 66 images in Debian 12's package
+  EXPECT_GE(decoded, 40);  // 45 PNG, TGA and BMP images in Debian 12's package
 }
 
 TEST(InputImage, NegativeOrNonFinitePixelsAreAnError) {

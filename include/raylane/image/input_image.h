@@ -1,7 +1,9 @@
-// Reading textures and environments: PNG, JPEG, TGA, BMP and Radiance HDR through stb_image
-// (Debian's libstb-dev), PFM through raylane's own reader (image/pfm.h). Integer images are
-// sRGB-encoded and come back linear; float images are linear already (docs/scene-language.md,
-// "Beyond project 4: textures, environment, lens").
+// Reading textures and environments: PNG, TGA and BMP through stb_image (Debian's libstb-dev),
+// Radiance HDR and PFM through raylane's own readers (image/rgbe.h, image/pfm.h: stb_image
+// 2.27's HDR reader hangs on some truncated files). JPEG is recognised and refused for now:
+// stb_image 2.27's JPEG reader has memory errors on damaged files (docs/design.md, "Images in").
+// Integer images are sRGB-encoded and come back linear; float images are linear already
+// (docs/scene-language.md, "Beyond project 4: textures, environment, lens").
 //
 // Decoders are guarded as the mesh importer is (docs/design.md, "Images in"): the size a
 // header announces is checked against the limit on pixels and against what a file of this
