@@ -6,15 +6,18 @@
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <new>
 #include <utility>
 
+#include "mesh_append.h"
 #include "raylane/core/alloc_budget.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 #include "raylane/scene/mesh_guard.h"
+#include "raylane/scene/ply.h"
 
 namespace raylane {
 
@@ -190,11 +193,7 @@ std::string diffuse_texture(const aiMaterial& m, const std::string& mesh_path) {
   if (m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS &&
       m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS)
     return "";
-  std::string file(name.C_Str());
-  if (file.empty() || file[0] == '*') return file;  // embedded: "*N"
-  std::filesystem::path p(file);
-  if (p.is_relative()) p = std::filesystem::path(mesh_path).parent_path() / p;
-  return p.lexically_normal().string();
+  return texture_next_to(name.C_Str(), mesh_path);
 }
 
 // The scene material of each of the file's materials that a mesh uses.
@@ -222,7 +221,7 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
     if (face.mNumIndices != 3) continue;
-    std::array<Vec3f, 3> p, n;
+    std::array<Vec3d, 3> p, n;
     std::array<TexCoord, 3> t{};
     bool bad_index = false;
     for (int k = 0; k < 3; ++k) {
@@ -231,26 +230,14 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
         bad_index = true;
         break;
       }
-      p[k] = Vec3f(pl.translation + pl.scale * (pl.rotation * to_vec(mesh.mVertices[i])));
-      Vec3d nk = mesh.mNormals ? pl.rotation * to_vec(mesh.mNormals[i]) : Vec3d();
-      double len = length(nk);
-      n[k] = len > 0 && std::isfinite(len) ? Vec3f(nk / len) : Vec3f();
+      p[k] = to_vec(mesh.mVertices[i]);
+      n[k] = mesh.mNormals ? to_vec(mesh.mNormals[i]) : Vec3d();
       if (uv) {
         const aiVector3D& c = mesh.mTextureCoords[0][i];
         t[k] = {std::isfinite(c.x) ? c.x : 0.0, std::isfinite(c.y) ? c.y : 0.0};
       }
     }
-    if (bad_index) continue;
-    Vec3d ng = cross(Vec3d(p[1]) - Vec3d(p[0]), Vec3d(p[2]) - Vec3d(p[0]));
-    if (length_squared(ng) == 0.0) {
-      ++stats.degenerate_dropped;
-      continue;
-    }
-    // A vertex without a usable normal takes the face normal.
-    for (auto& nk : n)
-      if (nk == Vec3f()) nk = Vec3f(normalize(ng));
-    table.append(p, n, material, &t);
-    ++stats.triangles;
+    if (!bad_index) append_placed(p, n, t, pl, material, table, stats);
   }
 }
 
@@ -320,7 +307,15 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
                                          const MaterialChooser& choose) {
   auto size = regular_file_size(path);
   if (!size) return Error{cat("cannot read mesh ", quote_path(path), ": ", size.error())};
-  if (Status s = check_mesh_plausible(read_head(path), *size, path); !s) return Error{s.error()};
+  std::string head = read_head(path);
+  if (Status s = check_mesh_plausible(head, *size, path); !s) return Error{s.error()};
+  if (is_ply(head, path)) {
+    auto bytes = read_input_file(path, kMaxMeshFileBytes, "the mesh");
+    if (!bytes) return Error{bytes.error()};
+    auto stats = import_ply(*bytes, path, placement, material, table, choose);
+    if (stats) stats->files = {path};
+    return stats;
+  }
   Assimp::Importer importer;
   configure(importer);
   auto* io = new GuardedIOSystem;  // the importer owns and deletes it
@@ -338,6 +333,7 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
                                            const MeshPlacement& placement, uint32_t material,
                                            TriangleTable& table) {
   if (Status s = check_mesh_plausible(bytes, bytes.size(), name); !s) return Error{s.error()};
+  if (is_ply(bytes, name)) return import_ply(bytes, name, placement, material, table, {});
   Assimp::Importer importer;
   configure(importer);
   std::string hint = std::filesystem::path(name).extension().string();
@@ -347,6 +343,41 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
   });
   if (!scene) return Error{scene.error()};
   return convert_or_fail(*scene, name, placement, material, table);
+}
+
+}  // namespace raylane
+
+// --- shared with the PLY reader (mesh_append.h) ---
+
+namespace raylane {
+
+void append_placed(const std::array<Vec3d, 3>& p_file, const std::array<Vec3d, 3>& n_file,
+                   const std::array<TexCoord, 3>& uv, const MeshPlacement& pl, uint32_t material,
+                   TriangleTable& table, MeshImportStats& stats) {
+  std::array<Vec3f, 3> p, n;
+  for (int k = 0; k < 3; ++k) {
+    p[k] = Vec3f(pl.translation + pl.scale * (pl.rotation * p_file[k]));
+    Vec3d nk = pl.rotation * n_file[k];
+    double len = length(nk);
+    n[k] = len > 0 && std::isfinite(len) ? Vec3f(nk / len) : Vec3f();
+  }
+  Vec3d ng = cross(Vec3d(p[1]) - Vec3d(p[0]), Vec3d(p[2]) - Vec3d(p[0]));
+  if (length_squared(ng) == 0.0) {
+    ++stats.degenerate_dropped;
+    return;
+  }
+  // A vertex without a usable normal takes the face normal.
+  for (auto& nk : n)
+    if (nk == Vec3f()) nk = Vec3f(normalize(ng));
+  table.append(p, n, material, &uv);
+  ++stats.triangles;
+}
+
+std::string texture_next_to(const std::string& file, const std::string& mesh_path) {
+  if (file.empty() || file[0] == '*') return file;  // embedded: "*N"
+  std::filesystem::path p(file);
+  if (p.is_relative()) p = std::filesystem::path(mesh_path).parent_path() / p;
+  return p.lexically_normal().string();
 }
 
 }  // namespace raylane

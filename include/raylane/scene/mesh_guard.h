@@ -11,13 +11,10 @@ namespace raylane {
 
 inline constexpr uint64_t kMaxMeshFileBytes = uint64_t(4) << 30;
 
-// A PLY header declares element counts; Assimp 5.2's PLY reader loops for hours on a header
-// that declares far more elements than the file holds (found by a test: `element vertex
-// 99999999999` and no data). Every property of every element takes at least one byte, so a
-// file whose declared elements need more bytes than it has is rejected here. `head` is the
-// start of the file (at least its header, if it has one). A file named .ply or starting with
-// "ply" in any case must have a header that follows the PLY grammar exactly; other formats
-// pass.
+// The checks made before a mesh file is read: its size, and for a PLY file (scene/ply.h, which
+// reads every PLY itself) a header that follows the grammar and declares no more elements than
+// the file can hold. `head` is the start of the file (at least its header, if it has one).
+// Other formats pass; Assimp reads them.
 Status check_mesh_plausible(std::string_view head, uint64_t file_size, const std::string& name);
 
 }  // namespace raylane

@@ -1,0 +1,30 @@
+// What the two mesh readers (Assimp's, and raylane's own PLY reader) share: placing a file's
+// triangle in the scene and appending it, and resolving a texture a file names.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "raylane/scene/mesh_import.h"
+#include "raylane/scene/ply.h"
+
+namespace raylane {
+
+// One triangle in the file's frame, placed by p → t + s·R·p and n → R·n (renormalised; a
+// normal that is zero or not finite becomes the face normal). A triangle of zero area after
+// placement, in float, is counted in stats.degenerate_dropped and not appended.
+void append_placed(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>& n,
+                   const std::array<TexCoord, 3>& uv, const MeshPlacement& placement,
+                   uint32_t material, TriangleTable& table, MeshImportStats& stats);
+
+// A texture file named inside a mesh file, resolved next to it; "*N" (embedded) and "" stay.
+std::string texture_next_to(const std::string& file, const std::string& mesh_path);
+
+// The triangles of a PLY file (scene/ply.h) held in `bytes`, read without Assimp. Smooth
+// normals are made where the file has none; `choose` gets the texture a `comment TextureFile`
+// line names, if any.
+Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& name,
+                                   const MeshPlacement& placement, uint32_t material,
+                                   TriangleTable& table, const MaterialChooser& choose);
+
+}  // namespace raylane
