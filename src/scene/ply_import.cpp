@@ -1,4 +1,5 @@
 // A PLY file's triangles into the triangle table (src/scene/mesh_append.h).
+#include <bit>
 #include <cmath>
 #include <new>
 
@@ -9,11 +10,42 @@ namespace raylane {
 
 namespace {
 
+// For each vertex, the first vertex at exactly the same position (−0 and +0 alike), so that
+// files which repeat a corner for each face — triangle soups, as STL converters and raylane's
+// benchmark export write — still get smooth normals, as Assimp's welding gave them. An
+// open-addressing table of vertex indices, sized to twice the vertices.
+std::vector<uint32_t> first_at_same_position(const std::vector<Vec3f>& p) {
+  auto key = [&](uint32_t i) {
+    return std::array<float, 3>{p[i].x + 0.0f, p[i].y + 0.0f, p[i].z + 0.0f};
+  };
+  auto hash = [&](uint32_t i) {
+    auto k = key(i);
+    uint64_t h = 0;
+    for (float f : k)
+      h = (h ^ std::bit_cast<uint32_t>(f)) * 0x9E3779B97F4A7C15ull;  // Fibonacci hashing
+    return h ^ (h >> 29);
+  };
+  std::size_t size = 16;
+  while (size < 2 * p.size())
+    size *= 2;
+  constexpr uint32_t kEmpty = UINT32_MAX;
+  std::vector<uint32_t> slots(size, kEmpty), first(p.size());
+  for (uint32_t i = 0; i < p.size(); ++i) {
+    std::size_t s = hash(i) & (size - 1);
+    while (slots[s] != kEmpty && key(slots[s]) != key(i))
+      s = (s + 1) & (size - 1);
+    if (slots[s] == kEmpty) slots[s] = i;
+    first[i] = slots[s];
+  }
+  return first;
+}
+
 // Vertex normals for a file that has none: each corner adds its face's unit normal weighted by
 // the corner's angle (Thürmer and Wüthrich, "Computing vertex normals from polygonal facets",
 // JGT 3(1), 1998), so the result does not depend on how a polygon was cut into triangles.
-// Vertices are shared by index, as PLY files share them.
+// Vertices at the same position share their normal.
 std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh) {
+  const std::vector<uint32_t> first = first_at_same_position(mesh.positions);
   std::vector<Vec3d> sum(mesh.positions.size());
   for (const auto& t : mesh.triangles) {
     std::array<Vec3d, 3> p = {Vec3d(mesh.positions[t[0]]), Vec3d(mesh.positions[t[1]]),
@@ -25,13 +57,13 @@ std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       Vec3d a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
       double angle = std::atan2(length(cross(a, b)), dot(a, b));
-      sum[t[k]] = sum[t[k]] + angle * n;
+      sum[first[t[k]]] = sum[first[t[k]]] + angle * n;
     }
   }
   std::vector<Vec3f> out(sum.size());
   for (std::size_t i = 0; i < sum.size(); ++i) {
-    double len = length(sum[i]);
-    out[i] = len > 0 ? Vec3f(sum[i] / len) : Vec3f();  // zero: append_placed uses the face's
+    double len = length(sum[first[i]]);
+    out[i] = len > 0 ? Vec3f(sum[first[i]] / len) : Vec3f();  // zero: append_placed uses the face's
   }
   return out;
 }

@@ -206,29 +206,55 @@ TEST(PlyReader, ListLongerThanTheFileIsRefused) {
       << m.error();
 }
 
+// A unit cube, every face cut along its diagonal through corner 0 or 6: each other corner
+// meets two triangles on one of its faces and one on each of the other two. As a triangle
+// soup, every triangle has its own three vertices.
+std::string cube_ply(bool soup) {
+  const float corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int tri[12][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {0, 4, 7}, {0, 7, 3},
+                          {6, 5, 1}, {6, 1, 2}, {6, 2, 3}, {6, 3, 7}, {6, 7, 4}, {6, 4, 5}};
+  std::string vertices, faces;
+  auto vertex = [&](int c) {
+    vertices += std::to_string(corner[c][0]) + " " + std::to_string(corner[c][1]) + " " +
+                std::to_string(corner[c][2]) + "\n";
+  };
+  if (!soup)
+    for (int c = 0; c < 8; ++c)
+      vertex(c);
+  for (int t = 0; t < 12; ++t) {
+    faces += "3";
+    for (int k = 0; k < 3; ++k) {
+      if (soup) vertex(tri[t][k]);
+      faces += " " + std::to_string(soup ? 3 * t + k : tri[t][k]);
+    }
+    faces += "\n";
+  }
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(soup ? 36 : 8) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face 12\n"
+         "property list uchar int vertex_indices\nend_header\n" +
+         vertices + faces;
+}
+
 // Normals made for a file without them weight each corner by its angle (Thürmer and
 // Wüthrich 1998): a cube's corner gets the diagonal direction however its faces were cut,
-// which neither equal weights nor area weights give when a corner meets one triangle on one
-// face and two on another.
+// which neither equal weights nor area weights give when a corner meets two triangles on one
+// face and one on another. Vertices at one position share the normal, so a soup gets the same.
 TEST(PlyImport, MadeNormalsDoNotDependOnHowFacesWereCut) {
-  std::string s =
-      "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
-      "property float z\nelement face 12\nproperty list uchar int vertex_indices\n"
-      "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
-      // every face cut along its diagonal through corner 0 or 6: each other corner meets two
-      // triangles on one of its faces and one on each of the other two
-      "3 0 2 1\n3 0 3 2\n3 0 1 5\n3 0 5 4\n3 0 4 7\n3 0 7 3\n"
-      "3 6 5 1\n3 6 1 2\n3 6 2 3\n3 6 3 7\n3 6 7 4\n3 6 4 5\n";
-  TriangleTable table;
-  auto r = import_mesh_memory(s, "cube.ply", {{0, 0, 0}, 1.0, Mat3d::identity()}, 0, table);
-  ASSERT_TRUE(r) << r.error();
-  ASSERT_EQ(table.size(), 12u);
-  for (uint32_t i = 0; i < table.size(); ++i) {
-    std::array<Vec3f, 3> p = {table.p0(i), table.p1(i), table.p2(i)};
-    std::array<Vec3f, 3> n = {table.n0(i), table.n1(i), table.n2(i)};
-    for (int k = 0; k < 3; ++k) {
-      Vec3d outward = normalize(Vec3d(p[k]) - Vec3d(0.5, 0.5, 0.5));
-      EXPECT_NEAR(length(Vec3d(n[k]) - outward), 0.0, 1e-6) << "row " << i << " corner " << k;
+  for (bool soup : {false, true}) {
+    SCOPED_TRACE(soup ? "soup" : "indexed");
+    TriangleTable table;
+    auto r = import_mesh_memory(cube_ply(soup), "cube.ply", {{0, 0, 0}, 1.0, Mat3d::identity()}, 0,
+                                table);
+    ASSERT_TRUE(r) << r.error();
+    ASSERT_EQ(table.size(), 12u);
+    for (uint32_t i = 0; i < table.size(); ++i) {
+      std::array<Vec3f, 3> p = {table.p0(i), table.p1(i), table.p2(i)};
+      std::array<Vec3f, 3> n = {table.n0(i), table.n1(i), table.n2(i)};
+      for (int k = 0; k < 3; ++k) {
+        Vec3d outward = normalize(Vec3d(p[k]) - Vec3d(0.5, 0.5, 0.5));
+        EXPECT_NEAR(length(Vec3d(n[k]) - outward), 0.0, 1e-6) << "row " << i << " corner " << k;
+      }
     }
   }
 }
