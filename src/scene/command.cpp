@@ -23,13 +23,20 @@ Vec3f vec3f(const std::vector<double>& v, std::size_t i) {
   return {float(v[i]), float(v[i + 1]), float(v[i + 2])};
 }
 
+}  // namespace
+
 // "Several screen/camera/ambient lines: the last one wins, with a warning."
-void note_repeat(int& seen_line, const Line& line, ParseState& state) {
-  if (seen_line != 0)
-    state.diagnostics.warning(line.at(0), cat(line.tokens[0].text, " given again (first on line ",
-                                              seen_line, "): the last one wins"));
-  seen_line = line.loc.line;
+void note_repeat(FileLoc& seen, const Line& line, ParseState& state) {
+  if (seen.line != 0) {
+    std::string first = seen.file == line.loc.file ? cat("on line ", seen.line)
+                                                   : cat("at ", seen.file, ":", seen.line);
+    state.diagnostics.warning(line.at(0), cat(line.tokens[0].text, " given again (first ", first,
+                                              "): the last one wins"));
+  }
+  seen = line.loc;
 }
+
+namespace {
 
 bool screen_command(Scene& s, const Line& line, ParseState& state) {
   auto v = parse_numbers(line, 1, 2, true, state);
@@ -46,7 +53,7 @@ bool screen_command(Scene& s, const Line& line, ParseState& state) {
                                   " pixels; the limit is 2^28 (268435456) pixels"));
     return false;
   }
-  note_repeat(state.screen_line, line, state);
+  note_repeat(state.screen_at, line, state);
   s.width = uint32_t((*v)[0]);
   s.height = uint32_t((*v)[1]);
   return true;
@@ -61,7 +68,7 @@ bool camera_command(Scene& s, const Line& line, ParseState& state) {
   }
   auto rot = parse_orientation(line, 5, state);
   if (!rot) return false;
-  note_repeat(state.camera_line, line, state);
+  note_repeat(state.camera_at, line, state);
   s.camera = CameraSpec{{(*v)[0], (*v)[1], (*v)[2]}, (*v)[3], *rot};
   return true;
 }
@@ -77,7 +84,7 @@ bool lens_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(2), "lens focus distance must be > 0");
     return false;
   }
-  note_repeat(state.lens_line, line, state);
+  note_repeat(state.lens_at, line, state);
   s.lens = LensSpec{(*v)[0], (*v)[1]};
   return true;
 }
@@ -85,7 +92,7 @@ bool lens_command(Scene& s, const Line& line, ParseState& state) {
 bool ambient_command(Scene& s, const Line& line, ParseState& state) {
   auto v = parse_numbers(line, 1, 3, true, state);
   if (!v) return false;
-  note_repeat(state.ambient_line, line, state);
+  note_repeat(state.ambient_at, line, state);
   s.ambient = vec3f(*v, 0);
   return true;
 }

@@ -24,9 +24,9 @@ void finish(ParsedScene& out, ParseState& state, const std::string& filename) {
       out.diagnostics.warning(mesh.loc, cat("mesh ", quote_path(mesh.file),
                                             " has no texture coordinates: its textured material "
                                             "reads the texture at (0, 0)"));
-  if (state.screen_line == 0)
+  if (state.screen_at.line == 0)
     out.diagnostics.warning({filename, 0, 0}, "no screen line: using 400x300");
-  if (state.camera_line == 0) out.diagnostics.error({filename, 0, 0}, "no camera line");
+  if (state.camera_at.line == 0) out.diagnostics.error({filename, 0, 0}, "no camera line");
 }
 
 }  // namespace
@@ -99,13 +99,36 @@ std::optional<TokenError> split_tokens(std::string_view text, std::vector<Token>
   return std::nullopt;
 }
 
+namespace {
+
+// One line of scene text at `loc`: split into tokens and obeyed, or a problem reported.
+void read_line(std::string_view content, const FileLoc& loc, ParseState& state, ParsedScene& out) {
+  Line line;
+  line.loc = loc;
+  if (content.size() > kMaxLineBytes) {  // located at the first byte past the limit
+    FileLoc at = line.loc;
+    at.col = int(kMaxLineBytes) + 1;
+    state.problem(at, cat("expected a line of at most ", kMaxLineBytes, " bytes, found ",
+                          content.size(), " bytes"));
+    return;
+  }
+  if (auto e = split_tokens(content, line.tokens)) {
+    FileLoc at = line.loc;
+    at.col = e->col;
+    state.problem(at, e->message);
+    return;
+  }
+  if (!line.tokens.empty()) out.scene.command(line, state);
+}
+
+}  // namespace
+
 ParsedScene parse_scene(std::string_view text, const std::string& filename,
                         const ParseOptions& options) {
   ParsedScene out;
   ParseState state;
   state.options = options;
   state.scene_dir = std::filesystem::path(filename).parent_path().string();
-  Line line;
   int number = 0;
   std::size_t pos = 0;
   if (text.substr(0, 3) == "\xEF\xBB\xBF") {  // some Windows editors start UTF-8 files so
@@ -126,23 +149,18 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
-    std::string_view content = text.substr(pos, end - pos);
+    read_line(text.substr(pos, end - pos), {filename, ++number, 0}, state, out);
     pos = end + 1;
-    line.loc = {filename, ++number, 0};
-    if (content.size() > kMaxLineBytes) {  // located at the first byte past the limit
-      FileLoc at = line.loc;
-      at.col = int(kMaxLineBytes) + 1;
-      state.problem(at, cat("expected a line of at most ", kMaxLineBytes, " bytes, found ",
-                            content.size(), " bytes"));
-      continue;
+  }
+  for (std::size_t k = 0; k < options.overrides.size(); ++k) {
+    const std::string& o = options.overrides[k];
+    FileLoc loc{kOverridesName, int(k) + 1, 0};
+    if (o.find('\n') != std::string::npos) {
+      loc.col = int(o.find('\n')) + 1;
+      state.problem(loc, "expected one scene line, found a line break");
+    } else {
+      read_line(o, loc, state, out);
     }
-    if (auto e = split_tokens(content, line.tokens)) {
-      FileLoc at = line.loc;
-      at.col = e->col;
-      state.problem(at, e->message);
-      continue;
-    }
-    if (!line.tokens.empty()) out.scene.command(line, state);
   }
   out.diagnostics = std::move(state.diagnostics);
   out.input_files = std::move(state.input_files);

@@ -109,10 +109,7 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
                   cat("cannot use environment ", quote_path(name), ": ", image.error()));
     return false;
   }
-  if (state.environment_line != 0)
-    state.diagnostics.warning(line.at(0), cat("environment given again (first on line ",
-                                              state.environment_line, "): the last one wins"));
-  state.environment_line = line.loc.line;
+  note_repeat(state.environment_at, line, state);
   state.input_files.push_back(*path);
   s.environment = EnvironmentSpec{*path, std::move(*image), *scale, *rotation};
   return true;

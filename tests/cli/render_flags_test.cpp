@@ -107,5 +107,23 @@ TEST(CliRenderFlags, PathOnlyFlagsInARayCastingViewWarn) {
   EXPECT_EQ(path.out.find("warning"), std::string::npos) << path.out;
 }
 
+// --set changes a render without editing the scene: the override's screen is the image's size
+// (the 4x4 scene renders 6x2), and a bad override is an error that names it.
+TEST(CliRenderFlags, SetOverridesSceneLines) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto run = run_cli("render tiny.scn --spp 1 --set 'screen 6 2' -o wide.pfm", dir);
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("--set:1:1: warning: screen given again (first at tiny.scn:1)"),
+            std::string::npos)
+      << run.out;
+  EXPECT_EQ(read_file(dir + "/wide.pfm").substr(0, 8), "PF\n6 2\n-");
+  auto bad = run_cli("render tiny.scn --spp 1 --set 'screen 6 0' -o bad.pfm", dir);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--set:1:10: screen size must be a whole number >= 1"), std::string::npos)
+      << bad.out;
+  EXPECT_FALSE(std::ifstream(dir + "/bad.pfm").good());
+}
+
 }  // namespace
 }  // namespace raylane

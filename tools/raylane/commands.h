@@ -20,9 +20,17 @@ int convert_command(const std::vector<std::string>& args);
 int diff_command(const std::vector<std::string>& args);
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
-// stderr. Returns nothing when the scene has errors.
+// stderr. `overrides` are the --set lines, read after the scene's own. Returns nothing when the
+// scene has errors.
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                              bool quiet);
+                                              bool quiet,
+                                              const std::vector<std::string>& overrides = {});
+
+// The --set option's help, shared by the commands that load a scene.
+inline constexpr const char* kSetOptionHelp =
+    "a scene line read after the scene's own (repeatable), e.g.\n"
+    "--set 'screen 1920 1080' or a camera line; the last camera, screen,\n"
+    "ambient or lens wins, with a warning";
 
 // "raylane: message" on stderr, plus a hint to --help for usage errors.
 int usage_error(const std::string& message);

@@ -65,9 +65,10 @@ void print_materials(const Scene& s) {
 
 const std::vector<OptionSpec> kInfoOptions = {
     {"lenient", 0, "", false, "skip bad scene lines with a warning instead of failing", ""},
+    {"set", 0, "LINE", true, kSetOptionHelp, ""},
 };
 const CommandHelp kInfoHelp{
-    "raylane info [SCENE | MESH] [--lenient]",
+    "raylane info [SCENE | MESH] [--lenient] [--set LINE]...",
     "Prints what raylane modelled from SCENE (default: the built-in course test scene): the\n"
     "screen and camera, the scene's bounds and each mesh's triangles and bounds, rows and bytes\n"
     "of each primitive table, materials, lights, the BVH (nodes, depth, SAH cost, bytes, build\n"
@@ -125,7 +126,9 @@ int info_command(const std::vector<std::string>& args) {
   std::optional<std::string> path;
   if (!parsed->positional.empty()) path = parsed->positional[0];
   if (path && mesh_extension_known(*path)) return info_mesh(*path);
-  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false);
+  std::vector<std::string> overrides;
+  if (parsed->has("set")) overrides = parsed->values.at("set");
+  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides);
   if (!loaded) return kExitUsage;
   Scene& s = loaded->scene;
   std::printf("scene: %s\n", path ? path->c_str() : kBuiltinSceneName);

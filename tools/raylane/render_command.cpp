@@ -34,6 +34,7 @@ struct RenderRequest {
   double exposure = 0;
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
+  std::vector<std::string> overrides;  // --set lines
   bool spp_given = false;
   std::vector<std::string> warnings;  // about the options, printed unless --quiet
 };
@@ -214,6 +215,11 @@ const std::vector<RenderOption>& render_options() {
          r.lenient = true;
          return ok_status();
        }},
+      {{"set", 0, "LINE", true, kSetOptionHelp, ""},
+       [](R& r, V v) {
+         r.overrides.push_back(v);
+         return ok_status();
+       }},
       {{"stats", 0, "", false,
         "path: at the end, where the time went (camera rays, tracing, shading, light\n"
         "sampling, film, idle) and the rays per second of each kind",
@@ -359,7 +365,7 @@ int render_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
-  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet);
+  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides);
   if (!parsed) return kExitUsage;
   if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
     return usage_error(s.error());

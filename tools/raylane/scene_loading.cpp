@@ -10,9 +10,11 @@ int usage_error(const std::string& message) {
 }
 
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                              bool quiet) {
+                                              bool quiet,
+                                              const std::vector<std::string>& overrides) {
   ParseOptions opts;
   opts.lenient = lenient;
+  opts.overrides = overrides;
   ParsedScene parsed = path ? load_scene_file(*path, opts) : load_builtin_scene(opts);
   for (const Diagnostic& d : parsed.diagnostics.items)
     if (d.severity == Severity::kError || !quiet)

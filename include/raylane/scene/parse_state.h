@@ -23,7 +23,13 @@ using MemoryFiles = std::vector<std::pair<std::string, std::string>>;
 struct ParseOptions {
   bool lenient = false;  // errors on a line become warnings and the line is skipped
   const MemoryFiles* memory_files = nullptr;
+  // Scene lines read after the file's own (`raylane render --set LINE`), with the file's rules:
+  // the last camera or screen wins, with a warning. Diagnostics name them "--set:N:COL", N
+  // counting the overrides from 1.
+  std::vector<std::string> overrides;
 };
+
+inline constexpr const char* kOverridesName = "--set";
 
 struct ParseState {
   ParseOptions options;
@@ -33,12 +39,16 @@ struct ParseState {
   std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
-  int screen_line = 0, camera_line = 0, ambient_line = 0, lens_line = 0;  // 0 = not seen yet
-  int environment_line = 0;
+  // Where each command that may be given once was first seen; line 0: not yet.
+  FileLoc screen_at, camera_at, ambient_at, lens_at, environment_at;
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);
 };
+
+// For a command that may be given once: a repeat warns "the last one wins" and names the
+// first; `seen` becomes this line.
+void note_repeat(FileLoc& seen, const Line& line, ParseState& state);
 
 // Where an input a line names is found: "relative to the directory of the scene file first,
 // then the working directory"; an absolute path as it is. The first path that exists is taken,
