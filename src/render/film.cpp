@@ -19,6 +19,8 @@ static_assert(std::endian::native == std::endian::little, "film files are little
 constexpr char kMagic1[8] = {'R', 'L', 'F', 'I', 'L', 'M', '1', '\0'};
 constexpr char kMagic2[8] = {'R', 'L', 'F', 'I', 'L', 'M', '2', '\0'};
 constexpr std::size_t kHeader1 = 32, kHeader2 = 64;
+constexpr char kAovMagic[4] = {'A', 'O', 'V', '1'};
+constexpr std::size_t kAovHeader = 8;  // the magic and the set's bits
 
 // The header of either format, read into a film (sums not yet read).
 Film read_header(const char* head, bool second_format) {
@@ -38,6 +40,26 @@ Film read_header(const char* head, bool second_format) {
     std::memcpy(&f.origin.shading, head + 60, 4);  // 0 (double) in films from before lanes
   }
   return f;
+}
+
+// The AOV part of a film file: `bytes` after the colour sums.
+Status read_aovs(std::ifstream& in, const std::string& path, uint64_t bytes, uint64_t pixels,
+                 Film& f) {
+  char head[kAovHeader];
+  if (!in.read(head, kAovHeader)) return Error{cat(path, ": read failed")};
+  std::memcpy(&f.aovs.bits, head + 4, 4);
+  if (std::memcmp(head, kAovMagic, 4) != 0 || f.aovs.empty() || f.aovs.bits >> kAovCount)
+    return Error{cat(path, ": expected 'AOV1' and a set of AOVs after the colour sums, found ",
+                     in_quotes(std::string_view(head, 4)), " and bits ", f.aovs.bits)};
+  const uint64_t expected = kAovHeader + pixels * uint64_t(f.aovs.channels()) * 8;
+  if (bytes != expected)
+    return Error{cat(path, ": its AOVs (", aov_list_text(f.aovs), ") take ", expected,
+                     " bytes after the colour sums, the file has ", bytes)};
+  f.aov_sum.resize(pixels * std::size_t(f.aovs.channels()));
+  if (!in.read(reinterpret_cast<char*>(f.aov_sum.data()),
+               std::streamsize(f.aov_sum.size() * sizeof(double))))
+    return Error{cat(path, ": read failed")};
+  return ok_status();
 }
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): enough to tell one scene or setting from another.
@@ -66,6 +88,19 @@ Image Film::image() const {
   double scale = passes > 0 ? 1.0 / passes : 0.0;
   for (std::size_t i = 0; i < sum.size() && i < img.rgb.size(); ++i)
     img.rgb[i] = float(sum[i] * scale);
+  return img;
+}
+
+Image Film::aov_image(Aov aov) const {
+  Image img(width, height);
+  if (!aovs.has(aov)) return img;
+  const double scale = passes > 0 ? 1.0 / passes : 0.0;
+  const std::size_t stride = std::size_t(aovs.channels()), at = std::size_t(aovs.offset(aov));
+  const int n = aov_channels(aov);
+  for (std::size_t p = 0; p < std::size_t(width) * height && (p + 1) * stride <= aov_sum.size();
+       ++p)
+    for (int k = 0; k < 3; ++k)
+      img.rgb[p * 3 + std::size_t(k)] = float(aov_sum[p * stride + at + std::size_t(k % n)] * scale);
   return img;
 }
 
@@ -156,6 +191,12 @@ Status save_film(const std::string& path, const Film& film) {
   out.append(reinterpret_cast<const char*>(&o.sampler), 4);
   out.append(reinterpret_cast<const char*>(&o.shading), 4);
   out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
+  if (!film.aovs.empty()) {
+    out.append(kAovMagic, 4);
+    out.append(reinterpret_cast<const char*>(&film.aovs.bits), 4);
+    out.append(reinterpret_cast<const char*>(film.aov_sum.data()),
+               film.aov_sum.size() * sizeof(double));
+  }
   return write_file_atomically(path, out);
 }
 
@@ -189,18 +230,23 @@ Result<Film> load_film(const std::string& path) {
                      ", a sampler below ", kSamplerNames.names.size(), " and a shading below ",
                      kShadingNames.names.size(), " in the header, found ", o.integrator, ", ",
                      o.sampler, " and ", o.shading)};
-  if (size != kHeader + pixels * 24)
-    return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", kHeader + pixels * 24,
-                     " bytes, the file has ", size)};
+  const uint64_t colour_end = kHeader + pixels * 24;
+  if (size != colour_end && size < colour_end + kAovHeader)
+    return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", colour_end,
+                     " bytes (more with AOVs), the file has ", size)};
   f.sum.resize(pixels * 3);
   if (!in.read(reinterpret_cast<char*>(f.sum.data()), std::streamsize(pixels * 24)))
     return Error{cat(path, ": read failed")};
+  if (size > colour_end) {
+    if (Status s = read_aovs(in, path, size - colour_end, pixels, f); !s) return Error{s.error()};
+  }
   // A film raylane wrote holds finite sums only (non-finite samples are dropped before they
   // reach it), so anything else is damage, and continuing would spread it to the image.
-  for (std::size_t i = 0; i < f.sum.size(); ++i)
-    if (!std::isfinite(f.sum[i]))
-      return Error{cat(path, ": pixel ", i / 3, " holds a non-finite sum (", f.sum[i],
-                       "): the film is damaged")};
+  for (const std::vector<double>* sums : {&f.sum, &f.aov_sum})
+    for (std::size_t i = 0; i < sums->size(); ++i)
+      if (!std::isfinite((*sums)[i]))
+        return Error{cat(path, sums == &f.sum ? ": pixel " : ": AOV sum ", i,
+                         " holds a non-finite sum (", (*sums)[i], "): the film is damaged")};
   return f;
 }
 

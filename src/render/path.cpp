@@ -7,6 +7,7 @@
 
 #include "raylane/render/camera.h"
 #include "raylane/render/film.h"
+#include "raylane/render/texturing.h"
 #include "render/path_loop.h"
 
 namespace raylane {
@@ -35,9 +36,33 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
         }
 }
 
+// The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there
+// hits[i] belongs to paths[i]. A sample that meets nothing adds zeros.
+void add_aovs(const Scene& scene, const std::vector<PathState>& paths,
+              const std::vector<Hit>& hits, Film& film) {
+  const AovSet set = film.aovs;
+  const std::size_t stride = std::size_t(set.channels());
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const Hit& h = hits[i];
+    if (!h.hit()) continue;
+    double* out = &film.aov_sum[paths[i].pixel * stride];
+    auto add = [&](Aov a, const Vec3d& v) {
+      if (!set.has(a)) return;
+      double* at = out + set.offset(a);
+      for (int k = 0; k < aov_channels(a); ++k)
+        at[k] += v[k];
+    };
+    if (set.has(Aov::kAlbedo)) add(Aov::kAlbedo, albedo_at(scene, h.prim, h.surface));
+    add(Aov::kNormal, h.surface.ns);
+    add(Aov::kDepth, {h.t, h.t, h.t});
+    add(Aov::kPosition, h.surface.p);
+  }
+}
+
 // One sample for every pixel of a tile, bounce by bounce. Each wavefront holds the
 // continuation rays of the live paths and the shadow rays of the previous vertices.
-void render_tile(TileContext& ctx, std::vector<double>& film) {
+void render_tile(TileContext& ctx, Film& f) {
+  std::vector<double>& film = f.sum;
   ThreadBuffers& b = ctx.buffers;
   auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch,
          lane_rows, lane_count, shade, sobol, light_queries] = b;
@@ -58,6 +83,7 @@ void render_tile(TileContext& ctx, std::vector<double>& film) {
     clock.lap(phases.shade);
     ctx.tracer.closest(batch, hits, live.size(), scratch);  // shadow rays need no surface
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
+    if (depth == 0 && !f.aovs.empty()) add_aovs(ctx.tracer.scene(), paths, hits, f);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q) {
@@ -126,6 +152,8 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
     f.sum.assign(std::size_t(cam.width) * cam.height * 3, 0.0);
     f.fingerprint = film_fingerprint(scene, settings);
     f.origin = film_origin(scene, settings);
+    f.aovs = settings.aovs;
+    f.aov_sum.assign(std::size_t(cam.width) * cam.height * std::size_t(f.aovs.channels()), 0.0);
   }
   PathStats total;
   total.passes = f.passes;
@@ -146,7 +174,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
         tile_camera_rays(ctx, cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile,
                          buffers.paths);
         clock.lap(ctx.stats.phases.camera);
-        render_tile(ctx, f.sum);
+        render_tile(ctx, f);
         add_stats(local, ctx.stats);
       }
 #pragma omp critical

@@ -23,10 +23,8 @@ const Material& material_of(const Scene& scene, const Hit& hit) {
   return scene.materials[scene.material_of(hit.prim)];
 }
 
-// Kd at the hit (0 on a light), times the material's texture there.
 Vec3d albedo(const Scene& scene, const Hit& hit) {
-  const Material& m = material_of(scene, hit);
-  return to_d(m.kd) * texture_factor(scene, m, hit.prim, hit.surface);
+  return albedo_at(scene, hit.prim, hit.surface);
 }
 
 // A light's radiance at the hit, times its texture there.

@@ -15,4 +15,9 @@ Vec3d texture_factor(const Scene& scene, const Material& m, PrimRef prim, const 
   return texture_lookup(scene.textures[m.texture].image, t.u, t.v);
 }
 
+Vec3d albedo_at(const Scene& scene, PrimRef prim, const Surface& surface) {
+  const Material& m = scene.materials[scene.material_of(prim)];
+  return Vec3d(m.kd) * texture_factor(scene, m, prim, surface);
+}
+
 }  // namespace raylane

@@ -125,5 +125,30 @@ TEST(CliRenderFlags, SetOverridesSceneLines) {
   EXPECT_FALSE(std::ifstream(dir + "/bad.pfm").good());
 }
 
+// --aov writes one PFM per AOV beside the outputs (once for outputs that share a stem),
+// refuses a bad list, and a --resume film must sum the same AOVs.
+TEST(CliRenderFlags, AovsAreSiblingPfmFiles) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto run = run_cli("render tiny.scn --spp 2 --aov albedo,depth -o a.hdr --png "
+                     "--checkpoint a.film -q",
+                     dir);
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_EQ(run.out, "a.hdr\na.png\na.albedo.pfm\na.depth.pfm\n");
+  EXPECT_EQ(read_file(dir + "/a.depth.pfm").substr(0, 8), "PF\n4 4\n-");
+  auto bad = run_cli("render tiny.scn --aov albedo,colour -o b.hdr", dir);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--aov: expected a list of albedo, normal, depth, position separated "
+                         "by commas, found 'colour'"),
+            std::string::npos)
+      << bad.out;
+  auto other = run_cli("render tiny.scn --spp 3 --aov albedo --resume a.film -o c.hdr", dir);
+  EXPECT_EQ(other.status, 2);
+  EXPECT_NE(other.out.find("the film sums the AOVs (albedo, depth), this run asks for (albedo)"),
+            std::string::npos)
+      << other.out;
+  EXPECT_FALSE(std::ifstream(dir + "/c.albedo.pfm").good());
+}
+
 }  // namespace
 }  // namespace raylane

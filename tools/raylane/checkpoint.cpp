@@ -21,6 +21,10 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
     return Error{
         cat(*c.resume, ": the film was rendered with ", what, "; resume with the same ones")};
   }
+  if (film->aovs != settings.aovs)
+    return Error{cat(*c.resume, ": the film sums the AOVs (", aov_list_text(film->aovs),
+                     "), this run asks for (", aov_list_text(settings.aovs),
+                     "); resume with the same --aov")};
   return film;
 }
 

@@ -35,6 +35,7 @@ struct RenderRequest {
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
   std::vector<std::string> overrides;  // --set lines
+  std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool spp_given = false;
   std::vector<std::string> warnings;  // about the options, printed unless --quiet
 };
@@ -45,7 +46,7 @@ constexpr int kMaxSpp = 1 << 24;
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
     "spp",  "integrator", "sampler", "shading",          "seed", "max-depth",
-    "time", "checkpoint", "resume",  "checkpoint-every", "stats"};
+    "time", "checkpoint", "resume",  "checkpoint-every", "stats", "aov"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -192,6 +193,17 @@ const std::vector<RenderOption>& render_options() {
          r.checkpoints.resume = v;
          return ok_status();
        }},
+      {{"aov", 0, "LIST", false,
+        cat("path: also sum ", kAovNames.list(), " of the first surface\n"
+            "each sample meets (comma-separated), averaged like the colour;\n"
+            "written beside each output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
+        ""},
+       [](R& r, V v) {
+         auto set = parse_aov_list(v);
+         if (!set) return Status{Error{set.error()}};
+         r.path_settings.aovs = *set;
+         return ok_status();
+       }},
       {{"png", 0, "", false, "also write a PNG beside the first output", ""},
        [](R& r, V) {
          r.also_png = true;
@@ -266,6 +278,22 @@ std::string default_output(const std::optional<std::string>& scene_path) {
   return stem + ".hdr";
 }
 
+// STEM.NAME.pfm beside each output for each AOV, once per stem (out.hdr and out.png share
+// theirs): PFM keeps negative normals and positions, and is what denoisers read.
+std::vector<std::pair<std::string, Aov>> aov_siblings(const std::vector<std::string>& outputs,
+                                                      AovSet set) {
+  std::vector<std::pair<std::string, Aov>> out;
+  std::vector<std::string> stems;
+  for (const std::string& o : outputs) {
+    std::string stem = std::filesystem::path(o).replace_extension().string();
+    if (std::find(stems.begin(), stems.end(), stem) != stems.end()) continue;
+    stems.push_back(stem);
+    for (std::size_t k = 0; k < kAovCount; ++k)
+      if (set.has(Aov(k))) out.emplace_back(cat(stem, ".", kAovNames.name(Aov(k)), ".pfm"), Aov(k));
+  }
+  return out;
+}
+
 Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   auto parsed = parse_args(args, render_specs());
   if (!parsed) return Error{parsed.error()};
@@ -297,6 +325,7 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     r.outputs.push_back(std::filesystem::path(r.outputs[0]).replace_extension(".png").string());
   for (const auto& out : r.outputs)
     if (auto f = format_from_path(out); !f) return Error{f.error()};
+  if (r.path) r.aov_outputs = aov_siblings(r.outputs, r.path_settings.aovs);
   return r;
 }
 
@@ -313,6 +342,8 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
     inputs.push_back({*c.resume, "the --resume film"});
   for (const std::string& out : r.outputs)
     outputs.push_back({out, "the output"});
+  for (const auto& [out, aov] : r.aov_outputs)
+    outputs.push_back({out, "an --aov output"});
   if (c.checkpoint) outputs.push_back({*c.checkpoint, "the --checkpoint film"});
   return check_outputs_apart(inputs, outputs);
 }
@@ -320,7 +351,10 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
 // Every output is checked before rendering starts, so a long render is never lost to a typo.
 bool outputs_writable(const RenderRequest& r) {
   bool ok = true;
-  for (const auto& out : r.outputs) {
+  std::vector<std::string> all = r.outputs;
+  for (const auto& [out, aov] : r.aov_outputs)
+    all.push_back(out);
+  for (const auto& out : all) {
     if (Status s = check_writable(out); !s) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
       ok = false;
@@ -381,6 +415,7 @@ int render_command(const std::vector<std::string>& args) {
   uint64_t rays = 0;
   std::string what;
   Image image;
+  std::vector<std::pair<std::string, Image>> aov_images;  // path, image
   int spp = 1;
   PathStats path_stats;
   if (r.path) {
@@ -406,6 +441,8 @@ int render_command(const std::vector<std::string>& args) {
     image = render_path(tracer, settings, &path_stats, &*film);
     checkpointer.after_pass(*film, /*final=*/true);
     progress.finish();
+    for (const auto& [out, aov] : r.aov_outputs)
+      aov_images.emplace_back(out, film->aov_image(aov));
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
@@ -429,9 +466,15 @@ int render_command(const std::vector<std::string>& args) {
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
   // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
   Image view = r.path ? Image() : viewable(image, r.mode);
+  std::vector<std::pair<std::string, const Image*>> files;
   for (const auto& out : r.outputs) {
     bool eight_bit = format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
-    auto saved = write_image_or_fallback(out, eight_bit && !r.path ? view : image, wopts);
+    files.emplace_back(out, eight_bit && !r.path ? &view : &image);
+  }
+  for (const auto& [out, aov_image] : aov_images)
+    files.emplace_back(out, &aov_image);
+  for (const auto& [out, file_image] : files) {
+    auto saved = write_image_or_fallback(out, *file_image, wopts);
     if (!saved) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
       status = kExitFailure;

@@ -32,8 +32,12 @@ struct Film {
   std::vector<double> sum;   // 3 per pixel, top row first
   uint64_t fingerprint = 0;  // of the scene and the settings whose samples these are
   FilmOrigin origin;
+  AovSet aovs;                   // which AOVs the film sums (render/aov.h)
+  std::vector<double> aov_sum;   // aovs.channels() per pixel, top row first
 
   Image image() const;  // the mean over the passes (black before the first)
+  // The mean of one AOV the film sums; depth in all three channels.
+  Image aov_image(Aov aov) const;
 };
 
 // Identifies what a film's samples depend on: the scene (tables, materials, camera, screen)
@@ -52,7 +56,8 @@ std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run);
 // fingerprint, scene fingerprint, seed (uint64 each), max depth, roulette depth, sampler,
 // shading (uint32 each; the sampler's and the shading's words were 0 before there was a
 // choice), then
-// width·height·3 float64 sums; little endian. Written atomically. The first
+// width·height·3 float64 sums; little endian. A film with AOVs ends in "AOV1", the set's bits
+// (uint32) and width·height·channels float64 AOV sums. Written atomically. The first
 // format ("RLFILM1\0", a 32-byte header: width, height, passes, 0, fingerprint) is still read.
 Status save_film(const std::string& path, const Film& film);
 Result<Film> load_film(const std::string& path);

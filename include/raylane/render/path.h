@@ -16,6 +16,7 @@
 
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
+#include "raylane/render/aov.h"
 #include "raylane/trace/tracer.h"
 
 namespace raylane {
@@ -72,6 +73,7 @@ struct PathSettings {
   int rr_depth = 3;          // roulette from this bounce on, survival 0.8 (the course's rule)
   double time_limit = 0;     // seconds; 0 = none. Checked between passes.
   bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
+  AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/aov.h)
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
   std::function<void(int passes_done)> on_pass;  // progress, called after each pass
 };
@@ -102,7 +104,8 @@ struct Film;
 // a `film`, the sums accumulate there (for checkpoints, which on_pass may save) and a film that
 // already holds passes is continued from its next pass up to settings.spp — the same image
 // an uninterrupted run gives. Contract: a non-empty film matches the scene's size and
-// film_fingerprint(scene, settings).
+// film_fingerprint(scene, settings); it sums the AOVs it was started with (settings.aovs
+// chooses them for an empty film).
 Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats* stats = nullptr,
                   Film* film = nullptr);
 
