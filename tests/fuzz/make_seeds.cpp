@@ -57,7 +57,18 @@ const char* kObj =
     "# a square and a triangle with normals\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
     "vn 0 0 1\nf 1//1 2//1 3//1 4//1\nf -1 -2 -3\n";
 
+// What raylane's PLY reader reads beyond positions: normals, texture coordinates, a texture
+// comment, an element it skips, a list with another count type, a quad.
+const char* kPlyRich =
+    "ply\nformat ascii 1.0\ncomment TextureFile t.png\nelement vertex 4\nproperty double x\n"
+    "property float y\nproperty int16 z\nproperty float nx\nproperty float ny\n"
+    "property float nz\nproperty float s\nproperty float t\nelement edge 1\n"
+    "property list uint8 int32 ends\nelement face 1\nproperty uchar flags\n"
+    "property list ushort uint vertex_indices\nend_header\n0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n"
+    "1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n2 0 1\n7 4 0 1 2 3\n";
+
 void mesh_seeds(const fs::path& dir) {
+  put(dir / "rich.ply", std::string(1, '\0') + kPlyRich);
   put(dir / "ascii.ply", std::string(1, '\0') + kPlyAscii);
   put(dir / "binary.ply", std::string(1, '\0') + ply_binary());
   put(dir / "square.obj", std::string(1, '\1') + kObj);
