@@ -233,7 +233,7 @@ Result<Film> load_film(const std::string& path) {
   const uint64_t colour_end = kHeader + pixels * 24;
   if (size != colour_end && size < colour_end + kAovHeader)
     return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", colour_end,
-                     " bytes (more with AOVs), the file has ", size)};
+                     " bytes, the file has ", size, " (too few for AOVs after the colour)")};
   f.sum.resize(pixels * 3);
   if (!in.read(reinterpret_cast<char*>(f.sum.data()), std::streamsize(pixels * 24)))
     return Error{cat(path, ": read failed")};
@@ -242,11 +242,14 @@ Result<Film> load_film(const std::string& path) {
   }
   // A film raylane wrote holds finite sums only (non-finite samples are dropped before they
   // reach it), so anything else is damage, and continuing would spread it to the image.
-  for (const std::vector<double>* sums : {&f.sum, &f.aov_sum})
+  for (const std::vector<double>* sums : {&f.sum, &f.aov_sum}) {
+    const std::size_t per_pixel = sums == &f.sum ? 3 : std::size_t(f.aovs.channels());
     for (std::size_t i = 0; i < sums->size(); ++i)
       if (!std::isfinite((*sums)[i]))
-        return Error{cat(path, sums == &f.sum ? ": pixel " : ": AOV sum ", i,
-                         " holds a non-finite sum (", (*sums)[i], "): the film is damaged")};
+        return Error{cat(path, ": pixel ", i / per_pixel, " holds a non-finite ",
+                         sums == &f.sum ? "sum" : "AOV sum", " (", (*sums)[i],
+                         "): the film is damaged")};
+  }
   return f;
 }
 

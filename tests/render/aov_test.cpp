@@ -136,6 +136,13 @@ TEST(Aov, DamagedAovPartOfAFilmIsAnError) {
   auto loaded = load_film(path);
   ASSERT_FALSE(loaded);
   EXPECT_NE(loaded.error().find("its AOVs (depth) take"), std::string::npos) << loaded.error();
+
+  film.aov_sum.push_back(std::nan(""));  // the last pixel's depth sum damaged
+  ASSERT_TRUE(save_film(path, film).ok());
+  auto nan = load_film(path);
+  ASSERT_FALSE(nan);
+  EXPECT_NE(nan.error().find(": pixel 4799 holds a non-finite AOV sum (nan)"), std::string::npos)
+      << nan.error();
 }
 
 TEST(Aov, ListsAreParsedStrictly) {
