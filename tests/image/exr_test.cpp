@@ -315,6 +315,17 @@ TEST(Exr, UnsupportedKindsAreClearErrors) {
     ASSERT_FALSE(r.ok());
     EXPECT_NE(r.error().find("integers"), std::string::npos) << r.error();
   }
+  {  // R and G without B: not a colour image (and no Y to fall back on)
+    Imf::Header h(16, 16);
+    Imf::FrameBuffer fb;
+    for (const char* c : {"R", "G"}) {
+      h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+      fb.insert(c, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()), 12, 16 * 12));
+    }
+    auto r = decode_exr(write_with_imf("rg.exr", h, fb, 16));
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().find("no R, G, B or Y"), std::string::npos) << r.error();
+  }
   {  // no colour channel at all
     Imf::Header h(16, 16);
     Imf::FrameBuffer fb;
