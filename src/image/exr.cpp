@@ -12,6 +12,7 @@
 #include <sys/types.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <exception>
 
@@ -266,6 +267,12 @@ Status check_data(const CoreFile& f, const Layout& l) {
   return ok_status();
 }
 
+// The text of a string the core parsed (empty if it has none).
+std::string_view text_of(const exr_attr_string_t& s) {
+  if (!s.str || s.length <= 0) return {};
+  return std::string_view(s.str, std::size_t(s.length));
+}
+
 std::string layer_of(std::string_view channel) {
   std::size_t dot = channel.rfind('.');
   return std::string(dot == std::string_view::npos ? std::string_view() : channel.substr(0, dot));
@@ -278,10 +285,9 @@ void collect_metadata(const CoreFile& f, ExrInfo& info) {
     const exr_attribute_t* a = nullptr;
     if (exr_get_attribute_by_index(f.get(), 0, EXR_ATTR_LIST_FILE_ORDER, i, &a) !=
             EXR_ERR_SUCCESS ||
-        !a || a->type != EXR_ATTR_STRING || !a->string || a->string->length < 0)
+        !a || !a->name || a->type != EXR_ATTR_STRING || !a->string)
       continue;
-    const exr_attr_string_t& s = *a->string;
-    info.metadata.push_back(cat(a->name, "=", std::string_view(s.str, std::size_t(s.length))));
+    info.metadata.push_back(cat(a->name, "=", text_of(*a->string)));
   }
 }
 
@@ -305,8 +311,7 @@ Result<Layout> read_layout(const CoreFile& f) {
   l.info.width = uint32_t(w), l.info.height = uint32_t(h);
   if (Status s = check_data(f, l); !s) return Error{s.error()};
   for (int i = 0; i < l.channels->num_channels; ++i) {
-    const exr_attr_string_t& n = l.channels->entries[i].name;
-    std::string name(n.str ? n.str : "", std::size_t(std::max(n.length, 0)));
+    std::string name(text_of(l.channels->entries[i].name));
     l.info.channels.push_back(name);
     std::string layer = layer_of(name);
     if (std::find(l.info.layers.begin(), l.info.layers.end(), layer) == l.info.layers.end())
@@ -351,7 +356,7 @@ class ChunkDecoder {
     for (const std::string& name : wanted_) {
       for (int i = 0; i < l_.channels->num_channels; ++i) {
         const exr_attr_chlist_entry_t& e = l_.channels->entries[i];
-        if (name != std::string_view(e.name.str, std::size_t(std::max(e.name.length, 0)))) continue;
+        if (name != text_of(e.name)) continue;
         if (e.x_sampling != 1 || e.y_sampling != 1)
           return Error{cat("EXR channel ", name, " is subsampled; raylane reads full channels")};
         if (e.pixel_type != EXR_PIXEL_HALF && e.pixel_type != EXR_PIXEL_FLOAT)
