@@ -214,7 +214,8 @@ struct Layout {
 // method bounds it: none 1; RLE 64 (a 2-byte run codes at most 128 bytes); ZIP, ZIPS and
 // PXR24 (zlib) 1032, deflate's limit (RFC 1951: a 258-byte match costs at least 2 bits);
 // B44 and B44A 32/3 (a 4×4 block of halves, 32 bytes, in 3 bytes at best). PIZ and DWA have
-// no simple bound: only the caps below hold them.
+// no simple bound; 2^18 is far above what either reaches on a flat image (DWA keeps a DC value
+// per 8×8 block, zlib-compressed: about 64·2·1032), so it refuses only files far too short.
 uint64_t max_expansion(exr_compression_t c) {
   switch (c) {
     case EXR_COMPRESSION_NONE:
@@ -229,7 +230,7 @@ uint64_t max_expansion(exr_compression_t c) {
     case EXR_COMPRESSION_B44A:
       return 11;
     default:
-      return 0;  // no bound
+      return uint64_t(1) << 18;
   }
 }
 
@@ -259,9 +260,8 @@ Status check_data(const CoreFile& f, const Layout& l) {
   }
   if (unpacked > kMaxUnpackedBytes)
     return Error{cat("the EXR pixels take ", unpacked, " bytes unpacked; the limit is 4 GiB")};
-  uint64_t ratio = max_expansion(compression);
   // A small allowance covers tiny images, whose few bytes are mostly header.
-  if (ratio > 0 && unpacked > ratio * f.size() + 4096)
+  if (unpacked > max_expansion(compression) * f.size() + 4096)
     return Error{cat("the EXR header announces ", unpacked, " bytes of pixels, more than ",
                      f.size(), " bytes of its compression can hold")};
   return ok_status();

@@ -394,7 +394,12 @@ TEST(Exr, AHugeDataWindowIsRefusedBeforeAllocating) {
   // Inverted: max below min.
   std::string empty = bytes;
   put_le32(empty, dw + 8, -5);
-  for (const std::string* b : {&huge, &big, &empty}) {
+  // One PIZ chunk of 2^24 × 16 pixels: the chunk table fits, and PIZ has no tight bound.
+  std::string wide = bytes;
+  put_le32(wide, dw + 8, (1 << 24) - 1);
+  put_le32(wide, dw + 12, 15);
+  wide[attribute_value(bytes, "compression", "compression")] = 4;  // PIZ_COMPRESSION
+  for (const std::string* b : {&huge, &big, &empty, &wide}) {
     AllocBudget budget(uint64_t(16) << 20);  // the pixels of `big` alone would be 3 GiB
     auto r = decode_exr(*b);
     ASSERT_FALSE(r.ok());
