@@ -389,14 +389,30 @@ class ChunkDecoder {
     return ok_status();
   }
 
-  // Wanted channels go to their place in the interleaved buffer as float; the rest are skipped.
+  // Wanted channels go to their place in the interleaved buffer as float. The others are
+  // decoded too, into a scratch buffer: OpenEXRCore 3.1.5 writes through the null pointer that
+  // is documented to skip a channel (found by fuzz_image on its seed of a half file whose
+  // layer alone was read; Exr.HalfLayersAreReadBack keeps that case). All outputs are 4 bytes
+  // wide, which also keeps the core off its shortcuts for all-16-bit outputs.
   void point_channels(const exr_chunk_info_t& ci) {
     const std::size_t n = wanted_.size(), w = l_.info.width;
+    std::size_t scratch = 0;
+    for (int c = 0; c < dec_.channel_count; ++c)
+      if (!is_wanted(dec_.channels[c]))
+        scratch += std::size_t(std::max(dec_.channels[c].width, 0)) *
+                   std::size_t(std::max(dec_.channels[c].height, 0));
+    scratch_.resize(std::max(scratch_.size(), scratch));
+    std::size_t used = 0;
     for (int c = 0; c < dec_.channel_count; ++c) {
       exr_coding_channel_info_t& ch = dec_.channels[c];
+      ch.user_bytes_per_element = 4;
+      ch.user_data_type = ch.data_type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
       auto it = std::find(wanted_.begin(), wanted_.end(), ch.channel_name);
       if (it == wanted_.end()) {
-        ch.decode_to_ptr = nullptr;
+        ch.decode_to_ptr = reinterpret_cast<uint8_t*>(scratch_.data() + used);
+        ch.user_pixel_stride = 4;
+        ch.user_line_stride = int32_t(std::max(ch.width, 0) * 4);
+        used += std::size_t(std::max(ch.width, 0)) * std::size_t(std::max(ch.height, 0));
         continue;
       }
       std::size_t k = std::size_t(it - wanted_.begin());
@@ -404,9 +420,11 @@ class ChunkDecoder {
       ch.decode_to_ptr = reinterpret_cast<uint8_t*>(&out_[(row * w) * n + k]);
       ch.user_pixel_stride = int32_t(n * sizeof(float));
       ch.user_line_stride = int32_t(w * n * sizeof(float));
-      ch.user_bytes_per_element = sizeof(float);
-      ch.user_data_type = EXR_PIXEL_FLOAT;
     }
+  }
+
+  bool is_wanted(const exr_coding_channel_info_t& ch) const {
+    return std::find(wanted_.begin(), wanted_.end(), ch.channel_name) != wanted_.end();
   }
 
   const CoreFile& f_;
@@ -415,6 +433,7 @@ class ChunkDecoder {
   exr_decode_pipeline_t dec_ = EXR_DECODE_PIPELINE_INITIALIZER;
   bool started_ = false;
   std::vector<float> out_;
+  std::vector<float> scratch_;  // the channels not asked for, one chunk at a time
 };
 
 // Opens, checks and decodes: every exception (std::bad_alloc above all) becomes an error.
