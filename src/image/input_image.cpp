@@ -7,6 +7,7 @@
 #include "image/stb_decode.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/rgbe.h"
 
@@ -33,8 +34,10 @@ Result<InputFormat> format_of(std::string_view b, std::string_view name) {
   if (starts_with(b, "#?RADIANCE") || starts_with(b, "#?RGBE")) return InputFormat::kHdr;
   if (starts_with(b, "PF\n") || starts_with(b, "PF\r") || starts_with(b, "PF "))
     return InputFormat::kPfm;
+  if (is_exr(b)) return InputFormat::kExr;
   if (ends_with_tga(name)) return InputFormat::kTga;
-  return Error{"not an image raylane reads (PNG, JPEG, TGA, BMP, Radiance HDR or colour PFM)"};
+  return Error{
+      "not an image raylane reads (PNG, JPEG, TGA, BMP, Radiance HDR, colour PFM or OpenEXR)"};
 }
 
 // The most pixels a file of the format can describe per byte of it, so that a header announcing
@@ -45,7 +48,10 @@ Result<InputFormat> format_of(std::string_view b, std::string_view name) {
 //   Huffman code of length ≥ 1, ITU T.81 F.1.2.1): 64·8;
 // - BMP (stb reads uncompressed ones only): 1 bit per pixel at least;
 // - TGA: an RLE packet of 1 header byte and 1 pixel byte repeats up to 128 pixels;
-// - Radiance HDR: a run of up to 127 bytes costs 2 bytes, in each of 4 components.
+// - Radiance HDR: a run of up to 127 bytes costs 2 bytes, in each of 4 components;
+// - OpenEXR: probe_exr bounds the unpacked bytes per compression method itself; here only a
+//   backstop for PIZ and DWA, which it cannot bound: a chunk of at most 256 lines costs at
+//   least 16 bytes (offset table entry and chunk header), so a small file cannot be huge.
 uint64_t max_pixels_per_byte(InputFormat f) {
   switch (f) {
     case InputFormat::kPng:
@@ -60,6 +66,8 @@ uint64_t max_pixels_per_byte(InputFormat f) {
       return 16;
     case InputFormat::kPfm:
       return 1;
+    case InputFormat::kExr:
+      return 1 << 16;
   }
   return 1;
 }
@@ -108,6 +116,18 @@ Result<InputImageInfo> probe_hdr(std::string_view bytes) {
   info.format = InputFormat::kHdr;
   info.width = img->width, info.height = img->height;
   info.channels = 3;
+  info.is_float = true;
+  return info;
+}
+
+Result<InputImageInfo> probe_openexr(std::string_view bytes) {
+  auto h = probe_exr(bytes);
+  if (!h) return Error{h.error()};
+  if (!h->has_rgb && !h->has_y) return Error{"the EXR file has no R, G, B or Y channel"};
+  InputImageInfo info;
+  info.format = InputFormat::kExr;
+  info.width = h->width, info.height = h->height;
+  info.channels = h->has_rgb ? 3 : 1;
   info.is_float = true;
   return info;
 }
@@ -178,6 +198,8 @@ std::string_view input_format_name(InputFormat f) {
       return "Radiance HDR";
     case InputFormat::kPfm:
       return "PFM";
+    case InputFormat::kExr:
+      return "OpenEXR";
   }
   return "image";
 }
@@ -199,6 +221,7 @@ Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_vie
         "has (stb_image 2.27) is not safe on damaged files"};
   auto info = *format == InputFormat::kPfm   ? probe_pfm(bytes)
               : *format == InputFormat::kHdr ? probe_hdr(bytes)
+              : *format == InputFormat::kExr ? probe_openexr(bytes)
                                              : probe_stb(bytes, *format);
   if (!info) return info;
   if (auto s = check_size(*info, bytes.size()); !s) return Error{s.error()};
@@ -213,6 +236,8 @@ Result<Image> decode_input_image(std::string_view bytes, std::string_view name) 
     img = decode_pfm(bytes);
   } else if (info->format == InputFormat::kHdr) {
     img = decode_hdr(bytes);
+  } else if (info->format == InputFormat::kExr) {
+    img = decode_exr(bytes);
   } else {
     stb::Header h{int(info->width), int(info->height), info->channels, info->is_16bit,
                   info->is_float};

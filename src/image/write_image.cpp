@@ -9,6 +9,7 @@
 
 #include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/png.h"
 #include "raylane/image/rgbe.h"
@@ -33,6 +34,8 @@ std::string errno_text() {
 Status write_contents(std::FILE* f, ImageFormat format, const Image& image,
                       const WriteOptions& options) {
   if (format == ImageFormat::kPng) return write_png(f, image, options.exposure);
+  if (format == ImageFormat::kExr)
+    return write_exr(f, image, options.exr_layers, {options.exr_half, options.metadata});
   std::string bytes =
       format == ImageFormat::kHdr ? encode_rgbe(image, options.metadata) : encode_pfm(image);
   if (std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size())
@@ -47,8 +50,9 @@ Result<ImageFormat> format_from_path(const std::string& path) {
   if (ext == ".hdr") return ImageFormat::kHdr;
   if (ext == ".pfm") return ImageFormat::kPfm;
   if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".exr") return ImageFormat::kExr;
   return Error{
-      cat("cannot tell the image format of ", in_quotes(path), " (use .hdr, .pfm or .png)")};
+      cat("cannot tell the image format of ", in_quotes(path), " (use .hdr, .pfm, .png or .exr)")};
 }
 
 Status write_image(const std::string& path, const Image& image, const WriteOptions& options) {
@@ -73,7 +77,12 @@ Result<Image> read_image(const std::string& path) {
     if (!image) return Error{cat(path, ": ", image.error())};
     return image;
   }
-  return Error{cat("cannot read ", in_quotes(path), " (raylane reads .hdr and .pfm)")};
+  if (ext == ".exr") {
+    auto image = decode_exr(bytes);
+    if (!image) return Error{cat("cannot read ", quote_path(path), ": ", image.error())};
+    return image;
+  }
+  return Error{cat("cannot read ", in_quotes(path), " (raylane reads .hdr, .pfm and .exr)")};
 }
 
 }  // namespace raylane

@@ -1,19 +1,31 @@
 // libFuzzer target: bytes → a texture or environment image (every format raylane reads) or an
 // error. The first byte picks the file name (odd: "input.tga", since TGA is known by its
 // extension alone); the rest is the file. A decoded image must have the size its header
-// announced, within the pixel limit, and hold only finite values >= 0.
+// announced, within the pixel limit, and hold only finite values >= 0. An EXR's layers are
+// decoded too, each to the size of its channels.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <string_view>
+#include <vector>
 
+#include "raylane/image/exr.h"
 #include "raylane/image/input_image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   std::string_view name = (data[0] & 1) ? "input.tga" : "input";
   std::string_view bytes(reinterpret_cast<const char*>(data + 1), size - 1);
+  if (raylane::is_exr(bytes)) {
+    auto exr = raylane::probe_exr(bytes);
+    for (const std::string& layer : exr ? exr->layers : std::vector<std::string>{}) {
+      auto l = raylane::decode_exr_layer(bytes, layer);
+      if (l && l->data.size() != std::size_t(exr->width) * exr->height * l->channels.size())
+        std::abort();
+    }
+  }
   auto info = raylane::probe_input_image(bytes, name);
   auto image = raylane::decode_input_image(bytes, name);
   if (!image) return 0;

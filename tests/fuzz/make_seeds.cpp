@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/rgbe.h"
 
@@ -99,11 +100,29 @@ std::string bmp_2x2() {
   return s + pixels;
 }
 
+// An EXR as raylane writes it (ZIP), float or half, with a layer beside RGB.
+std::string exr_seed(bool half) {
+  raylane::Image image = gradient(5, 3);
+  raylane::ExrLayer depth{"depth", {"Z"}, std::vector<float>(15, 2.5f)};
+  raylane::ExrWriteOptions options;
+  options.half = half;
+  options.metadata = {"RAYLANE_SPP=4"};
+  std::FILE* f = std::tmpfile();
+  if (!f || !raylane::write_exr(f, image, {depth}, options)) return "";
+  std::string bytes(std::size_t(std::ftell(f)), '\0');
+  std::rewind(f);
+  bytes.resize(std::fread(bytes.data(), 1, bytes.size(), f));
+  std::fclose(f);
+  return bytes;
+}
+
 void image_seeds(const fs::path& dir) {
   put(dir / "rle.hdr", std::string(1, '\0') + raylane::encode_rgbe(gradient(16, 4)));
   put(dir / "flat.pfm", std::string(1, '\0') + raylane::encode_pfm(gradient(3, 2)));
   put(dir / "small.tga", std::string(1, '\1') + tga_2x2());
   put(dir / "small.bmp", std::string(1, '\0') + bmp_2x2());
+  put(dir / "float.exr", std::string(1, '\0') + exr_seed(false));
+  put(dir / "half.exr", std::string(1, '\0') + exr_seed(true));
 }
 
 void copy_seed(const fs::path& from, const fs::path& dir, char prefix) {

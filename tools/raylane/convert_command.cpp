@@ -1,5 +1,6 @@
-// `raylane convert IN OUT [--exposure E]`: any image raylane writes (HDR, PFM) into another
-// of its formats, chosen by OUT's extension (the course's users viewed HDR files this way).
+// `raylane convert IN OUT [--exposure E] [--half]`: any image raylane writes (HDR, PFM, EXR)
+// into another of its formats, chosen by OUT's extension (the course's users viewed HDR files this
+// way).
 #include <cstdio>
 
 #include "args.h"
@@ -12,11 +13,12 @@ namespace raylane::cli {
 namespace {
 const std::vector<OptionSpec> kConvertOptions = {
     {"exposure", 0, "E", false, "PNG exposure in stops (pixel · 2^E)", "0"},
+    {"half", 0, "", false, "EXR: 16-bit half channels instead of 32-bit float", ""},
 };
 const CommandHelp kConvertHelp{
-    "raylane convert IN OUT [--exposure E]",
-    "Writes the image IN (.hdr or .pfm) as OUT, in the format OUT's extension names: .hdr,\n"
-    ".pfm or .png (8-bit sRGB).",
+    "raylane convert IN OUT [--exposure E] [--half]",
+    "Writes the image IN (.hdr, .pfm or .exr) as OUT, in the format OUT's extension names:\n"
+    ".hdr, .pfm, .png (8-bit sRGB) or .exr (RGB, float or --half).",
     &kConvertOptions, ""};
 }  // namespace
 
@@ -33,7 +35,11 @@ int convert_command(const std::vector<std::string>& args) {
     if (!v) return usage_error(v.error());
     opts.exposure = *v;
   }
-  if (auto f = format_from_path(out); !f) return usage_error(f.error());
+  opts.exr_half = parsed->has("half");
+  auto format = format_from_path(out);
+  if (!format) return usage_error(format.error());
+  if (opts.exr_half && *format != ImageFormat::kExr)
+    std::fprintf(stderr, "raylane: warning: --half does nothing unless OUT is an .exr file\n");
   if (Status s = check_outputs_apart({{in, "the input image"}}, {{out, "the output"}}); !s)
     return usage_error(s.error());
   auto image = read_image(in);

@@ -16,7 +16,7 @@ const std::vector<OptionSpec> kDiffOptions = {
 };
 const CommandHelp kDiffHelp{
     "raylane diff IMAGE REFERENCE [--tol T]",
-    "Prints how far IMAGE is from REFERENCE (.hdr or .pfm, the same size): RMSE, relative MSE\n"
+    "Prints how far IMAGE is from REFERENCE (.hdr, .pfm or .exr, the same size): RMSE, relative MSE\n"
     "(mean of (a−b)²/(b²+0.01)), mean and largest absolute difference over all channels. Exit\n"
     "status 1 when the RMSE is over T.",
     &kDiffOptions, ""};

@@ -14,8 +14,9 @@ usage:
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
-  raylane convert IN OUT [--exposure E]  turn an .hdr/.pfm image into .hdr, .pfm or .png
-  raylane diff IMAGE REF [--tol T]   RMSE, relMSE, mean and max difference of two .hdr/.pfm
+  raylane convert IN OUT [--exposure E] [--half]
+                                     turn an .hdr/.pfm/.exr image into .hdr, .pfm, .png or .exr
+  raylane diff IMAGE REF [--tol T]   RMSE, relMSE, mean and max difference of two .hdr/.pfm/.exr
                                      images; exit 1 when the RMSE is over T (default 0)
   raylane SCENE.scn [options]        short for raylane render SCENE.scn [options]
   raylane COMMAND --help             the command's options, each with its default

@@ -36,6 +36,7 @@ struct RenderRequest {
   bool also_png = false, lenient = false, quiet = false;
   std::vector<std::string> overrides;  // --set lines
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
+  bool exr_half = false;
   bool spp_given = false;
   std::vector<std::string> warnings;  // about the options, printed unless --quiet
 };
@@ -124,7 +125,7 @@ const std::vector<RenderOption>& render_options() {
   static const std::vector<RenderOption> options = {
       {{"output", 'o', "FILE", true,
         "image to write; the extension picks the format: .hdr (Radiance RGBE),\n"
-        ".pfm (float), .png (8-bit sRGB). Repeat to write several.",
+        ".pfm (float), .png (8-bit sRGB), .exr (OpenEXR). Repeat to write several.",
         "<scene name>.hdr in the working directory"},
        [](R& r, V v) {
          r.outputs.push_back(v);
@@ -211,6 +212,11 @@ const std::vector<RenderOption>& render_options() {
        }},
       {{"exposure", 0, "E", false, "PNG exposure in stops (pixel · 2^E)", "0"},
        [](R& r, V v) { return read_double_option("exposure", v, r.exposure); }},
+      {{"half", 0, "", false, "EXR: 16-bit half channels instead of 32-bit float", ""},
+       [](R& r, V) {
+         r.exr_half = true;
+         return ok_status();
+       }},
       {{"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
        [](R& r, V v) { return read_int_option("threads", v, 0, 4096, r.threads); }},
       {{"tracer", 0, "T", false,
@@ -268,7 +274,7 @@ const CommandHelp& render_help() {
       &render_specs(),
       "A path render shows a progress bar (on a terminal) and ends with a summary. The first\n"
       "Ctrl-C finishes the pass in flight and writes the image converged so far (RAYLANE_SPP in\n"
-      "the HDR header), exit status 130; a second Ctrl-C exits at once.\n"
+      "the HDR and EXR headers), exit status 130; a second Ctrl-C exits at once.\n"
       "The scene language: docs/scene-language.md."};
   return help;
 }
@@ -323,8 +329,14 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
     has_png |= format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
   if (r.also_png && !has_png)
     r.outputs.push_back(std::filesystem::path(r.outputs[0]).replace_extension(".png").string());
-  for (const auto& out : r.outputs)
-    if (auto f = format_from_path(out); !f) return Error{f.error()};
+  bool has_exr = false;
+  for (const auto& out : r.outputs) {
+    auto f = format_from_path(out);
+    if (!f) return Error{f.error()};
+    has_exr |= *f == ImageFormat::kExr;
+  }
+  if (r.exr_half && !has_exr)
+    r.warnings.push_back("--half does nothing without an .exr output; it is for -o FILE.exr");
   if (r.path) r.aov_outputs = aov_siblings(r.outputs, r.path_settings.aovs);
   return r;
 }
@@ -458,6 +470,7 @@ int render_command(const std::vector<std::string>& args) {
 
   WriteOptions wopts;
   wopts.exposure = r.exposure;
+  wopts.exr_half = r.exr_half;
   wopts.metadata.push_back(
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
   wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));

@@ -1,6 +1,7 @@
 // Reading textures and environments: PNG, TGA and BMP through stb_image (Debian's libstb-dev),
 // Radiance HDR and PFM through raylane's own readers (image/rgbe.h, image/pfm.h: stb_image
-// 2.27's HDR reader hangs on some truncated files). JPEG is recognised and refused for now:
+// 2.27's HDR reader hangs on some truncated files), OpenEXR through OpenEXR's C core
+// (image/exr.h). JPEG is recognised and refused for now:
 // stb_image 2.27's JPEG reader has memory errors on damaged files (docs/design.md, "Images in").
 // Integer images are sRGB-encoded and come back linear; float images are linear already
 // (docs/scene-language.md, "Beyond project 4: textures, environment, lens").
@@ -22,13 +23,13 @@ namespace raylane {
 
 inline constexpr uint64_t kMaxImageFileBytes = uint64_t(1) << 30;
 
-enum class InputFormat { kPng, kJpeg, kBmp, kTga, kHdr, kPfm };
+enum class InputFormat { kPng, kJpeg, kBmp, kTga, kHdr, kPfm, kExr };
 
 struct InputImageInfo {
   InputFormat format = InputFormat::kPng;
   uint32_t width = 0, height = 0;
   int channels = 0;       // as stored (1 grey … 4 RGBA); the reader keeps RGB
-  bool is_float = false;  // HDR and PFM: linear; otherwise sRGB-encoded integers
+  bool is_float = false;  // HDR, PFM and EXR: linear; otherwise sRGB-encoded integers
   bool is_16bit = false;  // 16-bit PNG
 };
 
