@@ -12,8 +12,8 @@ Result<AovSet> parse_aov_list(const std::string& text) {
     std::string name = text.substr(start, comma == std::string::npos ? comma : comma - start);
     auto aov = kAovNames.from_name(name);
     if (!aov)
-      return Error{cat("--aov: expected a list of ", kAovNames.list(), " separated by commas, found ",
-                       in_quotes(name))};
+      return Error{cat("--aov: expected a list of ", kAovNames.list(),
+                       " separated by commas, found ", in_quotes(name))};
     if (set.has(*aov)) return Error{cat("--aov: ", name, " is listed twice")};
     set.bits |= 1u << unsigned(*aov);
     if (comma == std::string::npos) return set;

@@ -100,7 +100,8 @@ Image Film::aov_image(Aov aov) const {
   for (std::size_t p = 0; p < std::size_t(width) * height && (p + 1) * stride <= aov_sum.size();
        ++p)
     for (int k = 0; k < 3; ++k)
-      img.rgb[p * 3 + std::size_t(k)] = float(aov_sum[p * stride + at + std::size_t(k % n)] * scale);
+      img.rgb[p * 3 + std::size_t(k)] =
+          float(aov_sum[p * stride + at + std::size_t(k % n)] * scale);
   return img;
 }
 

@@ -38,8 +38,8 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
 
 // The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there
 // hits[i] belongs to paths[i]. A sample that meets nothing adds zeros.
-void add_aovs(const Scene& scene, const std::vector<PathState>& paths,
-              const std::vector<Hit>& hits, Film& film) {
+void add_aovs(const Scene& scene, const std::vector<PathState>& paths, const std::vector<Hit>& hits,
+              Film& film) {
   const AovSet set = film.aovs;
   const std::size_t stride = std::size_t(set.channels());
   for (std::size_t i = 0; i < paths.size(); ++i) {

@@ -99,5 +99,38 @@ TEST(CliExr, ScenesTakeExrTexturesAndEnvironments) {
   EXPECT_NE(bad.out.find("bad.exr"), std::string::npos) << bad.out;
 }
 
+// --aov with an EXR output: the AOVs are layers of the one file (albedo.R/G/B, depth.Z,
+// normal.X/Y/Z), equal to the PFM siblings another output of the same run gets; an EXR-only
+// render writes no siblings. The header names the run (seed, integrator, sampler).
+TEST(CliExr, AovsAreLayersOfTheExrOutput) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto r = run_cli("render tiny.scn --spp 2 --aov albedo,normal,depth -o a.exr -o b.pfm -q", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "a.exr\nb.pfm\nb.albedo.pfm\nb.normal.pfm\nb.depth.pfm\n");
+  const std::string exr = read_file(dir + "/a.exr");
+  auto info = probe_exr(exr);
+  ASSERT_TRUE(info) << info.error();
+  EXPECT_TRUE(has_line(info->metadata, "RAYLANE_INTEGRATOR=mis")) << info->metadata.size();
+  EXPECT_TRUE(has_line(info->metadata, "RAYLANE_SEED=0"));
+  for (const char* aov : {"albedo", "normal", "depth"}) {
+    SCOPED_TRACE(aov);
+    auto layer = decode_exr_layer(exr, aov);
+    ASSERT_TRUE(layer) << layer.error();
+    auto sibling = read_image(dir + "/b." + aov + ".pfm");
+    ASSERT_TRUE(sibling) << sibling.error();
+    const std::size_t n = layer->channels.size(), pixels = sibling->rgb.size() / 3;
+    ASSERT_EQ(layer->data.size(), pixels * n);
+    for (std::size_t p = 0; p < pixels; ++p)
+      for (std::size_t c = 0; c < n; ++c)
+        ASSERT_EQ(layer->data[p * n + c], sibling->rgb[p * 3 + c]) << "pixel " << p;
+  }
+  EXPECT_EQ(decode_exr_layer(exr, "depth")->channels, std::vector<std::string>{"Z"});
+  auto only = run_cli("render tiny.scn --spp 1 --aov depth -o c.exr -q", dir);
+  ASSERT_EQ(only.status, 0) << only.out;
+  EXPECT_EQ(only.out, "c.exr\n");
+  EXPECT_FALSE(std::ifstream(dir + "/c.depth.pfm").good());
+}
+
 }  // namespace
 }  // namespace raylane

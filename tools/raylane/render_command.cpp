@@ -34,7 +34,7 @@ struct RenderRequest {
   double exposure = 0;
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
-  std::vector<std::string> overrides;  // --set lines
+  std::vector<std::string> overrides;                    // --set lines
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;
@@ -46,7 +46,7 @@ constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
-    "spp",  "integrator", "sampler", "shading",          "seed", "max-depth",
+    "spp",  "integrator", "sampler", "shading",          "seed",  "max-depth",
     "time", "checkpoint", "resume",  "checkpoint-every", "stats", "aov"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
@@ -195,7 +195,8 @@ const std::vector<RenderOption>& render_options() {
          return ok_status();
        }},
       {{"aov", 0, "LIST", false,
-        cat("path: also sum ", kAovNames.list(), " of the first surface\n"
+        cat("path: also sum ", kAovNames.list(),
+            " of the first surface\n"
             "each sample meets (comma-separated), averaged like the colour;\n"
             "written beside each output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
         ""},
@@ -284,13 +285,20 @@ std::string default_output(const std::optional<std::string>& scene_path) {
   return stem + ".hdr";
 }
 
+bool is_exr(const std::string& path) {
+  auto f = format_from_path(path);
+  return f && *f == ImageFormat::kExr;
+}
+
 // STEM.NAME.pfm beside each output for each AOV, once per stem (out.hdr and out.png share
-// theirs): PFM keeps negative normals and positions, and is what denoisers read.
+// theirs): PFM keeps negative normals and positions, and is what denoisers read. An EXR output
+// holds its AOVs as layers instead (exr_layers_of).
 std::vector<std::pair<std::string, Aov>> aov_siblings(const std::vector<std::string>& outputs,
                                                       AovSet set) {
   std::vector<std::pair<std::string, Aov>> out;
   std::vector<std::string> stems;
   for (const std::string& o : outputs) {
+    if (is_exr(o)) continue;
     std::string stem = std::filesystem::path(o).replace_extension().string();
     if (std::find(stems.begin(), stems.end(), stem) != stems.end()) continue;
     stems.push_back(stem);
@@ -298,6 +306,30 @@ std::vector<std::pair<std::string, Aov>> aov_siblings(const std::vector<std::str
       if (set.has(Aov(k))) out.emplace_back(cat(stem, ".", kAovNames.name(Aov(k)), ".pfm"), Aov(k));
   }
   return out;
+}
+
+// The film's AOVs as EXR layers: albedo.R/G/B, normal.X/Y/Z, depth.Z, position.X/Y/Z.
+std::vector<ExrLayer> exr_layers_of(const Film& film) {
+  std::vector<ExrLayer> layers;
+  for (std::size_t k = 0; k < kAovCount; ++k) {
+    const Aov aov = Aov(k);
+    if (!film.aovs.has(aov)) continue;
+    ExrLayer layer{std::string(kAovNames.name(aov)), {}, {}};
+    if (aov == Aov::kAlbedo)
+      layer.channels = {"R", "G", "B"};
+    else if (aov == Aov::kDepth)
+      layer.channels = {"Z"};
+    else
+      layer.channels = {"X", "Y", "Z"};
+    const Image img = film.aov_image(aov);
+    const std::size_t n = layer.channels.size();
+    layer.data.resize(std::size_t(img.width) * img.height * n);
+    for (std::size_t p = 0; p < std::size_t(img.width) * img.height; ++p)
+      for (std::size_t c = 0; c < n; ++c)
+        layer.data[p * n + c] = img.rgb[p * 3 + c];
+    layers.push_back(std::move(layer));
+  }
+  return layers;
 }
 
 Result<RenderRequest> read_request(const std::vector<std::string>& args) {
@@ -428,6 +460,7 @@ int render_command(const std::vector<std::string>& args) {
   std::string what;
   Image image;
   std::vector<std::pair<std::string, Image>> aov_images;  // path, image
+  std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int spp = 1;
   PathStats path_stats;
   if (r.path) {
@@ -455,6 +488,7 @@ int render_command(const std::vector<std::string>& args) {
     progress.finish();
     for (const auto& [out, aov] : r.aov_outputs)
       aov_images.emplace_back(out, film->aov_image(aov));
+    exr_layers = exr_layers_of(*film);
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
@@ -474,6 +508,12 @@ int render_command(const std::vector<std::string>& args) {
   wopts.metadata.push_back(
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
   wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
+  if (r.path) {
+    const PathSettings& p = r.path_settings;
+    wopts.metadata.push_back(cat("RAYLANE_SEED=", p.seed));
+    wopts.metadata.push_back(cat("RAYLANE_INTEGRATOR=", integrator_name(p.integrator)));
+    wopts.metadata.push_back(cat("RAYLANE_SAMPLER=", sampler_name(p.sampler)));
+  }
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
@@ -486,8 +526,10 @@ int render_command(const std::vector<std::string>& args) {
   }
   for (const auto& [out, aov_image] : aov_images)
     files.emplace_back(out, &aov_image);
+  WriteOptions exr_wopts = wopts;
+  exr_wopts.exr_layers = std::move(exr_layers);
   for (const auto& [out, file_image] : files) {
-    auto saved = write_image_or_fallback(out, *file_image, wopts);
+    auto saved = write_image_or_fallback(out, *file_image, is_exr(out) ? exr_wopts : wopts);
     if (!saved) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
       status = kExitFailure;
