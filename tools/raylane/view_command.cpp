@@ -19,6 +19,8 @@ const std::vector<OptionSpec>& view_specs() {
       {"spp-limit", 0, "N", false,
        "path: stop adding passes when the film holds N samples per pixel", "4096"},
       {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
+      {"pfm", 0, "", false,
+       "P also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
   };
   return specs;
 }
@@ -47,6 +49,7 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
   if (!parsed->positional.empty()) r.scene_path = parsed->positional[0];
   if (parsed->has("set")) r.overrides = parsed->values.at("set");
   r.lenient = parsed->has("lenient");
+  r.save_pfm = parsed->has("pfm");
   if (auto v = parsed->last("spp-limit"))
     if (Status s = read_int_option("spp-limit", *v, 1, 1 << 24, r.spp_limit); !s)
       return Error{s.error()};

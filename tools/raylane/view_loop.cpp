@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include "commands.h"
 #include "raylane/core/strings.h"
@@ -195,6 +197,17 @@ int run_view_window(ViewSession& s, const std::string& name) {
   Sdl sdl;
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
     std::fprintf(stderr, "raylane: view needs a display: %s\n", SDL_GetError());
+    return kExitUsage;
+  }
+  // Failing X11 and Wayland, SDL 2.26 settles for its offscreen driver: a window nobody sees.
+  // That is no display, unless SDL_VIDEODRIVER asked for it.
+  std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
+  if ((driver == "offscreen" || driver == "dummy") && !std::getenv("SDL_VIDEODRIVER")) {
+    const char* display = std::getenv("DISPLAY");
+    std::fprintf(stderr,
+                 "raylane: view needs a display, and none could be opened (DISPLAY=%s; SDL "
+                 "fell back to its %s driver)\n",
+                 display ? display : "", driver.c_str());
     return kExitUsage;
   }
   sdl.window = SDL_CreateWindow(cat("raylane view: ", name).c_str(), SDL_WINDOWPOS_UNDEFINED,

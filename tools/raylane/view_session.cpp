@@ -42,6 +42,20 @@ std::unique_ptr<ViewWorld> make_world(ParsedScene parsed, uint32_t width, uint32
   return world;
 }
 
+// view-NNNN: the first NNNN for which no file STEM + extension exists. Never over an existing
+// file, so never over an input either.
+std::string free_stem(const std::vector<std::string>& extensions) {
+  for (int n = 1; n <= 9999; ++n) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "view-%04d", n);
+    bool taken = false;
+    for (const std::string& ext : extensions)
+      taken |= std::filesystem::exists(stem + ext);
+    if (!taken) return stem;
+  }
+  return "";
+}
+
 }  // namespace
 
 std::pair<uint32_t, uint32_t> fitted_screen(uint32_t w, uint32_t h) {
@@ -172,24 +186,23 @@ Result<std::string> ViewSession::save(double exposure) {
     previewing_ = false;
   }
   if (mode_ && view_stale_) step(false);
-  std::string stem;
-  for (int n = 1; n <= 9999 && stem.empty(); ++n) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "view-%04d", n);
-    // Never over an existing file: so never over an input either.
-    if (!std::filesystem::exists(cat(buf, ".hdr")) && !std::filesystem::exists(cat(buf, ".png")))
-      stem = buf;
-  }
+  std::vector<std::string> extensions = {".hdr", ".png"};
+  if (request_.save_pfm) extensions.push_back(".pfm");
+  std::string stem = free_stem(extensions);
   if (stem.empty()) return Error{"view-0001 to view-9999 are all taken"};
   int spp = mode_ ? 1 : film_.passes;
   WriteOptions opts;
   opts.exposure = exposure;
   opts.metadata = {cat("RAYLANE_MODE=", view_mode_name(mode_)), cat("RAYLANE_SPP=", spp)};
-  std::string hdr = stem + ".hdr", png = stem + ".png";
-  if (Status s = write_image(hdr, image_, opts); !s) return Error{cat(hdr, ": ", s.error())};
-  if (Status s = write_image(png, display_image(), opts); !s)
-    return Error{cat(png, ": ", s.error())};
-  return cat("saved ", hdr, " ", png, ": ", view_mode_name(mode_), ", ", spp, " spp");
+  std::string line = "saved";
+  Image shown = display_image();  // for the 8-bit file; HDR and PFM keep the raw values
+  for (const std::string& ext : extensions) {
+    std::string path = stem + ext;
+    if (Status s = write_image(path, ext == ".png" ? shown : image_, opts); !s)
+      return Error{cat(path, ": ", s.error())};
+    line += " " + path;
+  }
+  return cat(line, " (", view_mode_name(mode_), ", ", spp, " spp)");
 }
 
 bool ViewSession::reload() {

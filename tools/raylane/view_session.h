@@ -22,8 +22,9 @@ struct ViewRequest {
   std::optional<std::string> scene_path;  // none: the built-in course scene
   std::vector<std::string> overrides;     // --set lines
   bool lenient = false;
-  int spp_limit = 4096;  // passes after which the film stops growing
-  int threads = 0;       // 0: all cores
+  int spp_limit = 4096;   // passes after which the film stops growing
+  int threads = 0;        // 0: all cores
+  bool save_pfm = false;  // saves also write view-NNNN.pfm (32-bit float: exact comparisons)
 };
 
 // The largest window: a larger screen is scaled down to fit, keeping its shape.
@@ -79,8 +80,9 @@ class ViewSession {
 
   // "screen W H\ncamera ..." — what `v` prints.
   std::string scene_lines() const;
-  // Writes view-NNNN.hdr and view-NNNN.png (the first NNNN with neither file present) in the
-  // working directory, atomically; returns a line that names them, the mode and the spp.
+  // Writes view-NNNN.hdr and view-NNNN.png (and .pfm with --pfm; the first NNNN with none of
+  // them present) in the working directory, atomically; returns the line to print:
+  // "saved view-0001.hdr view-0001.png (path, 16 spp)".
   Result<std::string> save(double exposure);
 
   // Reloads the scene file (after an edit: `r`, or when watch() sees a newer file). A scene
