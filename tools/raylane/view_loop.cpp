@@ -37,6 +37,20 @@ constexpr double kOrbitDegreesPerHeight = 180;  // a drag across the window's he
 
 enum class Drag { kNone, kLook, kOrbit };
 
+// Frames per second of the frames that did work, smoothed; a pause (idle, converged) is not
+// counted as a slow frame.
+struct FrameRate {
+  double seconds = 0;  // per frame
+  Clock::time_point last = Clock::now();
+  void tick(Clock::time_point now) {
+    double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (dt > 1) return;
+    seconds = seconds == 0 ? dt : 0.8 * seconds + 0.2 * dt;
+  }
+  double fps() const { return seconds > 0 ? 1 / seconds : 0; }
+};
+
 struct Controls {
   double exposure = 0;
   bool left_orbits = false;  // O
@@ -78,12 +92,14 @@ void present(SDL_Window* window, const Image& image, double exposure) {
   SDL_UpdateWindowSurface(window);
 }
 
-std::string title(const ViewSession& s, const std::string& name, const Controls& c) {
+std::string title(const ViewSession& s, const std::string& name, const Controls& c,
+                  const FrameRate& rate_of_frames) {
   std::string what = s.mode()         ? view_mode_name(s.mode())
                      : s.previewing() ? std::string("lit preview")
                                       : cat("path ", s.passes(), " spp");
-  char rate[32];
-  std::snprintf(rate, sizeof rate, "%.2f Mrays/s", s.mrays_per_second());
+  char rate[48];
+  std::snprintf(rate, sizeof rate, "%.2f Mrays/s | %.1f fps", s.mrays_per_second(),
+                rate_of_frames.fps());
   char exposure[32];
   std::snprintf(exposure, sizeof exposure, "exposure %+.1f", c.exposure);
   return cat("raylane view: ", name, " | ", what, " | ", rate, " | ", exposure, " | ",
@@ -219,6 +235,7 @@ int run_view_window(ViewSession& s, const std::string& name) {
   std::fprintf(stderr, "raylane view: %s, %ux%u\n%s", name.c_str(), s.width(), s.height(),
                kViewKeys);
   Controls c;
+  FrameRate frames;
   auto last_frame = Clock::now(), last_move = Clock::now() - std::chrono::seconds(1);
   bool worked = true;
   while (!c.quit) {
@@ -237,9 +254,10 @@ int run_view_window(ViewSession& s, const std::string& name) {
     if (s.inputs_changed() && s.reload()) c.redraw = true;
     bool moving = std::chrono::duration<double>(now - last_move).count() < kStillSeconds;
     worked = s.step(moving);
+    if (worked) frames.tick(Clock::now());
     if (worked || c.redraw) {
       present(sdl.window, s.display_image(), c.exposure);
-      SDL_SetWindowTitle(sdl.window, title(s, name, c).c_str());
+      SDL_SetWindowTitle(sdl.window, title(s, name, c, frames).c_str());
       c.redraw = false;
     }
   }
