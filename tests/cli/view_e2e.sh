@@ -22,6 +22,9 @@ if [ "${1:-}" != "--inside" ]; then
   done
   rm -rf "$work" && mkdir -p "$work"
   [ -z "$shot" ] || shot=$(realpath "$shot")
+  # A copy of the scene with the meshes beside it: the test edits it to see it reloaded.
+  cp "$scene" "$(dirname "$scene")"/*.ply "$work/"
+  scene=$work/$(basename "$scene")
   cd "$work"
   # A server of its own (-a: the first free display number), 24-bit colour.
   exec timeout -k 5 100 xvfb-run -a -s "-screen 0 640x480x24 -nolisten tcp" \
@@ -74,6 +77,12 @@ wait_for 30 test "$(lines camera)" -ge 2 || fail "the second V printed no camera
 xdotool key p
 wait_for 30 test "$(lines saved)" -ge 1 || fail "P saved nothing"
 import -window "$wid" shot.png
+cp "$scene" scene-as-saved.scn
+# An edit to the scene reloads it, and a new camera line in the file wins over the flown one.
+echo "camera 5 3 3 0.2 q 0.416981 0.279589 0.480987 0.718247" >>"$scene"
+wait_for 30 grep -q "reloaded the scene, and its new camera" err.txt || fail "no reload"
+xdotool key v
+wait_for 30 test "$(lines camera)" -ge 3 || fail "the third V printed no camera line"
 xdotool key Escape
 wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Esc did not quit"
 wait "$pid" || fail "the viewer exited with status $?"
@@ -82,9 +91,12 @@ trap - EXIT
 # The lines: screen, camera, and a camera that moved.
 screen=$(grep '^screen ' out.txt | tail -1)
 first=$(grep '^camera ' out.txt | head -1)
-last=$(grep '^camera ' out.txt | tail -1)
+last=$(grep '^camera ' out.txt | sed -n 2p)
 [ "$screen" = "screen 160 120" ] || fail "printed '$screen'"
 [ "$first" != "$last" ] || fail "the camera did not move: $last"
+reloaded=$(grep '^camera ' out.txt | sed -n 3p)
+[[ "$reloaded" == "camera 5 3 3 0.20000000000000001 q "* ]] ||
+  fail "after the reload, V printed '$reloaded', not the file's new camera"
 
 # saved view-0002.hdr view-0002.png view-0002.pfm (path, 4 spp)
 saved=$(grep '^saved ' out.txt | tail -1)
@@ -96,7 +108,7 @@ hdr=${BASH_REMATCH[1]} png=${BASH_REMATCH[2]} spp=${BASH_REMATCH[4]}
 grep -aq "RAYLANE_SPP=$spp" "$hdr" || fail "$hdr does not say RAYLANE_SPP=$spp"
 
 # Float for float (PFM; the HDR's 8-bit mantissas would hide a small difference), and the HDR.
-"$raylane" render "$scene" --set "$screen" --set "$last" --spp "$spp" -o render.pfm \
+"$raylane" render scene-as-saved.scn --set "$screen" --set "$last" --spp "$spp" -o render.pfm \
   -o render.hdr -q >render.txt 2>&1 || fail "raylane render of the printed lines: $(cat render.txt)"
 for ext in pfm hdr; do
   "$raylane" diff "view-0002.$ext" "render.$ext" >diff.txt 2>&1 ||

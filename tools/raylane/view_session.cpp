@@ -218,6 +218,8 @@ bool ViewSession::reload() {
                            !same_camera(*world->file_camera, *world_->file_camera);
   std::optional<CameraSpec> next = file_camera_moved ? world->file_camera : camera();
   adopt(std::move(world), next);
+  std::fprintf(stderr, "raylane view: reloaded the scene%s\n",
+               file_camera_moved ? ", and its new camera" : "");
   return true;
 }
 
