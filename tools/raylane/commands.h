@@ -18,6 +18,7 @@ int info_command(const std::vector<std::string>& args);
 int trace_command(const std::vector<std::string>& args);
 int convert_command(const std::vector<std::string>& args);
 int diff_command(const std::vector<std::string>& args);
+int view_command(const std::vector<std::string>& args);  // the interactive viewer (SDL2)
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
 // stderr. `overrides` are the --set lines, read after the scene's own. Returns nothing when the

@@ -12,6 +12,8 @@ constexpr const char* kUsage = R"(raylane — a data-oriented SIMD ray tracer fo
 usage:
   raylane render [SCENE] [options]   render SCENE (default: the built-in course test scene)
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
+  raylane view [SCENE] [options]     look around SCENE in a window, path traced progressively;
+                                     V prints the camera line, P saves the image
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
   raylane convert IN OUT [--exposure E] [--half]
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
   if (command == "trace") return raylane::cli::trace_command(rest);
   if (command == "convert") return raylane::cli::convert_command(rest);
   if (command == "diff") return raylane::cli::diff_command(rest);
+  if (command == "view") return raylane::cli::view_command(rest);
   // `raylane scene.scn [options]` is short for `raylane render scene.scn [options]`.
   if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
     return raylane::cli::render_command(args);

@@ -1,0 +1,59 @@
+// `raylane view` without a window: its help, its options, and the answer without a display.
+// The window itself is tested end to end under Xvfb (tests/cli/view_e2e.sh).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "support/cli_run.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+using testing::CliRun;
+using testing::run_cli;
+using testing::temp_dir;
+
+TEST(ViewCli, HelpListsTheOptionsAndTheKeys) {
+  CliRun r = run_cli("view --help", temp_dir());
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("usage: raylane view [SCENE]", 0), 0u) << r.out;
+  for (std::string text :
+       {"--set LINE", "--lenient", "--spp-limit N", "--threads N", "--pfm", "W A S D", "right drag",
+        "wheel", "[ ]", "1..8", "V ", "P, Ctrl+S", "R ", "Esc", "bit for bit"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << text;
+  CliRun top = run_cli("--help", temp_dir());
+  EXPECT_NE(top.out.find("raylane view [SCENE]"), std::string::npos) << top.out;
+}
+
+TEST(ViewCli, BadOptionsAreUsageErrors) {
+  for (std::string args :
+       {"view --spp-limit 0", "view --threads -1", "view a.scn b.scn", "view --frobnicate"}) {
+    CliRun r = run_cli(args, temp_dir());
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("raylane: "), std::string::npos) << r.out;
+  }
+}
+
+// CI machines have no display: the viewer says so (or, built without SDL2, that it has no
+// window at all) and exits 2, without waiting for anything.
+TEST(ViewCli, WithoutADisplayItSaysSoAndExits2) {
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER"})
+    unsetenv(name);  // the child inherits this process's environment
+  CliRun r = run_cli("view", temp_dir(), 60);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_TRUE(r.out.find("view needs a display") != std::string::npos ||
+              r.out.find("built without SDL2") != std::string::npos)
+      << r.out;
+  // A display that is not there: SDL falls back to a window nobody sees, which is no display.
+  setenv("DISPLAY", ":87", 1);
+  CliRun gone = run_cli("view", temp_dir(), 60);
+  unsetenv("DISPLAY");
+  EXPECT_EQ(gone.status, 2) << gone.out;
+  EXPECT_TRUE(gone.out.find("view needs a display") != std::string::npos ||
+              gone.out.find("built without SDL2") != std::string::npos)
+      << gone.out;
+}
+
+}  // namespace
+}  // namespace raylane
