@@ -19,8 +19,8 @@ TEST(ViewCli, HelpListsTheOptionsAndTheKeys) {
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out.rfind("usage: raylane view [SCENE]", 0), 0u) << r.out;
   for (std::string text :
-       {"--set LINE", "--lenient", "--spp-limit N", "--threads N", "--pfm", "W A S D", "right drag",
-        "wheel", "[ ]", "1..8", "V ", "P, Ctrl+S", "R ", "Esc", "bit for bit"})
+       {"--set LINE", "--lenient", "--spp-limit N", "--threads N", "--pfm", "arrow keys", "right drag",
+        "wheel", "[ ]", "1..8", "V ", "S (P, Ctrl+S)", "R ", "Q, Esc", "bit for bit"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text;
   CliRun top = run_cli("--help", temp_dir());
   EXPECT_NE(top.out.find("raylane view [SCENE]"), std::string::npos) << top.out;

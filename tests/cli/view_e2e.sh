@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `raylane view` end to end, as a person uses it, under a virtual X server (Xvfb): open the
-# window, fly, look and orbit with xdotool's keys and mouse, print the camera (V), save (P),
-# quit (Esc). Then check that
+# window, fly, look and orbit with xdotool's keys and mouse, print the camera (V), save (S),
+# quit (Q). Then check that
 #   - the printed screen and camera lines parse (raylane render reads them) and the camera moved;
 #   - the saved image skips a name already taken and is, bit for bit, what `raylane render`
 #     writes for the printed lines at the printed spp;
@@ -71,19 +71,19 @@ wait_for 60 title_says "path 4 spp" || fail "not at 4 spp within 60 s: $(xdotool
 
 xdotool key v
 wait_for 30 has camera 1 || fail "V printed no camera line"
-# Fly forward (W held), look (left drag), orbit (right drag).
+# Fly forward (the Up arrow held), look (left drag), orbit (right drag).
 # Small moves: the room stays in view.
-xdotool keydown w
+xdotool keydown Up
 sleep 0.15
-xdotool keyup w
+xdotool keyup Up
 xdotool mousemove --window "$wid" 80 60 mousedown 1 mousemove_relative --sync 6 2 mouseup 1
 xdotool mousemove --window "$wid" 80 60 mousedown 3 mousemove_relative --sync -- -4 -2 mouseup 3
 # The camera stands still again: the film fills up to the limit.
 wait_for 60 title_says "path 4 spp" || fail "not back at 4 spp within 60 s"
 xdotool key v
 wait_for 30 has camera 2 || fail "the second V printed no camera line"
-xdotool key p
-wait_for 30 has saved 1 || fail "P saved nothing"
+xdotool key s
+wait_for 30 has saved 1 || fail "S saved nothing"
 import -window "$wid" shot.png
 cp "$scene" scene-as-saved.scn
 # An edit to the scene reloads it, and a new camera line in the file wins over the flown one.
@@ -91,8 +91,8 @@ echo "camera 5 3 3 0.2 q 0.416981 0.279589 0.480987 0.718247" >>"$scene"
 wait_for 30 grep -q "reloaded the scene, and its new camera" err.txt || fail "no reload"
 xdotool key v
 wait_for 30 has camera 3 || fail "the third V printed no camera line"
-xdotool key Escape
-wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Esc did not quit"
+xdotool key q
+wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Q did not quit"
 wait "$pid" || fail "the viewer exited with status $?"
 trap - EXIT
 

@@ -10,8 +10,8 @@ namespace raylane::cli {
 // The keys and the mouse, as `raylane view --help` and the viewer's start print them.
 inline constexpr const char* kViewKeys =
     "keys (the window must have the focus):\n"
-    "  W A S D          fly forward, left, back, right; E up, Q down (world up);\n"
-    "                   hold Shift to go 4x faster (with Ctrl held, the keys do not move)\n"
+    "  arrow keys       fly forward, back, left, right; Page Up / Page Down: up, down\n"
+    "                   (world up); hold Shift to go 4x faster\n"
     "  left drag        look around (or orbit, after O)\n"
     "  right drag       orbit about the surface point at the centre of the view\n"
     "  O                left drag: switch between look and orbit\n"
@@ -19,9 +19,9 @@ inline constexpr const char* kViewKeys =
     "  [ ]              exposure down, up by half a stop\n"
     "  1..8             path, lit, normal, albedo, depth, uv, id, position; M: the next one\n"
     "  V                print the screen and camera lines (scene syntax) on stdout\n"
-    "  P, Ctrl+S        save view-NNNN.hdr and view-NNNN.png here (never over a file)\n"
+    "  S (P, Ctrl+S)    save view-NNNN.hdr and view-NNNN.png here (never over a file)\n"
     "  R                reload the scene (also when a file it reads changes)\n"
-    "  Esc, Ctrl+Q      quit\n";
+    "  Q, Esc (Ctrl+Q)  quit\n";
 
 // Runs the window until the user quits. Returns the exit status: kExitUsage without a display.
 int run_view_window(ViewSession& session, const std::string& scene_name);

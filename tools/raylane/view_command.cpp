@@ -20,7 +20,7 @@ const std::vector<OptionSpec>& view_specs() {
        "path: stop adding passes when the film holds N samples per pixel", "4096"},
       {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
       {"pfm", 0, "", false,
-       "P also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
+       "S also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
   };
   return specs;
 }
@@ -32,7 +32,7 @@ const CommandHelp& view_help() {
       "`raylane render`'s defaults and refined one pass per frame while the camera stands still;\n"
       "while it moves, the `lit` ray-casting view stands in. The window has the scene's screen\n"
       "size (a screen larger than 1280x800 is scaled down to fit). After N passes, the image\n"
-      "P saves is the one `raylane render SCENE --set '<screen>' --set '<camera>' --spp N`\n"
+      "S saves is the one `raylane render SCENE --set '<screen>' --set '<camera>' --spp N`\n"
       "writes, bit for bit, with the lines V prints. Needs a display (X11 or Wayland).",
       &view_specs(),
       cat(kViewKeys,

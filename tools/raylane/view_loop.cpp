@@ -128,12 +128,13 @@ void save(ViewSession& s, const Controls& c) {
   std::fflush(stdout);
 }
 
-// A key that is a command (not a move). Ctrl+letter forms first: Ctrl+Q quits, Ctrl+S saves.
+// A key that is a command (not a move): the course window's letters, S saves and Q quits (the
+// moves are on the arrow keys, so no letter is both), with P and Ctrl+S, Esc and Ctrl+Q too.
 void on_key(const SDL_KeyboardEvent& key, ViewSession& s, Controls& c, CameraSpec& camera) {
   bool ctrl = key.keysym.mod & KMOD_CTRL;
   SDL_Keycode k = key.keysym.sym;
-  if (k == SDLK_ESCAPE || (ctrl && k == SDLK_q)) c.quit = true;
-  if (k == SDLK_p || (ctrl && k == SDLK_s)) save(s, c);
+  if (k == SDLK_ESCAPE || k == SDLK_q) c.quit = true;
+  if (k == SDLK_s || k == SDLK_p) save(s, c);
   if (k == SDLK_v) {
     std::fputs(s.scene_lines().c_str(), stdout);
     std::fflush(stdout);
@@ -191,7 +192,8 @@ void on_event(const SDL_Event& e, ViewSession& s, Controls& c, CameraSpec& camer
   }
 }
 
-// WASD + QE while held, in scene units for `seconds` of flight.
+// The arrow keys (forward, back, left, right) and Page Up / Page Down (up, down) while held,
+// in scene units for `seconds` of flight.
 bool fly_keys(const ViewSession& s, double seconds, CameraSpec& camera) {
   const Uint8* held = SDL_GetKeyboardState(nullptr);
   SDL_Keymod mod = SDL_GetModState();
@@ -199,8 +201,9 @@ bool fly_keys(const ViewSession& s, double seconds, CameraSpec& camera) {
   auto axis = [&](SDL_Scancode plus, SDL_Scancode minus) {
     return double(held[plus]) - double(held[minus]);
   };
-  Vec3d dir(axis(SDL_SCANCODE_D, SDL_SCANCODE_A), axis(SDL_SCANCODE_E, SDL_SCANCODE_Q),
-            axis(SDL_SCANCODE_W, SDL_SCANCODE_S));
+  Vec3d dir(axis(SDL_SCANCODE_RIGHT, SDL_SCANCODE_LEFT),
+            axis(SDL_SCANCODE_PAGEUP, SDL_SCANCODE_PAGEDOWN),
+            axis(SDL_SCANCODE_UP, SDL_SCANCODE_DOWN));
   if (dir == Vec3d(0, 0, 0)) return false;
   double speed = kSpeedPerSize * s.scene_size() * (mod & KMOD_SHIFT ? 4 : 1);
   camera = fly_move(camera, dir * (speed * seconds), s.world_up());
