@@ -87,4 +87,29 @@ const std::atomic<bool>* interrupt_flag() {
   return &g_interrupted;
 }
 
+void print_phases(const PathStats& s, double seconds, int threads) {
+  const PathPhases& p = s.phases;
+  double available = seconds * threads;
+  double idle = std::max(0.0, available - p.total());
+  std::fprintf(stderr, "where the time went (thread-seconds of %d threads × %.3f s):\n", threads,
+               seconds);
+  const std::pair<const char*, double> rows[] = {{"camera rays", p.camera},
+                                                 {"tracing camera rays", p.trace_camera},
+                                                 {"tracing bounce + shadow rays", p.trace_rest},
+                                                 {"shading (BSDF, roulette)", p.shade},
+                                                 {"light sampling", p.lights},
+                                                 {"film", p.film},
+                                                 {"idle and other", idle}};
+  for (const auto& [what, t] : rows)
+    std::fprintf(stderr, "  %-30s %9.3f s %6.1f %%\n", what, t, 100 * t / available);
+  auto rate = [](uint64_t n, double t) { return t > 0 ? n / t * 1e-6 : 0.0; };
+  std::fprintf(stderr, "  camera rays: %llu, %.2f Mrays/s of tracing time per thread\n",
+               (unsigned long long)s.camera_rays, rate(s.camera_rays, p.trace_camera));
+  std::fprintf(stderr,
+               "  bounce rays: %llu, shadow rays: %llu; together %.2f Mrays/s of tracing time "
+               "per thread\n",
+               (unsigned long long)s.bounce_rays, (unsigned long long)s.shadow_rays,
+               rate(s.bounce_rays + s.shadow_rays, p.trace_rest));
+}
+
 }  // namespace raylane::cli

@@ -6,7 +6,12 @@
 #include <chrono>
 #include <string>
 
+#include "raylane/render/path.h"
+
 namespace raylane::cli {
+
+// `--stats`: thread-seconds per phase of the path tracer's loop, against the threads' time.
+void print_phases(const PathStats& s, double seconds, int threads);
 
 class Progress {
  public:

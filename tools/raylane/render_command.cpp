@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 
+#include "aov_outputs.h"
 #include "args.h"
 #include "checkpoint.h"
 #include "commands.h"
@@ -285,53 +286,6 @@ std::string default_output(const std::optional<std::string>& scene_path) {
   return stem + ".hdr";
 }
 
-bool is_exr(const std::string& path) {
-  auto f = format_from_path(path);
-  return f && *f == ImageFormat::kExr;
-}
-
-// STEM.NAME.pfm beside each output for each AOV, once per stem (out.hdr and out.png share
-// theirs): PFM keeps negative normals and positions, and is what denoisers read. An EXR output
-// holds its AOVs as layers instead (exr_layers_of).
-std::vector<std::pair<std::string, Aov>> aov_siblings(const std::vector<std::string>& outputs,
-                                                      AovSet set) {
-  std::vector<std::pair<std::string, Aov>> out;
-  std::vector<std::string> stems;
-  for (const std::string& o : outputs) {
-    if (is_exr(o)) continue;
-    std::string stem = std::filesystem::path(o).replace_extension().string();
-    if (std::find(stems.begin(), stems.end(), stem) != stems.end()) continue;
-    stems.push_back(stem);
-    for (std::size_t k = 0; k < kAovCount; ++k)
-      if (set.has(Aov(k))) out.emplace_back(cat(stem, ".", kAovNames.name(Aov(k)), ".pfm"), Aov(k));
-  }
-  return out;
-}
-
-// The film's AOVs as EXR layers: albedo.R/G/B, normal.X/Y/Z, depth.Z, position.X/Y/Z.
-std::vector<ExrLayer> exr_layers_of(const Film& film) {
-  std::vector<ExrLayer> layers;
-  for (std::size_t k = 0; k < kAovCount; ++k) {
-    const Aov aov = Aov(k);
-    if (!film.aovs.has(aov)) continue;
-    ExrLayer layer{std::string(kAovNames.name(aov)), {}, {}};
-    if (aov == Aov::kAlbedo)
-      layer.channels = {"R", "G", "B"};
-    else if (aov == Aov::kDepth)
-      layer.channels = {"Z"};
-    else
-      layer.channels = {"X", "Y", "Z"};
-    const Image img = film.aov_image(aov);
-    const std::size_t n = layer.channels.size();
-    layer.data.resize(std::size_t(img.width) * img.height * n);
-    for (std::size_t p = 0; p < std::size_t(img.width) * img.height; ++p)
-      for (std::size_t c = 0; c < n; ++c)
-        layer.data[p * n + c] = img.rgb[p * 3 + c];
-    layers.push_back(std::move(layer));
-  }
-  return layers;
-}
-
 Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   auto parsed = parse_args(args, render_specs());
   if (!parsed) return Error{parsed.error()};
@@ -405,32 +359,6 @@ bool outputs_writable(const RenderRequest& r) {
     }
   }
   return ok;
-}
-
-// `--stats`: thread-seconds per phase of the path tracer's loop, against the threads' time.
-void print_phases(const PathStats& s, double seconds, int threads) {
-  const PathPhases& p = s.phases;
-  double available = seconds * threads;
-  double idle = std::max(0.0, available - p.total());
-  std::fprintf(stderr, "where the time went (thread-seconds of %d threads × %.3f s):\n", threads,
-               seconds);
-  const std::pair<const char*, double> rows[] = {{"camera rays", p.camera},
-                                                 {"tracing camera rays", p.trace_camera},
-                                                 {"tracing bounce + shadow rays", p.trace_rest},
-                                                 {"shading (BSDF, roulette)", p.shade},
-                                                 {"light sampling", p.lights},
-                                                 {"film", p.film},
-                                                 {"idle and other", idle}};
-  for (const auto& [what, t] : rows)
-    std::fprintf(stderr, "  %-30s %9.3f s %6.1f %%\n", what, t, 100 * t / available);
-  auto rate = [](uint64_t n, double t) { return t > 0 ? n / t * 1e-6 : 0.0; };
-  std::fprintf(stderr, "  camera rays: %llu, %.2f Mrays/s of tracing time per thread\n",
-               (unsigned long long)s.camera_rays, rate(s.camera_rays, p.trace_camera));
-  std::fprintf(stderr,
-               "  bounce rays: %llu, shadow rays: %llu; together %.2f Mrays/s of tracing time "
-               "per thread\n",
-               (unsigned long long)s.bounce_rays, (unsigned long long)s.shadow_rays,
-               rate(s.bounce_rays + s.shadow_rays, p.trace_rest));
 }
 
 }  // namespace
