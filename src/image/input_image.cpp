@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "image/jpeg_decode.h"
 #include "image/stb_decode.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
@@ -132,6 +133,17 @@ Result<InputImageInfo> probe_openexr(std::string_view bytes) {
   return info;
 }
 
+Result<InputImageInfo> probe_jpeg(std::string_view bytes) {
+  jpeg::Header h;
+  std::string why;
+  if (!jpeg::probe(bytes, h, why)) return Error{cat("unreadable JPEG header: ", why)};
+  InputImageInfo info;
+  info.format = InputFormat::kJpeg;
+  info.width = h.width, info.height = h.height;
+  info.channels = h.components;
+  return info;
+}
+
 Result<InputImageInfo> probe_pfm(std::string_view bytes) {
   auto h = parse_pfm_header(bytes);
   if (!h) return Error{h.error()};
@@ -168,6 +180,18 @@ Result<Image> to_linear(const InputImageInfo& info, const stb::Pixels& px) {
       img.rgb[i] = table[px.u8[i]];
   }
   return img;
+}
+
+// libjpeg's memory: a progressive file keeps every coefficient (2 bytes each, 64 per 8×8 block
+// and component: 6 bytes per pixel at 4:4:4), plus row buffers; 16 bytes per pixel bound it.
+Result<Image> decode_jpeg(std::string_view bytes, const InputImageInfo& info) {
+  jpeg::Header h{info.width, info.height, info.channels};
+  uint64_t budget = uint64_t(info.width) * info.height * 16 + (1u << 20);
+  stb::Pixels px;
+  std::string why;
+  if (!jpeg::decode(bytes, h, budget, px.u8, why))
+    return Error{cat("cannot decode the JPEG data: ", why)};
+  return to_linear(info, px);
 }
 
 Status check_pixels(const Image& img) {
@@ -213,16 +237,11 @@ Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_vie
   if (bytes.size() > kMaxImageFileBytes) return Error{"the file is larger than 1 GiB"};
   auto format = format_of(bytes, name);
   if (!format) return Error{format.error()};
-  // stb_image 2.27's JPEG reader shifts past 32 bits and writes past its Huffman tables on
-  // damaged files (found by fuzz_image): JPEG waits for a decoder that survives fuzzing.
-  if (*format == InputFormat::kJpeg)
-    return Error{
-        "JPEG images are not read yet (convert it to PNG): the JPEG decoder raylane "
-        "has (stb_image 2.27) is not safe on damaged files"};
-  auto info = *format == InputFormat::kPfm   ? probe_pfm(bytes)
-              : *format == InputFormat::kHdr ? probe_hdr(bytes)
-              : *format == InputFormat::kExr ? probe_openexr(bytes)
-                                             : probe_stb(bytes, *format);
+  auto info = *format == InputFormat::kPfm    ? probe_pfm(bytes)
+              : *format == InputFormat::kJpeg ? probe_jpeg(bytes)
+              : *format == InputFormat::kHdr  ? probe_hdr(bytes)
+              : *format == InputFormat::kExr  ? probe_openexr(bytes)
+                                              : probe_stb(bytes, *format);
   if (!info) return info;
   if (auto s = check_size(*info, bytes.size()); !s) return Error{s.error()};
   return info;
@@ -238,6 +257,8 @@ Result<Image> decode_input_image(std::string_view bytes, std::string_view name) 
     img = decode_hdr(bytes);
   } else if (info->format == InputFormat::kExr) {
     img = decode_exr(bytes);
+  } else if (info->format == InputFormat::kJpeg) {
+    img = decode_jpeg(bytes, *info);
   } else {
     stb::Header h{int(info->width), int(info->height), info->channels, info->is_16bit,
                   info->is_float};

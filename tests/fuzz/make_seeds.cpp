@@ -8,10 +8,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/rgbe.h"
+#include "support/jpeg_writer.h"
 
 namespace {
 
@@ -123,6 +125,18 @@ void image_seeds(const fs::path& dir) {
   put(dir / "small.bmp", std::string(1, '\0') + bmp_2x2());
   put(dir / "float.exr", std::string(1, '\0') + exr_seed(false));
   put(dir / "half.exr", std::string(1, '\0') + exr_seed(true));
+  // Small JPEGs of each coding raylane reads (the models' photos are large and baseline).
+  using raylane::testing::JpegKind;
+  std::vector<uint8_t> rgb(16 * 8 * 3), grey(16 * 8);
+  for (std::size_t i = 0; i < rgb.size(); ++i)
+    rgb[i] = uint8_t(i * 37 % 251);
+  for (std::size_t i = 0; i < grey.size(); ++i)
+    grey[i] = uint8_t(i * 11);
+  using raylane::testing::jpeg_bytes;
+  put(dir / "baseline.jpg", std::string(1, '\0') + jpeg_bytes(rgb, 16, 8, 3));
+  put(dir / "progressive.jpg",
+      std::string(1, '\0') + jpeg_bytes(rgb, 16, 8, 3, JpegKind::kProgressive));
+  put(dir / "grey.jpg", std::string(1, '\0') + jpeg_bytes(grey, 16, 8, 1));
 }
 
 void copy_seed(const fs::path& from, const fs::path& dir, char prefix) {

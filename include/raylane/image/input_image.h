@@ -1,8 +1,8 @@
 // Reading textures and environments: PNG, TGA and BMP through stb_image (Debian's libstb-dev),
+// JPEG through libjpeg-turbo (stb_image 2.27's JPEG reader has memory errors on damaged files),
 // Radiance HDR and PFM through raylane's own readers (image/rgbe.h, image/pfm.h: stb_image
 // 2.27's HDR reader hangs on some truncated files), OpenEXR through OpenEXR's C core
-// (image/exr.h). JPEG is recognised and refused for now:
-// stb_image 2.27's JPEG reader has memory errors on damaged files (docs/design.md, "Images in").
+// (image/exr.h). docs/design.md, "Images in", says why each.
 // Integer images are sRGB-encoded and come back linear; float images are linear already
 // (docs/scene-language.md, "Beyond project 4: textures, environment, lens").
 //
