@@ -18,6 +18,10 @@ void append_placed(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>& n,
                    uint32_t material, TriangleTable& table, MeshImportStats& stats);
 
 // A texture file named inside a mesh file, resolved next to it; "*N" (embedded) and "" stay.
+// Files written on Windows name textures with backslashes (".\wood.jpg"), and many name them
+// by their author's absolute path: the first of (the name as written, with '/' for each
+// backslash, its last component alone) that is a file next to the mesh file is taken; if
+// none is, the name with '/'.
 std::string texture_next_to(const std::string& file, const std::string& mesh_path);
 
 // The triangles of a PLY file (scene/ply.h) held in `bytes`, read without Assimp. Smooth

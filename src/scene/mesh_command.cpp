@@ -10,8 +10,10 @@
 
 namespace raylane {
 
-// texture_command.cpp: the row of Scene::textures for an image file, read once.
+// texture_command.cpp: the row of Scene::textures for an image file, read once; for an image
+// embedded in a mesh file, decoded once.
 Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path);
+Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTexture& t);
 
 namespace {
 
@@ -47,18 +49,15 @@ struct MeshTextures {
   uint32_t next_index;                                // the index the next copy gets
   std::vector<std::pair<uint32_t, uint32_t>> copies;  // (texture row, material index)
 
-  uint32_t choose(const std::string& texture) {
-    if (texture.empty()) return material;
+  uint32_t choose(const MeshTexture& texture) {
+    if (texture.name.empty()) return material;
     std::string mesh = line.tokens[1].name();
-    if (texture[0] == '*') {
-      warn(cat("mesh ", quote_path(mesh), " embeds its texture ", quote_path(texture),
-               ", which raylane does not read: the mesh renders untextured"));
-      return material;
-    }
-    auto row = texture_row(scene, state, texture);
+    auto row = texture.embedded ? embedded_texture_row(scene, state, texture)
+                                : texture_row(scene, state, texture.name);
     if (!row) {
-      warn(cat("mesh ", quote_path(mesh), " names texture ", quote_path(texture),
-               ", which cannot be used: ", row.error(), "; the mesh renders untextured"));
+      warn(cat("mesh ", quote_path(mesh), texture.embedded ? " embeds texture " : " names texture ",
+               quote_path(texture.name), ", which cannot be used: ", row.error(),
+               "; the mesh renders untextured"));
       return material;
     }
     for (const auto& [tex, index] : copies)
@@ -107,7 +106,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   uint32_t first_copy = uint32_t(s.materials.size()) + (had_material ? 0 : 1);
   MeshTextures textures{s, state, line, mat, first_copy, {}};
   auto stats = import(state, name, placement, mat, table,
-                      [&](const std::string& texture) { return textures.choose(texture); });
+                      [&](const MeshTexture& texture) { return textures.choose(texture); });
   if (!stats) {
     state.problem(line.at(1), stats.error());
     return false;

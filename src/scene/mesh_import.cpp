@@ -15,7 +15,9 @@
 #include "mesh_append.h"
 #include "raylane/core/alloc_budget.h"
 #include "raylane/core/input_file.h"
+#include "raylane/core/limits.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/input_image.h"
 #include "raylane/scene/mesh_guard.h"
 #include "raylane/scene/ply.h"
 
@@ -186,14 +188,46 @@ uint64_t count_triangles(const aiScene& scene) {
   return n;
 }
 
-// The texture a material names for its diffuse colour (glTF's base colour where that is how
-// Assimp reports it), resolved next to the mesh file; empty for none.
-std::string diffuse_texture(const aiMaterial& m, const std::string& mesh_path) {
+// An embedded texture stored as raw texels (aiTexture with mHeight > 0: BGRA, 8 bits each,
+// sRGB-encoded like every 8-bit image), as linear RGB; alpha is dropped as for image files.
+Image embedded_texels(const aiTexture& t) {
+  Image img(t.mWidth, t.mHeight);
+  for (uint32_t y = 0; y < t.mHeight; ++y)
+    for (uint32_t x = 0; x < t.mWidth; ++x) {
+      const aiTexel& c = t.pcData[std::size_t(y) * t.mWidth + x];
+      img.set(x, y,
+              {float(srgb_to_linear(c.r / 255.0)), float(srgb_to_linear(c.g / 255.0)),
+               float(srgb_to_linear(c.b / 255.0))});
+    }
+  return img;
+}
+
+// The scene material for one of the file's materials: its diffuse texture (glTF's base colour
+// where that is how Assimp reports it) handed to `choose`, embedded or resolved next to the
+// mesh file. Assimp names an embedded texture "*N", or (glTF binary, FBX) by the file name it
+// had, which GetEmbeddedTexture also matches.
+uint32_t choose_material(const aiScene& scene, const aiMaterial& m, const std::string& mesh_path,
+                         const MaterialChooser& choose) {
   aiString name;
   if (m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS &&
       m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS)
-    return "";
-  return texture_next_to(name.C_Str(), mesh_path);
+    return choose(MeshTexture{});
+  auto [embedded, index] = scene.GetEmbeddedTextureAndIndex(name.C_Str());
+  if (embedded == nullptr)
+    return choose(MeshTexture::file(texture_next_to(name.C_Str(), mesh_path)));
+  MeshTexture t;
+  t.name = cat(mesh_path, " [embedded *", index, "]");
+  t.embedded = true;
+  const bool compressed = embedded->mHeight == 0;
+  if (compressed) {
+    t.file_bytes = {reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth};
+    t.extension = embedded->achFormatHint;
+    return choose(t);
+  }
+  if (uint64_t(embedded->mWidth) * embedded->mHeight > kMaxImagePixels) return choose(t);
+  Image texels = embedded_texels(*embedded);
+  t.texels = &texels;
+  return choose(t);
 }
 
 // The scene material of each of the file's materials that a mesh uses.
@@ -206,7 +240,7 @@ std::vector<uint32_t> choose_materials(const aiScene& scene, const std::string& 
     if (scene.mMeshes[m]->mMaterialIndex < scene.mNumMaterials)
       used[scene.mMeshes[m]->mMaterialIndex] = true;
   for (unsigned k = 0; k < scene.mNumMaterials; ++k)
-    if (used[k]) out[k] = choose(diffuse_texture(*scene.mMaterials[k], mesh_path));
+    if (used[k]) out[k] = choose_material(scene, *scene.mMaterials[k], mesh_path, choose);
   return out;
 }
 
@@ -373,11 +407,31 @@ void append_placed(const std::array<Vec3d, 3>& p_file, const std::array<Vec3d, 3
   ++stats.triangles;
 }
 
-std::string texture_next_to(const std::string& file, const std::string& mesh_path) {
-  if (file.empty() || file[0] == '*') return file;  // embedded: "*N"
+namespace {
+
+std::string next_to(const std::string& file, const std::string& mesh_path) {
   std::filesystem::path p(file);
   if (p.is_relative()) p = std::filesystem::path(mesh_path).parent_path() / p;
   return p.lexically_normal().string();
+}
+
+bool is_file(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
+}  // namespace
+
+std::string texture_next_to(const std::string& file, const std::string& mesh_path) {
+  if (file.empty() || file[0] == '*') return file;  // embedded: "*N"
+  std::string as_written = next_to(file, mesh_path);
+  if (is_file(as_written)) return as_written;
+  std::string slashed = file;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  std::string with_slashes = next_to(slashed, mesh_path);
+  if (is_file(with_slashes)) return with_slashes;
+  std::string bare = next_to(std::filesystem::path(slashed).filename().string(), mesh_path);
+  return is_file(bare) ? bare : with_slashes;
 }
 
 }  // namespace raylane

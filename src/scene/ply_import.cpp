@@ -110,7 +110,7 @@ Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& na
     if (!mesh) return Error{mesh.error()};
     uint32_t mat = material;
     if (choose && !mesh->texture_files.empty())
-      mat = choose(texture_next_to(mesh->texture_files.front(), name));
+      mat = choose(MeshTexture::file(texture_next_to(mesh->texture_files.front(), name)));
     return append_ply(*mesh, name, placement, mat, table);
   } catch (const std::bad_alloc&) {
     return Error{cat("out of memory reading mesh ", quote_path(name))};

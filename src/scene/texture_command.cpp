@@ -5,6 +5,7 @@
 
 #include "raylane/core/strings.h"
 #include "raylane/image/input_image.h"
+#include "raylane/scene/mesh_import.h"
 #include "raylane/scene/orientation.h"
 #include "raylane/scene/parse_state.h"
 #include "raylane/scene/scene.h"
@@ -46,6 +47,23 @@ Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& pat
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(path, row);
   state.input_files.push_back(path);
+  return row;
+}
+
+Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTexture& t) {
+  for (const auto& [file, row] : state.texture_files)
+    if (file == t.name) return row;
+  Result<Image> image = Error{"it is empty or has more than 2^28 pixels"};
+  if (t.texels != nullptr) {
+    image = *t.texels;
+  } else if (!t.file_bytes.empty()) {
+    // The extension names the format for TGA only; the others are known by their contents.
+    image = decode_input_image(t.file_bytes, cat("embedded.", t.extension));
+  }
+  if (!image) return Error{image.error()};
+  s.textures.push_back(make_texture(t.name, std::move(*image)));
+  uint32_t row = uint32_t(s.textures.size() - 1);
+  state.texture_files.emplace_back(t.name, row);
   return row;
 }
 

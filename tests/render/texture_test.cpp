@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <set>
 
 #include "raylane/image/pfm.h"
 #include "raylane/render/raycast.h"
@@ -191,77 +190,6 @@ TEST(TextureCommand, UvColumnsOnlyWhenATexturedMaterialUsesThem) {
   ASSERT_EQ(warnings(no_uv).size(), 1u);
   EXPECT_THAT(warnings(no_uv)[0], ::testing::HasSubstr("t.scn:4: warning: mesh"));
   EXPECT_THAT(warnings(no_uv)[0], ::testing::HasSubstr("no texture coordinates"));
-}
-
-// The duck of Debian's assimp-testmodels names duckCM.tga for its diffuse colour.
-const std::string kDuck = std::string(RAYLANE_ASSIMP_MODELS) + "/Collada/duck.dae";
-
-// The duck in albedo mode, framed from its bounds: the colours of the pixels that hit it.
-std::vector<Vec3f> duck_colours(const std::string& duck_path, std::vector<std::string>* warns) {
-  std::string head = "screen 64 64\nbrdf 1 1 1 0 0 0 0\nmesh \"" + duck_path + "\" 0 0 0 1\n";
-  auto probe = testing::parse(head + testing::kCameraLine);
-  Bounds3f b = probe.meshes.at(0).bounds;
-  Vec3d c = 0.5 * (Vec3d(b.lo) + Vec3d(b.hi));
-  double extent = length(Vec3d(b.hi) - Vec3d(b.lo));
-  std::string camera = "camera " + std::to_string(c.x) + " " + std::to_string(c.y) + " " +
-                       std::to_string(c.z + 3 * extent) + " 0.2\n";
-  auto p = testing::parse(head + camera);
-  EXPECT_TRUE(p.ok());
-  if (warns) *warns = warnings(p);
-  Bvh bvh = build_bvh(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
-  Image out = render_raycast(tracer, RaycastMode::kAlbedo);
-  std::vector<Vec3f> hit;
-  for (uint32_t y = 0; y < out.height; ++y)
-    for (uint32_t x = 0; x < out.width; ++x)
-      if (out.at(x, y) != Vec3f(0, 0, 0)) hit.push_back(out.at(x, y));
-  return hit;
-}
-
-TEST(MeshTextures, TheDuckShowsItsOwnTexture) {
-  if (!fs::exists(kDuck)) GTEST_SKIP() << "assimp-testmodels is not installed";
-  std::vector<std::string> warns;
-  auto colours = duck_colours(kDuck, &warns);
-  EXPECT_TRUE(warns.empty()) << ::testing::PrintToString(warns);
-  ASSERT_GT(colours.size(), 200u);
-  std::set<std::tuple<float, float, float>> distinct;
-  Vec3d mean(0, 0, 0);
-  for (Vec3f c : colours) {
-    distinct.insert({c.x, c.y, c.z});
-    mean += Vec3d(c);
-  }
-  mean = mean / double(colours.size());
-  EXPECT_GT(distinct.size(), 20u);  // a texture, not one colour
-  EXPECT_GT(mean.x, 2 * mean.z);    // the duck is yellow: far more red than blue
-  EXPECT_LE(mean.x, 1.0);           // Kd 1 times texels in [0, 1]
-}
-
-TEST(MeshTextures, AMissingTextureWarnsNamingTheMeshLineAndRendersUntextured) {
-  if (!fs::exists(kDuck)) GTEST_SKIP() << "assimp-testmodels is not installed";
-  std::string dir = testing::temp_dir();
-  fs::copy_file(kDuck, dir + "/duck.dae");  // without duckCM.tga beside it
-  std::vector<std::string> warns;
-  auto colours = duck_colours(dir + "/duck.dae", &warns);
-  ASSERT_EQ(warns.size(), 1u);
-  EXPECT_THAT(warns[0], ::testing::HasSubstr("t.scn:3:6: warning: mesh"));
-  EXPECT_THAT(warns[0], ::testing::HasSubstr("duckCM.tga"));
-  ASSERT_GT(colours.size(), 200u);
-  for (Vec3f c : colours)
-    ASSERT_EQ(c, Vec3f(1, 1, 1));  // Kd alone
-}
-
-TEST(MeshTextures, GltfBaseColourTexture) {
-  std::string box = std::string(RAYLANE_ASSIMP_MODELS) + "/glTF2/BoxTextured-glTF/BoxTextured.gltf";
-  if (!fs::exists(box)) GTEST_SKIP() << "assimp-testmodels is not installed";
-  auto p = testing::parse(std::string(testing::kCameraLine) + "screen 4 4\nbrdf 1 1 1 0 0 0 0\n" +
-                          "mesh \"" + box + "\" 0 0 0 1\n");
-  ASSERT_TRUE(p.ok());
-  EXPECT_TRUE(warnings(p).empty()) << ::testing::PrintToString(warnings(p));
-  ASSERT_EQ(p.scene.textures.size(), 1u);
-  EXPECT_THAT(p.scene.textures[0].file, ::testing::HasSubstr("CesiumLogoFlat.png"));
-  EXPECT_TRUE(p.scene.table<Triangle>().has_uv());
-  for (uint32_t mat : p.scene.table<Triangle>().material)
-    EXPECT_EQ(p.scene.materials[mat].texture, 0);
 }
 
 }  // namespace

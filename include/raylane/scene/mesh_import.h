@@ -5,10 +5,13 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "raylane/core/error.h"
 #include "raylane/core/mat3.h"
+#include "raylane/image/image.h"
 #include "raylane/prims/triangle.h"
 #include "raylane/scene/parse_state.h"
 
@@ -27,11 +30,31 @@ struct MeshImportStats {
   bool has_uv = false;              // every triangle came with texture coordinates
 };
 
+// The diffuse texture one of a mesh file's materials names.
+struct MeshTexture {
+  // A file: its path, relative ones resolved next to the mesh file. Embedded in the mesh file
+  // (glTF binary, FBX…): "MESH [embedded *N]", a name for messages and for reading it once.
+  // Empty: the material names none.
+  std::string name;
+  bool embedded = false;
+  // Embedded as an image file (PNG, JPEG…): its bytes, inside the importer's scene, and the
+  // extension the mesh file gives it (TGA has no magic number).
+  std::string_view file_bytes;
+  std::string extension;
+  // Embedded as raw 8-bit texels: already converted to linear RGB (sRGB-decoded).
+  const Image* texels = nullptr;
+
+  static MeshTexture file(std::string path) {
+    MeshTexture t;
+    t.name = std::move(path);
+    return t;
+  }
+};
+
 // The scene material for the triangles of one of the file's materials, given the diffuse
-// texture that material names: a path (relative ones resolved next to the mesh file), "*N" for
-// a texture embedded in the file, or empty for none. Called once per material used, before
-// any triangle is appended. Without a chooser, every triangle gets the import's `material`.
-using MaterialChooser = std::function<uint32_t(const std::string& texture)>;
+// texture that material names. Called once per material used, before any triangle is
+// appended. Without a chooser, every triangle gets the import's `material`.
+using MaterialChooser = std::function<uint32_t(const MeshTexture& texture)>;
 
 inline constexpr uint64_t kMaxMeshTriangles = uint64_t(1) << 28;
 
