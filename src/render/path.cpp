@@ -167,6 +167,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
       ThreadBuffers& buffers = per_thread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
+        if (!settings.share.owns(uint64_t(t))) continue;
         TileContext ctx{buffers,  tracer, lights,
                         settings, lanes,  Rng::for_tile(settings.seed, t, pass),
                         {},       0,      uint32_t(pass)};

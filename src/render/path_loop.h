@@ -22,7 +22,7 @@
 
 namespace raylane::path_detail {
 
-inline constexpr uint32_t kTile = 16;  // pixels per tile side: 256 paths per wavefront
+inline constexpr uint32_t kTile = kPathTile;  // pixels per tile side: 256 paths per wavefront
 inline constexpr uint32_t kBlock = 4;  // camera rays in 4×4 blocks: one coherent packet
 inline constexpr double kRouletteSurvival = 0.8;
 

@@ -29,10 +29,18 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
 }
 
 void Checkpointer::after_pass(const Film& film, bool final) {
-  if (!options_.checkpoint) return;
+  if (final || due()) save(film);
+}
+
+bool Checkpointer::due() const {
+  if (!options_.checkpoint) return false;
   auto now = std::chrono::steady_clock::now();
-  if (!final && std::chrono::duration<double>(now - last_).count() < options_.every) return;
-  last_ = now;
+  return std::chrono::duration<double>(now - last_).count() >= options_.every;
+}
+
+void Checkpointer::save(const Film& film) {
+  if (!options_.checkpoint) return;
+  last_ = std::chrono::steady_clock::now();
   if (Status s = save_film(*options_.checkpoint, film); !s)
     std::fprintf(stderr, "raylane: checkpoint not saved: %s\n", s.error().c_str());
 }

@@ -18,6 +18,10 @@ extern "C" void on_sigint(int) {
   if (g_interrupted.exchange(true)) _exit(130);  // the second Ctrl-C: leave at once
 }
 
+extern "C" void on_stop_request(int) {
+  g_interrupted.store(true);
+}
+
 void print_time(char* out, std::size_t n, double s) {
   if (s >= 3600)
     std::snprintf(out, n, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
@@ -72,11 +76,18 @@ void Progress::finish() {
   drawn_ = false;
 }
 
-void install_interrupt_handler() {
+void install_interrupt_handler(bool under_launcher) {
   struct sigaction sa = {};
   sa.sa_handler = on_sigint;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
+  if (!under_launcher) return;
+  // Under mpirun, SIGTERM is how mpirun stops its processes when its own Ctrl-C arrives, and
+  // SIGUSR1 is a signal it forwards to them (docs/cluster.md, "What works across processes"): each
+  // only asks for the stop after the pass, never for the immediate exit of a second Ctrl-C.
+  sa.sa_handler = on_stop_request;
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGUSR1, &sa, nullptr);
 }
 
 bool interrupted() {

@@ -37,7 +37,9 @@ class Progress {
 // SIGINT handling for renders: the first Ctrl-C sets the flag (the renderer finishes the
 // passes in flight and the image converged so far is written); a second exits at once with
 // status 130 without writing.
-void install_interrupt_handler();
+// SIGINT stops after the pass in flight (a second one exits at once); started by a launcher,
+// SIGTERM and SIGUSR1 stop after the pass too.
+void install_interrupt_handler(bool under_launcher = false);
 bool interrupted();
 const std::atomic<bool>* interrupt_flag();  // for PathSettings::stop
 

@@ -10,6 +10,7 @@
 #include "aov_outputs.h"
 #include "args.h"
 #include "checkpoint.h"
+#include "cluster.h"
 #include "commands.h"
 #include "file_roles.h"
 #include "progress.h"
@@ -18,31 +19,12 @@
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
+#include "render_request.h"
 
 namespace raylane::cli {
 
 namespace {
 
-struct RenderRequest {
-  std::optional<std::string> scene_path;
-  std::vector<std::string> outputs;
-  bool path = true;  // --mode path (the default); otherwise a ray-casting mode
-  RaycastMode mode = RaycastMode::kLit;
-  PathSettings path_settings;
-  CheckpointOptions checkpoints;
-  TracerKind tracer = TracerKind::kPacket;
-  Isa isa = best_isa();
-  double exposure = 0;
-  int threads = 0;
-  bool also_png = false, lenient = false, quiet = false;
-  std::vector<std::string> overrides;                    // --set lines
-  std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
-  bool exr_half = false;
-  bool spp_given = false;
-  std::vector<std::string> warnings;  // about the options, printed unless --quiet
-};
-
-constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
@@ -363,8 +345,17 @@ bool outputs_writable(const RenderRequest& r) {
 
 }  // namespace
 
+// Under mpirun only rank 0 speaks: the others' messages would repeat its own (every process
+// reads the same scene and options), so their stdout and stderr go to /dev/null.
+void silence_unless_root(const Cluster& cluster) {
+  if (cluster.root()) return;
+  if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) return;
+}
+
 int render_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, render_specs())) return print_help(render_help());
+  Cluster cluster;
+  silence_unless_root(cluster);
   auto request = read_request(args);
   if (!request) return usage_error(request.error());
   const RenderRequest& r = *request;
@@ -372,11 +363,15 @@ int render_command(const std::vector<std::string>& args) {
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
   auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides);
-  if (!parsed) return kExitUsage;
+  if (int bad = cluster.first_failure(parsed.has_value()); bad >= 0) {
+    if (bad > 0) std::fprintf(stderr, "raylane: rank %d cannot load the scene\n", bad);
+    return kExitUsage;
+  }
   if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
     return usage_error(s.error());
   Scene* scene = &parsed->scene;
-  if (!outputs_writable(r)) return kExitUsage;
+  if (cluster.first_failure(!cluster.root() || outputs_writable(r)) >= 0) return kExitUsage;
+  if (!r.path && !cluster.root()) return kExitOk;  // a ray-casting view: rank 0 alone
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
   // The BVH is built for every tracer: it permutes the tables, so all tracers name the same
@@ -391,37 +386,22 @@ int render_command(const std::vector<std::string>& args) {
   std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int spp = 1;
   PathStats path_stats;
+  bool interrupted_run = false;
   if (r.path) {
-    auto film = starting_film(r.checkpoints, *scene, r.path_settings);
-    if (!film) {
-      std::fprintf(stderr, "raylane: %s\n", film.error().c_str());
-      return kExitUsage;
-    }
-    if (film->passes >= r.path_settings.spp && !r.quiet)
-      std::fprintf(stderr,
-                   "raylane: warning: the --resume film already holds %d passes and --spp asks "
-                   "for %d: nothing to render; writing the film's image as it is\n",
-                   film->passes, r.path_settings.spp);
-    Progress progress(r.path_settings.spp, r.path_settings.time_limit, r.quiet);
-    Checkpointer checkpointer(r.checkpoints);
-    PathSettings settings = r.path_settings;
-    settings.stop = interrupt_flag();
-    settings.on_pass = [&](int done) {
-      progress.update(done);
-      checkpointer.after_pass(*film);
-    };
-    install_interrupt_handler();
-    image = render_path(tracer, settings, &path_stats, &*film);
-    checkpointer.after_pass(*film, /*final=*/true);
-    progress.finish();
-    for (const auto& [out, aov] : r.aov_outputs)
-      aov_images.emplace_back(out, film->aov_image(aov));
-    exr_layers = exr_layers_of(*film);
+    PathOutcome run = run_path(r, tracer, cluster);
+    if (run.status != kExitOk) return run.status;
+    if (!cluster.root()) return cluster.root_status(kExitOk);
+    image = std::move(run.image);
+    aov_images = std::move(run.aov_images);
+    exr_layers = std::move(run.exr_layers);
+    path_stats = run.stats;
+    interrupted_run = run.interrupted;
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
                sampler_name(r.path_settings.sampler), "/", shading_name(r.path_settings.shading),
-               ", ", path_stats.passes, " spp", interrupted() ? ", interrupted" : "");
+               ", ", path_stats.passes, " spp", run.interrupted ? ", interrupted" : "",
+               cluster.distributed() ? cat(", ", cluster.size(), " processes") : "");
   } else {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);
@@ -481,8 +461,8 @@ int render_command(const std::vector<std::string>& args) {
   }
   if (r.path && r.path_settings.time_phases && !r.quiet)
     print_phases(path_stats, seconds, omp_get_max_threads());
-  if (status == kExitOk && r.path && interrupted()) return kExitInterrupted;
-  return status;
+  if (status == kExitOk && interrupted_run) status = kExitInterrupted;
+  return r.path ? cluster.root_status(status) : status;
 }
 
 }  // namespace raylane::cli

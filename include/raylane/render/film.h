@@ -32,13 +32,17 @@ struct Film {
   std::vector<double> sum;   // 3 per pixel, top row first
   uint64_t fingerprint = 0;  // of the scene and the settings whose samples these are
   FilmOrigin origin;
-  AovSet aovs;                   // which AOVs the film sums (render/aov.h)
-  std::vector<double> aov_sum;   // aovs.channels() per pixel, top row first
+  AovSet aovs;                  // which AOVs the film sums (render/aov.h)
+  std::vector<double> aov_sum;  // aovs.channels() per pixel, top row first
 
   Image image() const;  // the mean over the passes (black before the first)
   // The mean of one AOV the film sums; depth in all three channels.
   Image aov_image(Aov aov) const;
 };
+
+// Zeroes the film's sums (colour and AOVs) outside the share's tiles: what a process of several
+// keeps of a film it resumes, so that the processes' films add up to the whole exactly.
+void keep_share(Film& film, const TileShare& share);
 
 // Identifies what a film's samples depend on: the scene (tables, materials, camera, screen)
 // and the settings that shape each sample (seed, integrator, depth, roulette) — not spp or

@@ -63,6 +63,17 @@ inline std::string_view shading_name(Shading shading) {
   return kShadingNames.name(shading);
 }
 
+// The tiles one process renders when several share an image (`mpirun`, docs/cluster.md):
+// tile t (kPathTile×kPathTile pixels, row-major over the image) is this process's iff
+// t mod count = index. A process renders its tiles for every pass, so each pixel's sum is
+// formed in the same order as in a single process, and the processes' films have disjoint
+// support.
+inline constexpr uint32_t kPathTile = 16;
+struct TileShare {
+  uint32_t index = 0, count = 1;
+  bool owns(uint64_t tile) const { return tile % count == index; }
+};
+
 struct PathSettings {
   Integrator integrator = Integrator::kMis;
   Sampler sampler = Sampler::kSobol;
@@ -74,6 +85,7 @@ struct PathSettings {
   double time_limit = 0;     // seconds; 0 = none. Checked between passes.
   bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
   AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/aov.h)
+  TileShare share;           // the tiles this process renders (all of them by default)
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
   std::function<void(int passes_done)> on_pass;  // progress, called after each pass
 };

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# `mpirun -np R raylane render` end to end (docs/cluster.md): the same file, byte for byte, as a
+# plain run for R = 1..4 and 1 or 2 threads; --time and a stop request end every process after
+# the same pass; a checkpoint written at R = 3 resumes at R = 2 to the uninterrupted image;
+# a scene error is printed once and the job exits 2; a killed process ends the job without a
+# hang. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
+set -uo pipefail
+raylane=$(realpath "$1") scene=$(realpath "$2") work=$3 mpiexec=$4
+shift 4
+preflags=("$@")
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+# Root may run mpirun only when told so; the variables do what --allow-run-as-root does.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+small=(--set "screen 64 48")
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+mpi() { local np=$1; shift; timeout 120 "$mpiexec" "${preflags[@]}" -np "$np" "$@"; }
+# The passes taken, from the summary line ("rendered WxH (path/..., N spp, ...").
+spp_of() {
+  tr '\r' '\n' < "$1" | grep '^rendered' | grep -o '[0-9]* spp' | head -1 | cut -d' ' -f1
+}
+
+"$raylane" render "$scene" "${small[@]}" --spp 6 -q -o plain.pfm > /dev/null || fail "plain run"
+for np in 1 2 3 4; do
+  for threads in 1 2; do
+    mpi "$np" "$raylane" render "$scene" "${small[@]}" --spp 6 --threads "$threads" -q \
+      -o "np$np-t$threads.pfm" > /dev/null 2>&1 || fail "np $np threads $threads: exit $?"
+    cmp -s plain.pfm "np$np-t$threads.pfm" || fail "np $np threads $threads: another image"
+  done
+done
+
+# --time: rank 0's clock decides for everyone, so the image is a plain run's at that spp.
+mpi 3 "$raylane" render "$scene" "${small[@]}" --time 1 --threads 1 -o timed.pfm \
+  > timed.out 2> timed.err || fail "--time: exit $?"
+spp=$(spp_of timed.err)
+if [ -z "$spp" ]; then fail "--time: no summary"; else
+  "$raylane" render "$scene" "${small[@]}" --spp "$spp" -q -o "plain$spp.pfm" > /dev/null
+  cmp -s "plain$spp.pfm" timed.pfm || fail "--time: not the plain image at $spp spp"
+fi
+
+# A stop request (SIGUSR1, which mpirun forwards) at R = 3 with a checkpoint, resumed at R = 2.
+# (mpirun itself in the background, so that $! is its process and the signal reaches it.)
+"$mpiexec" "${preflags[@]}" -np 3 "$raylane" render "$scene" "${small[@]}" --spp 100000 \
+  --threads 1 --checkpoint run.film -o stopped.pfm > stopped.out 2> stopped.err &
+job=$!
+(sleep 100 && kill -KILL "$job" 2> /dev/null) &
+watchdog=$!
+for _ in $(seq 100); do grep -q 'spp' stopped.err 2> /dev/null && break; sleep 0.1; done
+sleep 1
+kill -USR1 "$job"
+wait "$job"
+status=$?
+kill "$watchdog" 2> /dev/null
+[ "$status" = 130 ] || fail "stop request: exit $status, expected 130"
+spp=$(spp_of stopped.err)
+if [ -z "$spp" ] || [ ! -f run.film ]; then fail "stop request: no summary or no film"; else
+  "$raylane" render "$scene" "${small[@]}" --spp "$spp" -q -o "plain$spp.pfm" > /dev/null
+  cmp -s "plain$spp.pfm" stopped.pfm || fail "stop request: not the plain image at $spp spp"
+  more=$((spp + 5))
+  mpi 2 "$raylane" render "$scene" "${small[@]}" --spp "$more" --resume run.film -q \
+    -o resumed.pfm > /dev/null 2>&1 || fail "resume at R = 2: exit $?"
+  "$raylane" render "$scene" "${small[@]}" --spp "$more" -q -o "plain$more.pfm" > /dev/null
+  cmp -s "plain$more.pfm" resumed.pfm || fail "resume at R = 2: not the uninterrupted image"
+fi
+
+# A scene error: printed once, every process exits 2.
+printf 'screen 8 8\ncamera 0 0 5 0.5\nbogus 1\n' > bad.scn
+mpi 3 "$raylane" render bad.scn -o bad.pfm > bad.out 2> bad.err
+status=$?
+[ "$status" = 2 ] || fail "scene error: exit $status, expected 2"
+n=$(grep -c "unknown command 'bogus'" bad.err)
+[ "$n" = 1 ] || fail "scene error printed $n times"
+[ ! -e bad.pfm ] || fail "scene error: an image was written"
+
+# A killed process ends the job, non-zero, without a hang (mpi's timeout would say 124).
+mpi 3 "$raylane" render "$scene" "${small[@]}" --spp 100000 --threads 1 -o killed.pfm \
+  > /dev/null 2>&1 &
+job=$!
+sleep 2
+pkill -KILL -n -f "raylane render .*killed.pfm"
+wait "$job"
+status=$?
+{ [ "$status" != 0 ] && [ "$status" != 124 ]; } || fail "killed process: exit $status"
+
+if [ "$failures" = 0 ]; then echo "mpi_e2e: all checks passed"; fi
+exit $((failures > 0))

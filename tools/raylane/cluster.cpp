@@ -1,0 +1,112 @@
+#include "cluster.h"
+
+#include <cstdlib>
+#include <cstring>
+
+#ifdef RAYLANE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace raylane::cli {
+
+bool started_by_launcher() {
+  // Open MPI's mpirun sets OMPI_COMM_WORLD_SIZE; Hydra (MPICH) and Slurm set PMI_SIZE; PMIx
+  // launchers set PMIX_RANK.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
+#ifdef RAYLANE_HAVE_MPI
+
+namespace {
+
+// MPI counts are ints: long buffers go in chunks.
+constexpr std::size_t kChunk = std::size_t(1) << 26;
+
+void reduce_sum(double* data, std::size_t n, bool root) {
+  for (std::size_t at = 0; at < n; at += kChunk) {
+    int count = int(std::min(kChunk, n - at));
+    if (root)
+      MPI_Reduce(MPI_IN_PLACE, data + at, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+    else
+      MPI_Reduce(data + at, nullptr, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  }
+}
+
+}  // namespace
+
+Cluster::Cluster() {
+  if (!started_by_launcher()) return;
+  MPI_Init(nullptr, nullptr);
+  mpi_ = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+Cluster::~Cluster() {
+  if (mpi_) MPI_Finalize();
+}
+
+int Cluster::first_failure(bool ok) const {
+  if (!mpi_) return ok ? -1 : 0;
+  int mine = ok ? size_ : rank_, lowest = size_;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return lowest == size_ ? -1 : lowest;
+}
+
+PassControl Cluster::agree(PassControl mine) const {
+  if (!mpi_) return mine;
+  int wish[3] = {mine.interrupted, mine.out_of_time, mine.checkpoint}, all[3] = {0, 0, 0};
+  MPI_Allreduce(wish, all, 3, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return {all[0] != 0, all[1] != 0, all[2] != 0};
+}
+
+int Cluster::root_status(int status) const {
+  if (!mpi_) return status;
+  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return status;
+}
+
+void Cluster::assemble(Film& film) const {
+  if (!mpi_ || size_ == 1) return;
+  reduce_sum(film.sum.data(), film.sum.size(), root());
+  reduce_sum(film.aov_sum.data(), film.aov_sum.size(), root());
+}
+
+void Cluster::sum(PathStats& s) const {
+  if (!mpi_ || size_ == 1) return;
+  uint64_t counts[4] = {s.camera_rays, s.bounce_rays, s.shadow_rays, s.nonfinite_samples};
+  double phases[6] = {s.phases.camera, s.phases.trace_camera, s.phases.trace_rest,
+                      s.phases.shade,  s.phases.lights,       s.phases.film};
+  if (root()) {
+    MPI_Reduce(MPI_IN_PLACE, counts, 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(MPI_IN_PLACE, phases, 6, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  } else {
+    MPI_Reduce(counts, nullptr, 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(phases, nullptr, 6, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  }
+  s.camera_rays = counts[0], s.bounce_rays = counts[1], s.shadow_rays = counts[2];
+  s.nonfinite_samples = counts[3];
+  s.phases = {phases[0], phases[1], phases[2], phases[3], phases[4], phases[5]};
+}
+
+#else  // built without MPI: always a single process
+
+Cluster::Cluster() = default;
+Cluster::~Cluster() = default;
+int Cluster::first_failure(bool ok) const {
+  return ok ? -1 : 0;
+}
+PassControl Cluster::agree(PassControl mine) const {
+  return mine;
+}
+int Cluster::root_status(int status) const {
+  return status;
+}
+void Cluster::assemble(Film&) const {}
+void Cluster::sum(PathStats&) const {}
+
+#endif
+
+}  // namespace raylane::cli

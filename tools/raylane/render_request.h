@@ -1,0 +1,55 @@
+// What `raylane render` was asked to do, once its options are read (render_command.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "checkpoint.h"
+#include "cluster.h"
+#include "raylane/image/exr.h"
+#include "raylane/render/aov.h"
+#include "raylane/render/path.h"
+#include "raylane/render/raycast.h"
+#include "raylane/simd/isa.h"
+#include "raylane/trace/tracer.h"
+
+namespace raylane::cli {
+
+struct RenderRequest {
+  std::optional<std::string> scene_path;
+  std::vector<std::string> outputs;
+  bool path = true;  // --mode path (the default); otherwise a ray-casting mode
+  RaycastMode mode = RaycastMode::kLit;
+  PathSettings path_settings;
+  CheckpointOptions checkpoints;
+  TracerKind tracer = TracerKind::kPacket;
+  Isa isa = best_isa();
+  double exposure = 0;
+  int threads = 0;
+  bool also_png = false, lenient = false, quiet = false;
+  std::vector<std::string> overrides;                    // --set lines
+  std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
+  bool exr_half = false;
+  bool spp_given = false;
+  std::vector<std::string> warnings;  // about the options, printed unless --quiet
+};
+
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+
+// A path render's results on rank 0 (other ranks hold their own share's only).
+struct PathOutcome {
+  Image image;
+  PathStats stats;
+  std::vector<std::pair<std::string, Image>> aov_images;  // --aov sibling files: path, image
+  std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
+  int status = 0;            // kExitUsage when the film to resume cannot be used
+  bool interrupted = false;  // Ctrl-C on any process stopped it
+};
+
+// Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles
+// shared between the cluster's processes (render_path_run.cpp).
+PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster& cluster);
+
+}  // namespace raylane::cli
