@@ -3,7 +3,7 @@
 # plain run for R = 1..4 and 1 or 2 threads; --time and a stop request end every process after
 # the same pass; a checkpoint written at R = 3 resumes at R = 2 to the uninterrupted image;
 # a scene error is printed once and the job exits 2; a killed process ends the job without a
-# hang. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
+# hang; Ctrl-C writes the image once. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
 set -uo pipefail
 raylane=$(realpath "$1") scene=$(realpath "$2") work=$3 mpiexec=$4
 shift 4
@@ -61,6 +61,21 @@ if [ -z "$spp" ] || [ ! -f run.film ]; then fail "stop request: no summary or no
     -o resumed.pfm > /dev/null 2>&1 || fail "resume at R = 2: exit $?"
   "$raylane" render "$scene" "${small[@]}" --spp "$more" -q -o "plain$more.pfm" > /dev/null
   cmp -s "plain$more.pfm" resumed.pfm || fail "resume at R = 2: not the uninterrupted image"
+fi
+
+# Ctrl-C in a terminal: SIGINT to the whole process group (mpirun and its processes). Every
+# process stops after its pass and rank 0 writes the image; mpirun's own status is 1 (it
+# aborts the job on SIGINT), so only the image is checked.
+setsid "$mpiexec" "${preflags[@]}" -np 2 "$raylane" render "$scene" "${small[@]}" --spp 100000 \
+  --threads 1 -o ctrlc.pfm > ctrlc.out 2> ctrlc.err &
+job=$!
+sleep 2
+kill -INT -- "-$job"
+wait "$job"
+spp=$(spp_of ctrlc.err)
+if [ -z "$spp" ] || [ ! -f ctrlc.pfm ]; then fail "Ctrl-C: no summary or no image"; else
+  "$raylane" render "$scene" "${small[@]}" --spp "$spp" -q -o "plain$spp.pfm" > /dev/null
+  cmp -s "plain$spp.pfm" ctrlc.pfm || fail "Ctrl-C: not the plain image at $spp spp"
 fi
 
 # A scene error: printed once, every process exits 2.

@@ -343,14 +343,16 @@ bool outputs_writable(const RenderRequest& r) {
   return ok;
 }
 
-}  // namespace
-
 // Under mpirun only rank 0 speaks: the others' messages would repeat its own (every process
-// reads the same scene and options), so their stdout and stderr go to /dev/null.
+// reads the same scene and options), so their stdout and stderr go to /dev/null. If that
+// cannot be opened, the messages repeat; nothing else changes.
 void silence_unless_root(const Cluster& cluster) {
   if (cluster.root()) return;
-  if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) return;
+  if (std::freopen("/dev/null", "w", stdout) == nullptr) return;
+  if (std::freopen("/dev/null", "w", stderr) == nullptr) return;
 }
+
+}  // namespace
 
 int render_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, render_specs())) return print_help(render_help());
