@@ -7,6 +7,7 @@
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"
 #include "raylane/trace/simd_tracer.h"
+#include "raylane/trace/single_ray.h"
 
 namespace raylane::detail {
 
@@ -47,17 +48,11 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   return r;
 }
 
-// Ray i of the stream in every lane of a packet (inactive if invalid), for single-ray
-// traversal.
-template <class A>
-RayPacket<A> load_broadcast(const RayStream& s, std::size_t i, simd::Floats<A>& tmax) {
-  using F = simd::Floats<A>;
-  RayPacket<A> r;
-  r.ox = F(s.ox[i]), r.oy = F(s.oy[i]), r.oz = F(s.oz[i]);
-  r.dx = F(s.dx[i]), r.dy = F(s.dy[i]), r.dz = F(s.dz[i]);
-  r.tmin = F(s.tmin[i]);
-  tmax = F(s.tmax[i]);
-  set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(simd::kWidth<A>));
+// Ray i of the stream as scalars, with its reciprocal direction.
+inline RayScalars ray_scalars(const RayStream& s, std::size_t i) {
+  RayScalars r{{s.ox[i], s.oy[i], s.oz[i]}, {s.dx[i], s.dy[i], s.dz[i]}, {}, s.tmin[i], s.tmax[i]};
+  for (int k = 0; k < 3; ++k)
+    r.inv[k] = 1.0f / r.d[k];
   return r;
 }
 
@@ -75,8 +70,8 @@ void traverse(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>&
   traverse_packet<A, false>(scene, bvh, r, h);
 }
 
-// Rays [begin, end) one at a time over the 8-wide tree. Each ray is loaded as a packet with
-// itself in every lane (the packet's validity test is the same for both traversals).
+// Rays [begin, end) one at a time over the 8-wide tree, each in every lane of a packet
+// (trace/single_ray.h: the packet's validity test and frame, worked out in scalar code).
 template <class A>
 void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& rays,
                         std::size_t begin, std::size_t end, HitStream& hits, bool any_hit,
@@ -84,15 +79,16 @@ void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& ray
   using L = RayLanes<A>;
   using F = simd::Floats<L>;
   if (c) c->width = kWideArity;
-  const RayStream* one = &rays;
   for (std::size_t i = begin; i < end; ++i) {
+    RayScalars one = ray_scalars(rays, i);
     HitPacket<L> h;
-    RayPacket<L> r = load_broadcast<L>(*one, i, h.t);
+    h.t = F(one.tmax);
     h.prim = simd::Ints<L>(int32_t(PrimRef::kInvalidBits));
     h.found = F(0.0f) != F(0.0f);
-    bool valid = simd::any<L>(r.active) && !bvh.wide.empty();
+    bool valid = single_ray_valid(one) && !bvh.wide.empty();
     if (valid && c) ++c->packets, ++c->rays;
     if (valid) {
+      RayPacket<L> r = broadcast_ray<L>(one);
       if (any_hit) {
         c ? traverse_ray<A, true, true>(scene, bvh, r, h, c)
           : traverse_ray<A, true>(scene, bvh, r, h);

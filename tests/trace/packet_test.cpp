@@ -332,6 +332,30 @@ TEST_P(SimdTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   EXPECT_FLOAT_EQ(counted.t[36], 4.0f);
 }
 
+// Packets of mixed directions hand their last few lanes to single rays over the 8-wide tree
+// (trace/packet_traverse.h): the answers are those of the packets alone, on the tree without
+// wide nodes, bit for bit, and the hand-over did happen.
+TEST(SimdTracer, HybridPacketsAnswerAsPacketsAlone) {
+  Scene s = random_scene(31, 400, 10);
+  testing::add_closed_uv_sphere(s, 24, 16, 32, {2, -1, 3});
+  Scene s_wide = s;
+  Bvh binary = build_bvh(s), wide = build_bvh(s_wide, kWithWideNodes);
+  RayStream stream = RayStream::from(random_rays(32, 6000, 12));
+  for (Isa isa : supported_isas()) {
+    SimdTracer tracer(isa, Traversal::kPackets);
+    HitStream alone, hybrid;
+    tracer.closest(s, binary, stream, alone);
+    TraversalCounters c = tracer.trace_counted(s_wide, wide, stream, hybrid, /*any_hit=*/false);
+    EXPECT_EQ(alone.prim, hybrid.prim) << isa_name(isa);
+    EXPECT_EQ(alone.t, hybrid.t) << isa_name(isa);
+    EXPECT_GT(c.single_rays, 1000u) << isa_name(isa);
+    EXPECT_GE(c.single_node_tests, c.single_rays) << isa_name(isa);
+    EXPECT_GT(std::count_if(hybrid.prim.begin(), hybrid.prim.end(),
+                            [](uint32_t p) { return p != PrimRef::kInvalidBits; }),
+              1000);
+  }
+}
+
 // Single rays need the 8-wide tree; on a BVH built without it they go as packets, with the
 // packets' answers, rather than missing everything.
 TEST(SimdTracer, SingleRaysWithoutWideNodesGoAsPackets) {

@@ -40,10 +40,17 @@ static_assert(sizeof(WideNode) == 256);
 inline constexpr int kWideStackSize = 7 * 64 + 1;
 
 struct WideBvh {
+  static constexpr uint32_t kNone = ~0u;
   std::vector<WideNode> nodes;  // nodes[0] is the root; empty when the BVH is
+  // of_binary[b]: the wide node whose subtree is binary node b's, or kNone (the binary nodes
+  // inside a wide node). Packets hand their last few lanes to single rays there
+  // (trace/packet_traverse.h).
+  std::vector<uint32_t> of_binary;
 
   bool empty() const { return nodes.empty(); }
-  std::size_t bytes() const { return nodes.size() * sizeof(WideNode); }
+  std::size_t bytes() const {
+    return nodes.size() * sizeof(WideNode) + of_binary.size() * sizeof(uint32_t);
+  }
 };
 
 // The 8-wide tree over `bvh`: each wide node takes the binary subtree below a binary node,

@@ -8,6 +8,8 @@
 #include "raylane/prims/prim_packets.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/packet.h"
+#include "raylane/trace/ray_traverse.h"
+#include "raylane/trace/single_ray.h"
 #include "raylane/trace/traversal_counters.h"
 
 namespace raylane {
@@ -111,6 +113,65 @@ inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd
   }
 }
 
+// A packet whose lanes have spread out keeps few of them busy at each node, while one ray over
+// the 8-wide tree tests eight boxes per step (bench/README.md: diffuse rays of the 1.31M mesh
+// used 17 % of the lanes). So, as in Embree's hybrid traversal (Benthin et al. 2012,
+// "Combining Single and Packet-Ray Tracing for Arbitrary Ray Distributions on the Intel MIC
+// Architecture"), once at most W/4 lanes of a mixed-direction packet enter a node, each of
+// them finishes that subtree alone (trace/ray_traverse.h), where the 8-wide tree has a node
+// for it (BvhConfig::wide_nodes). Measured (bench_trace, AVX-512, 1 thread, medians of 5
+// interleaved runs against the packets alone): diffuse rays 1.075x on the engine, 1.04x on
+// the 1.31M mesh, 0.99-1.01x on the bunny, lattice and sphereflake; W/8 and W/2 did no better.
+// Not for coherent packets (kSameSides: primary rays lost up to 12 % on the lattice and
+// sphereflake) nor for occlusion (shadow rays 0.86-0.93x at every threshold tried).
+template <class A>
+inline constexpr int kSingleRayLanes = simd::kWidth<A> / 4;
+
+// The lanes of `lanes` find their closest hits in the subtree below wide node `wide_root` one
+// at a time, each from its closest hit so far; their answers go back into h.
+template <class A, bool kCount>
+inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wide_root,
+                                 const RayPacket<A>& r, const simd::Mask<A>& lanes, HitPacket<A>& h,
+                                 TraversalCounters* c) {
+  using L = RayLanes<A>;
+  using FL = simd::Floats<L>;
+  using F = simd::Floats<A>;
+  constexpr int W = simd::kWidth<A>;
+  alignas(64) float col[10][W];
+  const F* src[10] = {&r.ox, &r.oy,     &r.oz,     &r.dx,     &r.dy,
+                      &r.dz, &r.inv_dx, &r.inv_dy, &r.inv_dz, &r.tmin};
+  for (int k = 0; k < 10; ++k)
+    simd::store<A>(col[k], *src[k]);
+  alignas(64) float t[W];
+  alignas(64) int32_t prim[W];
+  simd::store<A>(t, h.t);
+  simd::store<A>(prim, h.prim);
+  TraversalCounters single;
+  for (uint32_t m = simd::bits<A>(lanes); m; m &= m - 1) {
+    int k = __builtin_ctz(m);
+    RayScalars one{{col[0][k], col[1][k], col[2][k]},
+                   {col[3][k], col[4][k], col[5][k]},
+                   {col[6][k], col[7][k], col[8][k]},
+                   col[9][k],
+                   t[k]};
+    RayPacket<L> ray = broadcast_ray<L>(one);
+    HitPacket<L> hit{FL(t[k]), simd::Ints<L>(prim[k]), FL(0.0f) != FL(0.0f)};
+    traverse_ray<A, false, kCount>(scene, bvh, ray, hit, &single, wide_root);
+    if (simd::none<L>(hit.found)) continue;
+    t[k] = settle_closest<L>(hit);
+    prim[k] = hit.prim.get(0);
+  }
+  F t_new = simd::load<A>(t);
+  h.found = h.found | (t_new < h.t);
+  h.t = t_new;
+  h.prim = simd::load<A>(prim);
+  if constexpr (kCount) {
+    c->single_rays += uint64_t(__builtin_popcount(simd::bits<A>(lanes)));
+    c->single_node_tests += single.node_tests;
+    c->single_prim_tests += single.prim_tests;
+  }
+}
+
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
 // kSameSides: every active lane meets each slab from the same side (RayPacket::sides), so
@@ -131,12 +192,19 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
     }
     return lanes;
   };
+  const bool hybrid = !kAnyHit && !kSameSides && !bvh.wide.empty();
   PacketEntry<A> stack[kBvhStackSize];
   int top = 0;
   F tnear;
   uint32_t cur = 0;
   simd::Mask<A> lanes = test(bvh.nodes[0], tnear);
   if (simd::none<A>(lanes)) return;
+  // The wide node where the lanes entering binary node `node` go on as single rays, if any.
+  auto single_ray_root = [&](uint32_t node) -> uint32_t {
+    if (!hybrid || __builtin_popcount(simd::bits<A>(lanes)) > kSingleRayLanes<A>)
+      return WideBvh::kNone;
+    return bvh.wide.of_binary[node];
+  };
   for (;;) {
     const BvhNode& n = bvh.nodes[cur];
     if (n.is_leaf()) {
@@ -146,6 +214,8 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
         r.active = r.active & !h.found;
         if (simd::none<A>(r.active)) return;
       }
+    } else if (uint32_t w = single_ray_root(cur); w != WideBvh::kNone) {
+      lanes_as_single_rays<A, kCount>(scene, bvh, w, r, lanes, h, c);
     } else {
       F t_left, t_right;
       simd::Mask<A> left = test(bvh.nodes[n.index], t_left);

@@ -142,11 +142,13 @@ inline float settle_closest(HitPacket<L>& h) {
   return t[best];
 }
 
-// Closest hit (kAnyHit = false) or occlusion of one valid ray; h starts with t = tmax in
-// every lane and returns the answer in every lane. kCount: the instrumented copy.
+// Closest hit (kAnyHit = false) or occlusion of one valid ray in the subtree below wide node
+// `root` (0: the whole tree); h starts with t = tmax in every lane and returns the answer in
+// every lane for closest hit, in some lane for occlusion. kCount: the instrumented copy.
 template <class A, bool kAnyHit, bool kCount = false>
 inline void traverse_ray(const Scene& scene, const Bvh& bvh, const RayPacket<RayLanes<A>>& r,
-                         HitPacket<RayLanes<A>>& h, TraversalCounters* c = nullptr) {
+                         HitPacket<RayLanes<A>>& h, TraversalCounters* c = nullptr,
+                         uint32_t root = 0) {
   using L = RayLanes<A>;
   using F = simd::Floats<L>;
   constexpr int W = simd::kWidth<L>;
@@ -166,7 +168,7 @@ inline void traverse_ray(const Scene& scene, const Bvh& bvh, const RayPacket<Ray
   float tfar = std::min(h.t.get(0), FLT_MAX);
   WideEntry stack[kWideStackSize];
   int top = 0;
-  WideEntry cur{0, 0, false, 0.0f};
+  WideEntry cur{root, 0, false, 0.0f};
   for (;;) {
     if (cur.count == 0) {
       const WideNode& n = nodes[cur.child];

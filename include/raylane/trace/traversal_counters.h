@@ -17,12 +17,17 @@ struct TraversalCounters {
   uint64_t lanes_overlap = 0;  // Σ over node tests: lanes whose segment overlapped the box
   uint64_t leaf_visits = 0;    // packet × leaf visits
   uint64_t prim_tests = 0;     // packet × primitive tests (each one W lanes wide)
+  // Lanes a packet handed to single-ray traversal (trace/packet_traverse.h), and the wide
+  // nodes and rows those single rays tested.
+  uint64_t single_rays = 0, single_node_tests = 0, single_prim_tests = 0;
 
   void add(const TraversalCounters& o) {
     width = o.width ? o.width : width;
     rays += o.rays, packets += o.packets, node_tests += o.node_tests;
     lanes_active += o.lanes_active, lanes_overlap += o.lanes_overlap;
     leaf_visits += o.leaf_visits, prim_tests += o.prim_tests;
+    single_rays += o.single_rays, single_node_tests += o.single_node_tests;
+    single_prim_tests += o.single_prim_tests;
   }
   double per_ray(uint64_t v) const { return rays ? double(v) / double(rays) : 0.0; }
   // Share of the lanes of node tests that overlapped the box: SIMD utilisation.
