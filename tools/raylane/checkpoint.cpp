@@ -28,10 +28,6 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
   return film;
 }
 
-void Checkpointer::after_pass(const Film& film, bool final) {
-  if (final || due()) save(film);
-}
-
 bool Checkpointer::due() const {
   if (!options_.checkpoint) return false;
   auto now = std::chrono::steady_clock::now();

@@ -27,7 +27,6 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
 class Checkpointer {
  public:
   explicit Checkpointer(const CheckpointOptions& c) : options_(c) {}
-  void after_pass(const Film& film, bool final = false);
   bool due() const;             // a --checkpoint is asked for and `every` seconds have passed
   void save(const Film& film);  // saves now (if a --checkpoint is asked for)
 

@@ -94,10 +94,6 @@ bool interrupted() {
   return g_interrupted.load();
 }
 
-const std::atomic<bool>* interrupt_flag() {
-  return &g_interrupted;
-}
-
 void print_phases(const PathStats& s, double seconds, int threads) {
   const PathPhases& p = s.phases;
   double available = seconds * threads;

@@ -41,6 +41,5 @@ class Progress {
 // SIGTERM and SIGUSR1 stop after the pass too.
 void install_interrupt_handler(bool under_launcher = false);
 bool interrupted();
-const std::atomic<bool>* interrupt_flag();  // for PathSettings::stop
 
 }  // namespace raylane::cli
