@@ -43,4 +43,12 @@ void SimdTracer::trace(const Scene& scene, const Bvh& bvh, const RayStream& rays
   fn(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
 }
 
+void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
+                          std::span<const uint32_t> rows, Hit* hits) const {
+  auto* fn = isa_ == Isa::kAvx512 ? detail::surfaces_avx512
+             : isa_ == Isa::kAvx2 ? detail::surfaces_avx2
+                                  : detail::surfaces_sse42;
+  fn(scene, rays, kind, rows, hits);
+}
+
 }  // namespace raylane

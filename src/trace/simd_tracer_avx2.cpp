@@ -13,4 +13,9 @@ void trace_avx2(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::
                                         counters);
 }
 
+void surfaces_avx2(const Scene& scene, const RayStream& rays, PrimTag kind,
+                   std::span<const uint32_t> rows, Hit* hits) {
+  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, hits);
+}
+
 }  // namespace raylane::detail

@@ -12,4 +12,9 @@ void trace_avx512(const Scene& scene, const Bvh& bvh, const RayStream& rays, std
   trace_range<xsimd::avx512bw>(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
 }
 
+void surfaces_avx512(const Scene& scene, const RayStream& rays, PrimTag kind,
+                     std::span<const uint32_t> rows, Hit* hits) {
+  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows, hits);
+}
+
 }  // namespace raylane::detail

@@ -137,4 +137,51 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
   }
 }
 
+// The surfaces of hits[j] for j in `rows`, all on Kind, W hits per batch of double lanes; the
+// last batch repeats its last hit in the spare lanes and stores only its own.
+template <class A, class Kind>
+void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
+                    std::span<const uint32_t> rows, Hit* hits) {
+  using D = simd::Doubles<A>;
+  constexpr int W = simd::kDoubleWidth<A>;
+  for (std::size_t i = 0; i < rows.size(); i += W) {
+    alignas(64) uint32_t at[W], prim_rows[W];
+    alignas(64) double in[7][W];
+    for (int k = 0; k < W; ++k) {
+      const uint32_t j = rows[std::min(i + std::size_t(k), rows.size() - 1)];
+      at[k] = j, prim_rows[k] = hits[j].prim.row();
+      in[0][k] = rays.ox[j], in[1][k] = rays.oy[j], in[2][k] = rays.oz[j];
+      in[3][k] = rays.dx[j], in[4][k] = rays.dy[j], in[5][k] = rays.dz[j];
+      in[6][k] = hits[j].t;
+    }
+    auto col = [&](int c) { return D::load_aligned(in[c]); };
+    const HitRayLanes<A> r{{col(0), col(1), col(2)}, {col(3), col(4), col(5)}, col(6)};
+    const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, r);
+    alignas(64) double out[7][W];
+    const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, nullptr};
+    const D cos_d = dot_lanes<A>(r.d, s.n);
+    outs[6] = &cos_d;
+    for (int c = 0; c < 7; ++c)
+      outs[c]->store_aligned(out[c]);
+    const int n = int(std::min<std::size_t>(W, rows.size() - i));
+    for (int k = 0; k < n; ++k) {
+      Hit& h = hits[at[k]];
+      h.surface.p = {out[0][k], out[1][k], out[2][k]};
+      h.surface.ng = {out[3][k], out[4][k], out[5][k]};
+      h.surface.ns = h.surface.ng;
+      h.front_face = out[6][k] < 0;
+    }
+  }
+}
+
+template <class A>
+void surfaces_of_kind(const Scene& scene, const RayStream& rays, PrimTag kind,
+                      std::span<const uint32_t> rows, Hit* hits) {
+  dispatch(kind, [&](auto k) {
+    using Kind = decltype(k);
+    if constexpr (Kind::surface_in_lanes)
+      surfaces_range<A, Kind>(scene.table<Kind>(), rays, rows, hits);
+  });
+}
+
 }  // namespace raylane::detail

@@ -12,4 +12,9 @@ void trace_sse42(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
   trace_range<xsimd::sse4_2>(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
 }
 
+void surfaces_sse42(const Scene& scene, const RayStream& rays, PrimTag kind,
+                    std::span<const uint32_t> rows, Hit* hits) {
+  surfaces_of_kind<xsimd::sse4_2>(scene, rays, kind, rows, hits);
+}
+
 }  // namespace raylane::detail

@@ -52,8 +52,13 @@ void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratc
     if (hits[i].hit()) scratch.by_kind[std::size_t(hits[i].prim.tag())].push_back(uint32_t(i));
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
+    const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
+    if constexpr (Kind::surface_in_lanes) {
+      simd_.surfaces(scene_, scratch.rays, tag_of<Kind>, rows, hits.data());
+      return;
+    }
     const typename Kind::Table& table = scene_.table<Kind>();
-    for (uint32_t i : scratch.by_kind[kind_index<Kind>()]) {
+    for (uint32_t i : rows) {
       Hit& h = hits[i];
       // The float ray from the stream the packet tracer read, not as_traced(rays[i]): GCC 12's
       // SLP vectoriser dropped the double → float → double round trip when as_traced was

@@ -4,6 +4,7 @@
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/packet.h"
+#include "raylane/trace/surface_lanes.h"
 
 namespace raylane {
 
@@ -44,6 +45,32 @@ template <class A, class Rows>
     commit_solid_hit<A>(t0, t1, r, rows.mask() & side_ok & (t0 <= t1), rows.bits(tag_of<Cylinder>),
                         h);
   }
+}
+
+// surface_ref (cylinder.h) for one hit per lane: the part the point is nearest to, a cap
+// (±axis) or the side (radial).
+template <class A>
+SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
+                              const HitRayLanes<A>& r) {
+  using D = simd::Doubles<A>;
+  const simd::Vec3Doubles<A> a = load_rows3<A>(c.ax, c.ay, c.az, rows);
+  const simd::Vec3Doubles<A> base = load_rows3<A>(c.bx, c.by, c.bz, rows);
+  const D h = simd::sqrt<A>(dot_lanes<A>(a, a)), radius = simd::load_rows<A>(c.r, rows);
+  const simd::Vec3Doubles<A> u{a.x / h, a.y / h, a.z / h};
+  const simd::Vec3Doubles<A> p = r.at();
+  const simd::Vec3Doubles<A> q{p.x - base.x, p.y - base.y, p.z - base.z};
+  const D z = dot_lanes<A>(q, u);
+  const simd::Vec3Doubles<A> radial{q.x - u.x * z, q.y - u.y * z, q.z - u.z * z};
+  const D rlen = simd::sqrt<A>(dot_lanes<A>(radial, radial));
+  const D below = xsimd::abs(z), above = xsimd::abs(z - h);
+  const D cap_dist = xsimd::select(above < below, above, below);  // std::min's choice
+  auto cap = (cap_dist < xsimd::abs(rlen - radius)) | !(rlen > D(0.0));
+  auto lower = z < h / D(2.0);
+  auto axial = [&](const D& uk) { return xsimd::select(lower, -uk, uk); };
+  return {p,
+          {xsimd::select(cap, axial(u.x), radial.x / rlen),
+           xsimd::select(cap, axial(u.y), radial.y / rlen),
+           xsimd::select(cap, axial(u.z), radial.z / rlen)}};
 }
 
 }  // namespace raylane

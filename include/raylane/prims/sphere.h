@@ -57,6 +57,8 @@ struct Sphere {
   static constexpr int param_count = 4;
   static constexpr bool two_sided = false;
   static constexpr double sah_test_cost = 1.0;
+  // The SIMD tracer computes its hits' surfaces in double lanes (sphere_packet.h, surface_lanes).
+  static constexpr bool surface_in_lanes = true;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.

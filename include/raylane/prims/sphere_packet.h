@@ -4,6 +4,7 @@
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/packet.h"
+#include "raylane/trace/surface_lanes.h"
 
 namespace raylane {
 
@@ -32,6 +33,17 @@ template <class A, class Rows>
     F tn = simd::select<A>(t0 < t1, t0, t1), tf = simd::select<A>(t0 < t1, t1, t0);
     commit_solid_hit<A>(tn, tf, r, hit, rows.bits(tag_of<Sphere>), h);
   }
+}
+
+// surface_ref (sphere.h) for one hit per lane: the point projected back onto the sphere.
+template <class A>
+SurfaceLanes<A> surface_lanes(const SphereTable& s, const uint32_t* rows, const HitRayLanes<A>& r) {
+  using D = simd::Doubles<A>;
+  simd::Vec3Doubles<A> c = load_rows3<A>(s.cx, s.cy, s.cz, rows), p = r.at();
+  simd::Vec3Doubles<A> v{p.x - c.x, p.y - c.y, p.z - c.z};
+  D len = simd::sqrt<A>(dot_lanes<A>(v, v)), radius = simd::load_rows<A>(s.r, rows);
+  simd::Vec3Doubles<A> n{v.x / len, v.y / len, v.z / len};
+  return {{c.x + n.x * radius, c.y + n.y * radius, c.z + n.z * radius}, n};
 }
 
 }  // namespace raylane

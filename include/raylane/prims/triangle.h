@@ -94,6 +94,10 @@ struct Triangle {
   // to 8 pay, for packets and single rays alike (1.31M mesh: 1.2-1.3x); the quadrics and
   // boxes of the lattice lose speed with bigger leaves, so they keep cost 1.
   static constexpr double sah_test_cost = 0.3;
+  // Surfaces one by one (surface_ref): the watertight test's difference of products needs
+  // a fused multiply-add, which SSE4.2 lanes lack, and meshes are a small share of the course
+  // scene's hits.
+  static constexpr bool surface_in_lanes = false;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.

@@ -1,12 +1,15 @@
-// The only header that includes xsimd: lane types for float and int32 and the few operations
-// the kernels need, for any instruction set A (SSE4.2: 4 lanes, AVX2: 8, AVX-512: 16).
+// The only header that includes xsimd: lane types for float, double and int32 and the few
+// operations the kernels need, for any instruction set A (SSE4.2: 4 lanes, AVX2: 8, AVX-512: 16).
 // Include it only from the per-ISA translation units (src/trace/simd_tracer_*.cpp) and the
 // templates they instantiate; baseline code talks to them through simd/isa.h.
+// Masks: combine them with &, | and ! only. In xsimd 8.1, `^` of two AVX-512 masks and `!=` of
+// two SSE double masks compute their OR (found by tests/trace/tracer_test.cpp).
 #pragma once
 
 #include <immintrin.h>
 
 #include <cstdint>
+#include <vector>
 #include <xsimd/xsimd.hpp>
 
 namespace raylane::simd {
@@ -159,6 +162,44 @@ inline UInts<A> gather(const uint32_t* base, const UInts<A>& idx) {
       v[k] = base[i[k]];
     return UInts<A>::load_aligned(v);
   }
+}
+
+template <class A>
+using Doubles = xsimd::batch<double, A>;
+template <class A>
+inline constexpr int kDoubleWidth = int(Doubles<A>::size);
+
+// Three double lanes: a point or a direction per lane.
+template <class A>
+struct Vec3Doubles {
+  Doubles<A> x, y, z;
+};
+
+// col[rows[0]], …, col[rows[W − 1]] widened to double (exactly): a table column read at one
+// row per lane, for code that runs once per hit rather than per node.
+template <class A>
+inline Doubles<A> load_rows(const std::vector<float>& col, const uint32_t* rows) {
+  alignas(64) double v[8];
+  for (int k = 0; k < kDoubleWidth<A>; ++k)
+    v[k] = col[rows[k]];
+  return Doubles<A>::load_aligned(v);
+}
+
+// The square root (IEEE, correctly rounded) of double lanes; on AVX-512 the zero-masking form
+// with every lane on, for the reason given at kAll16.
+template <class A>
+inline Doubles<A> sqrt(const Doubles<A>& x) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    return Doubles<A>(_mm512_maskz_sqrt_pd(__mmask8(0xFF), __m512d(x)));
+  } else {
+    return xsimd::sqrt(x);
+  }
+}
+
+// signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).
+template <class A>
+inline xsimd::batch_bool<double, A> sign_bit(const Doubles<A>& v) {
+  return xsimd::copysign(Doubles<A>(1.0), v) < Doubles<A>(0.0);
 }
 
 // 0, 1, …, W − 1.

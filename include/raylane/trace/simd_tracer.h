@@ -9,11 +9,13 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string_view>
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/scene/scene.h"
 #include "raylane/simd/isa.h"
+#include "raylane/trace/hit.h"
 #include "raylane/trace/ray_stream.h"
 #include "raylane/trace/traversal_counters.h"
 
@@ -53,6 +55,11 @@ class SimdTracer {
   // the traversal did (for benchmarks; slower).
   TraversalCounters trace_counted(const Scene& scene, const Bvh& bvh, const RayStream& rays,
                                   HitStream& hits, bool any_hit) const;
+  // The surfaces of hits[i] for each i in `rows`, all on primitives of one kind whose
+  // surface_in_lanes is true, in double lanes: h.surface and h.front_face exactly as
+  // surface_ref gives them for the stream's ray i (the ray as traced) and h.t.
+  void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
+                std::span<const uint32_t> rows, Hit* hits) const;
 
  private:
   void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
@@ -70,6 +77,9 @@ void trace_avx2(const Scene&, const Bvh&, const RayStream&, std::size_t, std::si
                 bool any_hit, Traversal traversal, TraversalCounters* counters);
 void trace_avx512(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
                   bool any_hit, Traversal traversal, TraversalCounters* counters);
+void surfaces_sse42(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
+void surfaces_avx2(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
+void surfaces_avx512(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
 }  // namespace detail
 
 }  // namespace raylane

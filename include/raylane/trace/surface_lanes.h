@@ -1,0 +1,40 @@
+// Hit surfaces in double lanes: what each kind's surface_lanes (prims/<kind>_packet.h) takes
+// and gives. Lane code: included only through the kinds' packet headers by the SIMD tracer's
+// per-ISA translation units. Every step is the double reference's (surface_ref), in the same
+// order; with -ffp-contract=off and IEEE division and square root in the lanes, the answers
+// are the reference's bit for bit (tests/trace/tracer_test.cpp checks it at every ISA).
+#pragma once
+
+#include "raylane/simd/lanes.h"
+
+namespace raylane {
+
+// One hit per lane: the ray as the packet kernels traced it (widened to double) and its t.
+template <class A>
+struct HitRayLanes {
+  simd::Vec3Doubles<A> o, d;
+  simd::Doubles<A> t;
+  // o + d·t, as Ray::at.
+  simd::Vec3Doubles<A> at() const { return {o.x + d.x * t, o.y + d.y * t, o.z + d.z * t}; }
+};
+
+// The point and the unit normal (geometric = shading for the quadrics and boxes).
+template <class A>
+struct SurfaceLanes {
+  simd::Vec3Doubles<A> p, n;
+};
+
+// a·b in Vec3's order ((x + y) + z).
+template <class A>
+inline simd::Doubles<A> dot_lanes(const simd::Vec3Doubles<A>& a, const simd::Vec3Doubles<A>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// The table columns x, y, z read at one row per lane.
+template <class A>
+inline simd::Vec3Doubles<A> load_rows3(const std::vector<float>& x, const std::vector<float>& y,
+                                       const std::vector<float>& z, const uint32_t* rows) {
+  return {simd::load_rows<A>(x, rows), simd::load_rows<A>(y, rows), simd::load_rows<A>(z, rows)};
+}
+
+}  // namespace raylane
