@@ -64,8 +64,11 @@ void add_aovs(const Scene& scene, const std::vector<PathState>& paths, const std
 void render_tile(TileContext& ctx, Film& f) {
   std::vector<double>& film = f.sum;
   ThreadBuffers& b = ctx.buffers;
-  auto& [paths, live, next_live, batch, shadow_rays, queries, next_queries, hits, scratch,
-         lane_rows, lane_count, shade, sobol, light_queries] = b;
+  std::vector<PathState>& paths = b.paths;
+  std::vector<uint32_t>&live = b.live, &next_live = b.next_live;
+  std::vector<Rayd>&batch = b.batch, &shadow_rays = b.shadow_rays;
+  std::vector<ShadowQuery>&queries = b.queries, &next_queries = b.next_queries;
+  std::vector<Hit>& hits = b.hits;
   live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
     live[i] = i;
@@ -81,7 +84,7 @@ void render_tile(TileContext& ctx, Film& f) {
       batch.push_back(paths[i].ray);
     batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
     clock.lap(phases.shade);
-    ctx.tracer.closest(batch, hits, live.size(), scratch);  // shadow rays need no surface
+    ctx.tracer.closest(batch, hits, live.size(), b.scratch);  // shadow rays need no surface
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth == 0 && !f.aovs.empty()) add_aovs(ctx.tracer.scene(), paths, hits, f);
     if (depth > 0) ctx.stats.bounce_rays += live.size();

@@ -62,6 +62,50 @@ void draw_lane_rows(TileContext& ctx, int depth) {
   if (lights) sample_lights_in_lanes(ctx);
 }
 
+// After the BSDF: each vertex's shadow ray and next ray, in double lanes (render/vertex_lanes.h,
+// queue_shadow_ray's and continue_path's steps bit for bit), then queued and written back.
+void finish_in_lanes(TileContext& ctx, int depth) {
+  ThreadBuffers& b = ctx.buffers;
+  const ShadeBatch& sb = b.shade;
+  VertexBatch& vb = b.vertices;
+  vb.resize(b.lane_count);
+  const VertexRules rules = vertex_rules(ctx, depth);
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    const PathState& p = b.paths[row.path];
+    const Hit& hit = b.hits[row.hit];
+    const bool lit = row.light.valid();
+    for (int k = 0; k < 3; ++k) {
+      vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
+      vb.ray_o[k][r] = p.ray.o[k], vb.ray_d[k][r] = p.ray.d[k];
+      vb.light_wi[k][r] = lit ? row.light.wi[k] : 0.0;
+      vb.light_le[k][r] = lit ? row.light.le[k] : 0.0;
+      vb.light_f[k][r] = sb.light_f[k][r];
+      vb.wi[k][r] = sb.wi[k][r], vb.value[k][r] = sb.value[k][r];
+    }
+    vb.t[r] = hit.t;
+    vb.light_pdf[r] = lit ? row.light.pdf : 0.0, vb.light_bsdf_pdf[r] = sb.light_pdf[r];
+    vb.pdf[r] = sb.pdf[r], vb.u_roulette[r] = rules.roulette ? row.u_roulette : 0.0;
+  }
+  finish_vertices(ctx.lanes.isa, rules, vb);
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    const LaneRow& row = b.lane_rows[r];
+    auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
+    if (vb.shadow_ok[r] != 0) {
+      b.shadow_rays.push_back({column3(vb.shadow_o), row.light.wi});
+      b.next_queries.push_back({row.path, row.light.light, column3(vb.shadow_c)});
+    }
+    if (vb.alive[r] == 0) continue;
+    PathState& p = b.paths[row.path];
+    p.beta = column3(vb.next_beta);
+    p.prev_p = b.hits[row.hit].surface.p;
+    p.prev_pdf = vb.pdf[r];
+    p.prev_specular = false;
+    p.ray = {column3(vb.next_o), column3(vb.wi)};
+    b.next_live.push_back(row.path);
+  }
+}
+
 }  // namespace
 
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
@@ -99,21 +143,7 @@ void shade_in_lanes(TileContext& ctx, int depth) {
     sb.u_lobe[r] = float(row.u[2]), sb.u1[r] = float(row.u[0]), sb.u2[r] = float(row.u[1]);
   }
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, sb);
-  for (std::size_t r = 0; r < b.lane_count; ++r) {
-    const LaneRow& row = b.lane_rows[r];
-    PathState& p = b.paths[row.path];
-    const Hit& hit = b.hits[row.hit];
-    if (row.light.valid()) {
-      Vec3d f(sb.light_f[0][r], sb.light_f[1][r], sb.light_f[2][r]);
-      queue_shadow_ray(ctx, row.path, p, hit, row.light, f, sb.light_pdf[r]);
-    }
-    BsdfSample s;
-    s.wi = Vec3d(sb.wi[0][r], sb.wi[1][r], sb.wi[2][r]);
-    s.value = Vec3d(sb.value[0][r], sb.value[1][r], sb.value[2][r]);
-    s.pdf = sb.pdf[r];
-    if (continue_path(p, hit, depth, s, row.u_roulette, ctx.settings))
-      b.next_live.push_back(row.path);
-  }
+  finish_in_lanes(ctx, depth);
 }
 
 }  // namespace raylane::path_detail

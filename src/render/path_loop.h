@@ -19,11 +19,12 @@
 #include "raylane/render/rng.h"
 #include "raylane/render/shade_lanes.h"
 #include "raylane/render/sobol.h"
+#include "raylane/render/vertex_lanes.h"
 
 namespace raylane::path_detail {
 
 inline constexpr uint32_t kTile = kPathTile;  // pixels per tile side: 256 paths per wavefront
-inline constexpr uint32_t kBlock = 4;  // camera rays in 4×4 blocks: one coherent packet
+inline constexpr uint32_t kBlock = 4;         // camera rays in 4×4 blocks: one coherent packet
 inline constexpr double kRouletteSurvival = 0.8;
 
 struct PathState {
@@ -86,6 +87,7 @@ struct ThreadBuffers {
   ShadeBatch shade;
   SobolBatch sobol;
   LightQueries light_queries;
+  VertexBatch vertices;
 };
 
 // What shading in lanes needs besides the settings (unused with Shading::kDouble).
@@ -132,13 +134,8 @@ inline std::array<double, 4> draw(TileContext& ctx, const PathState& p, uint32_t
 
 // path_vertex.cpp: what a vertex does with either shading.
 bool samples_lights(const TileContext& ctx);
-// The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
-void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
-                      const LightSample& ls, const Vec3d& f, double bsdf_pdf);
-// After the BSDF's sample: the throughput, Russian roulette, the next ray. False when the
-// path ends here.
-bool continue_path(PathState& p, const Hit& hit, int depth, const BsdfSample& s, double u_roulette,
-                   const PathSettings& settings);
+// What the vertices of this depth follow: MIS or not, roulette or not.
+VertexRules vertex_rules(const TileContext& ctx, int depth);
 // Shades the wavefront's vertices: each live path's hit, in lanes where the settings and the
 // material allow, one by one in double otherwise. Fills next_live, shadow_rays, next_queries.
 void shade_wavefront(TileContext& ctx, int depth);

@@ -117,6 +117,29 @@ std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, i
   return row;
 }
 
+// The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
+void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
+                      const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
+  Vec3d c;
+  if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
+  ctx.buffers.shadow_rays.push_back({o, ls.wi});
+  ctx.buffers.next_queries.push_back({path, ls.light, c});
+}
+
+// After the BSDF's sample: the throughput, Russian roulette, the next ray. False when the
+// path ends here.
+bool continue_path(PathState& p, const Hit& hit, const BsdfSample& s, double u_roulette,
+                   const VertexRules& rules) {
+  if (!next_throughput(rules, p.beta, s.value, s.pdf, u_roulette, p.beta)) return false;
+  p.prev_p = hit.surface.p;
+  p.prev_pdf = s.pdf;
+  p.prev_specular = s.specular;
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, s.wi);
+  p.ray = {o, s.wi};
+  return true;
+}
+
 // One vertex with the double Bsdf: light sampling, then the next direction.
 bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
                          const Material& material, int depth) {
@@ -137,7 +160,7 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hi
   BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
   if (!s.valid()) return false;
   double u_roulette = depth + 1 >= ctx.settings.rr_depth ? roulette_uniform(ctx, u) : 0.0;
-  return continue_path(p, hit, depth, s, u_roulette, ctx.settings);
+  return continue_path(p, hit, s, u_roulette, vertex_rules(ctx, depth));
 }
 
 }  // namespace
@@ -146,32 +169,9 @@ bool samples_lights(const TileContext& ctx) {
   return ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty();
 }
 
-void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
-                      const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
-  if (f == Vec3d(0, 0, 0)) return;
-  double w = ctx.settings.integrator == Integrator::kMis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0;
-  Vec3d c = p.beta * f * ls.le * (w / ls.pdf);
-  if (!is_finite(c)) return;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
-  ctx.buffers.shadow_rays.push_back({o, ls.wi});
-  ctx.buffers.next_queries.push_back({path, ls.light, c});
-}
-
-bool continue_path(PathState& p, const Hit& hit, int depth, const BsdfSample& s, double u_roulette,
-                   const PathSettings& settings) {
-  if (!s.valid()) return false;
-  p.beta = p.beta * s.value / s.pdf;
-  if (depth + 1 >= settings.rr_depth) {
-    if (u_roulette >= kRouletteSurvival) return false;
-    p.beta = p.beta / kRouletteSurvival;
-  }
-  if (!is_finite(p.beta) || p.beta == Vec3d(0, 0, 0)) return false;
-  p.prev_p = hit.surface.p;
-  p.prev_pdf = s.pdf;
-  p.prev_specular = s.specular;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, s.wi);
-  p.ray = {o, s.wi};
-  return true;
+VertexRules vertex_rules(const TileContext& ctx, int depth) {
+  return {ctx.settings.integrator == Integrator::kMis, depth + 1 >= ctx.settings.rr_depth,
+          kRouletteSurvival};
 }
 
 void shade_wavefront(TileContext& ctx, int depth) {

@@ -1,8 +1,9 @@
 // The render loop's lanes compiled for one instruction set (flags set in CMakeLists.txt): the
-// BSDF, the Sobol groups and the sphere lights' cones.
+// BSDF, the Sobol groups, the sphere lights' cones and what follows the BSDF.
 #include "render/light_lanes_impl.h"
 #include "render/shade_lanes_impl.h"
 #include "render/sobol_lanes_impl.h"
+#include "render/vertex_lanes_impl.h"
 
 static_assert(XSIMD_WITH_FMA3_AVX2,
               "this file must be compiled with the flags of its instruction set");
@@ -19,6 +20,10 @@ void sobol_groups_avx2(uint32_t reversed_index, SobolBatch& batch) {
 
 void sample_cones_avx2(ConeBatch& batch) {
   sample_cones_range<xsimd::fma3<xsimd::avx2>>(batch);
+}
+
+void finish_vertices_avx2(const VertexRules& rules, VertexBatch& batch) {
+  finish_vertices_range<xsimd::fma3<xsimd::avx2>>(rules, batch);
 }
 
 }  // namespace raylane::detail

@@ -1,8 +1,9 @@
 // The render loop's lanes compiled for one instruction set (flags set in CMakeLists.txt): the
-// BSDF, the Sobol groups and the sphere lights' cones.
+// BSDF, the Sobol groups, the sphere lights' cones and what follows the BSDF.
 #include "render/light_lanes_impl.h"
 #include "render/shade_lanes_impl.h"
 #include "render/sobol_lanes_impl.h"
+#include "render/vertex_lanes_impl.h"
 
 static_assert(XSIMD_WITH_SSE4_2,
               "this file must be compiled with the flags of its instruction set");
@@ -19,6 +20,10 @@ void sobol_groups_sse42(uint32_t reversed_index, SobolBatch& batch) {
 
 void sample_cones_sse42(ConeBatch& batch) {
   sample_cones_range<xsimd::sse4_2>(batch);
+}
+
+void finish_vertices_sse42(const VertexRules& rules, VertexBatch& batch) {
+  finish_vertices_range<xsimd::sse4_2>(rules, batch);
 }
 
 }  // namespace raylane::detail

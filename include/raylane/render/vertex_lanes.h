@@ -1,0 +1,74 @@
+// What a wavefront's vertices do after their BSDF (issue 14, item 2), in double SIMD lanes:
+// the contribution and origin of each vertex's shadow ray toward its light point, and its next
+// throughput (Russian roulette included) and ray origin. These are the path tracer's scalar
+// steps (queue_shadow_ray, continue_path, offset_ray_origin, hit_point_error) in their order
+// and precision, so the lanes give their answers bit for bit (tests/render/vertex_lanes_test.cpp)
+// and the error analysis of the ray offsets (docs/hard-cases.md §5) is unchanged.
+//
+// Baseline code includes this header; the kernel lives in the per-ISA translation units
+// src/render/shade_lanes_<isa>.cpp, picked at run time like the tracer's.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "raylane/core/vec3.h"
+#include "raylane/simd/isa.h"
+
+namespace raylane {
+
+// Fill rows [0, size) after resize(), run finish_vertices(), read the outputs. Rows past size
+// up to the lane width are padding the kernel computes and nobody reads.
+struct VertexBatch {
+  using Column = std::vector<double>;
+  using Columns3 = std::array<Column, 3>;
+  // Inputs. The vertex: the path's throughput, the hit point and geometric normal, and the ray
+  // that found it with its t (for the bound on the point's error).
+  Columns3 beta, p, ng, ray_o, ray_d;
+  Column t;
+  // The light point (light_pdf 0: none): direction, radiance and density, and the BSDF's
+  // f·|cos θi| and density toward it.
+  Columns3 light_wi, light_le, light_f;
+  Column light_pdf, light_bsdf_pdf;
+  // The BSDF's sample (pdf 0: none) and roulette's number.
+  Columns3 wi, value;
+  Column pdf, u_roulette;
+  // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
+  // light, and where it starts.
+  Columns3 shadow_c, shadow_o;
+  Column shadow_ok;
+  // The next ray (alive 1 where the path goes on): the new throughput and origin.
+  Columns3 next_beta, next_o;
+  Column alive;
+
+  std::size_t size() const { return size_; }
+  // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.
+  void resize(std::size_t n);
+
+ private:
+  std::size_t size_ = 0;
+};
+
+struct VertexRules {
+  bool mis = false;       // weigh the shadow ray by the power heuristic (else 1)
+  bool roulette = false;  // Russian roulette at this depth
+  double survival = 1;    // roulette's survival probability
+};
+
+void finish_vertices(Isa isa, const VertexRules& rules, VertexBatch& batch);
+
+// The scalar steps the lanes transcribe, which the double shading takes one vertex at a time.
+// The ray origins are offset_ray_origin(p, hit_point_error(ray, t), ng, direction)
+// (core/ray_offset.h).
+//
+// A shadow ray's contribution if it sees the light, beta·f·Le·(w / light_pdf) with w the power
+// heuristic under MIS: false when it has none (no light point, f = 0, or not finite).
+bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
+                         const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c);
+// The throughput after the BSDF's sample, beta·value / pdf, and Russian roulette: false when
+// the path ends (no sample, roulette, or a zero or non-finite throughput).
+bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
+                     double u_roulette, Vec3d& next);
+
+}  // namespace raylane

@@ -1,0 +1,57 @@
+#include "raylane/render/vertex_lanes.h"
+
+#include "raylane/render/sampling.h"
+
+namespace raylane {
+
+namespace detail {
+void finish_vertices_sse42(const VertexRules&, VertexBatch&);
+void finish_vertices_avx2(const VertexRules&, VertexBatch&);
+void finish_vertices_avx512(const VertexRules&, VertexBatch&);
+}  // namespace detail
+
+namespace {
+constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
+}
+
+void VertexBatch::resize(std::size_t rows) {
+  size_ = rows;
+  std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
+  for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &light_wi, &light_le, &light_f, &wi, &value,
+                  &shadow_c, &shadow_o, &next_beta, &next_o})
+    for (Column& c : *v)
+      c.resize(padded);
+  for (Column* c : {&t, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_ok, &alive})
+    c->resize(padded);
+  // Padding rows: no light point, no sample; what the kernel makes of them is unread.
+  for (std::size_t i = rows; i < padded; ++i)
+    light_pdf[i] = pdf[i] = 0;
+}
+
+void finish_vertices(Isa isa, const VertexRules& rules, VertexBatch& batch) {
+  auto* fn = isa == Isa::kAvx512 ? detail::finish_vertices_avx512
+             : isa == Isa::kAvx2 ? detail::finish_vertices_avx2
+                                 : detail::finish_vertices_sse42;
+  fn(rules, batch);
+}
+
+bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
+                         const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c) {
+  if (!(light_pdf > 0) || f == Vec3d(0, 0, 0)) return false;
+  double w = rules.mis ? power_heuristic(light_pdf, bsdf_pdf) : 1.0;
+  c = beta * f * le * (w / light_pdf);
+  return is_finite(c);
+}
+
+bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
+                     double u_roulette, Vec3d& next) {
+  if (!(pdf > 0)) return false;
+  next = beta * value / pdf;
+  if (rules.roulette) {
+    if (u_roulette >= rules.survival) return false;
+    next = next / rules.survival;
+  }
+  return is_finite(next) && next != Vec3d(0, 0, 0);
+}
+
+}  // namespace raylane

@@ -1,0 +1,133 @@
+// finish_vertices (render/vertex_lanes.h) in double lanes, instantiated per instruction set by
+// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. Each step is the scalar code's
+// (path_vertex.cpp's queue_shadow_ray and continue_path, core/ray_offset.cpp, power_heuristic,
+// next_double_up/down) in the same order; the build has -ffp-contract=off, so the two agree
+// bit for bit.
+#pragma once
+
+#include <limits>
+
+#include "raylane/core/float_util.h"
+#include "raylane/render/vertex_lanes.h"
+#include "render/light_lanes_impl.h"
+
+namespace raylane::detail {
+
+template <class A>
+using DMask = xsimd::batch_bool<double, A>;
+
+// Finite in every component (|x| ≤ DBL_MAX is false for NaN and ±inf).
+template <class A>
+DMask<A> all_finite(const Vec3Lanes<A>& v) {
+  const Doubles<A> big(std::numeric_limits<double>::max());
+  return (xsimd::abs(v.x) <= big) & (xsimd::abs(v.y) <= big) & (xsimd::abs(v.z) <= big);
+}
+
+template <class A>
+DMask<A> all_zero(const Vec3Lanes<A>& v) {
+  const Doubles<A> zero(0.0);
+  return (v.x == zero) & (v.y == zero) & (v.z == zero);
+}
+
+// The neighbours of v by one unit in the last place, as next_double_up and next_double_down.
+template <class A>
+Doubles<A> next_double_lanes(const Doubles<A>& v, bool up) {
+  using D = Doubles<A>;
+  using I = xsimd::batch<int64_t, A>;
+  const double inf = std::numeric_limits<double>::infinity();
+  const I bits = xsimd::bitwise_cast<I>(v);
+  const D plus = xsimd::bitwise_cast<D>(bits + I(1)), minus = xsimd::bitwise_cast<D>(bits - I(1));
+  const D away =
+      up ? xsimd::select(v > D(0.0), plus, minus) : xsimd::select(v > D(0.0), minus, plus);
+  const D tiny(up ? std::numeric_limits<double>::denorm_min()
+                  : -std::numeric_limits<double>::denorm_min());
+  const D stepped = xsimd::select(v == D(0.0), tiny, away);
+  return xsimd::select(xsimd::isnan(v) | (v == D(up ? inf : -inf)), v, stepped);
+}
+
+// hit_point_error and offset_ray_origin (core/ray_offset.cpp).
+template <class A>
+Vec3Lanes<A> offset_origin_lanes(const Vec3Lanes<A>& p, const Vec3Lanes<A>& o,
+                                 const Vec3Lanes<A>& d, const Doubles<A>& t, const Vec3Lanes<A>& ng,
+                                 const Vec3Lanes<A>& toward) {
+  using D = Doubles<A>;
+  const D bound(32 * kFloatUnitRoundoff);
+  auto err = [&](const D& ok, const D& dk) {
+    return (xsimd::abs(ok) + xsimd::abs(dk * t)) * bound;
+  };
+  const D along = xsimd::abs(ng.x) * err(o.x, d.x) + xsimd::abs(ng.y) * err(o.y, d.y) +
+                  xsimd::abs(ng.z) * err(o.z, d.z);
+  const auto away = ng.x * toward.x + ng.y * toward.y + ng.z * toward.z < D(0.0);
+  auto one = [&](const D& pk, const D& nk) {
+    const D off = xsimd::select(away, -(nk * along), nk * along);
+    const D sum = pk + off;
+    return xsimd::select(off > D(0.0), next_double_lanes<A>(sum, true),
+                         xsimd::select(off < D(0.0), next_double_lanes<A>(sum, false), sum));
+  };
+  return {one(p.x, ng.x), one(p.y, ng.y), one(p.z, ng.z)};
+}
+
+template <class A>
+Doubles<A> as_flag(const DMask<A>& m) {
+  return xsimd::select(m, Doubles<A>(1.0), Doubles<A>(0.0));
+}
+
+// queue_shadow_ray's contribution (beta·f·Le·(w / pdf), w the power heuristic under MIS) and
+// origin, for the rows of lanes [i, i + W).
+template <class A>
+void shadow_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i, const Vec3Lanes<A>& beta,
+                  const Vec3Lanes<A>& p, const Vec3Lanes<A>& ng, const Vec3Lanes<A>& o,
+                  const Vec3Lanes<A>& d, const Doubles<A>& t) {
+  using D = Doubles<A>;
+  const Vec3Lanes<A> wi = load3<A>(b.light_wi, i), le = load3<A>(b.light_le, i),
+                     f = load3<A>(b.light_f, i);
+  const D pdf = D::load_unaligned(b.light_pdf.data() + i);
+  const D bsdf_pdf = D::load_unaligned(b.light_bsdf_pdf.data() + i);
+  D w(1.0);
+  if (rules.mis) {
+    const D a = pdf * pdf, c = bsdf_pdf * bsdf_pdf;
+    w = xsimd::select(a > D(0.0), a / (a + c), D(0.0));
+  }
+  const D scale = w / pdf;
+  const Vec3Lanes<A> c{beta.x * f.x * le.x * scale, beta.y * f.y * le.y * scale,
+                       beta.z * f.z * le.z * scale};
+  store3<A>(b.shadow_c, i, c);
+  store3<A>(b.shadow_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
+  as_flag<A>((pdf > D(0.0)) & !all_zero<A>(f) & all_finite<A>(c))
+      .store_unaligned(b.shadow_ok.data() + i);
+}
+
+// continue_path's throughput (beta·value / pdf, then roulette) and origin.
+template <class A>
+void continue_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i,
+                    const Vec3Lanes<A>& beta, const Vec3Lanes<A>& p, const Vec3Lanes<A>& ng,
+                    const Vec3Lanes<A>& o, const Vec3Lanes<A>& d, const Doubles<A>& t) {
+  using D = Doubles<A>;
+  const Vec3Lanes<A> wi = load3<A>(b.wi, i), value = load3<A>(b.value, i);
+  const D pdf = D::load_unaligned(b.pdf.data() + i);
+  Vec3Lanes<A> nb{beta.x * value.x / pdf, beta.y * value.y / pdf, beta.z * value.z / pdf};
+  DMask<A> alive = pdf > D(0.0);
+  if (rules.roulette) {
+    const D u = D::load_unaligned(b.u_roulette.data() + i), s(rules.survival);
+    alive = alive & !(u >= s);
+    nb = {nb.x / s, nb.y / s, nb.z / s};
+  }
+  alive = alive & all_finite<A>(nb) & !all_zero<A>(nb);
+  store3<A>(b.next_beta, i, nb);
+  store3<A>(b.next_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
+  as_flag<A>(alive).store_unaligned(b.alive.data() + i);
+}
+
+template <class A>
+void finish_vertices_range(const VertexRules& rules, VertexBatch& b) {
+  constexpr std::size_t W = Doubles<A>::size;
+  for (std::size_t i = 0; i < b.size(); i += W) {
+    const Vec3Lanes<A> beta = load3<A>(b.beta, i), p = load3<A>(b.p, i), ng = load3<A>(b.ng, i);
+    const Vec3Lanes<A> o = load3<A>(b.ray_o, i), d = load3<A>(b.ray_d, i);
+    const Doubles<A> t = Doubles<A>::load_unaligned(b.t.data() + i);
+    shadow_lanes<A>(rules, b, i, beta, p, ng, o, d, t);
+    continue_lanes<A>(rules, b, i, beta, p, ng, o, d, t);
+  }
+}
+
+}  // namespace raylane::detail
