@@ -9,19 +9,15 @@ namespace raylane::path_detail {
 
 namespace {
 
-// The queued vertices' light points, all at once (sphere lights in lanes).
+// The queued vertices' light points, all at once (sphere lights in lanes), from the numbers
+// already in light_queries.u; row r's is light_queries.out[r] (light_of).
 void sample_lights_in_lanes(TileContext& ctx) {
   ThreadBuffers& b = ctx.buffers;
   PhaseClock clock(ctx.settings.time_phases);
   LightQueries& q = b.light_queries;
-  q.resize(b.lane_count);
-  for (std::size_t r = 0; r < b.lane_count; ++r) {
-    q.ref[r] = b.hits[b.lane_rows[r].hit].surface.p;
-    q.u[r] = b.lane_rows[r].u_light;
-  }
-  ctx.lights.sample_many(ctx.lanes.isa, q);
   for (std::size_t r = 0; r < b.lane_count; ++r)
-    b.lane_rows[r].light = q.out[r];
+    q.ref[r] = b.hits[b.lane_rows[r].hit].surface.p;
+  ctx.lights.sample_many(ctx.lanes.isa, q);
   clock.lap(ctx.stats.phases.lights);
 }
 
@@ -31,7 +27,7 @@ void sobol_for_rows(TileContext& ctx, uint32_t group, Store store) {
   SobolBatch& sb = ctx.buffers.sobol;
   sobol_groups(ctx.lanes.isa, ctx.pass, group, sb);
   for (std::size_t r = 0; r < ctx.buffers.lane_count; ++r)
-    store(ctx.buffers.lane_rows[r],
+    store(r, ctx.buffers.lane_rows[r],
           std::array<double, 4>{sb.u[0][r] * 0x1p-32, sb.u[1][r] * 0x1p-32, sb.u[2][r] * 0x1p-32,
                                 sb.u[3][r] * 0x1p-32});
 }
@@ -41,20 +37,24 @@ void sobol_for_rows(TileContext& ctx, uint32_t group, Store store) {
 void draw_lane_rows(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
   const bool lights = samples_lights(ctx), roulette = depth + 1 >= ctx.settings.rr_depth;
+  b.lights_sampled = lights;
+  if (lights) b.light_queries.resize(b.lane_count);
   if (ctx.settings.sampler == Sampler::kSobol) {
     b.sobol.resize(b.lane_count);
     for (std::size_t r = 0; r < b.lane_count; ++r)
       b.sobol.seed[r] = b.paths[b.lane_rows[r].path].pixel_seed;
     if (lights)
-      sobol_for_rows(ctx, Dims::light(depth), [](LaneRow& row, auto u) { row.u_light = u; });
-    sobol_for_rows(ctx, Dims::bsdf(depth), [](LaneRow& row, auto u) {
+      sobol_for_rows(ctx, Dims::light(depth),
+                     [&b](std::size_t r, LaneRow&, auto u) { b.light_queries.u[r] = u; });
+    sobol_for_rows(ctx, Dims::bsdf(depth), [](std::size_t, LaneRow& row, auto u) {
       row.u = u;
       row.u_roulette = u[3];
     });
   } else {
-    for (LaneRow& row : queued(b)) {
+    for (std::size_t r = 0; r < b.lane_count; ++r) {
+      LaneRow& row = b.lane_rows[r];
       const PathState& p = b.paths[row.path];
-      if (lights) row.u_light = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+      if (lights) b.light_queries.u[r] = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
       row.u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
       if (roulette) row.u_roulette = ctx.rng.uniform();
     }
@@ -74,17 +74,18 @@ void finish_in_lanes(TileContext& ctx, int depth) {
     const LaneRow& row = b.lane_rows[r];
     const PathState& p = b.paths[row.path];
     const Hit& hit = b.hits[row.hit];
-    const bool lit = row.light.valid();
+    const LightSample& light = light_of(b, r);
+    const bool lit = light.valid();
     for (int k = 0; k < 3; ++k) {
       vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
       vb.ray_o[k][r] = p.ray.o[k], vb.ray_d[k][r] = p.ray.d[k];
-      vb.light_wi[k][r] = lit ? row.light.wi[k] : 0.0;
-      vb.light_le[k][r] = lit ? row.light.le[k] : 0.0;
+      vb.light_wi[k][r] = lit ? light.wi[k] : 0.0;
+      vb.light_le[k][r] = lit ? light.le[k] : 0.0;
       vb.light_f[k][r] = sb.light_f[k][r];
       vb.wi[k][r] = sb.wi[k][r], vb.value[k][r] = sb.value[k][r];
     }
     vb.t[r] = hit.t;
-    vb.light_pdf[r] = lit ? row.light.pdf : 0.0, vb.light_bsdf_pdf[r] = sb.light_pdf[r];
+    vb.light_pdf[r] = lit ? light.pdf : 0.0, vb.light_bsdf_pdf[r] = sb.light_pdf[r];
     vb.pdf[r] = sb.pdf[r], vb.u_roulette[r] = rules.roulette ? row.u_roulette : 0.0;
   }
   finish_vertices(ctx.lanes.isa, rules, vb);
@@ -92,8 +93,9 @@ void finish_in_lanes(TileContext& ctx, int depth) {
     const LaneRow& row = b.lane_rows[r];
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
     if (vb.shadow_ok[r] != 0) {
-      b.shadow_rays.push_back({column3(vb.shadow_o), row.light.wi});
-      b.next_queries.push_back({row.path, row.light.light, column3(vb.shadow_c)});
+      const LightSample& light = light_of(b, r);
+      b.shadow_rays.push_back({column3(vb.shadow_o), light.wi});
+      b.next_queries.push_back({row.path, light.light, column3(vb.shadow_c)});
     }
     if (vb.alive[r] == 0) continue;
     PathState& p = b.paths[row.path];
@@ -120,7 +122,6 @@ void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_
   if (b.lane_count == b.lane_rows.size()) b.lane_rows.emplace_back();
   LaneRow& row = b.lane_rows[b.lane_count++];
   row.path = path, row.hit = hit_index;
-  row.light.pdf = 0;
 }
 
 void shade_in_lanes(TileContext& ctx, int depth) {
@@ -134,7 +135,8 @@ void shade_in_lanes(TileContext& ctx, int depth) {
     const Hit& hit = b.hits[row.hit];
     const Vec3d wo = -b.paths[row.path].ray.d;
     sb.material[r] = int32_t(scene.material_of(hit.prim));
-    const Vec3d light_wi = row.light.valid() ? row.light.wi : Vec3d(0, 0, 0);
+    const LightSample& light = light_of(b, r);
+    const Vec3d light_wi = light.valid() ? light.wi : Vec3d(0, 0, 0);
     for (int k = 0; k < 3; ++k) {
       sb.n[k][r] = float(hit.surface.ns[k]);
       sb.wo[k][r] = float(wo[k]);

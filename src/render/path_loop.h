@@ -66,13 +66,12 @@ class PhaseClock {
 // A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
 // once they have grown to a tile's size.
 // A vertex waiting for the lanes: its row in the ShadeBatch is its index in `lane_rows`.
+// Its light point is light_of(buffers, row).
 struct LaneRow {
   uint32_t path;  // index into the tile's paths
   uint32_t hit;   // index into the wavefront's hits
-  LightSample light;
   double u_roulette;
-  std::array<double, 4> u;        // the BSDF group: (u1, u2, lobe, roulette)
-  std::array<double, 4> u_light;  // the light group: (u1, u2, light, part)
+  std::array<double, 4> u;  // the BSDF group: (u1, u2, lobe, roulette)
 };
 
 struct ThreadBuffers {
@@ -86,9 +85,16 @@ struct ThreadBuffers {
   std::size_t lane_count = 0;
   ShadeBatch shade;
   SobolBatch sobol;
-  LightQueries light_queries;
+  LightQueries light_queries;  // row r's light group and light point, when lights_sampled
+  bool lights_sampled = false;
   VertexBatch vertices;
 };
+
+// Lane row r's light point (invalid when this wavefront samples no lights).
+inline const LightSample& light_of(const ThreadBuffers& b, std::size_t r) {
+  static const LightSample none;
+  return b.lights_sampled ? b.light_queries.out[r] : none;
+}
 
 // What shading in lanes needs besides the settings (unused with Shading::kDouble).
 struct LaneShading {

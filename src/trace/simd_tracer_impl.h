@@ -34,16 +34,16 @@ template <class A>
 RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<A>& tmax) {
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
-  alignas(64) float buf[8][W];
-  const std::vector<float>* cols[8] = {&s.ox, &s.oy, &s.oz, &s.dx, &s.dy, &s.dz, &s.tmin, &s.tmax};
-  for (int c = 0; c < 8; ++c)
-    for (int k = 0; k < W; ++k)
-      buf[c][k] = k < n ? (*cols[c])[i + k] : 0.0f;
+  // A whole packet straight from the columns; the stream's last, partial one by masked loads
+  // (nothing past the columns' ends is read).
+  auto col = [&](const std::vector<float>& c) {
+    return n == W ? F::load_unaligned(c.data() + i) : simd::load_first<A>(c.data() + i, n);
+  };
   RayPacket<A> r;
-  r.ox = F::load_aligned(buf[0]), r.oy = F::load_aligned(buf[1]), r.oz = F::load_aligned(buf[2]);
-  r.dx = F::load_aligned(buf[3]), r.dy = F::load_aligned(buf[4]), r.dz = F::load_aligned(buf[5]);
-  r.tmin = F::load_aligned(buf[6]);
-  tmax = F::load_aligned(buf[7]);
+  r.ox = col(s.ox), r.oy = col(s.oy), r.oz = col(s.oz);
+  r.dx = col(s.dx), r.dy = col(s.dy), r.dz = col(s.dz);
+  r.tmin = col(s.tmin);
+  tmax = col(s.tmax);
   set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n));
   return r;
 }
@@ -125,15 +125,21 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
     h.prim = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
     h.found = F(0.0f) != F(0.0f);
     if (simd::any<A>(r.active)) traverse<A>(scene, bvh, r, h, any_hit, counters);
-    alignas(64) float t[W];
-    alignas(64) int32_t prim[W];
-    simd::Ints<A> occluded_bits(0);
-    simd::store<A>(t, simd::select<A>(h.found, h.t, inf));
-    simd::store<A>(prim, any_hit ? simd::select<A>(h.found, occluded_bits, h.prim) : h.prim);
-    for (int k = 0; k < n; ++k) {
-      hits.t[i + k] = t[k];
-      hits.prim[i + k] = uint32_t(prim[k]);
+    const F t = simd::select<A>(h.found, h.t, inf);
+    const simd::Ints<A> prim =
+        any_hit ? simd::select<A>(h.found, simd::Ints<A>(0), h.prim) : h.prim;
+    int32_t* prim_out = reinterpret_cast<int32_t*>(hits.prim.data() + i);
+    if (n == W) {
+      simd::store<A>(hits.t.data() + i, t);
+      simd::store<A>(prim_out, prim);
+      continue;
     }
+    alignas(64) float t_buf[W];
+    alignas(64) int32_t prim_buf[W];
+    simd::store<A>(t_buf, t);
+    simd::store<A>(prim_buf, prim);
+    for (int k = 0; k < n; ++k)
+      hits.t[i + k] = t_buf[k], prim_out[k] = prim_buf[k];
   }
 }
 

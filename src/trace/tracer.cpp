@@ -73,8 +73,8 @@ void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratc
 void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
                      std::size_t with_surface, TraceScratch& scratch) const {
   const std::size_t n = rays.size();
-  hits.assign(n, Hit{});
   if (kind_ != TracerKind::kPacket) {
+    hits.assign(n, Hit{});
     for (std::size_t i = 0; i < n; ++i)
       hits[i] = kind_ == TracerKind::kBvh ? closest_hit_bvh_ref(scene_, bvh_, rays[i])
                                           : closest_hit_ref(scene_, rays[i]);
@@ -86,10 +86,12 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
     stream.set(i, ray_cast<float>(rays[i]));
   HitStream& out = scratch.hits;
   simd_.closest(scene_, bvh_, stream, out);
+  // Only prim and t: the surfaces follow for the rays that get one (clearing every 96-byte Hit
+  // first would be a pass over the batch that nothing reads).
+  hits.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (out.prim[i] == PrimRef::kInvalidBits) continue;
     hits[i].prim = PrimRef::from_bits(out.prim[i]);
-    hits[i].t = out.t[i];
+    hits[i].t = out.t[i];  // +inf for a miss
   }
   complete_by_kind(hits, std::min(with_surface, n), scratch);
 }

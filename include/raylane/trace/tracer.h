@@ -47,7 +47,8 @@ class Tracer {
   // first, and the surface is computed for the rounded ray, so t and the point agree.
   void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) const;
   // The same, with the caller's scratch, and surfaces only for rays[0, with_surface): the
-  // rest (shadow rays, say) get prim and t alone; complete() fills in one of them later.
+  // rest (shadow rays, say) get prim and t alone (their surface and facing are unspecified);
+  // complete() fills in one of them later.
   void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits, std::size_t with_surface,
                TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
