@@ -56,11 +56,19 @@ class Builder {
 
   // Builds the whole tree with `threads` threads; returns the depth of its deepest leaf.
   uint32_t build(int threads) {
+    const uint32_t count = uint32_t(prims_.size());
+    // A small scene builds in microseconds: no parallel region.
+    if (threads < 2 || count <= kParallelPrims) {
+      NodeBounds bounds;
+      bounds.clear();
+      bound_prims(prims_.data(), count, bounds);
+      return build_subtree({0, 0, count, 0, bounds});
+    }
     std::vector<uint32_t> depths;
-#pragma omp parallel num_threads(threads) if (threads > 1)
+#pragma omp parallel num_threads(threads)
 #pragma omp single
     {
-      const int parts = threads > 1 ? kChunksPerThread * threads : 1;
+      const int parts = kChunksPerThread * threads;
       const uint32_t n = uint32_t(prims_.size());
       Pending root{0, 0, n, 0, bound_in_parallel(prims_.data(), n, n > 4096 ? parts : 1)};
       std::vector<Pending> subtrees = split_top_levels(root, threads, parts);
