@@ -1,6 +1,6 @@
 # The scale plot of bench/README.md from the CSV of tools/scale_runs:
 #   tools/scale_runs build DIR > scale.csv
-#   gnuplot -e "csv='scale.csv'; out='bench/scale.png'" tools/plot_scale.gp
+#   gnuplot -e "csv='scale.csv'; out='docs/scale.png'" tools/plot_scale.gp
 # Log-log: BVH build seconds, peak resident MB, final tables + BVH MB and render Mrays/s
 # against triangles.
 set datafile separator ','
