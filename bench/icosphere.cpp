@@ -1,5 +1,6 @@
 #include "icosphere.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <unordered_map>
@@ -69,7 +70,51 @@ double displacement(const Vec3d& p) {
          0.02 * std::sin(31 * p.x + 17 * p.z) * std::cos(23 * p.y);
 }
 
+// The points of face (a, b, c)'s grid, row i (weight i/k toward b) after row: point (i, j) has
+// weights ((k − i − j), i, j)/k toward (a, b, c). The corners are summed in the order of their
+// vertex indices, so a point on an edge comes out the same from both faces that share it (a
+// crack would let rays through the closed mesh).
+std::vector<Vec3d> face_grid(const Mesh& m, const Tri& f, int k) {
+  std::vector<Vec3d> grid;
+  grid.reserve(std::size_t(k + 1) * (k + 2) / 2);
+  for (int i = 0; i <= k; ++i)
+    for (int j = 0; j <= k - i; ++j) {
+      std::array<std::pair<uint32_t, int>, 3> w = {{{f[0], k - i - j}, {f[1], i}, {f[2], j}}};
+      std::sort(w.begin(), w.end());
+      Vec3d p(0, 0, 0);
+      for (auto [v, weight] : w)
+        p = p + m.v[v] * (double(weight) / k);
+      grid.push_back(normalize(p));
+    }
+  return grid;
+}
+
+void append_displaced(TriangleTable& table, const std::array<Vec3d, 3>& dir, uint32_t material) {
+  std::array<Vec3f, 3> p, n;
+  for (int k = 0; k < 3; ++k)
+    p[k] = Vec3f(dir[k] * displacement(dir[k])), n[k] = Vec3f(dir[k]);
+  table.append(p, n, material);
+}
+
 }  // namespace
+
+void add_displaced_geodesic_sphere(TriangleTable& table, int frequency, uint32_t material) {
+  const Mesh m = icosahedron();
+  const int k = std::max(frequency, 1);
+  table_reserve(table, table.size() + std::size_t(20) * k * k);
+  for (const Tri& f : m.f) {
+    std::vector<Vec3d> grid = face_grid(m, f, k);
+    // Row i starts at i·(k + 1) − i(i − 1)/2 (row i holds k + 1 − i points).
+    auto at = [&](int i, int j) { return grid[std::size_t(i * (k + 1) - i * (i - 1) / 2 + j)]; };
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k - i; ++j) {
+        // Both keep the face's outward winding: (a, b, c) maps to (i, j), (i + 1, j), (i, j + 1).
+        append_displaced(table, {at(i, j), at(i + 1, j), at(i, j + 1)}, material);
+        if (i + j + 1 < k)
+          append_displaced(table, {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}, material);
+      }
+  }
+}
 
 void add_displaced_icosphere(TriangleTable& table, int levels, uint32_t material) {
   Mesh m = icosahedron();

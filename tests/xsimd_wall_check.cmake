@@ -1,8 +1,8 @@
 # SIMD stays behind its wall (docs/design.md, "SIMD and the instruction sets"): the parser,
 # the renderers, the image code and the program compile without xsimd. Reads the compiler's
 # dependency records through `ninja -t deps` and fails if any object of those stages depends
-# on an xsimd header — and, so that the check itself can fail, if the per-ISA objects (tracer
-# and lane BSDF) do not.
+# on an xsimd header — and, so that the check itself can fail, if the per-ISA objects (tracer,
+# lane BSDF and the BVH builder's binning loops) do not.
 execute_process(COMMAND ${NINJA} -C ${BUILD} -t deps OUTPUT_VARIABLE deps RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "ninja -t deps failed: ${rc}")
@@ -22,7 +22,8 @@ foreach(line IN LISTS lines)
       math(EXPR walled_objects "${walled_objects} + 1")
     endif()
     set(isa_object FALSE)
-    if(target MATCHES "/src/(trace/simd_tracer|render/shade_lanes)_(sse42|avx2|avx512)\\.cpp\\.o$")
+    if(target MATCHES "/src/(trace/simd_tracer|render/shade_lanes)_(sse42|avx2|avx512)\\.cpp\\.o$" OR
+     target MATCHES "/src/bvh/bin_lanes_sse42\\.cpp\\.o$")
       set(isa_object TRUE)
       set(counted FALSE)
     endif()
@@ -39,7 +40,7 @@ endforeach()
 if(walled_objects LESS 20)
   message(FATAL_ERROR "found only ${walled_objects} objects of scene/render/image/CLI in the deps")
 endif()
-if(NOT isa_objects_with_xsimd EQUAL 6)
-  message(FATAL_ERROR "expected the 6 per-ISA objects (tracer and lane BSDF) to use xsimd, found ${isa_objects_with_xsimd}")
+if(NOT isa_objects_with_xsimd EQUAL 7)
+  message(FATAL_ERROR "expected the 7 per-ISA objects (tracer, lane BSDF, BVH binning) to use xsimd, found ${isa_objects_with_xsimd}")
 endif()
 message(STATUS "${walled_objects} objects of scene/render/image/CLI, none includes xsimd")

@@ -1,11 +1,20 @@
-// Binned SAH build (Wald 2007), top-down, parallel over subtrees with OpenMP tasks.
+// Binned SAH build (Wald 2007, "On fast Construction of SAH-based Bounding Volume
+// Hierarchies"), top-down. The top levels split each large node with every thread (per-thread
+// bins over contiguous chunks, then an in-place parallel partition: parallel_split.h) until
+// there are enough subtrees for the threads; then each thread builds whole subtrees alone.
+// Every node is one binning pass and one partitioning pass over its prims: the partition
+// computes the children's bounds, so no pass only bounds a node.
 #include <omp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
+#include <cstdlib>
+#include <memory>
 
+#include "bvh/build_prim.h"
+#include "bvh/parallel_split.h"
+#include "bvh/sah_split.h"
 #include "raylane/bvh/bvh.h"
 #include "raylane/scene/scene.h"
 
@@ -13,187 +22,164 @@ namespace raylane {
 
 namespace {
 
-struct BuildPrim {
-  Bounds3f box;
-  Vec3f centroid;
-  PrimRef ref;
-  float cost;  // SAH cost of testing it: its kind's sah_test_cost
+using namespace bvh_build;
+
+// A node still to be built: its prims [begin, end) and their bounds.
+struct Pending {
+  uint32_t node, begin, end, depth;
+  NodeBounds bounds;
+
+  uint32_t count() const { return end - begin; }
 };
 
-struct Split {
-  int axis = -1;
-  int bins = 0;  // the number of bins the node was binned into
-  int bin = 0;   // prims in bins [0, bin] go left
-  double cost = std::numeric_limits<double>::infinity();
+// What to do with a node once it is binned (or known to be too deep to bin).
+struct Decision {
+  bool leaf = false;
+  Split split;  // axis −1 and not a leaf: split at the object median
 };
 
-// Surface area in double: float extents up to FLT_MAX would overflow a float product.
-double half_area(const Bounds3f& b) {
-  if (b.empty()) return 0;
-  Vec3d d = Vec3d(b.hi) - Vec3d(b.lo);
-  double a = d.x * d.y + d.y * d.z + d.z * d.x;
-  return std::isfinite(a) ? a : std::numeric_limits<double>::max();
-}
-
-// A finite stand-in for a centroid component (a huge primitive's centroid can be inf − inf).
-float finite_or_zero(float v) {
-  return std::isfinite(v) ? v : 0.0f;
-}
-
-int bin_of(float c, float lo, double scale, int bins) {
-  double x = (double(c) - lo) * scale;
-  if (!(x > 0)) return 0;  // also catches NaN
-  return std::min(bins - 1, int(x));
-}
-
-// A bin of the SAH build: a box, a count and the summed test cost of its prims, with no
-// default initialisation (clearing unused bins was the build's largest cost).
-struct Bin {
-  float lo[3], hi[3];
-  uint32_t count;
-  double cost;
-
-  void clear() {
-    for (int k = 0; k < 3; ++k)
-      lo[k] = std::numeric_limits<float>::infinity(), hi[k] = -lo[k];
-    count = 0;
-    cost = 0;
-  }
-  void add(const BuildPrim& p) {
-    for (int k = 0; k < 3; ++k)
-      lo[k] = std::min(lo[k], p.box.lo[k]), hi[k] = std::max(hi[k], p.box.hi[k]);
-    ++count;
-    cost += p.cost;
-  }
-  Bounds3f box() const {
-    Bounds3f b;
-    if (count) b = Bounds3f(Vec3f(lo[0], lo[1], lo[2]), Vec3f(hi[0], hi[1], hi[2]));
-    return b;
-  }
+// Nodes live in memory that is not written until a node is made, so the 2n − 1 slots a
+// build may need cost no resident memory beyond the nodes it makes (BvhNode is an aggregate,
+// so its objects begin when written).
+struct FreeNodes {
+  void operator()(BvhNode* p) const { std::free(p); }
 };
 
 class Builder {
  public:
-  static constexpr int kMaxBins = 64;
-  // Subtrees above this many prims are built as OpenMP tasks: a task costs about a
-  // microsecond, a subtree of 512 prims a few hundred, and the bunny (3,674 prims) then
-  // builds on both cores (1.42 -> 0.97 ms; with 4096 it never spawned a task).
-  static constexpr uint32_t kTaskPrims = 512;
-
-  // Contract: 2 ≤ cfg.bins ≤ kMaxBins.
-  Builder(std::vector<BuildPrim>& prims, const BvhConfig& cfg, std::vector<BvhNode>& nodes)
-      : prims_(prims), cfg_(cfg), nodes_(nodes) {}
-
-  // Builds the subtree of prims [begin, end) at `node`; returns the depth of its deepest leaf.
-  uint32_t build(uint32_t node, uint32_t begin, uint32_t end, uint32_t depth) {
-    Bounds3f box, centroids;
-    for (uint32_t i = begin; i < end; ++i) {
-      box.extend(prims_[i].box);
-      centroids.extend(prims_[i].centroid);
-    }
-    BvhNode& n = nodes_[node];
-    for (int k = 0; k < 3; ++k)
-      n.lo[k] = box.lo[k], n.hi[k] = box.hi[k];
-    uint32_t count = end - begin;
-    // Deep in the tree, split at the object median so traversal stacks cannot overflow.
-    bool median_only = depth >= kMedianSplitDepth;
-    Split split = count > 1 && !median_only ? find_split(begin, end, box, centroids) : Split{};
-    double leaf_cost = 0;
-    for (uint32_t i = begin; i < end; ++i)
-      leaf_cost += prims_[i].cost;
-    bool may_leaf = count <= uint32_t(cfg_.max_leaf) ||
-                    (split.axis < 0 && !median_only && count <= uint32_t(cfg_.forced_leaf));
-    if (count == 1 || (may_leaf && leaf_cost <= split.cost)) {
-      make_leaf(n, begin, end);
-      return depth;
-    }
-    uint32_t mid = split.axis >= 0 ? partition(begin, end, split, centroids) : begin + count / 2;
-    if (mid == begin || mid == end) mid = begin + count / 2;  // every centroid in one bin
-    uint32_t child = next_node_.fetch_add(2);
-    n.index = child;
-    n.count = 0;
-    n.axis = uint8_t(std::max(split.axis, 0));
-    uint32_t left_depth = 0, right_depth = 0;
-    if (count > kTaskPrims) {
-#pragma omp task default(shared) firstprivate(child, begin, mid, depth)
-      left_depth = build(child, begin, mid, depth + 1);
-      right_depth = build(child + 1, mid, end, depth + 1);
-#pragma omp taskwait
-    } else {
-      left_depth = build(child, begin, mid, depth + 1);
-      right_depth = build(child + 1, mid, end, depth + 1);
-    }
-    return std::max(left_depth, right_depth);
+  Builder(std::vector<BuildPrim>& prims, const BvhConfig& cfg)
+      : prims_(prims),
+        cfg_(cfg),
+        nodes_(static_cast<BvhNode*>(std::malloc(sizeof(BvhNode) * (2 * prims.size())))) {
+    if (!nodes_) throw std::bad_alloc();
   }
 
-  uint32_t node_count() const {
-    return next_node_.load();
+  // Builds the whole tree with `threads` threads; returns the depth of its deepest leaf.
+  uint32_t build(int threads) {
+    const uint32_t count = uint32_t(prims_.size());
+    // A small scene builds in microseconds: no parallel region.
+    if (threads < 2 || count <= kParallelPrims) {
+      NodeBounds bounds;
+      bounds.clear();
+      bound_prims(prims_.data(), count, bounds);
+      return build_subtree({0, 0, count, 0, bounds});
+    }
+    std::vector<uint32_t> depths;
+#pragma omp parallel num_threads(threads)
+#pragma omp single
+    {
+      const int parts = kChunksPerThread * threads;
+      const uint32_t n = uint32_t(prims_.size());
+      Pending root{0, 0, n, 0, bound_in_parallel(prims_.data(), n, n > 4096 ? parts : 1)};
+      std::vector<Pending> subtrees = split_top_levels(root, threads, parts);
+      // Largest first, so the last subtrees to finish are small.
+      std::sort(subtrees.begin(), subtrees.end(),
+                [](const Pending& a, const Pending& b) { return a.count() > b.count(); });
+      depths.resize(subtrees.size());
+      for (std::size_t i = 0; i < subtrees.size(); ++i) {
+#pragma omp task default(shared) firstprivate(i)
+        depths[i] = build_subtree(subtrees[i]);
+      }
+#pragma omp taskwait
+    }
+    return *std::max_element(depths.begin(), depths.end());
+  }
+
+  std::vector<BvhNode> take_nodes() const {
+    return std::vector<BvhNode>(nodes_.get(), nodes_.get() + next_node_.load());
   }
 
  private:
-  // One pass over the prims bins all three axes at once (bins live on the stack); then a
-  // sweep per axis evaluates every "bins [0, b] go left" split by the SAH.
-  // A small node gets as many bins as it has prims: the bins' fixed cost (clearing and
-  // sweeping them) dominated the build, paid at every one of the many small nodes.
-  Split find_split(uint32_t begin, uint32_t end, const Bounds3f& box, const Bounds3f& centroids) {
-    const int bins = std::clamp(int(end - begin), 2, cfg_.bins);
-    double scale[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      double extent = double(centroids.hi[axis]) - centroids.lo[axis];
-      scale[axis] = extent > 0 ? bins / extent : 0.0;
-    }
-    Bins bin;  // uninitialised: only the first `bins` are cleared and used
-    bin_prims(begin, end, centroids, scale, bins, bin);
-    Split best;
-    double parent_area = std::max(half_area(box), 1e-300);
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(scale[axis] > 0)) continue;  // all centroids in one plane: no split on this axis
-      double right_cost[kMaxBins] = {};
-      Bounds3f acc;
-      double tests = 0;  // summed test cost of the prims on one side
-      for (int b = bins - 1; b > 0; --b) {
-        acc.extend(bin[axis][b].box());
-        tests += bin[axis][b].cost;
-        right_cost[b - 1] = half_area(acc) * tests;
+  // Subtrees above this many prims are split with every thread (kChunksPerThread chunks
+  // each); 8 subtrees per thread below it balance the threads' work (siblings differ in size).
+  static constexpr uint32_t kParallelPrims = 1024;
+  static constexpr uint32_t kSubtreesPerThread = 8;
+  static constexpr int kChunksPerThread = 4;
+
+  std::vector<Pending> split_top_levels(const Pending& root, int threads, int parts) {
+    std::vector<Pending> todo = {root}, subtrees;
+    if (threads < 2) return todo;
+    const uint32_t large =
+        std::max(kParallelPrims, uint32_t(prims_.size() / (kSubtreesPerThread * threads)));
+    while (!todo.empty()) {
+      Pending p = todo.back();
+      todo.pop_back();
+      if (p.count() <= large) {
+        subtrees.push_back(p);
+        continue;
       }
-      acc = Bounds3f();
-      tests = 0;
-      uint32_t n = 0;
-      for (int b = 0; b < bins - 1; ++b) {
-        acc.extend(bin[axis][b].box());
-        tests += bin[axis][b].cost;
-        n += bin[axis][b].count;
-        double cost = cfg_.traversal_cost + (half_area(acc) * tests + right_cost[b]) / parent_area;
-        if (n > 0 && n < end - begin && cost < best.cost) best = {axis, bins, b, cost};
-      }
+      Pending left, right;
+      split_node(p, parts, left, right);
+      todo.push_back(left), todo.push_back(right);
     }
-    return best;
+    return subtrees;
   }
 
-  using Bins = Bin[3][kMaxBins];
-
-  // Clears the first `bins` bins of each axis and adds prims [begin, end) to them.
-  void bin_prims(uint32_t begin, uint32_t end, const Bounds3f& centroids, const double* scale,
-                 int bins, Bins& bin) const {
-    for (int axis = 0; axis < 3; ++axis)
-      for (int b = 0; b < bins; ++b)
-        bin[axis][b].clear();
-    for (uint32_t i = begin; i < end; ++i) {
-      const BuildPrim& p = prims_[i];
-      for (int axis = 0; axis < 3; ++axis) {
-        int b = bin_of(p.centroid[axis], centroids.lo[axis], scale[axis], bins);
-        bin[axis][b].add(p);
-      }
-    }
+  // Builds the subtree of `p` on the calling thread; returns its deepest leaf's depth.
+  uint32_t build_subtree(const Pending& p) {
+    Pending left, right;
+    if (!split_node(p, 1, left, right)) return p.depth;
+    return std::max(build_subtree(left), build_subtree(right));
   }
 
-  uint32_t partition(uint32_t begin, uint32_t end, const Split& s, const Bounds3f& centroids) {
-    double extent = double(centroids.hi[s.axis]) - centroids.lo[s.axis];
-    double scale = s.bins / extent;
-    auto it = std::partition(prims_.begin() + begin, prims_.begin() + end, [&](const BuildPrim& p) {
-      return bin_of(p.centroid[s.axis], centroids.lo[s.axis], scale, s.bins) <= s.bin;
-    });
-    return uint32_t(it - prims_.begin());
+  // Makes p's node a leaf (returns false) or an inner node whose children are left and right;
+  // parts > 1: bins and partitions in that many tasks (parallel_split.h).
+  bool split_node(const Pending& p, int parts, Pending& left, Pending& right) {
+    BvhNode& n = nodes_.get()[p.node];
+    const Box4& box = p.bounds.box;
+    for (int k = 0; k < 3; ++k)
+      n.lo[k] = box.lo[k], n.hi[k] = box.hi[k];
+    n.pad = 0;
+    BinGrid grid = make_grid(p.bounds, std::clamp(int(p.count()), 2, cfg_.bins));
+    Decision d = decide(p, grid, parts);
+    if (d.leaf) {
+      make_leaf(n, p.begin, p.end);
+      return false;
+    }
+    BuildPrim* first = prims_.data() + p.begin;
+    uint32_t mid = p.count() / 2;
+    left.bounds.clear(), right.bounds.clear();
+    if (d.split.axis >= 0)
+      mid = parts > 1 ? partition_in_parallel(first, p.count(), grid, d.split.axis,
+                                              d.split.last_left, parts, left.bounds, right.bounds)
+                      : partition_prims(first, p.count(), grid, d.split.axis, d.split.last_left,
+                                        left.bounds, right.bounds);
+    // The partition classifies by the binning's own arithmetic, so both sides hold prims;
+    // the median stands in should they not (and where no split separates the centroids).
+    if (d.split.axis < 0 || mid == 0 || mid == p.count()) {
+      mid = p.count() / 2;
+      left.bounds.clear(), right.bounds.clear();
+      bound_prims(first, mid, left.bounds);
+      bound_prims(first + mid, p.count() - mid, right.bounds);
+    }
+    uint32_t child = next_node_.fetch_add(2);
+    n.index = child;
+    n.count = 0;
+    n.axis = uint8_t(std::max(d.split.axis, 0));
+    left = {child, p.begin, p.begin + mid, p.depth + 1, left.bounds};
+    right = {child + 1, p.begin + mid, p.end, p.depth + 1, right.bounds};
+    return true;
+  }
+
+  // Leaf or split, by the SAH: a node may be a leaf when it has at most max_leaf prims (or at
+  // most forced_leaf and no split separates its centroids), and is one if that costs no more
+  // than the best split. Deep in the tree, nodes split at the object median so that traversal
+  // stacks cannot overflow.
+  Decision decide(const Pending& p, const BinGrid& grid, int parts) const {
+    const uint32_t count = p.count();
+    if (count == 1) return {true, {}};
+    if (p.depth >= kMedianSplitDepth) return {count <= uint32_t(cfg_.max_leaf), {}};
+    BinSet bins;
+    if (parts > 1) {
+      bin_in_parallel(prims_.data() + p.begin, count, grid, parts, bins);
+    } else {
+      bins.clear(grid.bins);
+      bin_prims(prims_.data() + p.begin, count, grid, bins);
+    }
+    Split split = best_split(bins, grid, p.bounds.box.bounds(), count, cfg_.traversal_cost);
+    bool may_leaf =
+        count <= uint32_t(cfg_.max_leaf) || (split.axis < 0 && count <= uint32_t(cfg_.forced_leaf));
+    return {may_leaf && binned_cost(bins, grid.bins) <= split.cost, split};
   }
 
   // Refs in a leaf are sorted by kind (then row), so the leaf is a few runs of one kind.
@@ -207,26 +193,30 @@ class Builder {
 
   std::vector<BuildPrim>& prims_;
   const BvhConfig& cfg_;
-  std::vector<BvhNode>& nodes_;
+  std::unique_ptr<BvhNode, FreeNodes> nodes_;
   // On a cache line of its own: every node of both threads takes its children from it.
   alignas(64) std::atomic<uint32_t> next_node_{1};
 };
 
-std::vector<BuildPrim> gather(const Scene& scene) {
-  std::vector<BuildPrim> prims;
-  prims.reserve(scene.primitive_count());
+// One record per primitive of every kind, filled by all threads.
+std::vector<BuildPrim> gather(const Scene& scene, int threads) {
+  std::vector<BuildPrim> prims(scene.primitive_count());
+  std::size_t offset = 0;
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
     const float cost = float(Kind::sah_test_cost);
-    for (uint32_t row = 0; row < table.size(); ++row) {
-      Bounds3f b = table.bounds(row);
-      Vec3f c = b.centroid();
-      prims.push_back({b,
-                       {finite_or_zero(c.x), finite_or_zero(c.y), finite_or_zero(c.z)},
-                       PrimRef(tag_of<Kind>, row),
-                       cost});
+    const int64_t rows = table.size();
+    BuildPrim* out = prims.data() + offset;
+#pragma omp parallel for num_threads(threads) if (rows > 4096)
+    for (int64_t row = 0; row < rows; ++row) {
+      Bounds3f b = table.bounds(uint32_t(row));
+      out[row] = {{b.lo.x, b.lo.y, b.lo.z},
+                  PrimRef(tag_of<Kind>, uint32_t(row)),
+                  {b.hi.x, b.hi.y, b.hi.z},
+                  cost};
     }
+    offset += rows;
   });
   return prims;
 }
@@ -265,20 +255,21 @@ void collect_stats(const Bvh& bvh, const BvhConfig& cfg, BvhStats& s) {
 Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   auto start = std::chrono::steady_clock::now();
   Bvh bvh;
-  std::vector<BuildPrim> prims = gather(scene);
+  const int threads = omp_in_parallel() ? 1 : omp_get_max_threads();
+  std::vector<BuildPrim> prims = gather(scene, threads);
   if (prims.empty()) return bvh;
-  bvh.nodes.resize(2 * prims.size());
   BvhConfig cfg = config;
-  cfg.bins = std::clamp(cfg.bins, 2, Builder::kMaxBins);
-  Builder builder(prims, cfg, bvh.nodes);
+  cfg.bins = std::clamp(cfg.bins, 2, kMaxBins);
   uint32_t depth = 0;
-#pragma omp parallel
-#pragma omp single
-  depth = builder.build(0, 0, uint32_t(prims.size()), 0);
-  bvh.nodes.resize(builder.node_count());
-  bvh.refs.reserve(prims.size());
-  for (const BuildPrim& p : prims)
-    bvh.refs.push_back(p.ref);
+  {
+    Builder builder(prims, cfg);
+    depth = builder.build(threads);
+    bvh.nodes = builder.take_nodes();
+  }
+  bvh.refs.resize(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i)
+    bvh.refs[i] = prims[i].ref;
+  std::vector<BuildPrim>().swap(prims);
   bvh.source_rows = permute_scene(scene, bvh.refs);
   bvh.stats.depth = depth;
   collect_stats(bvh, cfg, bvh.stats);

@@ -30,5 +30,9 @@ std::string texture_next_to(const std::string& file, const std::string& mesh_pat
 Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& name,
                                    const MeshPlacement& placement, uint32_t material,
                                    TriangleTable& table, const MaterialChooser& choose);
+// The same, freeing the file's bytes once they are read.
+Result<MeshImportStats> import_ply(std::string&& bytes, const std::string& name,
+                                   const MeshPlacement& placement, uint32_t material,
+                                   TriangleTable& table, const MaterialChooser& choose);
 
 }  // namespace raylane

@@ -346,7 +346,7 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
   if (is_ply(head, path)) {
     auto bytes = read_input_file(path, kMaxMeshFileBytes, "the mesh");
     if (!bytes) return Error{bytes.error()};
-    auto stats = import_ply(*bytes, path, placement, material, table, choose);
+    auto stats = import_ply(std::move(*bytes), path, placement, material, table, choose);
     if (stats) stats->files = {path};
     return stats;
   }

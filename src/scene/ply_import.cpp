@@ -13,8 +13,15 @@ namespace {
 // For each vertex, the first vertex at exactly the same position (−0 and +0 alike), so that
 // files which repeat a corner for each face — triangle soups, as STL converters and raylane's
 // benchmark export write — still get smooth normals, as Assimp's welding gave them. An
-// open-addressing table of vertex indices, sized to twice the vertices.
-std::vector<uint32_t> first_at_same_position(const std::vector<Vec3f>& p) {
+// open-addressing table of vertex indices, sized to twice the vertices. Each distinct position
+// gets a compact id (0, 1, … in order of first appearance), so that what is kept per position
+// — the normal sums — is sized to the distinct positions, a third of a soup's vertices.
+struct Welded {
+  std::vector<uint32_t> id;  // per vertex: its position's id
+  uint32_t positions = 0;    // distinct positions
+};
+
+Welded weld_positions(const std::vector<Vec3f>& p) {
   auto key = [&](uint32_t i) {
     return std::array<float, 3>{p[i].x + 0.0f, p[i].y + 0.0f, p[i].z + 0.0f};
   };
@@ -29,24 +36,27 @@ std::vector<uint32_t> first_at_same_position(const std::vector<Vec3f>& p) {
   while (size < 2 * p.size())
     size *= 2;
   constexpr uint32_t kEmpty = UINT32_MAX;
-  std::vector<uint32_t> slots(size, kEmpty), first(p.size());
+  std::vector<uint32_t> slots(size, kEmpty);
+  Welded w;
+  w.id.resize(p.size());
   for (uint32_t i = 0; i < p.size(); ++i) {
     std::size_t s = hash(i) & (size - 1);
     while (slots[s] != kEmpty && key(slots[s]) != key(i))
       s = (s + 1) & (size - 1);
-    if (slots[s] == kEmpty) slots[s] = i;
-    first[i] = slots[s];
+    if (slots[s] == kEmpty) slots[s] = i, w.id[i] = w.positions++;
+    w.id[i] = w.id[slots[s]];
   }
-  return first;
+  return w;
 }
 
 // Vertex normals for a file that has none: each corner adds its face's unit normal weighted by
 // the corner's angle (Thürmer and Wüthrich, "Computing vertex normals from polygonal facets",
 // JGT 3(1), 1998), so the result does not depend on how a polygon was cut into triangles.
-// Vertices at the same position share their normal.
-std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh) {
-  const std::vector<uint32_t> first = first_at_same_position(mesh.positions);
-  std::vector<Vec3d> sum(mesh.positions.size());
+// Vertices at the same position share their normal: the result is one normal per position
+// id of `welded`.
+std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh, const Welded& welded) {
+  const std::vector<uint32_t>& first = welded.id;
+  std::vector<Vec3d> sum(welded.positions);
   for (const auto& t : mesh.triangles) {
     std::array<Vec3d, 3> p = {Vec3d(mesh.positions[t[0]]), Vec3d(mesh.positions[t[1]]),
                               Vec3d(mesh.positions[t[2]])};
@@ -62,8 +72,8 @@ std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh) {
   }
   std::vector<Vec3f> out(sum.size());
   for (std::size_t i = 0; i < sum.size(); ++i) {
-    double len = length(sum[first[i]]);
-    out[i] = len > 0 ? Vec3f(sum[first[i]] / len) : Vec3f();  // zero: append_placed uses the face's
+    double len = length(sum[i]);
+    out[i] = len > 0 ? Vec3f(sum[i] / len) : Vec3f();  // zero: append_placed uses the face's
   }
   return out;
 }
@@ -77,9 +87,12 @@ Result<MeshImportStats> append_ply(const PlyMesh& mesh, const std::string& name,
       table.size() + mesh.triangles.size() > PrimRef::kMaxRows)
     return Error{
         cat("mesh ", quote_path(name), " has too many triangles (", mesh.triangles.size(), ")")};
+  // Made normals are per position id; a file's own, per vertex.
+  const bool make = mesh.normals.empty();
+  Welded welded = make ? weld_positions(mesh.positions) : Welded{};
   const std::vector<Vec3f> made =
-      mesh.normals.empty() ? angle_weighted_normals(mesh) : std::vector<Vec3f>();
-  const std::vector<Vec3f>& normals = mesh.normals.empty() ? made : mesh.normals;
+      make ? angle_weighted_normals(mesh, welded) : std::vector<Vec3f>();
+  auto normal = [&](uint32_t v) { return make ? made[welded.id[v]] : mesh.normals[v]; };
   MeshImportStats stats;
   stats.has_uv = !mesh.uvs.empty();
   table_reserve(table, table.size() + mesh.triangles.size());
@@ -89,7 +102,7 @@ Result<MeshImportStats> append_ply(const PlyMesh& mesh, const std::string& name,
     std::array<TexCoord, 3> uv{};
     for (int k = 0; k < 3; ++k) {
       p[k] = Vec3d(mesh.positions[t[k]]);
-      n[k] = Vec3d(normals[t[k]]);
+      n[k] = Vec3d(normal(t[k]));
       if (stats.has_uv) uv[k] = mesh.uvs[t[k]];
     }
     append_placed(p, n, uv, placement, material, table, stats);
@@ -100,13 +113,15 @@ Result<MeshImportStats> append_ply(const PlyMesh& mesh, const std::string& name,
   return stats;
 }
 
-}  // namespace
-
-Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& name,
-                                   const MeshPlacement& placement, uint32_t material,
-                                   TriangleTable& table, const MaterialChooser& choose) {
+// `bytes` may lie in `owned`, which is freed once the file is read: the table then grows
+// without the file's bytes beside it (scale runs of bench/README.md: peak memory).
+Result<MeshImportStats> read_and_append(std::string_view bytes, std::string& owned,
+                                        const std::string& name, const MeshPlacement& placement,
+                                        uint32_t material, TriangleTable& table,
+                                        const MaterialChooser& choose) {
   try {
     auto mesh = read_ply(bytes, name);
+    std::string().swap(owned);
     if (!mesh) return Error{mesh.error()};
     uint32_t mat = material;
     if (choose && !mesh->texture_files.empty())
@@ -115,6 +130,22 @@ Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& na
   } catch (const std::bad_alloc&) {
     return Error{cat("out of memory reading mesh ", quote_path(name))};
   }
+}
+
+}  // namespace
+
+Result<MeshImportStats> import_ply(std::string_view bytes, const std::string& name,
+                                   const MeshPlacement& placement, uint32_t material,
+                                   TriangleTable& table, const MaterialChooser& choose) {
+  std::string none;
+  return read_and_append(bytes, none, name, placement, material, table, choose);
+}
+
+Result<MeshImportStats> import_ply(std::string&& owned, const std::string& name,
+                                   const MeshPlacement& placement, uint32_t material,
+                                   TriangleTable& table, const MaterialChooser& choose) {
+  std::string_view bytes = owned;
+  return read_and_append(bytes, owned, name, placement, material, table, choose);
 }
 
 }  // namespace raylane

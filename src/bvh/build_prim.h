@@ -1,0 +1,93 @@
+// The builder's working data (src/bvh/build.cpp): one 32-byte record per primitive, boxes of
+// four floats, and the bins of the binned SAH (Wald 2007, "On fast Construction of SAH-based
+// Bounding Volume Hierarchies", §3). The loops over the records are in a SIMD unit of their
+// own (bin_lanes_sse42.cpp); this header, and the code that calls them, has no xsimd.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "raylane/core/bounds3.h"
+#include "raylane/prims/prim_ref.h"
+
+namespace raylane::bvh_build {
+
+// 32 bytes, two to a cache line: {lo, ref} and {hi, cost} each load as four lanes (the fourth
+// is ignored). The centroid is not stored: lo + hi (twice the centroid, an affine image of it,
+// which bins and splits the same way) is computed where it is needed, a non-finite sum read as
+// 0 so that a huge primitive cannot make the centroid bounds infinite.
+struct alignas(16) BuildPrim {
+  float lo[3];
+  PrimRef ref;
+  float hi[3];
+  float cost;  // SAH cost of testing it: its kind's sah_test_cost
+};
+static_assert(sizeof(BuildPrim) == 32);
+
+// A box as two rows of four floats (the fourth lane is unused); empty when lo > hi.
+struct alignas(16) Box4 {
+  float lo[4], hi[4];
+
+  void clear() {
+    for (int k = 0; k < 4; ++k)
+      lo[k] = std::numeric_limits<float>::infinity(), hi[k] = -lo[k];
+  }
+  void extend(const Box4& b) {
+    for (int k = 0; k < 3; ++k)
+      lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k], hi[k] = b.hi[k] > hi[k] ? b.hi[k] : hi[k];
+  }
+  Bounds3f bounds() const {
+    Bounds3f b;
+    b.lo = {lo[0], lo[1], lo[2]};
+    b.hi = {hi[0], hi[1], hi[2]};
+    return b;
+  }
+};
+
+// A node's primitives: their bounding box and the box of their (doubled) centroids.
+struct NodeBounds {
+  Box4 box, centroids;
+
+  void clear() { box.clear(), centroids.clear(); }
+  void extend(const NodeBounds& b) { box.extend(b.box), centroids.extend(b.centroids); }
+};
+
+inline constexpr int kMaxBins = 64;
+
+// Maps a doubled centroid to its bin on each axis: bin = int((c − lo)·scale), clamped to
+// [0, bins − 1] (a NaN goes to bin 0). scale is 0 on an axis where every centroid is equal.
+struct BinGrid {
+  float lo[4] = {0, 0, 0, 0};
+  float scale[4] = {0, 0, 0, 0};
+  int bins = 2;
+};
+
+// The bins of all three axes: one pass over the primitives fills them (Wald 2007, §3.2).
+struct BinSet {
+  Box4 box[3][kMaxBins];
+  uint32_t count[3][kMaxBins];
+  double cost[3][kMaxBins];  // summed test cost; double, as millions of terms are added
+
+  void clear(int bins) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < bins; ++b)
+        box[a][b].clear(), count[a][b] = 0, cost[a][b] = 0;
+  }
+  void merge(const BinSet& o, int bins) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < bins; ++b)
+        box[a][b].extend(o.box[a][b]), count[a][b] += o.count[a][b], cost[a][b] += o.cost[a][b];
+  }
+};
+
+// The loops over the records, in the SIMD unit (bin_lanes_sse42.cpp).
+// Extends `bounds` by prims [0, n).
+void bound_prims(const BuildPrim* prims, uint32_t n, NodeBounds& bounds);
+// Adds prims [0, n) to the bins of `grid` (the bins were cleared by the caller).
+void bin_prims(const BuildPrim* prims, uint32_t n, const BinGrid& grid, BinSet& bins);
+// Reorders prims [0, n) in place so that those whose bin on `axis` is ≤ `last_left_bin` come
+// first; returns their number and extends `left` and `right` by the bounds of each side.
+uint32_t partition_prims(BuildPrim* prims, uint32_t n, const BinGrid& grid, int axis,
+                         int last_left_bin, NodeBounds& left, NodeBounds& right);
+
+}  // namespace raylane::bvh_build
