@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 
 #include "raylane/core/strings.h"
@@ -13,19 +12,13 @@
 #include "raylane/render/lights.h"
 #include "raylane/render/rng.h"
 #include "raylane/scene/parser.h"
+#include "support/same_bits.h"
 
 namespace raylane {
 namespace {
 
-// The lanes compute the scalar code's operations in its order, and the build compiles with
-// -ffp-contract=off (CMakeLists.txt), so no multiply and add fuse on either side: every
-// result must be the scalar one bit for bit, at every instruction set.
-bool same(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
-bool same(const Vec3d& a, const Vec3d& b) {
-  return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
-}
+// The lanes must give the scalar results bit for bit (support/same_bits.h).
+using testing::same_bits;
 
 struct Case {
   Vec3d ref;
@@ -85,8 +78,8 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
       }
       ++outside;
       Vec3d wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
-      bool ok =
-          same(wi, s->wi) && same(b.dist[i], s->dist) && same(b.solid_angle[i], s->solid_angle);
+      bool ok = same_bits(wi, s->wi) && same_bits(b.dist[i], s->dist) &&
+                same_bits(b.solid_angle[i], s->solid_angle);
       failures += !ok;
       EXPECT_TRUE(ok) << "row " << i << ": lanes wi " << wi.x << " " << wi.y << " " << wi.z
                       << " dist " << b.dist[i] << " solid " << b.solid_angle[i] << "; scalar wi "
@@ -128,8 +121,8 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
       ++kinds_seen[std::size_t(got.light.tag())];
       if (!want.valid()) continue;
       EXPECT_EQ(got.le, want.le);
-      EXPECT_TRUE(same(got.wi, want.wi) && same(got.pdf, want.pdf) && same(got.p, want.p) &&
-                  same(got.dist, want.dist))
+      EXPECT_TRUE(same_bits(got.wi, want.wi) && same_bits(got.pdf, want.pdf) &&
+                  same_bits(got.p, want.p) && same_bits(got.dist, want.dist))
           << "query " << i;
     }
   }

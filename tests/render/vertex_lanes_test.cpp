@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -16,16 +15,13 @@
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
 #include "raylane/render/rng.h"
+#include "support/same_bits.h"
 
 namespace raylane {
 namespace {
 
-bool same(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
-bool same(const Vec3d& a, const Vec3d& b) {
-  return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
-}
+// The lanes must give the scalar results bit for bit (support/same_bits.h).
+using testing::same_bits;
 
 struct Vertex {
   Vec3d beta, p, ng, o, d;
@@ -108,14 +104,14 @@ void expect_rows_are_scalar(const VertexRules& rules, const std::vector<Vertex>&
     bool shadow = shadow_contribution(rules, v.beta, v.f, v.le, v.light_pdf, v.bsdf_pdf, c);
     bool ok = (b.shadow_ok[i] != 0) == shadow;
     if (shadow)
-      ok = ok && same(row(b.shadow_c, i), c) &&
-           same(row(b.shadow_o, i), offset_ray_origin(v.p, err, v.ng, v.light_wi));
+      ok = ok && same_bits(row(b.shadow_c, i), c) &&
+           same_bits(row(b.shadow_o, i), offset_ray_origin(v.p, err, v.ng, v.light_wi));
     Vec3d next;
     bool alive = next_throughput(rules, v.beta, v.value, v.pdf, v.u, next);
     ok = ok && (b.alive[i] != 0) == alive;
     if (alive)
-      ok = ok && same(row(b.next_beta, i), next) &&
-           same(row(b.next_o, i), offset_ray_origin(v.p, err, v.ng, v.wi));
+      ok = ok && same_bits(row(b.next_beta, i), next) &&
+           same_bits(row(b.next_o, i), offset_ray_origin(v.p, err, v.ng, v.wi));
     failures += !ok;
     EXPECT_TRUE(ok) << "row " << i << ": shadow " << shadow << " alive " << alive;
     ++(shadow ? seen.shadows : seen.no_shadow);

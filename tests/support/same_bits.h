@@ -1,0 +1,20 @@
+// Bit-for-bit equality of doubles and vectors: lane code that computes the scalar code's
+// operations in its order (the build compiles with -ffp-contract=off, so no multiply and add
+// fuse on either side) must give the scalar results exactly, at every instruction set.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "raylane/core/vec3.h"
+
+namespace raylane::testing {
+
+inline bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+inline bool same_bits(const Vec3d& a, const Vec3d& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
+}
+
+}  // namespace raylane::testing
