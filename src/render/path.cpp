@@ -166,6 +166,12 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   for (int pass = f.passes; pass < settings.spp; ++pass) {
 #pragma omp parallel
     {
+      // The team may be larger than omp_get_max_threads() said before it (seen under clang's
+      // libomp with ASan: buffers for one thread, and a thread 1 in the team); the single's
+      // barrier comes before any thread takes its buffers.
+#pragma omp single
+      if (per_thread.size() < std::size_t(omp_get_num_threads()))
+        per_thread.resize(std::size_t(omp_get_num_threads()));
       PathStats local;
       ThreadBuffers& buffers = per_thread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)

