@@ -170,6 +170,10 @@ TEST(PlyReader, DamagedBodiesSayWhere) {
        "d.ply:13:5: expected an integer that fits the declared type, found '1.5'"},
       {ascii + "0 0 0\n1 0 0\n0 1 0\n256 0 1 2\n",
        "d.ply:13:1: expected an integer that fits the declared type, found '256'"},
+      // found by fuzz_mesh: an integer written far beyond int64's range (converting it was
+      // undefined behaviour)
+      {ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 2.2e118 2\n",
+       "d.ply:13:5: expected an integer that fits the declared type, found '2.2e118'"},
       {ascii + "0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n",
        "d.ply:11:7: expected finite coordinates for vertex 1, found (1 inf 0)"},
       {ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "d.ply:14:1: expected a number, found the end"},
