@@ -67,7 +67,11 @@ trap 'kill $pid 2>/dev/null || true' EXIT
 wid=$(timeout 60 xdotool search --sync --name '^raylane view' | head -1) || true
 [ -n "$wid" ] || fail "no window titled 'raylane view' within 60 s"
 xdotool windowfocus --sync "$wid"
-wait_for 60 title_says "path 4 spp" || fail "not at 4 spp within 60 s: $(xdotool getwindowname "$wid")"
+# The window found first must stay the window (SDL once replaced its X window at the first
+# frame, under ASan's slower start, and every later step lost it).
+windows() { xdotool search --name '^raylane view' 2>/dev/null | tr '\n' ' '; }
+wait_for 60 title_says "path 4 spp" ||
+  fail "not at 4 spp within 60 s: window $wid is titled '$(xdotool getwindowname "$wid" 2>&1)'; windows now: $(windows)"
 
 xdotool key v
 wait_for 30 has camera 1 || fail "V printed no camera line"

@@ -229,6 +229,12 @@ int run_view_window(ViewSession& s, const std::string& name) {
                  display ? display : "", driver.c_str());
     return kExitUsage;
   }
+  // The window is a plain software surface (X11's own framebuffer). Left to itself, SDL 2 on
+  // Linux draws the surface through an OpenGL renderer, whose set-up destroys the X window and
+  // makes a new one at the first frame (SDL_RecreateWindow): a window manager or xdotool that
+  // found the first one loses it. A blit of one image a frame needs no GPU. The environment's
+  // SDL_FRAMEBUFFER_ACCELERATION still wins over this default.
+  SDL_SetHintWithPriority(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0", SDL_HINT_DEFAULT);
   sdl.window = SDL_CreateWindow(cat("raylane view: ", name).c_str(), SDL_WINDOWPOS_UNDEFINED,
                                 SDL_WINDOWPOS_UNDEFINED, int(s.width()), int(s.height()), 0);
   if (!sdl.window) {
