@@ -84,11 +84,10 @@ struct Hasher {
 }  // namespace
 
 void keep_share(Film& film, const TileShare& share) {
-  const uint64_t tiles_x = (film.width + kPathTile - 1) / kPathTile;
   const std::size_t aov_channels = std::size_t(film.aovs.channels());
   for (uint32_t y = 0; y < film.height; ++y)
     for (uint32_t x = 0; x < film.width; ++x) {
-      if (share.owns(uint64_t(y / kPathTile) * tiles_x + x / kPathTile)) continue;
+      if (share.owns(tile_of_film_pixel(film.width, film.height, x, y))) continue;
       std::size_t pixel = std::size_t(y) * film.width + x;
       for (std::size_t k = 0; k < 3; ++k)
         film.sum[pixel * 3 + k] = 0.0;

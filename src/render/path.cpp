@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 
 #include <omp.h>
 
@@ -132,6 +133,14 @@ void add_stats(PathStats& into, const PathStats& s) {
   into.nonfinite_samples += s.nonfinite_samples;
 }
 
+// CPU time of the calling thread: a tile's cost without the time the thread spent preempted
+// (on a shared machine wall time made a few tiles look 8x their cost).
+double thread_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
 }  // namespace
 
 void PathPhases::add(const PathPhases& o) {
@@ -163,6 +172,8 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   auto start = std::chrono::steady_clock::now();
   // Each thread's buffers live across passes: regrown every pass, they cost 2-thread scaling.
   std::vector<ThreadBuffers> per_thread(static_cast<std::size_t>(omp_get_max_threads()));
+  TileShare share = settings.share;
+  std::vector<double> tile_seconds(settings.reshare ? std::size_t(tiles) : 0);
   for (int pass = f.passes; pass < settings.spp; ++pass) {
 #pragma omp parallel
     {
@@ -176,7 +187,8 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
       ThreadBuffers& buffers = per_thread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
-        if (!settings.share.owns(uint64_t(t))) continue;
+        if (!share.owns(uint64_t(t))) continue;
+        double started = tile_seconds.empty() ? 0 : thread_cpu_seconds();
         TileContext ctx{buffers,  tracer, lights,
                         settings, lanes,  Rng::for_tile(settings.seed, t, pass),
                         {},       0,      uint32_t(pass)};
@@ -185,6 +197,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
                          buffers.paths);
         clock.lap(ctx.stats.phases.camera);
         render_tile(ctx, f);
+        if (!tile_seconds.empty()) tile_seconds[std::size_t(t)] = thread_cpu_seconds() - started;
         add_stats(local, ctx.stats);
       }
 #pragma omp critical
@@ -196,6 +209,10 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
     double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (settings.time_limit > 0 && elapsed >= settings.time_limit) break;
+    if (settings.reshare && pass + 1 < settings.spp) {
+      share = settings.reshare(tile_seconds);
+      std::fill(tile_seconds.begin(), tile_seconds.end(), 0.0);
+    }
   }
   if (stats) *stats = total;
   return f.image();

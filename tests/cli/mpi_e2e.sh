@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `mpirun -np R raylane render` end to end (docs/cluster.md): the same file, byte for byte, as a
 # plain run for R = 1..4 and 1 or 2 threads; --time and a stop request end every process after
-# the same pass; a checkpoint written at R = 3 resumes at R = 2 to the uninterrupted image;
+# the same pass; tiles dealt again by cost keep the image; a checkpoint written at R = 3
+# resumes at R = 2 to the uninterrupted image;
 # a scene error is printed once and the job exits 2; a killed process ends the job without a
 # hang; Ctrl-C writes the image once. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
 set -uo pipefail
@@ -11,7 +12,9 @@ preflags=("$@")
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 # Root may run mpirun only when told so; the variables do what --allow-run-as-root does.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-small=(--set "screen 64 48")
+# 72x52: a partial tile column and row, and a height that is no multiple of the tile (the
+# render numbers tiles from the bottom row up, the film stores rows from the top).
+small=(--set "screen 72 52")
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 mpi() { local np=$1; shift; timeout 120 "$mpiexec" "${preflags[@]}" -np "$np" "$@"; }
@@ -29,6 +32,16 @@ for np in 1 2 3 4; do
   done
 done
 
+# Tiles dealt again by measured cost after passes 2 and 4 (--balance always): sums move
+# between processes with their tiles, and the image stays the same.
+for np in 2 3; do
+  mpi "$np" "$raylane" render "$scene" "${small[@]}" --spp 6 --threads 1 --balance always \
+    --stats -o "balanced$np.pfm" > /dev/null 2> "balanced$np.err" || fail "balanced np $np: exit $?"
+  cmp -s plain.pfm "balanced$np.pfm" || fail "balanced np $np: another image"
+  grep -q "dealt again by measured cost: 2 times" "balanced$np.err" ||
+    fail "balanced np $np: $(grep 'dealt again' "balanced$np.err")"
+done
+
 # --time: rank 0's clock decides for everyone, so the image is a plain run's at that spp.
 mpi 3 "$raylane" render "$scene" "${small[@]}" --time 1 --threads 1 -o timed.pfm \
   > timed.out 2> timed.err || fail "--time: exit $?"
@@ -41,7 +54,7 @@ fi
 # A stop request (SIGUSR1, which mpirun forwards) at R = 3 with a checkpoint, resumed at R = 2.
 # (mpirun itself in the background, so that $! is its process and the signal reaches it.)
 "$mpiexec" "${preflags[@]}" -np 3 "$raylane" render "$scene" "${small[@]}" --spp 100000 \
-  --threads 1 --checkpoint run.film -o stopped.pfm > stopped.out 2> stopped.err &
+  --threads 1 --balance always --checkpoint run.film -o stopped.pfm > stopped.out 2> stopped.err &
 job=$!
 (sleep 100 && kill -KILL "$job" 2> /dev/null) &
 watchdog=$!
@@ -58,7 +71,7 @@ if [ -z "$spp" ] || [ ! -f run.film ]; then fail "stop request: no summary or no
   cmp -s "plain$spp.pfm" stopped.pfm || fail "stop request: not the plain image at $spp spp"
   more=$((spp + 5))
   mpi 2 "$raylane" render "$scene" "${small[@]}" --spp "$more" --resume run.film -q \
-    -o resumed.pfm > /dev/null 2>&1 || fail "resume at R = 2: exit $?"
+    --balance always -o resumed.pfm > /dev/null 2>&1 || fail "resume at R = 2: exit $?"
   "$raylane" render "$scene" "${small[@]}" --spp "$more" -q -o "plain$more.pfm" > /dev/null
   cmp -s "plain$more.pfm" resumed.pfm || fail "resume at R = 2: not the uninterrupted image"
 fi

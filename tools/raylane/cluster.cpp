@@ -1,5 +1,6 @@
 #include "cluster.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -24,13 +25,19 @@ namespace {
 // MPI counts are ints: long buffers go in chunks.
 constexpr std::size_t kChunk = std::size_t(1) << 26;
 
-void reduce_sum(double* data, std::size_t n, bool root) {
-  for (std::size_t at = 0; at < n; at += kChunk) {
-    int count = int(std::min(kChunk, n - at));
-    if (root)
-      MPI_Reduce(MPI_IN_PLACE, data + at, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+// A film's doubles as their bits, OR-ed over the processes into rank 0's (to_all: into
+// every process's).
+void reduce_bits(std::vector<double>& column, bool root, bool to_all) {
+  static_assert(sizeof(double) == sizeof(uint64_t));
+  for (std::size_t at = 0; at < column.size(); at += kChunk) {
+    int count = int(std::min(kChunk, column.size() - at));
+    void* data = column.data() + at;
+    if (to_all)
+      MPI_Allreduce(MPI_IN_PLACE, data, count, MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD);
+    else if (root)
+      MPI_Reduce(MPI_IN_PLACE, data, count, MPI_UINT64_T, MPI_BOR, 0, MPI_COMM_WORLD);
     else
-      MPI_Reduce(data + at, nullptr, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+      MPI_Reduce(data, nullptr, count, MPI_UINT64_T, MPI_BOR, 0, MPI_COMM_WORLD);
   }
 }
 
@@ -70,8 +77,40 @@ int Cluster::root_status(int status) const {
 
 void Cluster::assemble(Film& film) const {
   if (!mpi_ || size_ == 1) return;
-  reduce_sum(film.sum.data(), film.sum.size(), root());
-  reduce_sum(film.aov_sum.data(), film.aov_sum.size(), root());
+  reduce_bits(film.sum, root(), false);
+  reduce_bits(film.aov_sum, root(), false);
+}
+
+void Cluster::share_film(Film& film) const {
+  if (!mpi_ || size_ == 1) return;
+  reduce_bits(film.sum, root(), true);
+  reduce_bits(film.aov_sum, root(), true);
+}
+
+void Cluster::sum_tile_costs(std::vector<double>& tile_cost) const {
+  if (!mpi_ || size_ == 1) return;
+  for (std::size_t at = 0; at < tile_cost.size(); at += kChunk) {
+    int count = int(std::min(kChunk, tile_cost.size() - at));
+    MPI_Allreduce(MPI_IN_PLACE, tile_cost.data() + at, count, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  }
+}
+
+void Cluster::broadcast(std::vector<uint32_t>& owner) const {
+  if (!mpi_ || size_ == 1) return;
+  uint64_t n = owner.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  owner.resize(n);
+  for (std::size_t at = 0; at < n; at += kChunk)
+    MPI_Bcast(owner.data() + at, int(std::min<uint64_t>(kChunk, n - at)), MPI_UINT32_T, 0,
+              MPI_COMM_WORLD);
+}
+
+void Cluster::sum_on_root(double* values, int n) const {
+  if (!mpi_ || size_ == 1) return;
+  if (root())
+    MPI_Reduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  else
+    MPI_Reduce(values, nullptr, n, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
 }
 
 void Cluster::sum(PathStats& s) const {
@@ -105,7 +144,11 @@ int Cluster::root_status(int status) const {
   return status;
 }
 void Cluster::assemble(Film&) const {}
+void Cluster::share_film(Film&) const {}
+void Cluster::sum_tile_costs(std::vector<double>&) const {}
+void Cluster::broadcast(std::vector<uint32_t>&) const {}
 void Cluster::sum(PathStats&) const {}
+void Cluster::sum_on_root(double*, int) const {}
 
 #endif
 

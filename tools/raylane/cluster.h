@@ -9,6 +9,9 @@
 #include "raylane/render/film.h"
 #include "raylane/render/path.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace raylane::cli {
 
 // What every process does after a pass: each one's wish, OR-ed over all of them.
@@ -29,15 +32,26 @@ class Cluster {
   bool root() const { return rank_ == 0; }
   int rank() const { return rank_; }
   int size() const { return size_; }
-  TileShare share() const { return {uint32_t(rank_), uint32_t(size_)}; }
+  TileShare share() const { return {uint32_t(rank_), uint32_t(size_), nullptr}; }
 
   // The lowest rank for which `ok` is false, or −1 if it holds on every process.
   int first_failure(bool ok) const;
   PassControl agree(PassControl mine) const;
-  // Every process's sums added into rank 0's `film` (their tiles are disjoint, so each sum
-  // is one process's number plus zeros: exact in any order). Other ranks' films are unchanged.
+  // Every process's sums gathered into rank 0's `film`. Their tiles are disjoint: every other
+  // process holds +0.0 (all bits clear) where one holds a sum, so a bitwise OR of the doubles'
+  // bits gives that sum exactly, in any order, whatever its bits (−0.0 and NaN included; an
+  // arithmetic sum would turn −0.0 + 0.0 into +0.0). Other ranks' films are unchanged.
   void assemble(Film& film) const;
-  void sum(PathStats& stats) const;  // counters and phase times summed into rank 0's
+  // Every process's `film` becomes the whole film (as assemble, on all processes): before
+  // tiles change hands, so that each process holds the sums of the tiles it takes.
+  void share_film(Film& film) const;
+  // Each process's tile costs (zero outside its own tiles) summed on every process: exact, as
+  // the supports are disjoint.
+  void sum_tile_costs(std::vector<double>& tile_cost) const;
+  // Rank 0's `owner` table on every process (resized to rank 0's size).
+  void broadcast(std::vector<uint32_t>& owner) const;
+  void sum(PathStats& stats) const;               // counters and phase times summed into rank 0's
+  void sum_on_root(double* values, int n) const;  // each value summed into rank 0's
   // Rank 0's exit status, on every process (so that mpirun reports what rank 0 decided).
   int root_status(int status) const;
 

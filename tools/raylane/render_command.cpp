@@ -29,8 +29,8 @@ constexpr int kMaxSpp = 1 << 24;
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
-    "spp",  "integrator", "sampler", "shading",          "seed",  "max-depth",
-    "time", "checkpoint", "resume",  "checkpoint-every", "stats", "aov"};
+    "spp",        "integrator", "sampler",          "shading", "seed", "max-depth", "time",
+    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -92,6 +92,14 @@ Status set_tracer(RenderRequest& r, const std::string& v) {
   if (!kind)
     return Error{cat("unknown --tracer ", in_quotes(v), " (", kTracerKindNames.list(), ")")};
   r.tracer = *kind;
+  return ok_status();
+}
+
+Status set_balance(RenderRequest& r, const std::string& v) {
+  auto b = kTileBalanceNames.from_name(v);
+  if (!b)
+    return Error{cat("unknown --balance ", in_quotes(v), " (", kTileBalanceNames.list(), ")")};
+  r.balance = *b;
   return ok_status();
 }
 
@@ -222,6 +230,13 @@ const std::vector<RenderOption>& render_options() {
          r.overrides.push_back(v);
          return ok_status();
        }},
+      {{"balance", 0, "B", false,
+        cat(kTileBalanceNames.list(),
+            ": under mpirun, whether the processes deal their tiles again by\n"
+            "measured cost after passes 2, 4, 8, ... (auto: when that evens them by 5 % or\n"
+            "more); the image is the same either way"),
+        "auto"},
+       set_balance},
       {{"stats", 0, "", false,
         "path: at the end, where the time went (camera rays, tracing, shading, light\n"
         "sampling, film, idle) and the rays per second of each kind",
@@ -388,6 +403,7 @@ int render_command(const std::vector<std::string>& args) {
   std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int spp = 1;
   PathStats path_stats;
+  PathOutcome balance;  // the MPI job's wait and tile moves (--stats)
   bool interrupted_run = false;
   if (r.path) {
     PathOutcome run = run_path(r, tracer, cluster);
@@ -397,6 +413,8 @@ int render_command(const std::vector<std::string>& args) {
     aov_images = std::move(run.aov_images);
     exr_layers = std::move(run.exr_layers);
     path_stats = run.stats;
+    balance.wait_seconds = run.wait_seconds, balance.busy_seconds = run.busy_seconds;
+    balance.tiles_moved = run.tiles_moved, balance.balances = run.balances;
     interrupted_run = run.interrupted;
     rays = path_stats.rays();
     spp = path_stats.passes;
@@ -461,8 +479,10 @@ int render_command(const std::vector<std::string>& args) {
                  std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
                  bvh.stats.build_seconds);
   }
-  if (r.path && r.path_settings.time_phases && !r.quiet)
-    print_phases(path_stats, seconds, omp_get_max_threads());
+  if (r.path && r.path_settings.time_phases && !r.quiet) {
+    print_phases(path_stats, seconds, omp_get_max_threads() * cluster.size());
+    if (cluster.distributed()) print_balance(balance, cluster.size());
+  }
   if (status == kExitOk && interrupted_run) status = kExitInterrupted;
   return r.path ? cluster.root_status(status) : status;
 }

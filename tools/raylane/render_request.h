@@ -8,6 +8,7 @@
 
 #include "checkpoint.h"
 #include "cluster.h"
+#include "raylane/core/enum_names.h"
 #include "raylane/image/exr.h"
 #include "raylane/render/aov.h"
 #include "raylane/render/path.h"
@@ -16,6 +17,11 @@
 #include "raylane/trace/tracer.h"
 
 namespace raylane::cli {
+
+// When the processes of an MPI job deal their tiles again by measured cost (docs/cluster.md,
+// "Balance"): never (round-robin throughout), when it pays, or at every check (for tests).
+enum class TileBalance { kOff, kAuto, kAlways };
+inline constexpr EnumNames<TileBalance, 3> kTileBalanceNames{{"off", "auto", "always"}};
 
 struct RenderRequest {
   std::optional<std::string> scene_path;
@@ -33,7 +39,8 @@ struct RenderRequest {
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;
-  std::vector<std::string> warnings;  // about the options, printed unless --quiet
+  TileBalance balance = TileBalance::kAuto;  // --balance
+  std::vector<std::string> warnings;         // about the options, printed unless --quiet
 };
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
@@ -46,10 +53,19 @@ struct PathOutcome {
   std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int status = 0;            // kExitUsage when the film to resume cannot be used
   bool interrupted = false;  // Ctrl-C on any process stopped it
+  // An MPI job's balance, summed over its processes (printed by --stats).
+  double wait_seconds = 0;  // waiting in the agreement after each pass for the slowest process
+  double busy_seconds = 0;  // rendering passes
+  int tiles_moved = 0;      // tiles dealt to another process, over all the times
+  int balances = 0;         // times the tiles were dealt again (--balance)
 };
 
 // Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles
 // shared between the cluster's processes (render_path_run.cpp).
 PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster& cluster);
+
+// --stats under mpirun: how long the processes waited for the slowest after each pass, and
+// the tiles moved to even them out.
+void print_balance(const PathOutcome& run, int processes);
 
 }  // namespace raylane::cli

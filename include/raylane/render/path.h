@@ -13,10 +13,12 @@
 #include <functional>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
 #include "raylane/render/aov.h"
+#include "raylane/render/tile_share.h"
 #include "raylane/trace/tracer.h"
 
 namespace raylane {
@@ -63,17 +65,6 @@ inline std::string_view shading_name(Shading shading) {
   return kShadingNames.name(shading);
 }
 
-// The tiles one process renders when several share an image (`mpirun`, docs/cluster.md):
-// tile t (kPathTile×kPathTile pixels, row-major over the image) is this process's iff
-// t mod count = index. A process renders its tiles for every pass, so each pixel's sum is
-// formed in the same order as in a single process, and the processes' films have disjoint
-// support.
-inline constexpr uint32_t kPathTile = 16;
-struct TileShare {
-  uint32_t index = 0, count = 1;
-  bool owns(uint64_t tile) const { return tile % count == index; }
-};
-
 struct PathSettings {
   Integrator integrator = Integrator::kMis;
   Sampler sampler = Sampler::kSobol;
@@ -88,6 +79,12 @@ struct PathSettings {
   TileShare share;           // the tiles this process renders (all of them by default)
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
   std::function<void(int passes_done)> on_pass;  // progress, called after each pass
+  // Called after each pass but the last one taken, after on_pass (on every process of a job at
+  // the same passes), with the thread-seconds each of this process's tiles took in that pass
+  // (CPU time of the thread that rendered it, 0 for other tiles): returns the share for the
+  // passes after it. A tile that changes hands must arrive with its sums in the film
+  // (docs/cluster.md, "Balance"). Unset: `share` holds throughout and nothing is timed.
+  std::function<TileShare(const std::vector<double>& tile_seconds)> reshare;
 };
 
 // Thread-seconds spent in each phase of the render loop, summed over the threads (`--stats`).
