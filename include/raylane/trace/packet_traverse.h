@@ -122,8 +122,10 @@ inline bool left_child_nearer(const BvhNode& n, const RayPacket<A>& r, const sim
 // entered, and its rows tested, yet the surface they leave almost never blocks them, while a
 // blocker anywhere along the segment is found just as well from the light's end (triangles
 // are two-sided, and a closed solid is hit where the ray leaves it). Measured (bench_trace,
-// shadow rays, AVX-512 packets, 1 thread): bunny 1.4x, the 1.31M-triangle mesh 1.4x, engine
-// 1.15x, sphereflake and lattice 1.05-1.1x (bench/README.md, issue 17's third sitting).
+// shadow rays, AVX-512 packets, 1 thread, medians of 3 interleaved rounds): bunny 1.72x, the
+// 1.31M-triangle mesh 1.68x, engine 1.18x, lattice 1.10x, sphereflake 1.12x; the course scene
+// 0.92x, as its shadow rays end on a light sphere, the farthest box along every segment
+// (bench/README.md, issue 17's third sitting).
 template <class A, bool kAnyHit, bool kSameSides>
 inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd::Mask<A>& lanes,
                              const ChildOverlap<A>& left, const ChildOverlap<A>& right) {
