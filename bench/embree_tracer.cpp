@@ -118,8 +118,11 @@ struct UserGeometry {
   }
 };
 
-RTCScene build(const Scene& scene, double* seconds) {
+RTCScene build(const Scene& scene, EmbreeMode mode, double* seconds) {
   RTCScene s = rtcNewScene(device());
+  // ROBUST avoids optimisations that reduce arithmetic accuracy, and its triangle test is
+  // watertight (Embree 3 API manual, rtcSetSceneFlags).
+  if (mode == EmbreeMode::kRobust) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
   add_spheres(s, scene.table<Sphere>());
   UserGeometry<Box>::add(s, scene);
   UserGeometry<Cylinder>::add(s, scene);
@@ -197,24 +200,24 @@ bool embree_available() {
   return true;
 }
 
-const EmbreeScene* embree_scene(const BenchScene& b) {
+const EmbreeScene* embree_scene(const BenchScene& b, EmbreeMode mode) {
   static std::mutex mutex;
-  static std::map<const BenchScene*, std::unique_ptr<EmbreeScene>> cache;
+  static std::map<std::pair<const BenchScene*, EmbreeMode>, std::unique_ptr<EmbreeScene>> cache;
   std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[&b];
+  auto& slot = cache[{&b, mode}];
   if (!slot) {
     slot = std::make_unique<EmbreeScene>();
     slot->impl = new EmbreeScene::Impl{device(), nullptr, &b.scene};
     double seconds;
-    slot->impl->scene = build(b.scene, &seconds);
+    slot->impl->scene = build(b.scene, mode, &seconds);
   }
   return slot.get();
 }
 
-EmbreeBuild embree_build_once(const BenchScene& b) {
+EmbreeBuild embree_build_once(const BenchScene& b, EmbreeMode mode) {
   EmbreeBuild out;
   std::ptrdiff_t before = g_embree_bytes;
-  RTCScene s = build(b.scene, &out.seconds);
+  RTCScene s = build(b.scene, mode, &out.seconds);
   out.bytes = std::size_t(g_embree_bytes - before);
   rtcReleaseScene(s);
   return out;
@@ -243,10 +246,10 @@ namespace raylane::bench {
 bool embree_available() {
   return false;
 }
-const EmbreeScene* embree_scene(const BenchScene&) {
+const EmbreeScene* embree_scene(const BenchScene&, EmbreeMode) {
   return nullptr;
 }
-EmbreeBuild embree_build_once(const BenchScene&) {
+EmbreeBuild embree_build_once(const BenchScene&, EmbreeMode) {
   return {};
 }
 void EmbreeScene::trace(const RayStream&, bool, int, HitStream&) const {}

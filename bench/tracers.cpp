@@ -77,8 +77,10 @@ std::vector<std::string> bench_tracer_names() {
       names.push_back(packet_tracer_name(isa, traversal));
   names.push_back("raylane-scalar");
   if (embree_available()) {
-    names.push_back("embree-1");
-    names.push_back("embree-16");
+    for (const char* mode : {"", "robust-"}) {
+      names.push_back(std::string("embree-") + mode + "1");
+      names.push_back(std::string("embree-") + mode + "16");
+    }
   }
   return names;
 }
@@ -90,9 +92,13 @@ BenchTracer bench_tracer(const BenchScene& b, const std::string& name) {
   if (name == "raylane-scalar")
     return {name, [&b](const RayStream& r, bool o, HitStream& h) { trace_scalar(b, r, o, h); },
             nullptr};
-  if (name == "embree-1" || name == "embree-16") {
-    int width = name == "embree-1" ? 1 : 16;
-    const EmbreeScene* e = embree_scene(b);
+  if (name.rfind("embree-", 0) == 0) {
+    // "embree-[robust-]<width>"
+    bool robust = name.rfind("embree-robust-", 0) == 0;
+    std::string width_text = name.substr(robust ? 14 : 7);
+    if (width_text != "1" && width_text != "16") return {name, nullptr, nullptr};
+    int width = std::stoi(width_text);
+    const EmbreeScene* e = embree_scene(b, robust ? EmbreeMode::kRobust : EmbreeMode::kDefault);
     return {name,
             [e, width](const RayStream& r, bool o, HitStream& h) { e->trace(r, o, width, h); },
             nullptr};

@@ -25,7 +25,8 @@ struct BenchTracer {
 // raylane's packet tracer at each ISA this CPU has, with packets ("raylane-avx2") and with
 // single rays over the 8-wide tree ("raylane-avx2-rays"), raylane's scalar path (single rays
 // through the BVH with the double reference kernels) and, when built with Embree, Embree's
-// single-ray and 16-wide packet calls.
+// single-ray and 16-wide packet calls ("embree-1", "embree-16"), also on a scene built with
+// RTC_SCENE_FLAG_ROBUST ("embree-robust-1", "embree-robust-16").
 std::vector<std::string> bench_tracer_names();
 BenchTracer bench_tracer(const BenchScene& scene, const std::string& name);
 

@@ -356,6 +356,52 @@ TEST(SimdTracer, HybridPacketsAnswerAsPacketsAlone) {
   }
 }
 
+// Occlusion packets visit the farther child first (trace/packet_traverse.h, left_child_first).
+// Shadow rays leave a grid of small triangles in z = 0 for a point light at z = 10, and one
+// large triangle at z = 5 blocks every one of them. The root's children are the grid (near) and
+// the blocker (far): far first, each packet tests the blocker's row, every lane is occluded, and
+// the grid's leaves around the origins — which front-to-back order tests first, several rows
+// per packet — are never tested. Coherent packets (the light beyond the grid's corner: every
+// direction in one octant) and mixed ones (the light above its centre) take different paths.
+TEST(SimdTracer, OcclusionPacketsVisitTheFartherChildFirst) {
+  Scene s;
+  s.materials.push_back(Material{});
+  auto& tri = s.table<Triangle>();
+  const Vec3f up(0, 0, 1);
+  constexpr int kCells = 32;
+  for (int i = 0; i < kCells; ++i)
+    for (int j = 0; j < kCells; ++j) {
+      float x0 = float(i) / kCells, x1 = float(i + 1) / kCells;
+      float y0 = float(j) / kCells, y1 = float(j + 1) / kCells;
+      tri.append({Vec3f(x0, y0, 0), Vec3f(x1, y0, 0), Vec3f(x1, y1, 0)}, {up, up, up}, 0);
+      tri.append({Vec3f(x0, y0, 0), Vec3f(x1, y1, 0), Vec3f(x0, y1, 0)}, {up, up, up}, 0);
+    }
+  // Its box is centred on the grid's in x and y, so only z separates the two: z is the root's
+  // split axis, along which coherent packets order the children.
+  tri.append({Vec3f(-19.5f, -19.5f, 5), Vec3f(20.5f, -19.5f, 5), Vec3f(0.5f, 20.5f, 5)},
+             {up, up, up}, 0);
+  Bvh bvh = build_bvh(s);
+  ASSERT_EQ(bvh.nodes[0].axis, 2);
+  ASSERT_EQ(bvh.nodes[bvh.nodes[0].index + 1].count, 1);  // the blocker, alone
+  for (Vec3d light : {Vec3d(5, 5, 10), Vec3d(0.5, 0.5, 10)}) {
+    std::vector<Rayd> rays;
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 16; ++j) {
+        Vec3d o(Vec3f(float(0.1 + 0.05 * i), float(0.1 + 0.05 * j), 0.0f));
+        rays.push_back({o, light - o, 0.0, 1.0});  // from the grid to the light
+      }
+    RayStream stream = RayStream::from(rays);
+    for (Isa isa : supported_isas()) {
+      HitStream hits;
+      TraversalCounters c =
+          SimdTracer(isa, Traversal::kPackets).trace_counted(s, bvh, stream, hits, true);
+      EXPECT_EQ(std::count(hits.prim.begin(), hits.prim.end(), 0u), 256) << isa_name(isa);
+      EXPECT_EQ(c.leaf_visits, c.packets) << isa_name(isa) << ", light " << light.x;
+      EXPECT_EQ(c.prim_tests, c.packets) << isa_name(isa) << ", light " << light.x;
+    }
+  }
+}
+
 // Single rays need the 8-wide tree; on a BVH built without it they go as packets, with the
 // packets' answers, rather than missing everything.
 TEST(SimdTracer, SingleRaysWithoutWideNodesGoAsPackets) {
