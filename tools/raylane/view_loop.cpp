@@ -210,6 +210,19 @@ bool fly_keys(const ViewSession& s, double seconds, CameraSpec& camera) {
   return true;
 }
 
+// Waits up to `ms` for an event, polling. Not SDL_WaitEventTimeout: SDL 2.26 on X11 wakes that
+// wait with an XSendEvent to the window over a second X connection, sent even for the events
+// its own thread queues. The server may handle one sent just before Q after the window is
+// destroyed on the first connection: BadWindow, and Xlib's default handler exits with status 1
+// (the Xvfb test saw it in about 1 run of 10). A poll every 5 ms costs nothing measurable.
+bool idle_until_event(SDL_Event& e, int ms) {
+  for (int waited = 0; waited < ms; waited += 5) {
+    if (SDL_PollEvent(&e)) return true;
+    SDL_Delay(5);
+  }
+  return SDL_PollEvent(&e) != 0;
+}
+
 }  // namespace
 
 int run_view_window(ViewSession& s, const std::string& name) {
@@ -251,7 +264,7 @@ int run_view_window(ViewSession& s, const std::string& name) {
     CameraSpec camera = s.camera();
     SDL_Event e;
     // Nothing to render and nothing held: sleep until an event (or the file watch is due).
-    if (!worked && c.drag == Drag::kNone && !c.redraw && SDL_WaitEventTimeout(&e, 250))
+    if (!worked && c.drag == Drag::kNone && !c.redraw && idle_until_event(e, 250))
       on_event(e, s, c, camera);
     while (SDL_PollEvent(&e))
       on_event(e, s, c, camera);
