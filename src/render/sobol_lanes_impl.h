@@ -41,22 +41,44 @@ U32<A> hash32_lanes(U32<A> x) {
   return x ^ (x >> 16);
 }
 
+// Dimension 1's matrix is Pascal's triangle mod 2 (its polynomial is x + 1): index bit k
+// contributes C(k, j) mod 2 to bit j of the column m_k. By Lucas's theorem C(k, j) is odd
+// exactly when j's bits are a subset of k's, so in the bit-reversed domain the point is the
+// XOR over supersets of each bit position: five butterfly steps, one per bit of the position,
+// instead of four table gathers (gathers are the lanes' slowest instructions).
+template <class A>
+U32<A> superset_xor_lanes(U32<A> x) {
+  x = x ^ ((x >> 1) & U32<A>(0x55555555u));
+  x = x ^ ((x >> 2) & U32<A>(0x33333333u));
+  x = x ^ ((x >> 4) & U32<A>(0x0f0f0f0fu));
+  x = x ^ ((x >> 8) & U32<A>(0x00ff00ffu));
+  return x ^ ((x >> 16) & U32<A>(0x0000ffffu));
+}
+
+// Dimensions 2 and 3 by their byte tables, in the reversed domain.
+template <class A>
+U32<A> table_point_lanes(const U32<A>& r, uint32_t c) {
+  const U32<A> byte(0xffu);
+  const uint32_t* t = sobol_byte_tables() + 1024 * c;
+  U32<A> b0 = r & byte, b1 = ((r >> 8) & byte) + U32<A>(256u);
+  U32<A> b2 = ((r >> 16) & byte) + U32<A>(512u), b3 = (r >> 24) + U32<A>(768u);
+  return simd::gather<A>(t, b0) ^ simd::gather<A>(t, b1) ^ simd::gather<A>(t, b2) ^
+         simd::gather<A>(t, b3);
+}
+
 template <class A>
 void sobol_groups_range(uint32_t reversed_index, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
-  const uint32_t* tables = sobol_byte_tables();
-  const U32<A> byte(0xffu);
   for (std::size_t i = 0; i < b.seed.size(); i += W) {
     U32<A> scramble = U32<A>::load_unaligned(b.scramble.data() + i);
     U32<A> seeds = U32<A>::load_unaligned(b.component.data() + i);
     U32<A> r = scramble_reversed_lanes<A>(U32<A>(reversed_index), scramble);
-    U32<A> b0 = r & byte, b1 = ((r >> 8) & byte) + U32<A>(256u);
-    U32<A> b2 = ((r >> 16) & byte) + U32<A>(512u), b3 = (r >> 24) + U32<A>(768u);
+    // Dimension 0 is the radical inverse: in the reversed domain, the reversed index itself.
+    U32<A> radical = reverse_bits_lanes<A>(r);
+    const U32<A> point[4] = {radical, superset_xor_lanes<A>(radical), table_point_lanes<A>(r, 2),
+                             table_point_lanes<A>(r, 3)};
     for (uint32_t c = 0; c < 4; ++c) {
-      const uint32_t* t = tables + 1024 * c;
-      U32<A> point = simd::gather<A>(t, b0) ^ simd::gather<A>(t, b1) ^ simd::gather<A>(t, b2) ^
-                     simd::gather<A>(t, b3);
-      U32<A> v = scramble_reversed_lanes<A>(point, hash32_lanes<A>(seeds + U32<A>(c)));
+      U32<A> v = scramble_reversed_lanes<A>(point[c], hash32_lanes<A>(seeds + U32<A>(c)));
       reverse_bits_lanes<A>(v).store_unaligned(b.u[c].data() + i);
     }
   }
