@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include "raylane/render/bsdf.h"
@@ -63,17 +62,17 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_;
 };
 
-// A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
-// once they have grown to a tile's size.
-// A vertex waiting for the lanes: its row in the ShadeBatch is its index in `lane_rows`.
-// Its light point is light_of(buffers, row).
+// A vertex waiting for the lanes: its row in the ShadeBatch and VertexBatch is its index in
+// `lane_rows`. Everything else about it lives in those batches' columns (path_lanes.cpp fills
+// them in one pass), so the row itself is three indices.
 struct LaneRow {
-  uint32_t path;  // index into the tile's paths
-  uint32_t hit;   // index into the wavefront's hits
-  double u_roulette;
-  std::array<double, 4> u;  // the BSDF group: (u1, u2, lobe, roulette)
+  uint32_t path;      // index into the tile's paths
+  uint32_t hit;       // index into the wavefront's hits
+  uint32_t material;  // the hit's material row
 };
 
+// A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
+// once they have grown to a tile's size.
 struct ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
@@ -85,26 +84,15 @@ struct ThreadBuffers {
   std::size_t lane_count = 0;
   ShadeBatch shade;
   SobolBatch sobol;
-  LightQueries light_queries;  // row r's light group and light point, when lights_sampled
-  bool lights_sampled = false;
+  LightQueries light_queries;  // row r's light group and light point, when lights are sampled
   VertexBatch vertices;
 };
-
-// Lane row r's light point (invalid when this wavefront samples no lights).
-inline const LightSample& light_of(const ThreadBuffers& b, std::size_t r) {
-  static const LightSample none;
-  return b.lights_sampled ? b.light_queries.out[r] : none;
-}
 
 // What shading in lanes needs besides the settings (unused with Shading::kDouble).
 struct LaneShading {
   const LaneMaterials& materials;
   Isa isa;
 };
-
-inline std::span<LaneRow> queued(ThreadBuffers& b) {
-  return {b.lane_rows.data(), b.lane_count};
-}
 
 struct TileContext {
   ThreadBuffers& buffers;
