@@ -119,18 +119,43 @@ void take_shading(const ShadeBatch& sb, VertexBatch& vb) {
   std::copy_n(sb.pdf.begin(), n, vb.pdf.begin());
 }
 
+// Appends up to `most` elements to a vector through a plain pointer: grown once, trimmed when
+// done. (push_back's capacity check and its end pointer's store and reload per element made
+// the write-back below a third slower.)
+template <class T>
+class Appender {
+ public:
+  Appender(std::vector<T>& v, std::size_t most) : v_(v), start_(v.size()) {
+    v_.resize(start_ + most);
+    next_ = v_.data() + start_;
+  }
+  ~Appender() { v_.resize(std::size_t(next_ - v_.data())); }
+  Appender(const Appender&) = delete;
+  Appender& operator=(const Appender&) = delete;
+  void push(const T& x) { *next_++ = x; }
+
+ private:
+  std::vector<T>& v_;
+  std::size_t start_;
+  T* next_;
+};
+
 // The vertex lanes' answers back to the paths: shadow rays queued, next rays set, the paths
 // that go on listed.
 void write_back(TileContext& ctx) {
   ThreadBuffers& b = ctx.buffers;
   const VertexBatch& vb = b.vertices;
-  for (std::size_t r = 0; r < b.lane_count; ++r) {
+  const std::size_t n = b.lane_count;
+  Appender<Rayd> shadow_rays(b.shadow_rays, n);
+  Appender<ShadowQuery> queries(b.next_queries, n);
+  Appender<uint32_t> next_live(b.next_live, n);
+  for (std::size_t r = 0; r < n; ++r) {
     const LaneRow& row = b.lane_rows[r];
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
     if (vb.shadow_ok[r] != 0) {
       const LightSample& light = b.light_queries.out[r];
-      b.shadow_rays.push_back({column3(vb.shadow_o), light.wi});
-      b.next_queries.push_back({row.path, light.light, column3(vb.shadow_c)});
+      shadow_rays.push({column3(vb.shadow_o), light.wi});
+      queries.push({row.path, light.light, column3(vb.shadow_c)});
     }
     if (vb.alive[r] == 0) continue;
     PathState& p = b.paths[row.path];
@@ -139,7 +164,7 @@ void write_back(TileContext& ctx) {
     p.prev_pdf = vb.pdf[r];
     p.prev_specular = false;
     p.ray = {column3(vb.next_o), column3(vb.wi)};
-    b.next_live.push_back(row.path);
+    next_live.push(row.path);
   }
 }
 
