@@ -17,9 +17,10 @@ using namespace path_detail;
 
 namespace {
 
-// Jittered camera rays for one tile, 4×4 blocks at a time (y counts up in the pixel grid).
-void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
-                      std::vector<PathState>& paths) {
+// A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), before their
+// camera rays: pixel and Sobol scramble.
+void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                std::vector<PathState>& paths) {
   paths.clear();
   uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
   for (uint32_t by = y0; by < y1; by += kBlock)
@@ -29,12 +30,35 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
           PathState p;
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
           p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
-          // The lens's numbers only with a lens: a pinhole render draws what it always drew.
-          auto u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
-                                  : draw(ctx, p, Dims::camera, {0, 1});
-          p.ray = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
           paths.push_back(p);
         }
+}
+
+// Jittered camera rays for a tile's paths. Sobol's camera groups come from the lanes for the
+// whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
+void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                      std::vector<PathState>& paths) {
+  tile_paths(ctx, cam, x0, y0, paths);
+  const bool sobol = ctx.settings.sampler == Sampler::kSobol;
+  SobolBatch& s = ctx.buffers.sobol;
+  if (sobol) {
+    s.resize(paths.size());
+    for (std::size_t i = 0; i < paths.size(); ++i)
+      s.seed[i] = paths[i].pixel_seed;
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    PathState& p = paths[i];
+    std::array<double, 4> u;
+    if (sobol)
+      for (int c = 0; c < 4; ++c)
+        u[std::size_t(c)] = s.u[std::size_t(c)][i] * 0x1p-32;
+    else  // the lens's numbers only with a lens: a pinhole render draws what it always drew
+      u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
+                         : draw(ctx, p, Dims::camera, {0, 1});
+    double x = double(p.pixel % cam.width), y = double(cam.height - 1 - p.pixel / cam.width);
+    p.ray = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
+  }
 }
 
 // The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there
