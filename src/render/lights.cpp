@@ -160,7 +160,8 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
       s = sample(q.ref[r], u[2], u[3], u[0], u[1]);
       continue;
     }
-    std::size_t k = pick(u[2]);
+    std::size_t k = picked;
+    s = LightSample{};  // the row's last wavefront may have left an area sample's normal
     s.light = lights_[k];
     s.le = le_[k];
     s.pdf = 0;

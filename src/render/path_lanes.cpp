@@ -1,9 +1,9 @@
-// A wavefront's vertices shaded at once, in columns: one pass copies each queued vertex's hit
-// and path into the batches' columns, then its numbers (Sobol groups in lanes), its light point
-// (render/lights.h, sample_many), its BSDF in float lanes (render/shade_lanes.h) and its shadow
-// ray and next ray in double lanes (render/vertex_lanes.h) all read and write columns; a last
-// pass writes the paths back. (Each step once gathered what it needed from the hits and paths
-// itself: seven passes over the rows, 18 % of a render.)
+// A wavefront's vertices shaded at once, in columns: queue_lane_row copies each vertex's hit
+// and path into the batches' columns as the wavefront arrives, then its numbers (Sobol groups in
+// lanes), its light point (render/lights.h, sample_many), its BSDF in float lanes
+// (render/shade_lanes.h) and its shadow ray and next ray in double lanes (render/vertex_lanes.h)
+// all read and write columns; a last pass writes the paths back. (Each step once gathered what it
+// needed from the hits and paths itself: seven passes over the rows, 18 % of a render.)
 #include <algorithm>
 #include <cmath>
 
@@ -12,28 +12,6 @@
 namespace raylane::path_detail {
 
 namespace {
-
-// The one pass over the hits and paths: the columns every later step reads.
-void gather_rows(TileContext& ctx, bool lights, bool sobol) {
-  ThreadBuffers& b = ctx.buffers;
-  ShadeBatch& sb = b.shade;
-  VertexBatch& vb = b.vertices;
-  for (std::size_t r = 0; r < b.lane_count; ++r) {
-    const LaneRow& row = b.lane_rows[r];
-    const PathState& p = b.paths[row.path];
-    const Hit& hit = b.hits[row.hit];
-    sb.material[r] = int32_t(row.material);
-    for (int k = 0; k < 3; ++k) {
-      vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
-      vb.ray_o[k][r] = p.ray.o[k], vb.ray_d[k][r] = p.ray.d[k];
-      sb.n[k][r] = float(hit.surface.ns[k]);
-      sb.wo[k][r] = float(-p.ray.d[k]);
-    }
-    vb.t[r] = hit.t;
-    if (lights) b.light_queries.ref[r] = hit.surface.p;
-    if (sobol) b.sobol.seed[r] = p.pixel_seed;
-  }
-}
 
 // The BSDF group's numbers for row r: (u1, u2, lobe) for the float lanes, roulette's for the
 // double ones (0 where this depth has no roulette).
@@ -170,26 +148,49 @@ void write_back(TileContext& ctx) {
 
 }  // namespace
 
+void start_lane_rows(TileContext& ctx, std::size_t most) {
+  ThreadBuffers& b = ctx.buffers;
+  b.lane_count = 0;
+  if (b.lane_rows.size() < most) b.lane_rows.resize(most);
+  b.shade.resize(most);
+  b.vertices.resize(most);
+  if (samples_lights(ctx)) b.light_queries.resize(most);
+  if (ctx.settings.sampler == Sampler::kSobol) b.sobol.resize(most);
+}
+
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
                     const PathState& p, const Hit& hit) {
   const LaneMaterials& lm = ctx.lanes.materials;
   double c = dot(hit.surface.ns, p.ray.d);
   if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
     return;  // Bsdf::black()
+  // The row's columns, written while its hit and path are at hand: every later step of
+  // shade_in_lanes reads only columns.
   ThreadBuffers& b = ctx.buffers;
-  if (b.lane_count == b.lane_rows.size()) b.lane_rows.emplace_back();
-  b.lane_rows[b.lane_count++] = {path, hit_index, material};
+  const std::size_t r = b.lane_count++;
+  b.lane_rows[r] = {path, hit_index, material};
+  ShadeBatch& sb = b.shade;
+  VertexBatch& vb = b.vertices;
+  sb.material[r] = int32_t(material);
+  for (int k = 0; k < 3; ++k) {
+    vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
+    vb.ray_o[k][r] = p.ray.o[k], vb.ray_d[k][r] = p.ray.d[k];
+    sb.n[k][r] = float(hit.surface.ns[k]);
+    sb.wo[k][r] = float(-p.ray.d[k]);
+  }
+  vb.t[r] = hit.t;
+  if (samples_lights(ctx)) b.light_queries.ref[r] = hit.surface.p;
+  if (ctx.settings.sampler == Sampler::kSobol) b.sobol.seed[r] = p.pixel_seed;
 }
 
 void shade_in_lanes(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
   const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;
   const VertexRules rules = vertex_rules(ctx, depth);
-  b.shade.resize(b.lane_count);
+  b.shade.resize(b.lane_count);  // the rows are filled: these set the sizes and padding
   b.vertices.resize(b.lane_count);
   if (lights) b.light_queries.resize(b.lane_count);
   if (sobol) b.sobol.resize(b.lane_count);
-  gather_rows(ctx, lights, sobol);
   draw_numbers(ctx, depth, lights, rules.roulette);
   light_columns(ctx, lights);
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, b.shade);

@@ -135,8 +135,10 @@ VertexRules vertex_rules(const TileContext& ctx, int depth);
 void shade_wavefront(TileContext& ctx, int depth);
 
 // path_lanes.cpp.
-// A vertex for the lanes (its numbers come in shade_in_lanes). Nothing when nothing reflects
-// here.
+// Readies the lane batches for at most `most` vertices of this wavefront.
+void start_lane_rows(TileContext& ctx, std::size_t most);
+// A vertex for the lanes: its row's columns (its numbers come in shade_in_lanes). Nothing when
+// nothing reflects here.
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
                     const PathState& p, const Hit& hit);
 // The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.

@@ -176,8 +176,9 @@ VertexRules vertex_rules(const TileContext& ctx, int depth) {
 
 void shade_wavefront(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
-  b.lane_count = 0;
   const bool lanes = ctx.settings.shading == Shading::kFloat;
+  b.lane_count = 0;
+  if (lanes) start_lane_rows(ctx, b.live.size());
   for (std::size_t k = 0; k < b.live.size(); ++k) {
     uint32_t path = b.live[k];
     PathState& p = b.paths[path];

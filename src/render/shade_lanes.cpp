@@ -51,16 +51,21 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
 void ShadeBatch::resize(std::size_t rows) {
   size_ = rows;
   std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
-  material.resize(padded, 0);
-  for (Column* c : {&u_lobe, &u1, &u2, &pdf, &light_pdf})
-    c->resize(padded, 0.5f);
-  for (auto* v : {&n, &wo, &light_wi, &wi, &value, &light_f})
-    for (int k = 0; k < 3; ++k)
-      (*v)[k].resize(padded, k == 2 ? 1.0f : 0.0f);
-  // Padding rows: a unit normal and wo, no light direction; what the kernel makes of them is
-  // finite and unread.
+  // The columns only grow: shrinking them for a smaller wavefront and regrowing them for the
+  // next tile's filled 40 columns again.
+  if (material.size() < padded) {
+    material.resize(padded, 0);
+    for (Column* c : {&u_lobe, &u1, &u2, &pdf, &light_pdf})
+      c->resize(padded, 0.5f);
+    for (auto* v : {&n, &wo, &light_wi, &wi, &value, &light_f})
+      for (int k = 0; k < 3; ++k)
+        (*v)[k].resize(padded, k == 2 ? 1.0f : 0.0f);
+  }
+  // Padding rows: a unit normal and wo, no light direction, numbers in [0, 1); what the
+  // kernel makes of them is finite and unread.
   for (std::size_t i = rows; i < padded; ++i) {
     material[i] = 0;
+    u_lobe[i] = u1[i] = u2[i] = 0.5f;
     for (int k = 0; k < 3; ++k) {
       n[k][i] = wo[k][i] = k == 2 ? 1.0f : 0.0f;
       light_wi[k][i] = 0.0f;

@@ -128,18 +128,18 @@ const uint32_t* sobol_byte_tables() {
 
 void SobolBatch::resize(std::size_t rows) {
   size_ = rows;
-  std::size_t padded = (rows + 15) / 16 * 16;
-  seed.resize(padded, 0);
-  scramble.resize(padded, 0);
-  component.resize(padded, 0);
+  if (seed.size() >= padded_size()) return;  // the columns only grow
+  seed.resize(padded_size(), 0);
+  scramble.resize(padded_size(), 0);
+  component.resize(padded_size(), 0);
   for (auto& c : u)
-    c.resize(padded, 0);
+    c.resize(padded_size(), 0);
 }
 
 // The group seeds are 64-bit hashes (mix64), done here a row at a time; the lanes do the rest
 // in 32 bits, as sobol_group does.
 void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch) {
-  for (std::size_t i = 0; i < batch.seed.size(); ++i) {
+  for (std::size_t i = 0; i < batch.padded_size(); ++i) {
     uint64_t g = group_seed_of(batch.seed[i], group);
     batch.scramble[i] = uint32_t(g);
     batch.component[i] = uint32_t(g >> 32);

@@ -69,7 +69,7 @@ U32<A> table_point_lanes(const U32<A>& r, uint32_t c) {
 template <class A>
 void sobol_groups_range(uint32_t reversed_index, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
-  for (std::size_t i = 0; i < b.seed.size(); i += W) {
+  for (std::size_t i = 0; i < b.padded_size(); i += W) {
     U32<A> scramble = U32<A>::load_unaligned(b.scramble.data() + i);
     U32<A> seeds = U32<A>::load_unaligned(b.component.data() + i);
     U32<A> r = scramble_reversed_lanes<A>(U32<A>(reversed_index), scramble);

@@ -17,12 +17,14 @@ constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is 
 void VertexBatch::resize(std::size_t rows) {
   size_ = rows;
   std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
-  for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &light_wi, &light_le, &light_f, &wi, &value,
-                  &shadow_c, &shadow_o, &next_beta, &next_o})
-    for (Column& c : *v)
-      c.resize(padded);
-  for (Column* c : {&t, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_ok, &alive})
-    c->resize(padded);
+  if (t.size() < padded) {  // the columns only grow, as ShadeBatch's
+    for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &light_wi, &light_le, &light_f, &wi, &value,
+                    &shadow_c, &shadow_o, &next_beta, &next_o})
+      for (Column& c : *v)
+        c.resize(padded);
+    for (Column* c : {&t, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_ok, &alive})
+      c->resize(padded);
+  }
   // Padding rows: no light point, no sample; what the kernel makes of them is unread.
   for (std::size_t i = rows; i < padded; ++i)
     light_pdf[i] = pdf[i] = 0;

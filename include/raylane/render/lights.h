@@ -43,12 +43,20 @@ struct LightQueries {
   std::vector<Vec3d> ref;                // the shading points
   std::vector<std::array<double, 4>> u;  // their numbers: (u1, u2, u_light, u_part)
   std::vector<LightSample> out;
-  void resize(std::size_t n) { ref.resize(n), u.resize(n), out.resize(n); }
-  std::size_t size() const { return ref.size(); }
+  // Rows [0, n). The columns only grow: shrinking and regrowing them between wavefronts
+  // constructed every LightSample again.
+  void resize(std::size_t n) {
+    size_ = n;
+    if (ref.size() < n) ref.resize(n), u.resize(n), out.resize(n);
+  }
+  std::size_t size() const { return size_; }
   // The lanes' rows: which query each is and its light's choice probability.
   ConeBatch cones;
   std::vector<uint32_t> cone_rows;
   std::vector<double> cone_choice;
+
+ private:
+  std::size_t size_ = 0;
 };
 
 class LightSampler {

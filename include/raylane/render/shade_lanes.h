@@ -52,7 +52,8 @@ struct ShadeBatch {
   Column light_pdf;
 
   std::size_t size() const { return size_; }
-  // Rows [0, n), padded to a multiple of 16 lanes; keeps the capacity (no allocation once grown).
+  // Rows [0, n), padded to a multiple of 16 lanes. Rows below n keep their values (fill them
+  // before or after); the columns never shrink (no allocation once grown).
   void resize(std::size_t n);
 
  private:

@@ -36,7 +36,10 @@ struct SobolBatch {
   std::array<std::vector<uint32_t>, 4> u;     // the 32-bit components
   std::vector<uint32_t> scramble, component;  // per row: the index's and components' seeds
   std::size_t size() const { return size_; }
-  void resize(std::size_t rows);  // padded to 16 lanes; keeps the capacity
+  // Rows [0, rows) and their padding to 16 lanes, whose seeds are whatever they were (their
+  // groups are computed and unread). The columns never shrink.
+  void resize(std::size_t rows);
+  std::size_t padded_size() const { return (size_ + 15) / 16 * 16; }
 
  private:
   std::size_t size_ = 0;

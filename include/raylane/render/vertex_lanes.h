@@ -43,7 +43,8 @@ struct VertexBatch {
   Column alive;
 
   std::size_t size() const { return size_; }
-  // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.
+  // Rows [0, n), padded to a multiple of 8 lanes. Rows below n keep their values; the columns
+  // never shrink.
   void resize(std::size_t n);
 
  private:
