@@ -104,10 +104,10 @@ void render_tile(TileContext& ctx, Film& f) {
   const double lights_at_start = phases.lights, shade_at_start = phases.shade;
   PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
-    batch.clear();
-    for (uint32_t i : live)
-      batch.push_back(paths[i].ray);
-    batch.insert(batch.end(), shadow_rays.begin(), shadow_rays.end());
+    batch.resize(live.size() + shadow_rays.size());
+    for (std::size_t k = 0; k < live.size(); ++k)
+      batch[k] = paths[live[k]].ray;
+    std::copy(shadow_rays.begin(), shadow_rays.end(), batch.begin() + std::ptrdiff_t(live.size()));
     clock.lap(phases.shade);
     ctx.tracer.closest(batch, hits, live.size(), b.scratch);  // shadow rays need no surface
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
