@@ -50,6 +50,13 @@ struct Sweep {
 
 }  // namespace
 
+// Each axis is swept in three branch-free loops: boxes and costs from the right, from the left,
+// then the choice. The bins' occupancy is data the branch predictor cannot learn (perf: the
+// sweep was 28-36 % of the sphereflake's and the bunny's builds, with a mispredicted count test
+// per bin), so an empty bin is added like any other — its box is empty (Box4::clear), so min
+// and max leave the sweep's box as it was — and the candidates' costs go to an array that one
+// last loop scans. Every value, and the first minimum chosen, are those of the loop with the
+// tests (the test SahSplit.SweepEqualsTheDirectCosts holds it to a plain evaluation).
 Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box, uint32_t count,
                  double traversal_cost) {
   const int n = grid.bins;
@@ -58,23 +65,25 @@ Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box, u
   for (int axis = 0; axis < 3; ++axis) {
     if (!(grid.scale[axis] > 0)) continue;  // every centroid in one plane: no split here
     // Sweep from the right, then from the left, each accumulating box and cost (§3.2).
-    double right_cost[kMaxBins];
+    double right_cost[kMaxBins], cost[kMaxBins];
     Sweep right;
     double tests = 0;
     for (int b = n - 1; b > 0; --b) {
-      if (bins.count[axis][b]) right.add(bins.box[axis][b]);
+      right.add(bins.box[axis][b]);
       tests += bins.cost[axis][b];
       right_cost[b - 1] = right.half_area() * tests;
     }
     Sweep left;
     tests = 0;
+    for (int b = 0; b < n - 1; ++b) {
+      left.add(bins.box[axis][b]);
+      tests += bins.cost[axis][b];
+      cost[b] = traversal_cost + (left.half_area() * tests + right_cost[b]) / parent_area;
+    }
     uint32_t in_left = 0;
     for (int b = 0; b < n - 1; ++b) {
-      if (bins.count[axis][b]) left.add(bins.box[axis][b]);
-      tests += bins.cost[axis][b];
       in_left += bins.count[axis][b];
-      double cost = traversal_cost + (left.half_area() * tests + right_cost[b]) / parent_area;
-      if (in_left > 0 && in_left < count && cost < best.cost) best = {axis, b, cost};
+      if (in_left > 0 && in_left < count && cost[b] < best.cost) best = {axis, b, cost[b]};
     }
   }
   return best;

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/prims/table_util.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/bvh_ref.h"
@@ -277,6 +279,28 @@ TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
     rays.push_back({{x, 5, z}, {zero, -1, -zero}});
   }
   expect_bvh_equals_brute_force(s, bvh, rays);
+}
+
+// Issue 17's memory target: BVH + tables of a sphere scene within Embree's 42 bytes per sphere.
+// With a sphere test priced as a node visit (sah_test_cost 1.0) the SAH made leaves of one
+// sphere, 88 B each; the kernel's measured cost (0.3, sphere.h) gives leaves of several, which
+// traversal must still answer like the brute force.
+TEST(BvhTraversal, SphereLeavesHoldSeveralAndStayExact) {
+  Scene s;
+  s.materials.push_back(Material{});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j)
+      for (int k = 0; k < 16; ++k) {
+        std::array<double, 4> p{i + jitter(rng), j + jitter(rng), k + jitter(rng), 0.3};
+        ASSERT_FALSE(s.table<Sphere>().append(p, 0));
+      }
+  Bvh bvh = build_bvh(s);
+  expect_invariants(s, bvh);
+  const double per_sphere = double(bvh.bytes() + table_bytes(s.table<Sphere>())) / bvh.refs.size();
+  EXPECT_LE(per_sphere, 42.0);
+  expect_bvh_equals_brute_force(s, bvh, random_rays(8, 20000, 16));
 }
 
 }  // namespace
