@@ -15,11 +15,13 @@ constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is 
 void ConeBatch::resize(std::size_t rows) {
   size_ = rows;
   std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
-  for (auto* v : {&ref, &center, &wi})
-    for (Column& c : *v)
-      c.resize(padded);
-  for (Column* c : {&radius, &u1, &u2, &dist, &solid_angle})
-    c->resize(padded);
+  if (radius.size() < padded) {  // the columns only grow: a wavefront's batch is refilled
+    for (auto* v : {&ref, &center, &wi})
+      for (Column& c : *v)
+        c.resize(padded);
+    for (Column* c : {&radius, &u1, &u2, &dist, &solid_angle})
+      c->resize(padded);
+  }
   // Padding rows: a unit sphere two units from the origin, finite for the kernel.
   for (std::size_t i = rows; i < padded; ++i) {
     for (int k = 0; k < 3; ++k)

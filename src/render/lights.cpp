@@ -149,52 +149,62 @@ void LightSampler::apply_texture(std::size_t k, LightSample& s) const {
   s.le = s.le * texture_factor(scene_, m, lights_[k], Surface{s.p, s.n, s.n});
 }
 
-void LightSampler::sample_many(Isa isa, LightQueries& q) const {
-  q.cone_rows.clear();
-  q.cone_choice.clear();
-  for (std::size_t r = 0; r < q.size(); ++r) {
-    const auto& u = q.u[r];
-    LightSample& s = q.out[r];
-    std::size_t picked = empty() ? 0 : pick(u[2]);
-    if (picked == lights_.size() || lights_[picked].tag() != tag_of<Sphere>) {
-      s = sample(q.ref[r], u[2], u[3], u[0], u[1]);
-      continue;
-    }
-    std::size_t k = picked;
-    s = LightSample{};  // the row's last wavefront may have left an area sample's normal
-    s.light = lights_[k];
-    s.le = le_[k];
-    s.pdf = 0;
-    q.cone_rows.push_back(uint32_t(r));
-    q.cone_choice.push_back(choice_[k]);
+void LightQueries::resize(std::size_t n) {
+  size_ = n;
+  cones.resize(n);
+  if (pdf.size() < n) {
+    for (Column* c : {&u_light, &u_part, &pdf, &le[0], &le[1], &le[2]})
+      c->resize(n);
+    light.resize(n);
+    cone_light.resize(n);
   }
+}
+
+void LightQueries::set(std::size_t r, const LightSample& s) {
+  light[r] = s.light;
+  pdf[r] = s.pdf;
+  cones.dist[r] = s.dist;
+  for (int k = 0; k < 3; ++k)
+    cones.wi[k][r] = s.wi[k], le[k][r] = s.le[k];
+}
+
+void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   ConeBatch& cb = q.cones;
-  cb.resize(q.cone_rows.size());
   const SphereTable& spheres = scene_.table<Sphere>();
-  for (std::size_t j = 0; j < cb.size(); ++j) {
-    uint32_t r = q.cone_rows[j], row = q.out[r].light.row();
-    for (int k = 0; k < 3; ++k)
-      cb.ref[k][j] = q.ref[r][k], cb.center[k][j] = spheres.center(row)[k];
-    cb.radius[j] = spheres.r[row], cb.u1[j] = q.u[r][0], cb.u2[j] = q.u[r][1];
+  const std::size_t n = q.size();
+  // Each row's light; a sphere's rows get its center and radius for the cone kernel. The other
+  // rows get a unit sphere two units above their point, so that their lanes stay finite (what
+  // the kernel makes of them is overwritten below).
+  for (std::size_t r = 0; r < n; ++r) {
+    std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
+    bool cone = k < lights_.size() && lights_[k].tag() == tag_of<Sphere>;
+    q.cone_light[r] = cone ? uint32_t(k) : LightQueries::kNoCone;
+    Vec3d center = cone ? Vec3d(spheres.center(lights_[k].row())) : q.ref(r) + Vec3d(0, 0, 2);
+    for (int c = 0; c < 3; ++c)
+      cb.center[c][r] = center[c];
+    cb.radius[r] = cone ? double(spheres.r[lights_[k].row()]) : 1.0;
   }
   sample_cones(isa, cb);
-  for (std::size_t j = 0; j < cb.size(); ++j) {
-    uint32_t r = q.cone_rows[j];
-    LightSample& s = q.out[r];
-    if (!(cb.solid_angle[j] > 0)) {  // inside the sphere: by area, as sample() does
-      s = sample_kind<Sphere>(spheres, s.light.row(), q.ref[r], q.cone_choice[j], q.u[r][3],
-                              q.u[r][0], q.u[r][1], s);
+  for (std::size_t r = 0; r < n; ++r) {
+    const uint32_t k = q.cone_light[r];
+    if (k == LightQueries::kNoCone) {
+      q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r]));
       continue;
     }
-    s.wi = Vec3d(cb.wi[0][j], cb.wi[1][j], cb.wi[2][j]);
-    s.dist = cb.dist[j];
-    s.p = q.ref[r] + s.wi * s.dist;
-    s.pdf = q.cone_choice[j] / cb.solid_angle[j];
-  }
-  if (std::find(textured_.begin(), textured_.end(), 1) == textured_.end()) return;
-  for (uint32_t r : q.cone_rows) {  // the rest went through sample(), which applied theirs
-    std::size_t k = pick(q.u[r][2]);
-    if (textured_[k]) apply_texture(k, q.out[r]);
+    LightSample s;
+    s.light = lights_[k];
+    s.le = le_[k];
+    if (!(cb.solid_angle[r] > 0)) {  // inside the sphere: by area, as sample() does
+      s = sample_kind<Sphere>(spheres, s.light.row(), q.ref(r), choice_[k], q.u_part[r], cb.u1[r],
+                              cb.u2[r], s);
+    } else {
+      s.wi = q.wi(r);
+      s.dist = cb.dist[r];
+      s.p = q.ref(r) + s.wi * s.dist;
+      s.pdf = choice_[k] / cb.solid_angle[r];
+    }
+    if (textured_[k]) apply_texture(k, s);
+    q.set(r, s);
   }
 }
 

@@ -22,6 +22,11 @@ void set_bsdf_numbers(TileContext& ctx, std::size_t r, const std::array<double, 
   ctx.buffers.vertices.u_roulette[r] = u_roulette;
 }
 
+// The light group's numbers for row r: (u1, u2, u_light, u_part).
+void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 4>& u) {
+  q.cones.u1[r] = u[0], q.cones.u2[r] = u[1], q.u_light[r] = u[2], q.u_part[r] = u[3];
+}
+
 // Component c of row r of the last Sobol groups, in [0, 1].
 double sobol_number(const SobolBatch& s, int c, std::size_t r) {
   return s.u[std::size_t(c)][r] * 0x1p-32;
@@ -35,7 +40,7 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   if (ctx.settings.sampler != Sampler::kSobol) {
     for (std::size_t r = 0; r < b.lane_count; ++r) {
       const PathState& p = b.paths[b.lane_rows[r].path];
-      if (lights) q.u[r] = draw(ctx, p, Dims::light(depth), {2, 3, 0, 1});
+      if (lights) set_light_numbers(q, r, draw(ctx, p, Dims::light(depth), {2, 3, 0, 1}));
       auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
       set_bsdf_numbers(ctx, r, u, roulette ? ctx.rng.uniform() : 0.0);
     }
@@ -44,9 +49,10 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   SobolBatch& s = b.sobol;
   if (lights) {
     sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s);
-    for (std::size_t r = 0; r < b.lane_count; ++r)
-      q.u[r] = {sobol_number(s, 0, r), sobol_number(s, 1, r), sobol_number(s, 2, r),
-                sobol_number(s, 3, r)};
+    for (std::size_t r = 0; r < b.lane_count; ++r) {
+      q.cones.u1[r] = sobol_number(s, 0, r), q.cones.u2[r] = sobol_number(s, 1, r);
+      q.u_light[r] = sobol_number(s, 2, r), q.u_part[r] = sobol_number(s, 3, r);
+    }
   }
   sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s);
   for (std::size_t r = 0; r < b.lane_count; ++r)
@@ -73,16 +79,16 @@ void light_columns(TileContext& ctx, bool lights) {
   PhaseClock clock(ctx.settings.time_phases);
   ctx.lights.sample_many(ctx.lanes.isa, b.light_queries);
   clock.lap(ctx.stats.phases.lights);
-  for (std::size_t r = 0; r < n; ++r) {
-    const LightSample& light = b.light_queries.out[r];
-    const bool lit = light.valid();
-    for (int k = 0; k < 3; ++k) {
-      vb.light_wi[k][r] = lit ? light.wi[k] : 0.0;
-      vb.light_le[k][r] = lit ? light.le[k] : 0.0;
+  const LightQueries& q = b.light_queries;
+  for (int k = 0; k < 3; ++k)
+    for (std::size_t r = 0; r < n; ++r) {
+      const bool lit = q.pdf[r] > 0;
+      vb.light_wi[k][r] = lit ? q.cones.wi[k][r] : 0.0;
+      vb.light_le[k][r] = lit ? q.le[k][r] : 0.0;
       sb.light_wi[k][r] = float(vb.light_wi[k][r]);
     }
-    vb.light_pdf[r] = lit ? light.pdf : 0.0;
-  }
+  for (std::size_t r = 0; r < n; ++r)
+    vb.light_pdf[r] = q.pdf[r] > 0 ? q.pdf[r] : 0.0;
 }
 
 // The float BSDF's answers into the double columns of the vertex lanes.
@@ -131,9 +137,9 @@ void write_back(TileContext& ctx) {
     const LaneRow& row = b.lane_rows[r];
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
     if (vb.shadow_ok[r] != 0) {
-      const LightSample& light = b.light_queries.out[r];
-      shadow_rays.push({column3(vb.shadow_o), light.wi});
-      queries.push({row.path, light.light, column3(vb.shadow_c)});
+      const LightQueries& q = b.light_queries;
+      shadow_rays.push({column3(vb.shadow_o), q.wi(r)});
+      queries.push({row.path, q.light[r], column3(vb.shadow_c)});
     }
     if (vb.alive[r] == 0) continue;
     PathState& p = b.paths[row.path];
@@ -179,7 +185,9 @@ void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_
     sb.wo[k][r] = float(-p.ray.d[k]);
   }
   vb.t[r] = hit.t;
-  if (samples_lights(ctx)) b.light_queries.ref[r] = hit.surface.p;
+  if (samples_lights(ctx))
+    for (int k = 0; k < 3; ++k)
+      b.light_queries.cones.ref[k][r] = hit.surface.p[k];
   if (ctx.settings.sampler == Sampler::kSobol) b.sobol.seed[r] = p.pixel_seed;
 }
 

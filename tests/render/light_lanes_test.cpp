@@ -103,26 +103,30 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
   LightQueries q;
   q.resize(4000);
   for (std::size_t i = 0; i < q.size(); ++i) {
-    q.ref[i] = i % 20 == 0
-                   ? Vec3d(0, 3, 0.1 * rng.uniform())
-                   : Vec3d(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
-    q.u[i] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+    Vec3d ref = i % 20 == 0
+                    ? Vec3d(0, 3, 0.1 * rng.uniform())
+                    : Vec3d(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
+    for (int k = 0; k < 3; ++k)
+      q.cones.ref[k][i] = ref[k];
+    q.cones.u1[i] = rng.uniform(), q.cones.u2[i] = rng.uniform();
+    q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
   }
   int kinds_seen[4] = {};
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
     lights.sample_many(isa, q);
     for (std::size_t i = 0; i < q.size(); ++i) {
-      const auto& u = q.u[i];
-      LightSample want = lights.sample(q.ref[i], u[2], u[3], u[0], u[1]);
-      const LightSample& got = q.out[i];
-      ASSERT_EQ(got.light, want.light) << "query " << i;
-      ASSERT_EQ(got.valid(), want.valid()) << "query " << i;
-      ++kinds_seen[std::size_t(got.light.tag())];
+      LightSample want =
+          lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i], q.cones.u2[i]);
+      ASSERT_EQ(q.light[i], want.light) << "query " << i;
+      ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
+      ++kinds_seen[std::size_t(q.light[i].tag())];
       if (!want.valid()) continue;
-      EXPECT_EQ(got.le, want.le);
-      EXPECT_TRUE(same_bits(got.wi, want.wi) && same_bits(got.pdf, want.pdf) &&
-                  same_bits(got.p, want.p) && same_bits(got.dist, want.dist))
+      Vec3d le(q.le[0][i], q.le[1][i], q.le[2][i]);
+      EXPECT_EQ(le, want.le);
+      // The point is ref + wi·dist for a cone's sample, so these pin it down too.
+      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf[i], want.pdf) &&
+                  same_bits(q.cones.dist[i], want.dist))
           << "query " << i;
     }
   }

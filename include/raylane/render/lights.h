@@ -37,25 +37,37 @@ struct LightSample {
   bool valid() const { return pdf > 0; }
 };
 
-// Many shading points' light samples at once (a path tracer's wavefront), with the buffers
-// reused between calls: resize, fill ref and u, call LightSampler::sample_many, read out.
+// Many shading points' light samples at once (a path tracer's wavefront), in columns, with the
+// buffers reused between calls: resize, fill the inputs, call LightSampler::sample_many, read
+// the outputs. The cone kernel's batch holds the columns both share, so a sphere light's rows
+// are sampled where they stand: no copies into and out of a separate batch.
 struct LightQueries {
-  std::vector<Vec3d> ref;                // the shading points
-  std::vector<std::array<double, 4>> u;  // their numbers: (u1, u2, u_light, u_part)
-  std::vector<LightSample> out;
-  // Rows [0, n). The columns only grow: shrinking and regrowing them between wavefronts
-  // constructed every LightSample again.
-  void resize(std::size_t n) {
-    size_ = n;
-    if (ref.size() < n) ref.resize(n), u.resize(n), out.resize(n);
-  }
-  std::size_t size() const { return size_; }
-  // The lanes' rows: which query each is and its light's choice probability.
+  using Column = std::vector<double>;
+  // Inputs: the shading points (cones.ref) and their numbers (cones.u1, cones.u2, u_light,
+  // u_part). Outputs: the light (invalid for the environment), the unit direction (cones.wi),
+  // the distance (cones.dist), the radiance and the solid-angle density (0: no sample).
   ConeBatch cones;
-  std::vector<uint32_t> cone_rows;
-  std::vector<double> cone_choice;
+  Column u_light, u_part;
+  std::vector<PrimRef> light;
+  std::array<Column, 3> le;
+  Column pdf;
+  // Rows [0, n). The columns only grow.
+  void resize(std::size_t n);
+  std::size_t size() const { return size_; }
+  Vec3d ref(std::size_t r) const { return column3(cones.ref, r); }
+  Vec3d wi(std::size_t r) const { return column3(cones.wi, r); }
+  bool valid(std::size_t r) const { return pdf[r] > 0; }
+  // Row r's outputs from one sample.
+  void set(std::size_t r, const LightSample& s);
+  // Which light each row picked, when it is a sphere light sampled by its cone (sample_many's
+  // scratch; kNoCone otherwise).
+  static constexpr uint32_t kNoCone = ~0u;
+  std::vector<uint32_t> cone_light;
 
  private:
+  static Vec3d column3(const std::array<Column, 3>& c, std::size_t r) {
+    return {c[0][r], c[1][r], c[2][r]};
+  }
   std::size_t size_ = 0;
 };
 
