@@ -19,14 +19,14 @@ void ConeBatch::resize(std::size_t rows) {
     for (auto* v : {&ref, &center, &wi})
       for (Column& c : *v)
         c.resize(padded);
-    for (Column* c : {&radius, &u1, &u2, &dist, &solid_angle})
+    for (Column* c : {&radius, &u1, &u2, &choice, &dist, &solid_angle, &pdf})
       c->resize(padded);
   }
   // Padding rows: a unit sphere two units from the origin, finite for the kernel.
   for (std::size_t i = rows; i < padded; ++i) {
     for (int k = 0; k < 3; ++k)
       ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;
-    radius[i] = 1, u1[i] = u2[i] = 0.5;
+    radius[i] = 1, u1[i] = u2[i] = 0.5, choice[i] = 1;
   }
 }
 

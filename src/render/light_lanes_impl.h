@@ -88,7 +88,10 @@ void sample_cones_range(ConeBatch& b) {
     store3<A>(b.wi, i, frame_to_world<A>(axis, local));
     t_hit.store_unaligned(b.dist.data() + i);
     constexpr double kTwoPi = 6.283185307179586476925;
-    xsimd::select(outside, D(kTwoPi) * omc_max, zero).store_unaligned(b.solid_angle.data() + i);
+    D solid_angle = xsimd::select(outside, D(kTwoPi) * omc_max, zero);
+    solid_angle.store_unaligned(b.solid_angle.data() + i);
+    D choice = D::load_unaligned(b.choice.data() + i);
+    xsimd::select(solid_angle > zero, choice / solid_angle, zero).store_unaligned(b.pdf.data() + i);
   }
 }
 

@@ -152,8 +152,8 @@ void LightSampler::apply_texture(std::size_t k, LightSample& s) const {
 void LightQueries::resize(std::size_t n) {
   size_ = n;
   cones.resize(n);
-  if (pdf.size() < n) {
-    for (Column* c : {&u_light, &u_part, &pdf, &le[0], &le[1], &le[2]})
+  if (u_light.size() < n) {
+    for (Column* c : {&u_light, &u_part, &le[0], &le[1], &le[2]})
       c->resize(n);
     light.resize(n);
     cone_light.resize(n);
@@ -162,7 +162,7 @@ void LightQueries::resize(std::size_t n) {
 
 void LightQueries::set(std::size_t r, const LightSample& s) {
   light[r] = s.light;
-  pdf[r] = s.pdf;
+  cones.pdf[r] = s.pdf;
   cones.dist[r] = s.dist;
   for (int k = 0; k < 3; ++k)
     cones.wi[k][r] = s.wi[k], le[k][r] = s.le[k];
@@ -172,9 +172,9 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   ConeBatch& cb = q.cones;
   const SphereTable& spheres = scene_.table<Sphere>();
   const std::size_t n = q.size();
-  // Each row's light; a sphere's rows get its center and radius for the cone kernel. The other
-  // rows get a unit sphere two units above their point, so that their lanes stay finite (what
-  // the kernel makes of them is overwritten below).
+  // Each row's light; a sphere's rows get its center, radius and choice for the cone kernel.
+  // The other rows get a unit sphere two units above their point, so that their lanes stay
+  // finite (what the kernel makes of them is overwritten below).
   for (std::size_t r = 0; r < n; ++r) {
     std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
     bool cone = k < lights_.size() && lights_[k].tag() == tag_of<Sphere>;
@@ -183,29 +183,40 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     for (int c = 0; c < 3; ++c)
       cb.center[c][r] = center[c];
     cb.radius[r] = cone ? double(spheres.r[lights_[k].row()]) : 1.0;
+    cb.choice[r] = cone ? choice_[k] : 1.0;
   }
-  sample_cones(isa, cb);
+  sample_cones(isa, cb);  // direction, distance and density of every cone row
   for (std::size_t r = 0; r < n; ++r) {
     const uint32_t k = q.cone_light[r];
     if (k == LightQueries::kNoCone) {
       q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r]));
       continue;
     }
-    LightSample s;
-    s.light = lights_[k];
-    s.le = le_[k];
-    if (!(cb.solid_angle[r] > 0)) {  // inside the sphere: by area, as sample() does
-      s = sample_kind<Sphere>(spheres, s.light.row(), q.ref(r), choice_[k], q.u_part[r], cb.u1[r],
-                              cb.u2[r], s);
-    } else {
-      s.wi = q.wi(r);
-      s.dist = cb.dist[r];
-      s.p = q.ref(r) + s.wi * s.dist;
-      s.pdf = choice_[k] / cb.solid_angle[r];
-    }
-    if (textured_[k]) apply_texture(k, s);
-    q.set(r, s);
+    q.light[r] = lights_[k];
+    for (int c = 0; c < 3; ++c)
+      q.le[c][r] = le_[k][c];
+    if (cb.solid_angle[r] > 0 && !textured_[k]) continue;  // the kernel's answer stands
+    q.set(r, finish_sphere_row(q, r, k));
   }
+}
+
+LightSample LightSampler::finish_sphere_row(const LightQueries& q, std::size_t r,
+                                            std::size_t k) const {
+  const ConeBatch& cb = q.cones;
+  LightSample s;
+  s.light = lights_[k];
+  s.le = le_[k];
+  if (!(cb.solid_angle[r] > 0)) {  // inside the sphere: by area, as sample() does
+    s = sample_kind<Sphere>(scene_.table<Sphere>(), s.light.row(), q.ref(r), choice_[k],
+                            q.u_part[r], cb.u1[r], cb.u2[r], s);
+  } else {
+    s.wi = q.wi(r);
+    s.dist = cb.dist[r];
+    s.p = q.ref(r) + s.wi * s.dist;
+    s.pdf = cb.pdf[r];
+  }
+  if (textured_[k]) apply_texture(k, s);
+  return s;
 }
 
 double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const {

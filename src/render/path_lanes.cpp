@@ -82,13 +82,13 @@ void light_columns(TileContext& ctx, bool lights) {
   const LightQueries& q = b.light_queries;
   for (int k = 0; k < 3; ++k)
     for (std::size_t r = 0; r < n; ++r) {
-      const bool lit = q.pdf[r] > 0;
+      const bool lit = q.valid(r);
       vb.light_wi[k][r] = lit ? q.cones.wi[k][r] : 0.0;
       vb.light_le[k][r] = lit ? q.le[k][r] : 0.0;
       sb.light_wi[k][r] = float(vb.light_wi[k][r]);
     }
   for (std::size_t r = 0; r < n; ++r)
-    vb.light_pdf[r] = q.pdf[r] > 0 ? q.pdf[r] : 0.0;
+    vb.light_pdf[r] = q.valid(r) ? q.pdf(r) : 0.0;
 }
 
 // The float BSDF's answers into the double columns of the vertex lanes.

@@ -56,6 +56,7 @@ ConeBatch batch_of(const SphereTable& spheres, const std::vector<Case>& cases) {
     for (int k = 0; k < 3; ++k)
       b.ref[k][i] = c.ref[k], b.center[k][i] = spheres.center(c.sphere)[k];
     b.radius[i] = spheres.r[c.sphere], b.u1[i] = c.u1, b.u2[i] = c.u2;
+    b.choice[i] = i % 2 == 0 ? 1.0 : 0.3;  // a light among others: pdf is a true division
   }
   return b;
 }
@@ -72,14 +73,16 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
       const Case& c = cases[i];
       auto s = Sphere::sample_subtended(spheres, c.sphere, c.ref, c.u1, c.u2);
       if (!s) {
-        failures += !(b.solid_angle[i] == 0);
+        failures += !(b.solid_angle[i] == 0 && b.pdf[i] == 0);
         EXPECT_EQ(b.solid_angle[i], 0) << "row " << i << " is inside its sphere";
+        EXPECT_EQ(b.pdf[i], 0) << "row " << i << " is inside its sphere";
         continue;
       }
       ++outside;
       Vec3d wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
       bool ok = same_bits(wi, s->wi) && same_bits(b.dist[i], s->dist) &&
-                same_bits(b.solid_angle[i], s->solid_angle);
+                same_bits(b.solid_angle[i], s->solid_angle) &&
+                same_bits(b.pdf[i], b.choice[i] / s->solid_angle);
       failures += !ok;
       EXPECT_TRUE(ok) << "row " << i << ": lanes wi " << wi.x << " " << wi.y << " " << wi.z
                       << " dist " << b.dist[i] << " solid " << b.solid_angle[i] << "; scalar wi "
@@ -125,7 +128,7 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
       Vec3d le(q.le[0][i], q.le[1][i], q.le[2][i]);
       EXPECT_EQ(le, want.le);
       // The point is ref + wi·dist for a cone's sample, so these pin it down too.
-      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf[i], want.pdf) &&
+      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf(i), want.pdf) &&
                   same_bits(q.cones.dist[i], want.dist))
           << "query " << i;
     }

@@ -20,13 +20,15 @@ namespace raylane {
 // to the lane width are padding the kernel computes and nobody reads.
 struct ConeBatch {
   using Column = std::vector<double>;
-  // Inputs: the shading point, the sphere, the two numbers of the cone's warp.
+  // Inputs: the shading point, the sphere, the two numbers of the cone's warp and the
+  // probability of having chosen this light.
   std::array<Column, 3> ref, center;
-  Column radius, u1, u2;
-  // Outputs: the unit direction, the distance to the sphere along it and the cone's solid
-  // angle; solid_angle 0 where ref is not outside the sphere (the caller samples by area).
+  Column radius, u1, u2, choice;
+  // Outputs: the unit direction, the distance to the sphere along it, the cone's solid angle
+  // and the sample's density choice / solid angle; solid_angle and pdf 0 where ref is not
+  // outside the sphere (the caller samples by area).
   std::array<Column, 3> wi;
-  Column dist, solid_angle;
+  Column dist, solid_angle, pdf;
 
   std::size_t size() const { return size_; }
   // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.

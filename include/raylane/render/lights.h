@@ -45,18 +45,19 @@ struct LightQueries {
   using Column = std::vector<double>;
   // Inputs: the shading points (cones.ref) and their numbers (cones.u1, cones.u2, u_light,
   // u_part). Outputs: the light (invalid for the environment), the unit direction (cones.wi),
-  // the distance (cones.dist), the radiance and the solid-angle density (0: no sample).
+  // the distance (cones.dist), the radiance and the solid-angle density (cones.pdf; 0: no
+  // sample).
   ConeBatch cones;
   Column u_light, u_part;
   std::vector<PrimRef> light;
   std::array<Column, 3> le;
-  Column pdf;
   // Rows [0, n). The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
   Vec3d ref(std::size_t r) const { return column3(cones.ref, r); }
   Vec3d wi(std::size_t r) const { return column3(cones.wi, r); }
-  bool valid(std::size_t r) const { return pdf[r] > 0; }
+  double pdf(std::size_t r) const { return cones.pdf[r]; }
+  bool valid(std::size_t r) const { return cones.pdf[r] > 0; }
   // Row r's outputs from one sample.
   void set(std::size_t r, const LightSample& s);
   // Which light each row picked, when it is a sphere light sampled by its cone (sample_many's
@@ -111,6 +112,9 @@ class LightSampler {
   std::vector<double> choice_;     // choice probability of lights_[k]
   std::vector<Vec3d> le_;          // emission of lights_[k]
   std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
+  // The sample of sample_many's row r, a sphere light k's, where the kernel's answer needs more:
+  // a point inside the sphere (sampled by area) or a texture.
+  LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;
   // s.le times the light's texture at s.p, for a textured light.
   void apply_texture(std::size_t k, LightSample& s) const;
   // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
