@@ -34,11 +34,12 @@ void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
         }
 }
 
-// Jittered camera rays for a tile's paths. Sobol's camera groups come from the lanes for the
-// whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
+// Jittered camera rays for a tile's paths (rays[i] for paths[i]). Sobol's camera groups come from
+// the lanes for the whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
 void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
-                      std::vector<PathState>& paths) {
+                      std::vector<PathState>& paths, std::vector<Rayd>& rays) {
   tile_paths(ctx, cam, x0, y0, paths);
+  rays.resize(paths.size());
   const bool sobol = ctx.settings.sampler == Sampler::kSobol;
   SobolBatch& s = ctx.buffers.sobol;
   if (sobol) {
@@ -57,7 +58,7 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
       u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
                          : draw(ctx, p, Dims::camera, {0, 1});
     double x = double(p.pixel % cam.width), y = double(cam.height - 1 - p.pixel / cam.width);
-    p.ray = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
+    rays[i] = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
   }
 }
 
@@ -91,7 +92,7 @@ void render_tile(TileContext& ctx, Film& f) {
   ThreadBuffers& b = ctx.buffers;
   std::vector<PathState>& paths = b.paths;
   std::vector<uint32_t>&live = b.live, &next_live = b.next_live;
-  std::vector<Rayd>&batch = b.batch, &shadow_rays = b.shadow_rays;
+  std::vector<Rayd>&rays = b.rays, &shadow_rays = b.shadow_rays;
   std::vector<ShadowQuery>&queries = b.queries, &next_queries = b.next_queries;
   std::vector<Hit>& hits = b.hits;
   live.resize(paths.size());
@@ -104,12 +105,10 @@ void render_tile(TileContext& ctx, Film& f) {
   const double lights_at_start = phases.lights, shade_at_start = phases.shade;
   PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
-    batch.resize(live.size() + shadow_rays.size());
-    for (std::size_t k = 0; k < live.size(); ++k)
-      batch[k] = paths[live[k]].ray;
-    std::copy(shadow_rays.begin(), shadow_rays.end(), batch.begin() + std::ptrdiff_t(live.size()));
+    rays.resize(live.size());  // the shadow rays after the paths' rays
+    rays.insert(rays.end(), shadow_rays.begin(), shadow_rays.end());
     clock.lap(phases.shade);
-    ctx.tracer.closest(batch, hits, live.size(), b.scratch);  // shadow rays need no surface
+    ctx.tracer.closest(rays, hits, live.size(), b.scratch);  // shadow rays need no surface
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth == 0 && !f.aovs.empty()) add_aovs(ctx.tracer.scene(), paths, hits, f);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
@@ -121,14 +120,16 @@ void render_tile(TileContext& ctx, Film& f) {
       // The environment's shadow rays (no light primitive) see it when they meet nothing.
       bool seen = queries[q].light.valid() ? h.hit() && h.prim == queries[q].light : !h.hit();
       if (seen && h.hit() && !kind_two_sided(h.prim.tag()))
-        seen = ctx.tracer.front_face(batch[live.size() + q], h);
+        seen = ctx.tracer.front_face(rays[live.size() + q], h);
       if (seen) paths[queries[q].path].radiance += queries[q].contribution;
     }
     shadow_rays.clear();
     next_queries.clear();
     next_live.clear();
+    b.next_rays.clear();
     shade_wavefront(ctx, depth);
     live.swap(next_live);
+    rays.swap(b.next_rays);
     queries.swap(next_queries);
   }
   clock.lap(phases.shade);
@@ -218,7 +219,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
                         {},       0,      uint32_t(pass)};
         PhaseClock clock(settings.time_phases);
         tile_camera_rays(ctx, cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile,
-                         buffers.paths);
+                         buffers.paths, buffers.rays);
         clock.lap(ctx.stats.phases.camera);
         render_tile(ctx, f);
         if (!tile_seconds.empty()) tile_seconds[std::size_t(t)] = thread_cpu_seconds() - started;

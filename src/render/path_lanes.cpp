@@ -133,6 +133,7 @@ void write_back(TileContext& ctx) {
   Appender<Rayd> shadow_rays(b.shadow_rays, n);
   Appender<ShadowQuery> queries(b.next_queries, n);
   Appender<uint32_t> next_live(b.next_live, n);
+  Appender<Rayd> next_rays(b.next_rays, n);
   for (std::size_t r = 0; r < n; ++r) {
     const LaneRow& row = b.lane_rows[r];
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
@@ -147,7 +148,7 @@ void write_back(TileContext& ctx) {
     p.prev_p = column3(vb.p);
     p.prev_pdf = vb.pdf[r];
     p.prev_specular = false;
-    p.ray = {column3(vb.next_o), column3(vb.wi)};
+    next_rays.push({column3(vb.next_o), column3(vb.wi)});
     next_live.push(row.path);
   }
 }
@@ -165,9 +166,9 @@ void start_lane_rows(TileContext& ctx, std::size_t most) {
 }
 
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
-                    const PathState& p, const Hit& hit) {
+                    const PathState& p, const Rayd& ray, const Hit& hit) {
   const LaneMaterials& lm = ctx.lanes.materials;
-  double c = dot(hit.surface.ns, p.ray.d);
+  double c = dot(hit.surface.ns, ray.d);
   if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
     return;  // Bsdf::black()
   // The row's columns, written while its hit and path are at hand: every later step of
@@ -180,9 +181,9 @@ void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_
   sb.material[r] = int32_t(material);
   for (int k = 0; k < 3; ++k) {
     vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
-    vb.ray_o[k][r] = p.ray.o[k], vb.ray_d[k][r] = p.ray.d[k];
+    vb.ray_o[k][r] = ray.o[k], vb.ray_d[k][r] = ray.d[k];
     sb.n[k][r] = float(hit.surface.ns[k]);
-    sb.wo[k][r] = float(-p.ray.d[k]);
+    sb.wo[k][r] = float(-ray.d[k]);
   }
   vb.t[r] = hit.t;
   if (samples_lights(ctx))

@@ -26,8 +26,9 @@ inline constexpr uint32_t kTile = kPathTile;  // pixels per tile side: 256 paths
 inline constexpr uint32_t kBlock = 4;         // camera rays in 4×4 blocks: one coherent packet
 inline constexpr double kRouletteSurvival = 0.8;
 
+// A path between wavefronts. Its ray is not here: rays live in the thread's `rays`, row k
+// for the path live[k], so that the wavefront's batch is already in order for the tracer.
 struct PathState {
-  Rayd ray;
   Vec3d beta{1, 1, 1};  // throughput
   Vec3d radiance{0, 0, 0};
   Vec3d prev_p;                // the vertex the ray left (for the light pdf of MIS)
@@ -76,7 +77,9 @@ struct LaneRow {
 struct ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
-  std::vector<Rayd> batch, shadow_rays;
+  // rays[k] is path live[k]'s ray; the wavefront appends its shadow rays to trace them all at
+  // once. next_rays[k] is next_live[k]'s.
+  std::vector<Rayd> rays, next_rays, shadow_rays;
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
   TraceScratch scratch;
@@ -140,7 +143,7 @@ void start_lane_rows(TileContext& ctx, std::size_t most);
 // A vertex for the lanes: its row's columns (its numbers come in shade_in_lanes). Nothing when
 // nothing reflects here.
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
-                    const PathState& p, const Hit& hit);
+                    const PathState& p, const Rayd& ray, const Hit& hit);
 // The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
 void shade_in_lanes(TileContext& ctx, int depth);
 

@@ -31,27 +31,27 @@ Vec3d beer(const Material& m, const Hit& hit) {
 // What a path gains where it hits an emitter: all of it for a camera ray, for BSDF sampling
 // alone or after a specular bounce (light sampling cannot reach a Dirac lobe); the MIS share
 // after another bounce, nothing for NEE alone (light sampling counted it already).
-void add_emission(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
+void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit, int depth) {
   Vec3d le = ctx.lights.emitted(hit);
   if (le == Vec3d(0, 0, 0)) return;
   double w = 1;
   bool sampled_light_too = depth > 0 && !p.prev_specular;
   if (sampled_light_too && ctx.settings.integrator == Integrator::kNee) w = 0;
   if (sampled_light_too && ctx.settings.integrator == Integrator::kMis)
-    w = power_heuristic(p.prev_pdf, ctx.lights.pdf(p.prev_p, p.ray.d, hit));
+    w = power_heuristic(p.prev_pdf, ctx.lights.pdf(p.prev_p, ray.d, hit));
   p.radiance += p.beta * le * w;
 }
 
 // What a path gains when its ray leaves the scene: the environment, weighted as add_emission
 // weighs an emitter (its density for MIS is the environment's).
-void add_escape(TileContext& ctx, PathState& p, int depth) {
-  Vec3d le = ctx.lights.escaped(p.ray.d);
+void add_escape(TileContext& ctx, PathState& p, const Rayd& ray, int depth) {
+  Vec3d le = ctx.lights.escaped(ray.d);
   if (le == Vec3d(0, 0, 0)) return;
   double w = 1;
   bool sampled_light_too = depth > 0 && !p.prev_specular;
   if (sampled_light_too && ctx.settings.integrator == Integrator::kNee) w = 0;
   if (sampled_light_too && ctx.settings.integrator == Integrator::kMis)
-    w = power_heuristic(p.prev_pdf, ctx.lights.environment_pdf(p.ray.d));
+    w = power_heuristic(p.prev_pdf, ctx.lights.environment_pdf(ray.d));
   p.radiance += p.beta * le * w;
 }
 
@@ -100,16 +100,17 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& 
 // Where the path meets a surface: emission if it is an emitter (which ends the path, emitters
 // reflect nothing), else Beer's law on the segment just travelled. The material's row if the
 // path may scatter here.
-std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, int depth) {
+std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit,
+                               int depth) {
   if (!hit.hit()) {
-    add_escape(ctx, p, depth);
+    add_escape(ctx, p, ray, depth);
     return std::nullopt;
   }
   const Scene& scene = ctx.tracer.scene();
   uint32_t row = scene.material_of(hit.prim);
   const Material& m = scene.materials[row];
   if (m.is_light) {
-    add_emission(ctx, p, hit, depth);
+    add_emission(ctx, p, ray, hit, depth);
     return std::nullopt;
   }
   p.beta = p.beta * beer(m, hit);
@@ -118,49 +119,49 @@ std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Hit& hit, i
 }
 
 // The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
-void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Hit& hit,
-                      const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
+void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Rayd& ray,
+                      const Hit& hit, const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
   Vec3d c;
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, ls.wi);
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
   ctx.buffers.shadow_rays.push_back({o, ls.wi});
   ctx.buffers.next_queries.push_back({path, ls.light, c});
 }
 
-// After the BSDF's sample: the throughput, Russian roulette, the next ray. False when the
-// path ends here.
-bool continue_path(PathState& p, const Hit& hit, const BsdfSample& s, double u_roulette,
-                   const VertexRules& rules) {
+// After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`).
+// False when the path ends here.
+bool continue_path(PathState& p, const Rayd& ray, const Hit& hit, const BsdfSample& s,
+                   double u_roulette, const VertexRules& rules, Rayd& next) {
   if (!next_throughput(rules, p.beta, s.value, s.pdf, u_roulette, p.beta)) return false;
   p.prev_p = hit.surface.p;
   p.prev_pdf = s.pdf;
   p.prev_specular = s.specular;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(p.ray, hit.t), hit.surface.ng, s.wi);
-  p.ray = {o, s.wi};
+  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, s.wi);
+  next = {o, s.wi};
   return true;
 }
 
 // One vertex with the double Bsdf: light sampling, then the next direction.
-bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Hit& hit,
-                         const Material& material, int depth) {
+bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Rayd& ray,
+                         const Hit& hit, const Material& material, int depth, Rayd& next) {
   // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
   Material m = material;
   if (m.texture >= 0)
     m.kd = Vec3f(Vec3d(m.kd) * texture_factor(ctx.tracer.scene(), m, hit.prim, hit.surface));
-  Bsdf bsdf(m, hit.surface.ns, -p.ray.d);
+  Bsdf bsdf(m, hit.surface.ns, -ray.d);
   if (bsdf.black()) return false;
   if (samples_lights(ctx)) {
     LightSample ls = sample_light_point(ctx, p, hit, depth);
     if (ls.valid()) {
       BsdfEval e = bsdf.evaluate(ls.wi);
-      queue_shadow_ray(ctx, path, p, hit, ls, e.f, e.pdf);
+      queue_shadow_ray(ctx, path, p, ray, hit, ls, e.f, e.pdf);
     }
   }
   auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
   BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
   if (!s.valid()) return false;
   double u_roulette = depth + 1 >= ctx.settings.rr_depth ? roulette_uniform(ctx, u) : 0.0;
-  return continue_path(p, hit, s, u_roulette, vertex_rules(ctx, depth));
+  return continue_path(p, ray, hit, s, u_roulette, vertex_rules(ctx, depth), next);
 }
 
 }  // namespace
@@ -183,14 +184,18 @@ void shade_wavefront(TileContext& ctx, int depth) {
     uint32_t path = b.live[k];
     PathState& p = b.paths[path];
     const Hit& hit = b.hits[k];
-    std::optional<uint32_t> material = arrive(ctx, p, hit, depth);
+    const Rayd& ray = b.rays[k];
+    std::optional<uint32_t> material = arrive(ctx, p, ray, hit, depth);
     if (!material) continue;
     if (lanes && ctx.lanes.materials.in_lanes[*material]) {
-      queue_lane_row(ctx, path, uint32_t(k), *material, p, hit);
+      queue_lane_row(ctx, path, uint32_t(k), *material, p, ray, hit);
       continue;
     }
     const Material& m = ctx.tracer.scene().materials[*material];
-    if (shade_vertex_double(ctx, path, p, hit, m, depth)) b.next_live.push_back(path);
+    Rayd next;
+    if (!shade_vertex_double(ctx, path, p, ray, hit, m, depth, next)) continue;
+    b.next_live.push_back(path);
+    b.next_rays.push_back(next);
   }
   if (b.lane_count > 0) shade_in_lanes(ctx, depth);
 }
