@@ -110,6 +110,12 @@ std::optional<double> LightSampler::choice_of(PrimRef light) const {
   return it->second;
 }
 
+int LightSampler::numbers_read() const {
+  for (PrimRef l : lights_)
+    if (l.tag() != tag_of<Sphere>) return 4;
+  return cdf_.size() > 1 ? 3 : 2;
+}
+
 std::size_t LightSampler::pick(double u_light) const {
   std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
   return std::min(k, cdf_.size() - 1);

@@ -32,6 +32,12 @@ double sobol_number(const SobolBatch& s, int c, std::size_t r) {
   return s.u[std::size_t(c)][r] * 0x1p-32;
 }
 
+// Component c of rows [0, n) of the last Sobol groups into `to`.
+void copy_sobol_numbers(const SobolBatch& s, int c, std::size_t n, std::vector<double>& to) {
+  for (std::size_t r = 0; r < n; ++r)
+    to[r] = sobol_number(s, c, r);
+}
+
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
 // the double shading's order (light, BSDF, roulette).
 void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
@@ -47,14 +53,16 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
     return;
   }
   SobolBatch& s = b.sobol;
-  if (lights) {
-    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s);
-    for (std::size_t r = 0; r < b.lane_count; ++r) {
+  if (lights) {  // only the numbers the lights read (for one sphere light, no table gathers)
+    const int read = ctx.lights.numbers_read();
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s, read);
+    for (std::size_t r = 0; r < b.lane_count; ++r)
       q.cones.u1[r] = sobol_number(s, 0, r), q.cones.u2[r] = sobol_number(s, 1, r);
-      q.u_light[r] = sobol_number(s, 2, r), q.u_part[r] = sobol_number(s, 3, r);
-    }
+    if (read > 2) copy_sobol_numbers(s, 2, b.lane_count, q.u_light);
+    if (read > 3) copy_sobol_numbers(s, 3, b.lane_count, q.u_part);
   }
-  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s);
+  // Roulette's number only at the depths that have roulette.
+  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s, roulette ? 4 : 3);
   for (std::size_t r = 0; r < b.lane_count; ++r)
     set_bsdf_numbers(ctx, r,
                      {sobol_number(s, 0, r), sobol_number(s, 1, r), sobol_number(s, 2, r), 0.0},

@@ -117,9 +117,9 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 }  // namespace
 
 namespace detail {
-void sobol_groups_sse42(uint32_t reversed_index, SobolBatch& batch);
-void sobol_groups_avx2(uint32_t reversed_index, SobolBatch& batch);
-void sobol_groups_avx512(uint32_t reversed_index, SobolBatch& batch);
+void sobol_groups_sse42(uint32_t reversed_index, int components, SobolBatch& batch);
+void sobol_groups_avx2(uint32_t reversed_index, int components, SobolBatch& batch);
+void sobol_groups_avx512(uint32_t reversed_index, int components, SobolBatch& batch);
 
 const uint32_t* sobol_byte_tables() {
   return &kReversedTables[0][0][0];
@@ -138,7 +138,7 @@ void SobolBatch::resize(std::size_t rows) {
 
 // The group seeds are 64-bit hashes (mix64), done here a row at a time; the lanes do the rest
 // in 32 bits, as sobol_group does.
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch) {
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components) {
   for (std::size_t i = 0; i < batch.padded_size(); ++i) {
     uint64_t g = group_seed_of(batch.seed[i], group);
     batch.scramble[i] = uint32_t(g);
@@ -147,7 +147,7 @@ void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch) {
   auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
              : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
                                  : detail::sobol_groups_sse42;
-  fn(reverse_bits(index), batch);
+  fn(reverse_bits(index), components, batch);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

@@ -66,8 +66,18 @@ U32<A> table_point_lanes(const U32<A>& r, uint32_t c) {
          simd::gather<A>(t, b3);
 }
 
+// Component c of the group from its Sobol point (reversed domain): scrambled by its own seed,
+// reversed back, stored.
 template <class A>
-void sobol_groups_range(uint32_t reversed_index, SobolBatch& b) {
+void store_component(SobolBatch& b, std::size_t i, uint32_t c, const U32<A>& point,
+                     const U32<A>& seeds) {
+  U32<A> v = scramble_reversed_lanes<A>(point, hash32_lanes<A>(seeds + U32<A>(c)));
+  reverse_bits_lanes<A>(v).store_unaligned(b.u[c].data() + i);
+}
+
+// Components [0, components) of the groups; dimensions 2 and 3 (the gathers) only if asked.
+template <class A>
+void sobol_groups_range(uint32_t reversed_index, int components, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   for (std::size_t i = 0; i < b.padded_size(); i += W) {
     U32<A> scramble = U32<A>::load_unaligned(b.scramble.data() + i);
@@ -75,12 +85,10 @@ void sobol_groups_range(uint32_t reversed_index, SobolBatch& b) {
     U32<A> r = scramble_reversed_lanes<A>(U32<A>(reversed_index), scramble);
     // Dimension 0 is the radical inverse: in the reversed domain, the reversed index itself.
     U32<A> radical = reverse_bits_lanes<A>(r);
-    const U32<A> point[4] = {radical, superset_xor_lanes<A>(radical), table_point_lanes<A>(r, 2),
-                             table_point_lanes<A>(r, 3)};
-    for (uint32_t c = 0; c < 4; ++c) {
-      U32<A> v = scramble_reversed_lanes<A>(point[c], hash32_lanes<A>(seeds + U32<A>(c)));
-      reverse_bits_lanes<A>(v).store_unaligned(b.u[c].data() + i);
-    }
+    store_component<A>(b, i, 0, radical, seeds);
+    store_component<A>(b, i, 1, superset_xor_lanes<A>(radical), seeds);
+    if (components > 2) store_component<A>(b, i, 2, table_point_lanes<A>(r, 2), seeds);
+    if (components > 3) store_component<A>(b, i, 3, table_point_lanes<A>(r, 3), seeds);
   }
 }
 

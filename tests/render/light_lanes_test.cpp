@@ -137,5 +137,36 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
     EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
 }
 
+// The render computes only the numbers numbers_read() names (render/path_lanes.cpp): the
+// others must change nothing sample() returns, and the count must be what each scene needs.
+TEST(LightLanes, NumbersReadAreAllSamplingReads) {
+  const char* kScenes[][2] = {
+      {"light 1 1 1\nsphere 0 3 0 0.5\n", "2"},
+      {"light 1 1 1\nsphere 0 3 0 0.5\nsphere 2 3 0 0.25\n", "3"},
+      {"light 1 1 1\nsphere 0 3 0 0.5\nbox 2 2 2 1 0.5 0.25\n", "4"},
+      {"light 1 1 1\nbox 2 2 2 1 0.5 0.25\n", "4"},
+  };
+  for (const auto& [text, want] : kScenes) {
+    SCOPED_TRACE(text);
+    auto parsed =
+        parse_scene(cat("camera 0 0 0 1\n", text, "brdf 0.5 0.5 0.5 0 0 0 1\n"), "numbers.scn");
+    ASSERT_TRUE(parsed.ok());
+    LightSampler lights(parsed.scene);
+    const int read = lights.numbers_read();
+    EXPECT_EQ(read, want[0] - '0');
+    Rng rng(11);
+    for (int i = 0; i < 2000; ++i) {
+      Vec3d ref(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
+      double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+      LightSample a = lights.sample(ref, u[2], u[3], u[0], u[1]);
+      for (int c = read; c < 4; ++c)
+        u[c] = rng.uniform();  // what an unread number holds does not matter
+      LightSample b = lights.sample(ref, u[2], u[3], u[0], u[1]);
+      ASSERT_EQ(a.light, b.light) << "sample " << i;
+      ASSERT_TRUE(same_bits(a.wi, b.wi) && same_bits(a.pdf, b.pdf)) << "sample " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace raylane

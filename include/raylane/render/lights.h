@@ -76,6 +76,10 @@ class LightSampler {
  public:
   explicit LightSampler(const Scene& scene);
   bool empty() const { return lights_.empty() && !env_choice_; }
+  // How many of (u1, u2, u_light, u_part) sampling reads: the first two always, u_light when
+  // there is more than one light to pick, u_part when some light is not a sphere (a sphere's
+  // point needs no part). The others may hold anything.
+  int numbers_read() const;
 
   // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
   LightSample sample(const Vec3d& ref, double u_light, double u_part, double u1, double u2) const;

@@ -44,7 +44,9 @@ struct SobolBatch {
  private:
   std::size_t size_ = 0;
 };
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch);
+// Only components [0, components) are computed (at least 2; the others keep what they held):
+// a decision that reads fewer numbers saves the rest, dimensions 2 and 3 most (table gathers).
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components = 4);
 
 namespace detail {
 // The byte tables of the first four dimensions, [dimension][byte][value], in the
