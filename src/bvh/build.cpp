@@ -176,7 +176,7 @@ class Builder {
       bins.clear(grid.bins);
       bin_prims(prims_.data() + p.begin, count, grid, bins);
     }
-    Split split = best_split(bins, grid, p.bounds.box.bounds(), count, cfg_.traversal_cost);
+    Split split = best_split(bins, grid, p.bounds.box.bounds(), cfg_.traversal_cost, isa_);
     bool may_leaf =
         count <= uint32_t(cfg_.max_leaf) || (split.axis < 0 && count <= uint32_t(cfg_.forced_leaf));
     return {may_leaf && binned_cost(bins, grid.bins) <= split.cost, split};
@@ -193,6 +193,7 @@ class Builder {
 
   std::vector<BuildPrim>& prims_;
   const BvhConfig& cfg_;
+  const Isa isa_ = best_isa();
   std::unique_ptr<BvhNode, FreeNodes> nodes_;
   // On a cache line of its own: every node of both threads takes its children from it.
   alignas(64) std::atomic<uint32_t> next_node_{1};
@@ -205,7 +206,8 @@ std::vector<BuildPrim> gather(const Scene& scene, int threads) {
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
-    const float cost = float(Kind::sah_test_cost);
+    constexpr uint32_t cost = cost_units(Kind::sah_test_cost);
+    static_assert(cost > 0, "a prim of no cost would make a bin look empty (BinSet)");
     const int64_t rows = table.size();
     BuildPrim* out = prims.data() + offset;
 #pragma omp parallel for num_threads(threads) if (rows > 4096)

@@ -6,6 +6,7 @@
 
 #include "bvh/build_prim.h"
 #include "raylane/bvh/bvh.h"
+#include "raylane/simd/isa.h"
 
 namespace raylane::bvh_build {
 
@@ -22,9 +23,11 @@ struct Split {
 BinGrid make_grid(const NodeBounds& bounds, int bins);
 
 // The cheapest split between bins on any axis whose centroids are not all equal, and that
-// puts prims on both sides; `count` is the node's number of prims.
-Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box, uint32_t count,
-                 double traversal_cost);
+// puts prims on both sides; the first such in the order of axes, then bins, on a tie. Swept
+// in the lanes of `isa` (sweep_lanes.h), which the CPU must support; every ISA gives the same
+// split and cost to the bit.
+Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box,
+                 double traversal_cost, Isa isa);
 
 // The summed test cost of every binned prim (the SAH cost of making the node a leaf).
 double binned_cost(const BinSet& bins, int bin_count);
