@@ -164,11 +164,15 @@ class Builder {
   // Leaf or split, by the SAH: a node may be a leaf when it has at most max_leaf prims (or at
   // most forced_leaf and no split separates its centroids), and is one if that costs no more
   // than the best split. Deep in the tree, nodes split at the object median so that traversal
-  // stacks cannot overflow.
+  // stacks cannot overflow. Half the nodes binned are leaves; most small ones are known to be
+  // without bins (leaf_by_bound).
   Decision decide(const Pending& p, const BinGrid& grid, int parts) const {
     const uint32_t count = p.count();
     if (count == 1) return {true, {}};
     if (p.depth >= kMedianSplitDepth) return {count <= uint32_t(cfg_.max_leaf), {}};
+    if (count <= uint32_t(cfg_.max_leaf) &&
+        leaf_by_bound(prims_.data() + p.begin, count, p.bounds.box.bounds(), cfg_.traversal_cost))
+      return {true, {}};
     BinSet bins;
     if (parts > 1) {
       bin_in_parallel(prims_.data() + p.begin, count, grid, parts, bins);

@@ -52,4 +52,21 @@ double binned_cost(const BinSet& bins, int bin_count) {
   return double(sum) * kCostUnit;
 }
 
+bool leaf_by_bound(const BuildPrim* prims, uint32_t n, const Bounds3f& box, double traversal_cost) {
+  uint64_t leaf = 0;
+  double spread = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const BuildPrim& p = prims[i];
+    Bounds3f b;
+    b.lo = {p.lo[0], p.lo[1], p.lo[2]};
+    b.hi = {p.hi[0], p.hi[1], p.hi[2]};
+    double area = half_area(b);
+    if (!(area < std::numeric_limits<double>::max())) return false;  // huge or NaN: bin it
+    leaf += p.cost;
+    spread += double(p.cost) * area;
+  }
+  double least_split = traversal_cost + spread * kCostUnit / std::max(half_area(box), 1e-300);
+  return double(leaf) * kCostUnit <= least_split * (1 - 1e-9);
+}
+
 }  // namespace raylane::bvh_build

@@ -32,4 +32,11 @@ Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box,
 // The summed test cost of every binned prim (the SAH cost of making the node a leaf).
 double binned_cost(const BinSet& bins, int bin_count);
 
+// True when making prims [0, n) a leaf is sure to cost no more than their best split, so
+// binning them could only confirm it: each side of any split holds its prims' boxes, so the
+// split costs at least traversal_cost + Σ c_i·A_i / A_parent (A_i a prim's half area). With a
+// margin far above the rounding of either side, a true answer is the choice the bins would
+// make; false says nothing.
+bool leaf_by_bound(const BuildPrim* prims, uint32_t n, const Bounds3f& box, double traversal_cost);
+
 }  // namespace raylane::bvh_build

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "bvh/sah_split.h"
 
@@ -90,6 +91,44 @@ TEST(SahSplit, EveryIsaSweepEqualsTheDirectCosts) {
     ties += want.last_left + 1 < grid.bins - 1 && bins.cost[want.axis][want.last_left + 1] == 0;
   }
   EXPECT_GT(ties, 100);  // the tie-breaking was exercised
+}
+
+// Small nodes of random boxes, some spread out, some piled up, costing 0.3 or 1: whenever the
+// bound says "leaf", the bins say so too (the bound decides only what binning would), and it
+// says so for a good share of the bins' leaves (else it saves nothing).
+TEST(SahSplit, LeafByBoundOnlyWhereTheBinsMakeALeaf) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int leaves_by_bound = 0, leaves_by_bins = 0, trials = 4000;
+  for (int trial = 0; trial < trials; ++trial) {
+    const uint32_t n = 2 + trial % 7;
+    const float spread = trial % 3 == 0 ? 4.0f : 1.0f, size = 0.2f + 1.5f * u(rng);
+    std::vector<BuildPrim> prims(n);
+    for (BuildPrim& p : prims) {
+      for (int k = 0; k < 3; ++k) {
+        p.lo[k] = spread * u(rng);
+        p.hi[k] = p.lo[k] + size * u(rng);
+      }
+      p.ref = PrimRef();
+      p.cost = cost_units(trial % 2 ? 0.3 : 1.0);
+    }
+    NodeBounds nb;
+    nb.clear();
+    bound_prims(prims.data(), n, nb);
+    BinGrid grid = make_grid(nb, std::min<int>(n, 16));
+    BinSet bins;
+    bins.clear(grid.bins);
+    bin_prims(prims.data(), n, grid, bins);
+    Split split = best_split(bins, grid, nb.box.bounds(), 1.0, Isa::kSse42);
+    bool bins_say_leaf = binned_cost(bins, grid.bins) <= split.cost;
+    leaves_by_bins += bins_say_leaf;
+    if (leaf_by_bound(prims.data(), n, nb.box.bounds(), 1.0)) {
+      ++leaves_by_bound;
+      ASSERT_TRUE(bins_say_leaf) << trial;
+    }
+  }
+  EXPECT_GT(leaves_by_bins, trials / 5);           // 1305: the draws make leaves and splits
+  EXPECT_GT(leaves_by_bound, leaves_by_bins / 3);  // 673
 }
 
 }  // namespace
