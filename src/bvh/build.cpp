@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <memory>
@@ -57,9 +58,8 @@ class Builder {
       NodeBounds bounds;
       bounds.clear();
       bound_prims(prims_, count_, bounds);
-      return build_subtree({0, 0, count_, 0, 1, bounds});
+      return build_subtree({0, 0, count_, 0, 1, bounds}, false);
     }
-    std::vector<uint32_t> inner;
 #pragma omp parallel num_threads(threads)
 #pragma omp single
     {
@@ -70,17 +70,16 @@ class Builder {
       // Largest first, so the last subtrees to finish are small.
       std::sort(subtrees.begin(), subtrees.end(),
                 [](const Pending& a, const Pending& b) { return a.count() > b.count(); });
-      inner.resize(subtrees.size());
-      for (std::size_t i = 0; i < subtrees.size(); ++i) {
-#pragma omp task default(shared) firstprivate(i)
-        inner[i] = build_subtree(subtrees[i]);
+      // Every task, the ones the subtrees make included, ends at the region's barrier. (Not a
+      // taskgroup: GCC 12's libgomp ran all the tasks made inside one on its waiting thread.)
+      // The tasks outlive this block, so each takes its own copy of its subtree.
+      for (const Pending& p : subtrees) {
+        Pending sub = p;
+#pragma omp task default(shared) firstprivate(sub)
+        task_inner_.fetch_add(build_subtree(sub, true), std::memory_order_relaxed);
       }
-#pragma omp taskwait
     }
-    uint32_t total = top_inner_;
-    for (uint32_t k : inner)
-      total += k;
-    return total;
+    return top_inner_ + task_inner_.load();
   }
 
   // The slots of the tree made (build_output.h reads them from slot 0).
@@ -89,16 +88,22 @@ class Builder {
   }
 
  private:
-  // Subtrees above this many prims are split with every thread (kChunksPerThread chunks
-  // each); 8 subtrees per thread below it balance the threads' work (siblings differ in size).
+  // Nodes above max(kChunkPrims, n / (kSubtreesPerThread · threads)) prims are split with
+  // every thread (kChunksPerThread chunks each); below, each subtree is a task, which hands its
+  // left child of at least kTaskPrims prims to another task, so a thread that runs out of
+  // subtrees takes part of another's. Each chunk is a task of about a microsecond, while one
+  // thread splits a node of 4096 prims in about 50 (the bunny's top levels were chunked down
+  // to 1024 prims).
   static constexpr uint32_t kParallelPrims = 1024;
+  static constexpr uint32_t kChunkPrims = 4096;
+  static constexpr uint32_t kTaskPrims = 512;
   static constexpr uint32_t kSubtreesPerThread = 8;
   static constexpr int kChunksPerThread = 4;
 
   std::vector<Pending> split_top_levels(const Pending& root, int threads, int parts) {
     std::vector<Pending> todo = {root}, subtrees;
     if (threads < 2) return todo;
-    const uint32_t large = std::max(kParallelPrims, count_ / (kSubtreesPerThread * threads));
+    const uint32_t large = std::max(kChunkPrims, count_ / (kSubtreesPerThread * threads));
     while (!todo.empty()) {
       Pending p = todo.back();
       todo.pop_back();
@@ -114,11 +119,19 @@ class Builder {
     return subtrees;
   }
 
-  // Builds the subtree of `p` on the calling thread; returns its number of inner nodes.
-  uint32_t build_subtree(const Pending& p) {
+  // Builds the subtree of `p`; returns the number of inner nodes it made on the calling
+  // thread. With `tasks`, a left child of at least kTaskPrims prims is built by a new task,
+  // which adds its own count to task_inner_. Tasks only ever wait at the build's end, so no
+  // thread picks up a subtree while a node it is binning waits (the trap of bench/README.md).
+  uint32_t build_subtree(const Pending& p, bool tasks) {
     Pending left, right;
     if (!split_node(p, 1, left, right)) return 0;
-    return 1 + build_subtree(left) + build_subtree(right);
+    if (tasks && left.count() >= kTaskPrims) {
+#pragma omp task default(shared) firstprivate(left)
+      task_inner_.fetch_add(build_subtree(left, true), std::memory_order_relaxed);
+      return 1 + build_subtree(right, true);
+    }
+    return 1 + build_subtree(left, tasks) + build_subtree(right, tasks);
   }
 
   // Makes p's node a leaf (returns false) or an inner node whose children are left and right;
@@ -199,7 +212,8 @@ class Builder {
   const BvhConfig& cfg_;
   const Isa isa_ = best_isa();
   MallocPtr<BvhNode> nodes_;
-  uint32_t top_inner_ = 0;  // inner nodes made by split_top_levels
+  uint32_t top_inner_ = 0;               // inner nodes made by split_top_levels
+  std::atomic<uint32_t> task_inner_{0};  // ... and by the tasks below them
 };
 
 }  // namespace
