@@ -84,11 +84,17 @@ void copy_tree(const BvhNode* slots, uint32_t inner, const BuildPrim* prims, dou
     Todo t = stack.back();
     stack.pop_back();
     const uint32_t child = slots[t.slot].index, at = uint32_t(out.size());
+    // Each pair's place is read from its parent: a chain of cache misses through slots the
+    // build wrote long before (41 ms of the 1.31M mesh's build; 27 with these prefetches, which
+    // 32 or 64 slots ahead do not beat). The left child's pairs follow this one in the slots
+    // (Pending::desc); the right child's place is known once the right child is read.
+    __builtin_prefetch(slots + child + 16);
     out[t.at].index = at;
     for (uint32_t k : {child, child + 1}) {
       out.push_back(slots[k]);
       tally(slots[k], t.depth + 1);
     }
+    if (!slots[child + 1].is_leaf()) __builtin_prefetch(slots + slots[child + 1].index);
     for (uint32_t k : {1u, 0u})  // the left child's pairs first
       if (!slots[child + k].is_leaf()) stack.push_back({child + k, at + k, t.depth + 1});
   }
