@@ -37,9 +37,9 @@ MallocPtr<T> allocate_unwritten(std::size_t n) {
 MallocPtr<BuildPrim> gather(const Scene& scene, int threads);
 
 // Copies the tree whose root is slots[0] (Pending in build.cpp: a node's children are the
-// two slots its index names) to `out`, depth first, each node's children made adjacent after
-// its parent's, the left subtree's pairs before the right's — the order a one-thread build made
-// them in — so the result, and the statistics summed along the way (`stats`: counts, depth,
+// two slots its index names) to `out`, depth first: each node's children adjacent, placed
+// when their parent is, the left subtree's pairs before the right's (which is also the order
+// of the slots). The result, and the statistics summed along the way (`stats`: counts, depth,
 // leaf sizes, SAH cost), are the same for any thread count. `inner` is the number of inner
 // nodes; `prims` gives the leaves' refs.
 void copy_tree(const BvhNode* slots, uint32_t inner, const BuildPrim* prims, double traversal_cost,
