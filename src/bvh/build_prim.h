@@ -1,7 +1,7 @@
 // The builder's working data (src/bvh/build.cpp): one 32-byte record per primitive, boxes of
 // four floats, and the bins of the binned SAH (Wald 2007, "On fast Construction of SAH-based
-// Bounding Volume Hierarchies", §3). The loops over the records are in a SIMD unit of their
-// own (bin_lanes_sse42.cpp); this header, and the code that calls them, has no xsimd.
+// Bounding Volume Hierarchies", §3). The loops over records and bins are in SIMD units of their
+// own (bin_lanes_*.cpp, build_lanes.h); this header, and the code that calls them, has no xsimd.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +12,16 @@
 
 namespace raylane::bvh_build {
 
+// SAH test costs as integers: multiples of kCostUnit. A kind's sah_test_cost, rounded to float,
+// is a whole number of units (0.3f = 10066330 units, 1.0f = 2^25), so the summed cost of any
+// set of prims is an exact integer and adds in one integer instruction, and the double it
+// converts to (exactly, below 2^53 units) is the same number the float costs summed in double
+// gave before (their sums were exact too, so neither the order nor the method changes a bit).
+inline constexpr double kCostUnit = 1.0 / (1u << 25);
+inline constexpr uint32_t cost_units(double sah_test_cost) {
+  return uint32_t(double(float(sah_test_cost)) / kCostUnit + 0.5);
+}
+
 // 32 bytes, two to a cache line: {lo, ref} and {hi, cost} each load as four lanes (the fourth
 // is ignored). The centroid is not stored: lo + hi (twice the centroid, an affine image of it,
 // which bins and splits the same way) is computed where it is needed, a non-finite sum read as
@@ -20,7 +30,7 @@ struct alignas(16) BuildPrim {
   float lo[3];
   PrimRef ref;
   float hi[3];
-  float cost;  // SAH cost of testing it: its kind's sah_test_cost
+  uint32_t cost;  // SAH cost of testing it, in kCostUnit: its kind's sah_test_cost (never 0)
 };
 static_assert(sizeof(BuildPrim) == 32);
 
@@ -62,21 +72,22 @@ struct BinGrid {
   int bins = 2;
 };
 
-// The bins of all three axes: one pass over the primitives fills them (Wald 2007, §3.2).
+// The bins of all three axes: one pass over the primitives fills them (Wald 2007, §3.2). A
+// bin's prims are not counted: every prim costs at least one unit, so a bin (or a side of a
+// split) holds prims exactly when its summed cost is above 0.
 struct BinSet {
   Box4 box[3][kMaxBins];
-  uint32_t count[3][kMaxBins];
-  double cost[3][kMaxBins];  // summed test cost; double, as millions of terms are added
+  uint64_t cost[3][kMaxBins];  // summed test cost in kCostUnit
 
   void clear(int bins) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < bins; ++b)
-        box[a][b].clear(), count[a][b] = 0, cost[a][b] = 0;
+        box[a][b].clear(), cost[a][b] = 0;
   }
   void merge(const BinSet& o, int bins) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < bins; ++b)
-        box[a][b].extend(o.box[a][b]), count[a][b] += o.count[a][b], cost[a][b] += o.cost[a][b];
+        box[a][b].extend(o.box[a][b]), cost[a][b] += o.cost[a][b];
   }
 };
 

@@ -1,5 +1,7 @@
 #include "bvh/sah_split.h"
 
+#include "bvh/build_lanes.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -26,74 +28,45 @@ BinGrid make_grid(const NodeBounds& bounds, int bins) {
   return g;
 }
 
-namespace {
+Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box,
+                 double traversal_cost, Isa isa) {
+  return build_lanes(isa).sweep(bins, grid, std::max(half_area(box), 1e-300), traversal_cost);
+}
 
-// A box grown bin by bin, its area in double (float extents up to FLT_MAX would overflow a
-// float product). Hot: every node sweeps 2 × 3 × bins of them.
-struct Sweep {
-  float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-  static constexpr float kInf = std::numeric_limits<float>::infinity();
-
-  void add(const Box4& b) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], b.lo[k]);
-      hi[k] = std::max(hi[k], b.hi[k]);
-    }
+const BuildLanes& build_lanes(Isa isa) {
+  switch (isa) {
+    case Isa::kAvx512:
+      return kBuildLanesAvx512;
+    case Isa::kAvx2:
+      return kBuildLanesAvx2;
+    case Isa::kSse42:
+      break;
   }
-  double half_area() const {
-    double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
-    if (!(dx >= 0 && dy >= 0 && dz >= 0)) return 0;  // empty
-    double a = dx * dy + dy * dz + dz * dx;
-    return a <= std::numeric_limits<double>::max() ? a : std::numeric_limits<double>::max();
-  }
-};
-
-}  // namespace
-
-// Each axis is swept in three branch-free loops: boxes and costs from the right, from the left,
-// then the choice. The bins' occupancy is data the branch predictor cannot learn (perf: the
-// sweep was 28-36 % of the sphereflake's and the bunny's builds, with a mispredicted count test
-// per bin), so an empty bin is added like any other — its box is empty (Box4::clear), so min
-// and max leave the sweep's box as it was — and the candidates' costs go to an array that one
-// last loop scans. Every value, and the first minimum chosen, are those of the loop with the
-// tests (the test SahSplit.SweepEqualsTheDirectCosts holds it to a plain evaluation).
-Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box, uint32_t count,
-                 double traversal_cost) {
-  const int n = grid.bins;
-  Split best;
-  double parent_area = std::max(half_area(box), 1e-300);
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!(grid.scale[axis] > 0)) continue;  // every centroid in one plane: no split here
-    // Sweep from the right, then from the left, each accumulating box and cost (§3.2).
-    double right_cost[kMaxBins], cost[kMaxBins];
-    Sweep right;
-    double tests = 0;
-    for (int b = n - 1; b > 0; --b) {
-      right.add(bins.box[axis][b]);
-      tests += bins.cost[axis][b];
-      right_cost[b - 1] = right.half_area() * tests;
-    }
-    Sweep left;
-    tests = 0;
-    for (int b = 0; b < n - 1; ++b) {
-      left.add(bins.box[axis][b]);
-      tests += bins.cost[axis][b];
-      cost[b] = traversal_cost + (left.half_area() * tests + right_cost[b]) / parent_area;
-    }
-    uint32_t in_left = 0;
-    for (int b = 0; b < n - 1; ++b) {
-      in_left += bins.count[axis][b];
-      if (in_left > 0 && in_left < count && cost[b] < best.cost) best = {axis, b, cost[b]};
-    }
-  }
-  return best;
+  return kBuildLanesSse42;
 }
 
 double binned_cost(const BinSet& bins, int bin_count) {
-  double sum = 0;
+  uint64_t sum = 0;
   for (int b = 0; b < bin_count; ++b)
     sum += bins.cost[0][b];
-  return sum;
+  return double(sum) * kCostUnit;
+}
+
+bool leaf_by_bound(const BuildPrim* prims, uint32_t n, const Bounds3f& box, double traversal_cost) {
+  uint64_t leaf = 0;
+  double spread = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const BuildPrim& p = prims[i];
+    Bounds3f b;
+    b.lo = {p.lo[0], p.lo[1], p.lo[2]};
+    b.hi = {p.hi[0], p.hi[1], p.hi[2]};
+    double area = half_area(b);
+    if (!(area < std::numeric_limits<double>::max())) return false;  // huge or NaN: bin it
+    leaf += p.cost;
+    spread += double(p.cost) * area;
+  }
+  double least_split = traversal_cost + spread * kCostUnit / std::max(half_area(box), 1e-300);
+  return double(leaf) * kCostUnit <= least_split * (1 - 1e-9);
 }
 
 }  // namespace raylane::bvh_build

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "bvh/sah_split.h"
 
@@ -28,8 +29,7 @@ BinSet random_bins(std::mt19937& rng, int n, BinGrid& grid) {
         box.lo[k] = u(rng);
         box.hi[k] = box.lo[k] + ext(rng);
       }
-      bins.count[a][b] = uint32_t(members(rng));
-      bins.cost[a][b] = 0.3 * bins.count[a][b];
+      bins.cost[a][b] = uint64_t(members(rng)) * cost_units(0.3);
     }
   }
   return bins;
@@ -39,22 +39,20 @@ BinSet random_bins(std::mt19937& rng, int n, BinGrid& grid) {
 struct Side {
   Bounds3f box;
   double tests = 0;
-  uint32_t count = 0;
 };
 
 Side gather(const BinSet& bins, int axis, int first, int last, bool from_right) {
   Side s;
   for (int k = 0; k < last - first; ++k) {
     int b = from_right ? last - 1 - k : first + k;  // the sweep's order of summing
-    if (bins.count[axis][b] == 0) continue;
+    if (bins.cost[axis][b] == 0) continue;          // an empty bin
     s.box.extend(bins.box[axis][b].bounds());
-    s.tests += bins.cost[axis][b];
-    s.count += bins.count[axis][b];
+    s.tests += double(bins.cost[axis][b]) * kCostUnit;
   }
   return s;
 }
 
-Split direct_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& parent, uint32_t count,
+Split direct_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& parent,
                    double traversal) {
   Split best;
   const double parent_area = std::max(half_area(parent), 1e-300);
@@ -64,35 +62,73 @@ Split direct_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& pare
       Side l = gather(bins, axis, 0, b + 1, false), r = gather(bins, axis, b + 1, grid.bins, true);
       double cost =
           traversal + (half_area(l.box) * l.tests + half_area(r.box) * r.tests) / parent_area;
-      if (l.count > 0 && l.count < count && cost < best.cost) best = {axis, b, cost};
+      if (l.tests > 0 && r.tests > 0 && cost < best.cost) best = {axis, b, cost};
     }
   }
   return best;
 }
 
-TEST(SahSplit, SweepEqualsTheDirectCosts) {
+TEST(SahSplit, EveryIsaSweepEqualsTheDirectCosts) {
   std::mt19937 rng(17);
   int ties = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     BinGrid grid;
     BinSet bins = random_bins(rng, 2 + trial % 15 + (trial % 50 == 0 ? 48 : 0), grid);
-    uint32_t count = 0;
     Bounds3f parent;
-    for (int b = 0; b < grid.bins; ++b) {
-      count += bins.count[0][b];
-      if (bins.count[0][b]) parent.extend(bins.box[0][b].bounds());
-    }
+    for (int b = 0; b < grid.bins; ++b)
+      if (bins.cost[0][b]) parent.extend(bins.box[0][b].bounds());
     if (parent.empty()) continue;
-    Split want = direct_split(bins, grid, parent, count, 1.0);
-    Split got = best_split(bins, grid, parent, count, 1.0);
-    ASSERT_EQ(got.axis, want.axis) << trial;
+    Split want = direct_split(bins, grid, parent, 1.0);
+    for (Isa isa : supported_isas()) {
+      Split got = best_split(bins, grid, parent, 1.0, isa);
+      ASSERT_EQ(got.axis, want.axis) << trial << ' ' << isa_name(isa);
+      if (want.axis < 0) continue;
+      ASSERT_EQ(got.last_left, want.last_left) << trial << ' ' << isa_name(isa);
+      ASSERT_EQ(got.cost, want.cost) << trial << ' ' << isa_name(isa);
+    }
     if (want.axis < 0) continue;
-    ASSERT_EQ(got.last_left, want.last_left) << trial;
-    ASSERT_EQ(got.cost, want.cost) << trial;
     // An empty bin after the chosen one gives the same cost: the first must be chosen.
-    ties += want.last_left + 1 < grid.bins - 1 && bins.count[want.axis][want.last_left + 1] == 0;
+    ties += want.last_left + 1 < grid.bins - 1 && bins.cost[want.axis][want.last_left + 1] == 0;
   }
   EXPECT_GT(ties, 100);  // the tie-breaking was exercised
+}
+
+// Small nodes of random boxes, some spread out, some piled up, costing 0.3 or 1: whenever the
+// bound says "leaf", the bins say so too (the bound decides only what binning would), and it
+// says so for a good share of the bins' leaves (else it saves nothing).
+TEST(SahSplit, LeafByBoundOnlyWhereTheBinsMakeALeaf) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int leaves_by_bound = 0, leaves_by_bins = 0, trials = 4000;
+  for (int trial = 0; trial < trials; ++trial) {
+    const uint32_t n = 2 + trial % 7;
+    const float spread = trial % 3 == 0 ? 4.0f : 1.0f, size = 0.2f + 1.5f * u(rng);
+    std::vector<BuildPrim> prims(n);
+    for (BuildPrim& p : prims) {
+      for (int k = 0; k < 3; ++k) {
+        p.lo[k] = spread * u(rng);
+        p.hi[k] = p.lo[k] + size * u(rng);
+      }
+      p.ref = PrimRef();
+      p.cost = cost_units(trial % 2 ? 0.3 : 1.0);
+    }
+    NodeBounds nb;
+    nb.clear();
+    bound_prims(prims.data(), n, nb);
+    BinGrid grid = make_grid(nb, std::min<int>(n, 16));
+    BinSet bins;
+    bins.clear(grid.bins);
+    bin_prims(prims.data(), n, grid, bins);
+    Split split = best_split(bins, grid, nb.box.bounds(), 1.0, Isa::kSse42);
+    bool bins_say_leaf = binned_cost(bins, grid.bins) <= split.cost;
+    leaves_by_bins += bins_say_leaf;
+    if (leaf_by_bound(prims.data(), n, nb.box.bounds(), 1.0)) {
+      ++leaves_by_bound;
+      ASSERT_TRUE(bins_say_leaf) << trial;
+    }
+  }
+  EXPECT_GT(leaves_by_bins, trials / 5);           // 1305: the draws make leaves and splits
+  EXPECT_GT(leaves_by_bound, leaves_by_bins / 3);  // 673
 }
 
 }  // namespace

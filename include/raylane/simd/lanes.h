@@ -1,7 +1,7 @@
 // The only header that includes xsimd: lane types for float, double and int32 and the few
 // operations the kernels need, for any instruction set A (SSE4.2: 4 lanes, AVX2: 8, AVX-512: 16).
 // Include it only from the per-ISA translation units (src/trace/simd_tracer_*.cpp,
-// src/render/shade_lanes_*.cpp, src/bvh/bin_lanes_sse42.cpp) and the templates they
+// src/render/shade_lanes_*.cpp, src/bvh/bin_lanes_*.cpp) and the templates they
 // instantiate; baseline code talks to them through simd/isa.h or their own headers.
 // Masks: combine them with &, | and ! only. In xsimd 8.1, `^` of two AVX-512 masks and `!=` of
 // two SSE double masks compute their OR (found by tests/trace/tracer_test.cpp).
@@ -194,6 +194,31 @@ inline Doubles<A> sqrt(const Doubles<A>& x) {
     return Doubles<A>(_mm512_maskz_sqrt_pd(__mmask8(0xFF), __m512d(x)));
   } else {
     return xsimd::sqrt(x);
+  }
+}
+
+// Eight double lanes held as 8 / kDoubleWidth<A> registers, lanes 0-3 read from left[0..3]
+// and lanes 4-7 from right[0..3]: register j of them (the BVH builder's SAH sweep runs two
+// rows of four side by side). AVX-512 joins the two halves in one register.
+template <class A>
+inline Doubles<A> load_pack(const double* left, const double* right, int j) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    return Doubles<A>(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_loadu_pd(left)),
+                                         _mm256_loadu_pd(right), 1));
+  } else {
+    const int lane = j * kDoubleWidth<A>;
+    return Doubles<A>::load_unaligned(lane < 4 ? left + lane : right + lane - 4);
+  }
+}
+template <class A>
+inline void store_pack(double* left, double* right, int j, const Doubles<A>& v) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    // The zero-masking forms, for the reason given at kAll16 (GCC 12 casts by extracting too).
+    _mm256_storeu_pd(left, _mm512_maskz_extractf64x4_pd(__mmask8(0xF), __m512d(v), 0));
+    _mm256_storeu_pd(right, _mm512_maskz_extractf64x4_pd(__mmask8(0xF), __m512d(v), 1));
+  } else {
+    const int lane = j * kDoubleWidth<A>;
+    v.store_unaligned(lane < 4 ? left + lane : right + lane - 4);
   }
 }
 

@@ -1,0 +1,55 @@
+// The steps around the builder (build.cpp): its records gathered from the scene's tables, and
+// the finished tree, refs and tables handed to the Bvh.
+#pragma once
+
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "bvh/build_prim.h"
+#include "raylane/bvh/bvh.h"
+
+namespace raylane {
+struct Scene;
+}
+
+namespace raylane::bvh_build {
+
+struct FreeMalloc {
+  void operator()(void* p) const { std::free(p); }
+};
+template <class T>
+using MallocPtr = std::unique_ptr<T, FreeMalloc>;
+
+// Room for n objects of an aggregate T (their lifetimes begin when written), neither zeroed
+// nor touched: a page costs nothing until the first object on it is written, by whichever
+// thread writes it.
+template <class T>
+MallocPtr<T> allocate_unwritten(std::size_t n) {
+  MallocPtr<T> p(static_cast<T*>(std::malloc(sizeof(T) * (n > 0 ? n : 1))));
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+
+// One record per primitive of every kind, kinds in PrimKinds order; large tables are read by
+// `threads` threads.
+MallocPtr<BuildPrim> gather(const Scene& scene, int threads);
+
+// Copies the tree whose root is slots[0] (Pending in build.cpp: a node's children are the
+// two slots its index names) to `out`, depth first: each node's children adjacent, placed
+// when their parent is, the left subtree's pairs before the right's (which is also the order
+// of the slots). The result, and the statistics summed along the way (`stats`: counts, depth,
+// leaf sizes, SAH cost), are the same for any thread count. `inner` is the number of inner
+// nodes; `prims` gives the leaves' refs.
+void copy_tree(const BvhNode* slots, uint32_t inner, const BuildPrim* prims, double traversal_cost,
+               std::vector<BvhNode>& out, BvhStats& stats);
+
+// The refs of prims [0, n), in order.
+std::vector<PrimRef> take_refs(const BuildPrim* prims, uint32_t n, int threads);
+
+// Reorders every table into leaf order (Scene::permute) and rewrites the refs to the new rows;
+// returns, per kind, the old row of each new row.
+std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimRef>& refs);
+
+}  // namespace raylane::bvh_build
