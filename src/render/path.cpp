@@ -105,24 +105,19 @@ void render_tile(TileContext& ctx, Film& f) {
   const double lights_at_start = phases.lights, shade_at_start = phases.shade;
   PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
-    rays.resize(live.size());  // the shadow rays after the paths' rays
-    rays.insert(rays.end(), shadow_rays.begin(), shadow_rays.end());
     clock.lap(phases.shade);
-    ctx.tracer.closest(rays, hits, live.size(), b.scratch);  // shadow rays need no surface
+    ctx.tracer.closest(rays, hits, rays.size(), b.scratch);
+    // Shadow rays, aimed at their light: it is seen when nothing else lies before it.
+    b.aims.resize(queries.size());
+    for (std::size_t q = 0; q < queries.size(); ++q)
+      b.aims[q] = queries[q].light;
+    ctx.tracer.occluded(shadow_rays, b.aims, b.blocked, b.scratch);
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth == 0 && !f.aovs.empty()) add_aovs(ctx.tracer.scene(), paths, hits, f);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-      Hit& h = hits[live.size() + q];
-      // Visible when the first thing met is the light's emitting side (convex solids are
-      // sampled on faces toward the vertex only, so no other face of theirs is in between).
-      // The environment's shadow rays (no light primitive) see it when they meet nothing.
-      bool seen = queries[q].light.valid() ? h.hit() && h.prim == queries[q].light : !h.hit();
-      if (seen && h.hit() && !kind_two_sided(h.prim.tag()))
-        seen = ctx.tracer.front_face(rays[live.size() + q], h);
-      if (seen) paths[queries[q].path].radiance += queries[q].contribution;
-    }
+    for (std::size_t q = 0; q < queries.size(); ++q)
+      if (b.blocked[q] == 0) paths[queries[q].path].radiance += queries[q].contribution;
     shadow_rays.clear();
     next_queries.clear();
     next_live.clear();

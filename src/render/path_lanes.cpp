@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raylane/core/ray_offset.h"
 #include "render/path_loop.h"
 
 namespace raylane::path_detail {
@@ -147,7 +148,8 @@ void write_back(TileContext& ctx) {
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
     if (vb.shadow_ok[r] != 0) {
       const LightQueries& q = b.light_queries;
-      shadow_rays.push({column3(vb.shadow_o), q.wi(r)});
+      const Vec3d o = column3(vb.shadow_o), wi = q.wi(r);
+      shadow_rays.push({o, wi, 0, shadow_ray_tmax(o, column3(vb.p), wi, q.cones.dist[r])});
       queries.push({row.path, q.light[r], column3(vb.shadow_c)});
     }
     if (vb.alive[r] == 0) continue;

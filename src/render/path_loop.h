@@ -77,11 +77,14 @@ struct LaneRow {
 struct ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
-  // rays[k] is path live[k]'s ray; the wavefront appends its shadow rays to trace them all at
-  // once. next_rays[k] is next_live[k]'s.
+  // rays[k] is path live[k]'s ray, next_rays[k] is next_live[k]'s. shadow_rays[q] belongs to
+  // queries[q] (next_queries while a wavefront is shaded), aimed at aims[q] (its light),
+  // blocked[q] is its answer.
   std::vector<Rayd> rays, next_rays, shadow_rays;
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
+  std::vector<PrimRef> aims;
+  std::vector<uint8_t> blocked;
   TraceScratch scratch;
   std::vector<LaneRow> lane_rows;  // rows [0, lane_count) are this wavefront's
   std::size_t lane_count = 0;

@@ -124,7 +124,8 @@ void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const
   Vec3d c;
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
   Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
-  ctx.buffers.shadow_rays.push_back({o, ls.wi});
+  ctx.buffers.shadow_rays.push_back(
+      {o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)});
   ctx.buffers.next_queries.push_back({path, ls.light, c});
 }
 

@@ -44,6 +44,18 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   r.dx = col(s.dx), r.dy = col(s.dy), r.dz = col(s.dz);
   r.tmin = col(s.tmin);
   tmax = col(s.tmax);
+  // Whole packets load the aims straight too; a partial one's spare lanes are inactive.
+  const simd::Ints<A> none(int32_t(PrimRef::kInvalidBits));
+  if (s.end.empty()) {
+    r.end = none;
+  } else if (n == W) {
+    r.end = simd::load<A>(reinterpret_cast<const int32_t*>(s.end.data() + i));
+  } else {
+    alignas(64) int32_t end[W];
+    for (int k = 0; k < W; ++k)
+      end[k] = k < n ? int32_t(s.end[i + std::size_t(k)]) : int32_t(PrimRef::kInvalidBits);
+    r.end = simd::load<A>(end);
+  }
   set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n));
   return r;
 }
@@ -87,9 +99,12 @@ void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& ray
     h.found = F(0.0f) != F(0.0f);
     bool valid = single_ray_valid(one) && !bvh.wide.empty();
     if (valid && c) ++c->packets, ++c->rays;
+    // A ray aimed at a primitive goes through closest hit: blocked when that is something else.
+    const uint32_t aim = rays.end.empty() ? PrimRef::kInvalidBits : rays.end[i];
+    const bool plain_any_hit = any_hit && aim == PrimRef::kInvalidBits;
     if (valid) {
       RayPacket<L> r = broadcast_ray<L>(one);
-      if (any_hit) {
+      if (plain_any_hit) {
         c ? traverse_ray<A, true, true>(scene, bvh, r, h, c)
           : traverse_ray<A, true>(scene, bvh, r, h);
       } else {
@@ -98,6 +113,7 @@ void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& ray
       }
     }
     bool found = simd::any<L>(h.found);
+    if (any_hit && !plain_any_hit) found = found && uint32_t(h.prim.get(0)) != aim;
     if (any_hit) {
       hits.t[i] = found ? 0.0f : std::numeric_limits<float>::infinity();
       hits.prim[i] = found ? 0u : PrimRef::kInvalidBits;
@@ -126,8 +142,11 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
     h.found = F(0.0f) != F(0.0f);
     if (simd::any<A>(r.active)) traverse<A>(scene, bvh, r, h, any_hit, counters);
     const F t = simd::select<A>(h.found, h.t, inf);
-    const simd::Ints<A> prim =
-        any_hit ? simd::select<A>(h.found, simd::Ints<A>(0), h.prim) : h.prim;
+    // Occlusion: 0 where blocked. (A lane that met only its aim holds the aim's bits.)
+    const simd::Ints<A> prim = any_hit
+                                   ? simd::select<A>(h.found, simd::Ints<A>(0),
+                                                     simd::Ints<A>(int32_t(PrimRef::kInvalidBits)))
+                                   : h.prim;
     int32_t* prim_out = reinterpret_cast<int32_t*>(hits.prim.data() + i);
     if (n == W) {
       simd::store<A>(hits.t.data() + i, t);

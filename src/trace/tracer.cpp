@@ -1,6 +1,8 @@
 #include "raylane/trace/tracer.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/brute_force.h"
@@ -32,17 +34,35 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   h.front_face = dot(traced.d, h.surface.ng) < 0;
 }
 
-bool Tracer::front_face(const Rayd& ray, const Hit& h) const {
-  if (!h.hit()) return false;
-  if (h.prim.tag() == tag_of<Sphere>) {
-    // The sign of dot(d, ng) with ng = (p − c)/|p − c|: the division changes no sign.
-    Rayd traced = as_traced(ray, kind_);
-    Vec3d c(scene_.table<Sphere>().center(h.prim.row()));
-    return dot(traced.d, traced.at(h.t) - c) < 0;
+bool Tracer::occluded_ref(const Rayd& ray, PrimRef aim) const {
+  const bool bvh = kind_ == TracerKind::kBvh;
+  if (!aim.valid()) return bvh ? any_hit_bvh_ref(scene_, bvh_, ray) : any_hit_ref(scene_, ray);
+  Hit h = bvh ? closest_hit_bvh_ref(scene_, bvh_, ray) : closest_hit_ref(scene_, ray);
+  return h.hit() && h.prim != aim;
+}
+
+void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
+                      std::vector<uint8_t>& blocked, TraceScratch& scratch) const {
+  const std::size_t n = rays.size();
+  if (!aims.empty() && aims.size() != n)
+    throw std::invalid_argument("Tracer::occluded: " + std::to_string(aims.size()) + " aims for " +
+                                std::to_string(n) + " rays");
+  blocked.resize(n);
+  if (kind_ != TracerKind::kPacket) {
+    for (std::size_t i = 0; i < n; ++i)
+      blocked[i] = occluded_ref(rays[i], aims.empty() ? PrimRef::invalid() : aims[i]);
+    return;
   }
-  Hit full = h;
-  complete(ray, full);
-  return full.front_face;
+  RayStream& stream = scratch.rays;
+  stream.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    stream.set(i, ray_cast<float>(rays[i]));
+  stream.end.resize(aims.empty() ? 0 : n);
+  for (std::size_t i = 0; i < stream.end.size(); ++i)
+    stream.end[i] = aims[i].bits();
+  simd_.occluded(scene_, bvh_, stream, scratch.hits);
+  for (std::size_t i = 0; i < n; ++i)
+    blocked[i] = scratch.hits.prim[i] != PrimRef::kInvalidBits;
 }
 
 void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const {
@@ -82,6 +102,7 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
   }
   RayStream& stream = scratch.rays;
   stream.resize(n);
+  stream.end.clear();  // left by occluded()
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   HitStream& out = scratch.hits;

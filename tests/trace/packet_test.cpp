@@ -216,6 +216,55 @@ TEST_P(SimdTracerTest, OcclusionMatchesReference) {
   EXPECT_EQ(disagreements_outside_band, 0) << band << " rays in the band";
 }
 
+// Occlusion aimed at a primitive (RayStream::end): the aim does not block, what lies before it
+// does. Each ray is aimed at its first surface A (tmax just past it: clear), at its second B
+// (tmax just past B: blocked by A, clear if B is A's far side) or at nothing (plain occlusion),
+// against the reference on the float ray: blocked when the closest hit is not the aim. Rays
+// with another surface within 1e-4 past the aimed hit are left out (found first, it may block:
+// SimdTracer::occluded), as are rays in the kernels' error band.
+TEST_P(SimdTracerTest, AimedOcclusionMatchesReference) {
+  Scene s = random_scene(18, 300, 10);
+  Bvh bvh = build_bvh(s, kWithWideNodes);
+  std::vector<Rayd> rays;
+  std::vector<uint32_t> aims;
+  std::vector<uint8_t> want;
+  int kinds[3] = {};
+  for (Rayd r : random_rays(19, 12000, 12)) {
+    r = round_to_float(r);
+    if (testing::classify_closest(s, r, true).cls == testing::RayClass::kBand) continue;
+    Hit a = closest_hit_ref(s, r);
+    Rayd past_a = r;
+    past_a.tmin = a.t;
+    Hit b = a.hit() ? closest_hit_ref(s, past_a) : Hit{};
+    Rayd past_b = r;
+    past_b.tmin = b.t;
+    Hit c = b.hit() ? closest_hit_ref(s, past_b) : Hit{};
+    const int kind = int(rays.size() % 3);
+    if (kind == 0 && a.hit() && !(b.t <= a.t * (1 + 1e-4))) {
+      r.tmax = float(a.t * (1 + 1e-5));
+      rays.push_back(r), aims.push_back(a.prim.bits()), want.push_back(0);
+    } else if (kind == 1 && b.hit() && !(c.t <= b.t * (1 + 1e-4))) {
+      r.tmax = float(b.t * (1 + 1e-5));
+      rays.push_back(r), aims.push_back(b.prim.bits()), want.push_back(b.prim != a.prim);
+    } else if (kind == 2) {
+      r.tmax = 4.0;
+      rays.push_back(r), aims.push_back(PrimRef::kInvalidBits), want.push_back(any_hit_ref(s, r));
+    } else {
+      continue;
+    }
+    ++kinds[kind];
+  }
+  RayStream stream = RayStream::from(rays);
+  stream.end = aims;
+  HitStream hits;
+  tracer().occluded(s, bvh, stream, hits);
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    ASSERT_EQ(hits.prim[i] == 0, want[i] == 1) << "ray " << i << " aim " << aims[i];
+  for (int k : kinds)
+    EXPECT_GT(k, 1000);
+  EXPECT_GT(std::count(want.begin(), want.end(), 1), 100);
+}
+
 // The ray's permutation for the watertight test (RayShear): the axis of largest |d| and
 // whether d is negative along it. Packets whose rays share it take other code paths (permuted
 // loads of columns, one near plane per axis) than packets that mix them.

@@ -3,6 +3,8 @@
 // (docs/hard-cases.md §5).
 #pragma once
 
+#include <cmath>
+
 #include "raylane/core/ray.h"
 
 namespace raylane {
@@ -16,5 +18,17 @@ Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng, c
 // A componentwise bound on the error of a hit point o + t·d whose t came from a float
 // kernel: a float t is within a few ulps, so allow 2^5 float roundoffs of |o| + |t·d|.
 Vec3d hit_point_error(const Rayd& ray, double t);
+
+// Where a shadow ray from o toward a light point ends: at the point's distance along the ray.
+// `wi` is the unit direction from the shading point p to the light point, `dist` their
+// distance (o is p moved off its surface, so the ray passes the point within that move). The
+// ray is traced as an occlusion query aimed at the light (Tracer::occluded): the light's own
+// surface, wherever rounding puts it, does not block it, and the query looks for blockers
+// before it. Infinite for an infinite distance (the environment).
+// Inline: the render loop computes one per shadow ray, in a loop a call would slow down.
+inline double shadow_ray_tmax(const Vec3d& o, const Vec3d& p, const Vec3d& wi, double dist) {
+  if (std::isinf(dist)) return dist;  // the environment: nothing may lie anywhere on the ray
+  return dist + dot(p - o, wi);       // the light point p + dist·wi, projected on the ray
+}
 
 }  // namespace raylane

@@ -52,6 +52,11 @@ template <class A>
 inline Ints<A> select(const Mask<A>& m, const Ints<A>& a, const Ints<A>& b) {
   return xsimd::select(xsimd::bool_cast(m), a, b);
 }
+// Lanes where a == b, as a mask over float lanes.
+template <class A>
+inline Mask<A> equal(const Ints<A>& a, const Ints<A>& b) {
+  return xsimd::bool_cast(a == b);
+}
 
 // GCC 12's _mm512_max_ps/_mm512_min_ps pass _mm512_undefined_ps(), a self-initialised value
 // that -Wuninitialized flags once inlined deep enough; the zero-masking forms with every lane

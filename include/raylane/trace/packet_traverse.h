@@ -230,6 +230,10 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
       if constexpr (kCount) ++c->leaf_visits, c->prim_tests += n.count;
       intersect_leaf<A>(scene, bvh, n, r, lanes, h);
       if constexpr (kAnyHit) {
+        // A lane whose closest hit so far is the primitive it is aimed at has not found a
+        // blocker: the kernel shortened its segment to that hit, and it goes on looking
+        // before it. (A blocker found first retires the lane at once.)
+        h.found = h.found & !simd::equal<A>(h.prim, r.end);
         r.active = r.active & !h.found;
         if (simd::none<A>(r.active)) return;
       }
@@ -259,8 +263,7 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
       if (top == 0) return;
       const PacketEntry<A>& e = stack[--top];
       cur = e.node;
-      lanes = e.lanes & r.active;
-      if constexpr (!kAnyHit) lanes = lanes & (e.tnear <= widen_far<A>(h.t));
+      lanes = e.lanes & r.active & (e.tnear <= widen_far<A>(h.t));
     } while (simd::none<A>(lanes));
   }
 }

@@ -14,6 +14,11 @@ namespace raylane {
 
 struct RayStream {
   std::vector<float> ox, oy, oz, dx, dy, dz, tmin, tmax;
+  // Occlusion only, optional (empty, or one entry per ray): end[i] is the PrimRef bits of the
+  // primitive ray i is aimed at, a light for a shadow ray (PrimRef::kInvalidBits: none). Its
+  // surface ends the ray's segment instead of blocking it (SimdTracer::occluded). resize() and
+  // set() leave it alone.
+  std::vector<uint32_t> end;
 
   std::size_t size() const { return ox.size(); }
   void resize(std::size_t n) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -53,9 +54,14 @@ class Tracer {
                TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
-  // Whether the ray meets its hit's surface from the front (hit.front_face after complete()),
-  // without the surface where the kind allows: a shadow ray needs only this.
-  bool front_face(const Rayd& ray, const Hit& hit) const;
+  // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's
+  // traversal ending at the first blocker. aims[i], when `aims` is not empty, is the primitive
+  // ray i is aimed at (a shadow ray's light; invalid for none): it does not block the ray, and
+  // the ray is blocked only by what lies before it (SimdTracer::occluded; the references say
+  // whether the closest hit is something else). SIMD rays are traced rounded to float, as
+  // closest() traces them.
+  void occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
+                std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
 
   const Scene& scene() const { return scene_; }
   TracerKind kind() const { return kind_; }
@@ -65,6 +71,8 @@ class Tracer {
   // complete() for hits[0, n) of a packet trace whose float rays are in scratch.rays, kind by
   // kind (one branch on the kind per batch, not per hit).
   void complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const;
+  // occluded() for one ray with the double references.
+  bool occluded_ref(const Rayd& ray, PrimRef aim) const;
 
   const Scene& scene_;
   const Bvh& bvh_;
