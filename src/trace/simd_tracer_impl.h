@@ -45,7 +45,7 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   r.tmin = col(s.tmin);
   tmax = col(s.tmax);
   // Whole packets load the aims straight too; a partial one's spare lanes are inactive.
-  const simd::Ints<A> none(int32_t(PrimRef::kInvalidBits));
+  const auto none = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
   if (s.end.empty()) {
     r.end = none;
   } else if (n == W) {
