@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "bvh/build_lanes.h"
 #include "bvh/build_output.h"
 #include "bvh/build_prim.h"
 #include "bvh/parallel_split.h"
@@ -57,7 +58,7 @@ class Builder {
     if (threads < 2 || count_ <= kParallelPrims) {
       NodeBounds bounds;
       bounds.clear();
-      bound_prims(prims_, count_, bounds);
+      lanes_.bound(prims_, count_, bounds);
       return build_subtree({0, 0, count_, 0, 1, bounds}, false);
     }
 #pragma omp parallel num_threads(threads)
@@ -65,7 +66,7 @@ class Builder {
     {
       const int parts = kChunksPerThread * threads;
       Pending root{0, 0, count_,
-                   0, 1, bound_in_parallel(prims_, count_, count_ > 4096 ? parts : 1)};
+                   0, 1, bound_in_parallel(lanes_, prims_, count_, count_ > 4096 ? parts : 1)};
       std::vector<Pending> subtrees = split_top_levels(root, threads, parts);
       // Largest first, so the last subtrees to finish are small.
       std::sort(subtrees.begin(), subtrees.end(),
@@ -152,17 +153,17 @@ class Builder {
     uint32_t mid = p.count() / 2;
     left.bounds.clear(), right.bounds.clear();
     if (d.split.axis >= 0)
-      mid = parts > 1 ? partition_in_parallel(first, p.count(), grid, d.split.axis,
+      mid = parts > 1 ? partition_in_parallel(lanes_, first, p.count(), grid, d.split.axis,
                                               d.split.last_left, parts, left.bounds, right.bounds)
-                      : partition_prims(first, p.count(), grid, d.split.axis, d.split.last_left,
-                                        left.bounds, right.bounds);
+                      : lanes_.partition(first, p.count(), grid, d.split.axis, d.split.last_left,
+                                         left.bounds, right.bounds);
     // The partition classifies by the binning's own arithmetic, so both sides hold prims;
     // the median stands in should they not (and where no split separates the centroids).
     if (d.split.axis < 0 || mid == 0 || mid == p.count()) {
       mid = p.count() / 2;
       left.bounds.clear(), right.bounds.clear();
-      bound_prims(first, mid, left.bounds);
-      bound_prims(first + mid, p.count() - mid, right.bounds);
+      lanes_.bound(first, mid, left.bounds);
+      lanes_.bound(first + mid, p.count() - mid, right.bounds);
     }
     const uint32_t child = p.desc;
     n.index = child;
@@ -187,10 +188,10 @@ class Builder {
       return {true, {}};
     BinSet bins;
     if (parts > 1) {
-      bin_in_parallel(prims_ + p.begin, count, grid, parts, bins);
+      bin_in_parallel(lanes_, prims_ + p.begin, count, grid, parts, bins);
     } else {
       bins.clear(grid.bins);
-      bin_prims(prims_ + p.begin, count, grid, bins);
+      lanes_.bin(prims_ + p.begin, count, grid, bins);
     }
     Split split = best_split(bins, grid, p.bounds.box.bounds(), cfg_.traversal_cost, isa_);
     bool may_leaf =
@@ -211,6 +212,7 @@ class Builder {
   const uint32_t count_;
   const BvhConfig& cfg_;
   const Isa isa_ = best_isa();
+  const BuildLanes& lanes_ = build_lanes(isa_);
   MallocPtr<BvhNode> nodes_;
   uint32_t top_inner_ = 0;               // inner nodes made by split_top_levels
   std::atomic<uint32_t> task_inner_{0};  // ... and by the tasks below them

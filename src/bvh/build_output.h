@@ -24,10 +24,13 @@ using MallocPtr = std::unique_ptr<T, FreeMalloc>;
 
 // Room for n objects of an aggregate T (their lifetimes begin when written), neither zeroed
 // nor touched: a page costs nothing until the first object on it is written, by whichever
-// thread writes it.
+// thread writes it. Aligned to a cache line, so that no 32-byte record or node straddles two
+// (the binning loads a record as one 32-byte row: box_lanes.h).
 template <class T>
 MallocPtr<T> allocate_unwritten(std::size_t n) {
-  MallocPtr<T> p(static_cast<T*>(std::malloc(sizeof(T) * (n > 0 ? n : 1))));
+  constexpr std::size_t kLine = 64;
+  const std::size_t bytes = (sizeof(T) * (n > 0 ? n : 1) + kLine - 1) / kLine * kLine;
+  MallocPtr<T> p(static_cast<T*>(std::aligned_alloc(kLine, bytes)));
   if (!p) throw std::bad_alloc();
   return p;
 }
