@@ -67,19 +67,20 @@ void for_each_column(Table& t, const F& f) {
 template <class Table>
 void table_permute(Table& t, std::span<const uint32_t> order) {
   using Spares = std::tuple<std::vector<float>, std::vector<uint32_t>>;
-  std::vector<std::function<void(Spares&)>> jobs;
-  for_each_column(t, [&](auto& c) {
-    if (c.empty() && order.size() > 0) return;  // an optional column the table does not use
-    jobs.push_back([&c, &order](Spares& spares) {
-      permute_column(c, order, std::get<std::remove_reference_t<decltype(c)>>(spares));
-    });
-  });
+  auto one = [&order](auto& c, Spares& spares) {
+    permute_column(c, order, std::get<std::remove_reference_t<decltype(c)>>(spares));
+  };
   if (order.size() <= 4096) {
     Spares spares;
-    for (const auto& job : jobs)
-      job(spares);
+    for_each_column(t, [&](auto& c) {
+      if (!c.empty() || order.empty()) one(c, spares);  // else an optional column not in use
+    });
     return;
   }
+  std::vector<std::function<void(Spares&)>> jobs;
+  for_each_column(t, [&](auto& c) {
+    if (!c.empty()) jobs.push_back([&c, &one](Spares& spares) { one(c, spares); });
+  });
   std::atomic<std::size_t> next{0};
 #pragma omp parallel
   {
