@@ -57,7 +57,7 @@ void bin_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, uint32_t n
                      const BinGrid& grid, int parts, BinSet& bins) {
   std::vector<BinSet> part(parts - 1);  // part 0 bins into `bins`
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     BinSet& mine = t == 0 ? bins : part[t - 1];
     mine.clear(grid.bins);
     auto [first, last] = chunk(n, t, parts);
@@ -73,7 +73,7 @@ uint32_t partition_in_parallel(const BuildLanes& lanes, BuildPrim* prims, uint32
   std::vector<uint32_t> lefts(parts, 0);
   std::vector<NodeBounds> lb(parts), rb(parts);
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [b, e] = chunk(n, t, parts);
     lb[t].clear(), rb[t].clear();
     lefts[t] = lanes.partition(prims + b, e - b, grid, axis, last_left_bin, lb[t], rb[t]);
@@ -95,7 +95,7 @@ uint32_t partition_in_parallel(const BuildLanes& lanes, BuildPrim* prims, uint32
   const uint32_t k = misplaced_right.size();
   if (k == 0) return mid;
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [k0, k1] = chunk(k, t, parts);
     if (k0 == k1) continue;
     Ranges::Cursor from(misplaced_right, k0), to(misplaced_left, k0);
@@ -109,7 +109,7 @@ NodeBounds bound_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, ui
                              int parts) {
   std::vector<NodeBounds> part(parts);
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [b, e] = chunk(n, t, parts);
     part[t].clear();
     lanes.bound(prims + b, e - b, part[t]);
