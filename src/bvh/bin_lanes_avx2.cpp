@@ -1,4 +1,6 @@
-// The builder's loops (build_lanes.h) compiled for AVX2 (flags set in CMakeLists.txt).
+// The builder's loops (build_lanes.h) compiled for AVX2 (flags set in CMakeLists.txt): a box is
+// one register of eight float lanes (box_lanes.h).
+#include "bvh/box_lanes.h"
 #include "bvh/build_lanes.h"
 #include "bvh/sweep_lanes.h"
 
@@ -7,6 +9,11 @@ static_assert(XSIMD_WITH_FMA3_AVX2,
 
 namespace raylane::bvh_build {
 
-const BuildLanes kBuildLanesAvx2 = {lanes::sweep_bins<xsimd::fma3<xsimd::avx2>>};
+namespace {
+using A = xsimd::fma3<xsimd::avx2>;
+}  // namespace
+
+const BuildLanes kBuildLanesAvx2 = {lanes::sweep_bins<A, A>, lanes::bound_records<A>,
+                                    lanes::bin_records<A>, lanes::partition_records<A>};
 
 }  // namespace raylane::bvh_build

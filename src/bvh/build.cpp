@@ -9,11 +9,11 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <memory>
 
+#include "bvh/build_lanes.h"
 #include "bvh/build_output.h"
 #include "bvh/build_prim.h"
 #include "bvh/parallel_split.h"
@@ -26,6 +26,8 @@ namespace raylane {
 namespace {
 
 using namespace bvh_build;
+
+static_assert(kMedianSplitDepth + 32 < 256, "a node's depth fits its pad (split_node)");
 
 // A node still to be built: its slot, its prims [begin, end) and their bounds. Its subtree's
 // other nodes go to slots [desc, desc + 2·count − 2): its children to desc and desc + 1, the
@@ -49,23 +51,28 @@ class Builder {
   // Slots live in memory that is not written until a node is made, so the 2n − 1 a build may
   // need cost no resident memory beyond the nodes it makes.
   Builder(BuildPrim* prims, uint32_t count, const BvhConfig& cfg)
-      : prims_(prims), count_(count), cfg_(cfg), nodes_(allocate_unwritten<BvhNode>(2 * count)) {}
+      : prims_(prims),
+        count_(count),
+        cfg_(cfg),
+        nodes_(allocate_unwritten<BvhNode>(2 * count)),
+        used_(allocate_zeroed_bytes(2 * count)) {}
 
-  // Builds the whole tree with `threads` threads; returns its number of inner nodes.
-  uint32_t build(int threads) {
+  // Builds the whole tree with `threads` threads.
+  void build(int threads) {
     // A small scene builds in microseconds: no parallel region.
     if (threads < 2 || count_ <= kParallelPrims) {
       NodeBounds bounds;
       bounds.clear();
-      bound_prims(prims_, count_, bounds);
-      return build_subtree({0, 0, count_, 0, 1, bounds}, false);
+      lanes_.bound(prims_, count_, bounds);
+      build_subtree({0, 0, count_, 0, 1, bounds}, false);
+      return;
     }
 #pragma omp parallel num_threads(threads)
 #pragma omp single
     {
       const int parts = kChunksPerThread * threads;
       Pending root{0, 0, count_,
-                   0, 1, bound_in_parallel(prims_, count_, count_ > 4096 ? parts : 1)};
+                   0, 1, bound_in_parallel(lanes_, prims_, count_, count_ > 4096 ? parts : 1)};
       std::vector<Pending> subtrees = split_top_levels(root, threads, parts);
       // Largest first, so the last subtrees to finish are small.
       std::sort(subtrees.begin(), subtrees.end(),
@@ -76,15 +83,20 @@ class Builder {
       for (const Pending& p : subtrees) {
         Pending sub = p;
 #pragma omp task default(shared) firstprivate(sub)
-        task_inner_.fetch_add(build_subtree(sub, true), std::memory_order_relaxed);
+        build_subtree(sub, true);
       }
     }
-    return top_inner_ + task_inner_.load();
   }
 
-  // The slots of the tree made (build_output.h reads them from slot 0).
+  // The slots of the tree made, and which of them were made (compact_tree reads them).
   const BvhNode* slots() const {
     return nodes_.get();
+  }
+  const uint8_t* used() const {
+    return used_.get();
+  }
+  uint32_t slot_count() const {
+    return 2 * count_;
   }
 
  private:
@@ -113,35 +125,36 @@ class Builder {
       }
       Pending left, right;
       if (!split_node(p, parts, left, right)) continue;  // a leaf (only ever by depth)
-      ++top_inner_;
       todo.push_back(left), todo.push_back(right);
     }
     return subtrees;
   }
 
-  // Builds the subtree of `p`; returns the number of inner nodes it made on the calling
-  // thread. With `tasks`, a left child of at least kTaskPrims prims is built by a new task,
-  // which adds its own count to task_inner_. Tasks only ever wait at the build's end, so no
-  // thread picks up a subtree while a node it is binning waits (the trap of bench/README.md).
-  uint32_t build_subtree(const Pending& p, bool tasks) {
+  // Builds the subtree of `p`. With `tasks`, a left child of at least kTaskPrims prims is built
+  // by a new task. Tasks only ever wait at the build's end, so no thread picks up a subtree
+  // while a node it is binning waits (the trap of bench/README.md).
+  void build_subtree(const Pending& p, bool tasks) {
     Pending left, right;
-    if (!split_node(p, 1, left, right)) return 0;
+    if (!split_node(p, 1, left, right)) return;
     if (tasks && left.count() >= kTaskPrims) {
 #pragma omp task default(shared) firstprivate(left)
-      task_inner_.fetch_add(build_subtree(left, true), std::memory_order_relaxed);
-      return 1 + build_subtree(right, true);
+      build_subtree(left, true);
+      build_subtree(right, true);
+      return;
     }
-    return 1 + build_subtree(left, tasks) + build_subtree(right, tasks);
+    build_subtree(left, tasks);
+    build_subtree(right, tasks);
   }
 
   // Makes p's node a leaf (returns false) or an inner node whose children are left and right;
   // parts > 1: bins and partitions in that many tasks (parallel_split.h).
   bool split_node(const Pending& p, int parts, Pending& left, Pending& right) {
     BvhNode& n = nodes_.get()[p.node];
+    used_.get()[p.node] = 1;
     const Box4& box = p.bounds.box;
     for (int k = 0; k < 3; ++k)
       n.lo[k] = box.lo[k], n.hi[k] = box.hi[k];
-    n.pad = 0;
+    n.pad = uint8_t(p.depth);  // for compact_tree's statistics (it zeroes the pad)
     BinGrid grid = make_grid(p.bounds, std::clamp(int(p.count()), 2, cfg_.bins));
     Decision d = decide(p, grid, parts);
     if (d.leaf) {
@@ -152,17 +165,17 @@ class Builder {
     uint32_t mid = p.count() / 2;
     left.bounds.clear(), right.bounds.clear();
     if (d.split.axis >= 0)
-      mid = parts > 1 ? partition_in_parallel(first, p.count(), grid, d.split.axis,
+      mid = parts > 1 ? partition_in_parallel(lanes_, first, p.count(), grid, d.split.axis,
                                               d.split.last_left, parts, left.bounds, right.bounds)
-                      : partition_prims(first, p.count(), grid, d.split.axis, d.split.last_left,
-                                        left.bounds, right.bounds);
+                      : lanes_.partition(first, p.count(), grid, d.split.axis, d.split.last_left,
+                                         left.bounds, right.bounds);
     // The partition classifies by the binning's own arithmetic, so both sides hold prims;
     // the median stands in should they not (and where no split separates the centroids).
     if (d.split.axis < 0 || mid == 0 || mid == p.count()) {
       mid = p.count() / 2;
       left.bounds.clear(), right.bounds.clear();
-      bound_prims(first, mid, left.bounds);
-      bound_prims(first + mid, p.count() - mid, right.bounds);
+      lanes_.bound(first, mid, left.bounds);
+      lanes_.bound(first + mid, p.count() - mid, right.bounds);
     }
     const uint32_t child = p.desc;
     n.index = child;
@@ -187,10 +200,10 @@ class Builder {
       return {true, {}};
     BinSet bins;
     if (parts > 1) {
-      bin_in_parallel(prims_ + p.begin, count, grid, parts, bins);
+      bin_in_parallel(lanes_, prims_ + p.begin, count, grid, parts, bins);
     } else {
       bins.clear(grid.bins);
-      bin_prims(prims_ + p.begin, count, grid, bins);
+      lanes_.bin(prims_ + p.begin, count, grid, bins);
     }
     Split split = best_split(bins, grid, p.bounds.box.bounds(), cfg_.traversal_cost, isa_);
     bool may_leaf =
@@ -211,9 +224,9 @@ class Builder {
   const uint32_t count_;
   const BvhConfig& cfg_;
   const Isa isa_ = best_isa();
+  const BuildLanes& lanes_ = build_lanes(isa_);
   MallocPtr<BvhNode> nodes_;
-  uint32_t top_inner_ = 0;               // inner nodes made by split_top_levels
-  std::atomic<uint32_t> task_inner_{0};  // ... and by the tasks below them
+  MallocPtr<uint8_t> used_;  // 1 where a slot holds a node (threads write different bytes)
 };
 
 }  // namespace
@@ -229,8 +242,9 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   cfg.bins = std::clamp(cfg.bins, 2, kMaxBins);
   {
     Builder builder(prims.get(), count, cfg);
-    uint32_t inner = builder.build(threads);
-    copy_tree(builder.slots(), inner, prims.get(), cfg.traversal_cost, bvh.nodes, bvh.stats);
+    builder.build(threads);
+    compact_tree(builder.slots(), builder.used(), builder.slot_count(), prims.get(),
+                 cfg.traversal_cost, threads, bvh.nodes, bvh.stats);
   }
   bvh.refs = take_refs(prims.get(), count, threads);
   prims.reset();

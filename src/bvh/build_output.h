@@ -22,12 +22,23 @@ struct FreeMalloc {
 template <class T>
 using MallocPtr = std::unique_ptr<T, FreeMalloc>;
 
+// n zeroed bytes: calloc, whose large blocks are fresh pages the kernel zeroes when first
+// touched, so the bytes never written cost nothing.
+inline MallocPtr<uint8_t> allocate_zeroed_bytes(std::size_t n) {
+  MallocPtr<uint8_t> p(static_cast<uint8_t*>(std::calloc(n > 0 ? n : 1, 1)));
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+
 // Room for n objects of an aggregate T (their lifetimes begin when written), neither zeroed
 // nor touched: a page costs nothing until the first object on it is written, by whichever
-// thread writes it.
+// thread writes it. Aligned to a cache line, so that no 32-byte record or node straddles two
+// (the binning loads a record as one 32-byte row: box_lanes.h).
 template <class T>
 MallocPtr<T> allocate_unwritten(std::size_t n) {
-  MallocPtr<T> p(static_cast<T*>(std::malloc(sizeof(T) * (n > 0 ? n : 1))));
+  constexpr std::size_t kLine = 64;
+  const std::size_t bytes = (sizeof(T) * (n > 0 ? n : 1) + kLine - 1) / kLine * kLine;
+  MallocPtr<T> p(static_cast<T*>(std::aligned_alloc(kLine, bytes)));
   if (!p) throw std::bad_alloc();
   return p;
 }
@@ -36,14 +47,16 @@ MallocPtr<T> allocate_unwritten(std::size_t n) {
 // `threads` threads.
 MallocPtr<BuildPrim> gather(const Scene& scene, int threads);
 
-// Copies the tree whose root is slots[0] (Pending in build.cpp: a node's children are the
-// two slots its index names) to `out`, depth first: each node's children adjacent, placed
-// when their parent is, the left subtree's pairs before the right's (which is also the order
-// of the slots). The result, and the statistics summed along the way (`stats`: counts, depth,
-// leaf sizes, SAH cost), are the same for any thread count. `inner` is the number of inner
-// nodes; `prims` gives the leaves' refs.
-void copy_tree(const BvhNode* slots, uint32_t inner, const BuildPrim* prims, double traversal_cost,
-               std::vector<BvhNode>& out, BvhStats& stats);
+// Copies the tree whose root is slots[0] (Pending in build.cpp: a node's children are the two
+// slots its index names, and its pad holds its depth) to `out`: the slots whose `used` flag is
+// 1, in slot order, which is depth first (each node's children adjacent, placed when their
+// parent is, the left subtree's pairs before the right's), child indices renumbered and pads
+// zeroed. The result, and the statistics summed along the way (`stats`: counts, depth, leaf
+// sizes, SAH cost), are the same for any number of `threads`. `slot_count` flags are read;
+// `prims` gives the leaves' refs.
+void compact_tree(const BvhNode* slots, const uint8_t* used, uint32_t slot_count,
+                  const BuildPrim* prims, double traversal_cost, int threads,
+                  std::vector<BvhNode>& out, BvhStats& stats);
 
 // The refs of prims [0, n), in order.
 std::vector<PrimRef> take_refs(const BuildPrim* prims, uint32_t n, int threads);

@@ -1,7 +1,8 @@
 // The builder's working data (src/bvh/build.cpp): one 32-byte record per primitive, boxes of
 // four floats, and the bins of the binned SAH (Wald 2007, "On fast Construction of SAH-based
 // Bounding Volume Hierarchies", §3). The loops over records and bins are in SIMD units of their
-// own (bin_lanes_*.cpp, build_lanes.h); this header, and the code that calls them, has no xsimd.
+// own (bin_lanes_*.cpp, box_lanes.h), called through build_lanes.h; this header, and the code
+// that calls them, has no xsimd.
 #pragma once
 
 #include <cstdint>
@@ -22,10 +23,11 @@ inline constexpr uint32_t cost_units(double sah_test_cost) {
   return uint32_t(double(float(sah_test_cost)) / kCostUnit + 0.5);
 }
 
-// 32 bytes, two to a cache line: {lo, ref} and {hi, cost} each load as four lanes (the fourth
-// is ignored). The centroid is not stored: lo + hi (twice the centroid, an affine image of it,
-// which bins and splits the same way) is computed where it is needed, a non-finite sum read as
-// 0 so that a huge primitive cannot make the centroid bounds infinite.
+// 32 bytes, two to a cache line: {lo, ref} and {hi, cost} each load as four lanes, or the whole
+// record as eight (the fourth and eighth are ignored). The centroid is not stored: lo + hi (twice
+// the centroid, an affine image of it, which bins and splits the same way) is computed where it is
+// needed, a non-finite sum read as 0 so that a huge primitive cannot make the centroid bounds
+// infinite.
 struct alignas(16) BuildPrim {
   float lo[3];
   PrimRef ref;
@@ -72,11 +74,37 @@ struct BinGrid {
   int bins = 2;
 };
 
+// A bin's box as [lo, −hi] (lanes 3 and 7 unused, their contents undefined): with the high
+// corner negated both corners grow by a min, so a record's box updates a bin in one min of eight
+// lanes (or two of four) instead of a min and a max. Empty: every lane +inf. The min keeps the
+// box exactly what a min of lo and a max of hi give, NaN and signed zeros alike (−x < −y exactly
+// when y < x), so the bins, and the splits swept from them, are the same numbers.
+struct alignas(32) BinBox {
+  float lo[4], neg_hi[4];
+
+  void clear() {
+    for (int k = 0; k < 4; ++k)
+      lo[k] = neg_hi[k] = std::numeric_limits<float>::infinity();
+  }
+  void extend(const BinBox& b) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k];
+      neg_hi[k] = b.neg_hi[k] < neg_hi[k] ? b.neg_hi[k] : neg_hi[k];
+    }
+  }
+  Bounds3f bounds() const {
+    Bounds3f b;
+    b.lo = {lo[0], lo[1], lo[2]};
+    b.hi = {-neg_hi[0], -neg_hi[1], -neg_hi[2]};
+    return b;
+  }
+};
+
 // The bins of all three axes: one pass over the primitives fills them (Wald 2007, §3.2). A
 // bin's prims are not counted: every prim costs at least one unit, so a bin (or a side of a
 // split) holds prims exactly when its summed cost is above 0.
 struct BinSet {
-  Box4 box[3][kMaxBins];
+  BinBox box[3][kMaxBins];
   uint64_t cost[3][kMaxBins];  // summed test cost in kCostUnit
 
   void clear(int bins) {
@@ -90,15 +118,5 @@ struct BinSet {
         box[a][b].extend(o.box[a][b]), cost[a][b] += o.cost[a][b];
   }
 };
-
-// The loops over the records, in the SIMD unit (bin_lanes_sse42.cpp).
-// Extends `bounds` by prims [0, n).
-void bound_prims(const BuildPrim* prims, uint32_t n, NodeBounds& bounds);
-// Adds prims [0, n) to the bins of `grid` (the bins were cleared by the caller).
-void bin_prims(const BuildPrim* prims, uint32_t n, const BinGrid& grid, BinSet& bins);
-// Reorders prims [0, n) in place so that those whose bin on `axis` is ≤ `last_left_bin` come
-// first; returns their number and extends `left` and `right` by the bounds of each side.
-uint32_t partition_prims(BuildPrim* prims, uint32_t n, const BinGrid& grid, int axis,
-                         int last_left_bin, NodeBounds& left, NodeBounds& right);
 
 }  // namespace raylane::bvh_build

@@ -53,29 +53,30 @@ class Ranges {
 
 }  // namespace
 
-void bin_in_parallel(const BuildPrim* prims, uint32_t n, const BinGrid& grid, int parts,
-                     BinSet& bins) {
+void bin_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, uint32_t n,
+                     const BinGrid& grid, int parts, BinSet& bins) {
   std::vector<BinSet> part(parts - 1);  // part 0 bins into `bins`
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     BinSet& mine = t == 0 ? bins : part[t - 1];
     mine.clear(grid.bins);
     auto [first, last] = chunk(n, t, parts);
-    bin_prims(prims + first, last - first, grid, mine);
+    lanes.bin(prims + first, last - first, grid, mine);
   }
   for (int t = 1; t < parts; ++t)
     bins.merge(part[t - 1], grid.bins);
 }
 
-uint32_t partition_in_parallel(BuildPrim* prims, uint32_t n, const BinGrid& grid, int axis,
-                               int last_left_bin, int parts, NodeBounds& left, NodeBounds& right) {
+uint32_t partition_in_parallel(const BuildLanes& lanes, BuildPrim* prims, uint32_t n,
+                               const BinGrid& grid, int axis, int last_left_bin, int parts,
+                               NodeBounds& left, NodeBounds& right) {
   std::vector<uint32_t> lefts(parts, 0);
   std::vector<NodeBounds> lb(parts), rb(parts);
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [b, e] = chunk(n, t, parts);
     lb[t].clear(), rb[t].clear();
-    lefts[t] = partition_prims(prims + b, e - b, grid, axis, last_left_bin, lb[t], rb[t]);
+    lefts[t] = lanes.partition(prims + b, e - b, grid, axis, last_left_bin, lb[t], rb[t]);
   }
   // Chunk t now holds [its lefts | its rights]. The final middle splits [0, n); right-side
   // prims before it and left-side prims after it are equally many and swap places.
@@ -94,7 +95,7 @@ uint32_t partition_in_parallel(BuildPrim* prims, uint32_t n, const BinGrid& grid
   const uint32_t k = misplaced_right.size();
   if (k == 0) return mid;
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [k0, k1] = chunk(k, t, parts);
     if (k0 == k1) continue;
     Ranges::Cursor from(misplaced_right, k0), to(misplaced_left, k0);
@@ -104,13 +105,14 @@ uint32_t partition_in_parallel(BuildPrim* prims, uint32_t n, const BinGrid& grid
   return mid;
 }
 
-NodeBounds bound_in_parallel(const BuildPrim* prims, uint32_t n, int parts) {
+NodeBounds bound_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, uint32_t n,
+                             int parts) {
   std::vector<NodeBounds> part(parts);
 #pragma omp taskloop default(shared) num_tasks(parts)
-  for (int t = 0; t < parts; ++t) {
+  for (unsigned t = 0; t < unsigned(parts); ++t) {
     auto [b, e] = chunk(n, t, parts);
     part[t].clear();
-    bound_prims(prims + b, e - b, part[t]);
+    lanes.bound(prims + b, e - b, part[t]);
   }
   NodeBounds all;
   all.clear();

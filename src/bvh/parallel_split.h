@@ -7,21 +7,23 @@
 // whole subtree first; bench/README.md). Outside a parallel region they run serially.
 #pragma once
 
-#include "bvh/build_prim.h"
+#include "bvh/build_lanes.h"
 
 namespace raylane::bvh_build {
 
-// The bins of prims [0, n) (`bins` is cleared here).
-void bin_in_parallel(const BuildPrim* prims, uint32_t n, const BinGrid& grid, int parts,
-                     BinSet& bins);
+// The bins of prims [0, n), by `lanes` (`bins` is cleared here).
+void bin_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, uint32_t n,
+                     const BinGrid& grid, int parts, BinSet& bins);
 
-// partition_prims over prims [0, n): each chunk is partitioned in place, then the right-side
+// lanes.partition over prims [0, n): each chunk is partitioned in place, then the right-side
 // prims left of the final middle swap places with the left-side prims right of it. Returns
 // the number that go left; `left` and `right` are set to the bounds of each side.
-uint32_t partition_in_parallel(BuildPrim* prims, uint32_t n, const BinGrid& grid, int axis,
-                               int last_left_bin, int parts, NodeBounds& left, NodeBounds& right);
+uint32_t partition_in_parallel(const BuildLanes& lanes, BuildPrim* prims, uint32_t n,
+                               const BinGrid& grid, int axis, int last_left_bin, int parts,
+                               NodeBounds& left, NodeBounds& right);
 
 // The bounds of prims [0, n).
-NodeBounds bound_in_parallel(const BuildPrim* prims, uint32_t n, int parts);
+NodeBounds bound_in_parallel(const BuildLanes& lanes, const BuildPrim* prims, uint32_t n,
+                             int parts);
 
 }  // namespace raylane::bvh_build

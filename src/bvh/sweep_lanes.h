@@ -12,6 +12,7 @@
 
 #include <cfloat>
 
+#include "bvh/box_lanes.h"
 #include "bvh/sah_split.h"
 #include "raylane/simd/lanes.h"
 
@@ -75,19 +76,36 @@ struct SweepLanes {
   }
 };
 
-// Fills rows[0, n) from the bins: the transposition the lanes need.
-template <class A>
+// Fills rows[0, n) from the bins: the transposition the lanes need. The boxes of the three
+// axes and a row of +inf are four rows of [lo | −hi] that one 4 × 4 transposition per half
+// turns into [lo_k of each axis | −hi_k of each axis] for k = 0, 1, 2 (B: four or eight float
+// lanes, box_lanes.h); −hi is negated back and widened to double, both exactly. The +inf row
+// pads lane 3 with lo = +inf and hi = −inf, an empty box.
+template <class B>
 void transpose_bins(const BinSet& bins, int n, BinRow* rows) {
+  using F = simd::Floats<B>;
+  using P = BoxPair<B>;
+  const F inf(HUGE_VALF);
   for (int b = 0; b < n; ++b) {
     BinRow& row = rows[b];
-    for (int a = 0; a < 3; ++a) {
-      const Box4& box = bins.box[a][b];
+    P box[3] = {P::load(bins.box[0][b]), P::load(bins.box[1][b]), P::load(bins.box[2][b])};
+    if constexpr (simd::kWidth<B> == 8) {
+      F r[4] = {box[0].v, box[1].v, box[2].v, inf};
+      simd::transpose4<B>(r[0], r[1], r[2], r[3]);
       for (int k = 0; k < 3; ++k)
-        row.lo[k][a] = box.lo[k], row.hi[k][a] = box.hi[k];
-      row.tests[a] = double(bins.cost[a][b]) * kCostUnit;
+        simd::store_widened<B>(row.lo[k], row.hi[k], r[k] ^ P::high_sign());
+    } else {
+      F lo[4] = {box[0].lo, box[1].lo, box[2].lo, inf};
+      F hi[4] = {box[0].neg_hi, box[1].neg_hi, box[2].neg_hi, inf};
+      simd::transpose4<B>(lo[0], lo[1], lo[2], lo[3]);
+      simd::transpose4<B>(hi[0], hi[1], hi[2], hi[3]);
+      for (int k = 0; k < 3; ++k) {
+        simd::store_widened<B>(row.lo[k], nullptr, lo[k]);
+        simd::store_widened<B>(row.hi[k], nullptr, hi[k] ^ P::sign());
+      }
     }
-    for (int k = 0; k < 3; ++k)
-      row.lo[k][3] = HUGE_VAL, row.hi[k][3] = -HUGE_VAL;
+    for (int a = 0; a < 3; ++a)
+      row.tests[a] = double(bins.cost[a][b]) * kCostUnit;
     row.tests[3] = 0;
   }
 }
@@ -137,13 +155,14 @@ Split choose(const double (*left)[4], const double (*right)[4], const double (*t
   return best;
 }
 
-// best_split (sah_split.h) for instruction set A, given the parent's half area.
-template <class A>
+// best_split (sah_split.h) for instruction set A (B: its lanes of the bins' boxes), given the
+// parent's half area.
+template <class A, class B>
 Split sweep_bins(const BinSet& bins, const BinGrid& grid, double parent_area,
                  double traversal_cost) {
   const int n = grid.bins;
   BinRow rows[kMaxBins];
-  transpose_bins<A>(bins, n, rows);
+  transpose_bins<B>(bins, n, rows);
   // Candidate c puts bins [0, c] left and [c + 1, n) right. Step k adds bin k to the left
   // sweep, which completes candidate k, and bin n − 1 − k to the right, completing n − 2 − k.
   alignas(32) double left[kMaxBins][4], right[kMaxBins][4], tl[kMaxBins][4], tr[kMaxBins][4];

@@ -26,21 +26,24 @@ Bounds3f Scene::bounds() const {
   return b;
 }
 
-std::vector<std::vector<uint32_t>> Scene::permute(const std::vector<std::vector<uint32_t>>& order) {
+void Scene::permute(const std::vector<std::vector<uint32_t>>& order) {
+  // The new row of every old row, for the kinds that have lights only (for the others it
+  // would be a table-sized pass that nothing reads: 4 ms of the 1.31M mesh's build).
   std::vector<std::vector<uint32_t>> new_row(kPrimKindCount);
+  for (PrimRef l : lights) {
+    const uint32_t k = uint32_t(l.tag());
+    if (!new_row[k].empty()) continue;
+    new_row[k].resize(order[k].size());
+    for (uint32_t i = 0; i < order[k].size(); ++i)
+      new_row[k][order[k][i]] = i;
+  }
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
-    const auto& o = order[kind_index<Kind>()];
-    auto& nr = new_row[kind_index<Kind>()];
-    nr.resize(o.size());
-    for (uint32_t i = 0; i < o.size(); ++i)
-      nr[o[i]] = i;
-    table_permute(table<Kind>(), o);
+    table_permute(table<Kind>(), order[kind_index<Kind>()]);
   });
   for (PrimRef& l : lights)
     l = PrimRef(l.tag(), new_row[uint32_t(l.tag())][l.row()]);
   std::sort(lights.begin(), lights.end());
-  return new_row;
 }
 
 }  // namespace raylane

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "bvh/build_lanes.h"
 #include "bvh/sah_split.h"
 
 namespace raylane::bvh_build {
@@ -24,10 +25,10 @@ BinSet random_bins(std::mt19937& rng, int n, BinGrid& grid) {
     grid.scale[a] = a == 2 && n % 3 == 0 ? 0.0f : 1.0f;  // sometimes one flat axis
     for (int b = 0; b < n; ++b) {
       if (!occupied(rng)) continue;
-      Box4& box = bins.box[a][b];
+      BinBox& box = bins.box[a][b];
       for (int k = 0; k < 3; ++k) {
         box.lo[k] = u(rng);
-        box.hi[k] = box.lo[k] + ext(rng);
+        box.neg_hi[k] = -(box.lo[k] + ext(rng));
       }
       bins.cost[a][b] = uint64_t(members(rng)) * cost_units(0.3);
     }
@@ -114,11 +115,12 @@ TEST(SahSplit, LeafByBoundOnlyWhereTheBinsMakeALeaf) {
     }
     NodeBounds nb;
     nb.clear();
-    bound_prims(prims.data(), n, nb);
+    const BuildLanes& lanes = build_lanes(Isa::kSse42);
+    lanes.bound(prims.data(), n, nb);
     BinGrid grid = make_grid(nb, std::min<int>(n, 16));
     BinSet bins;
     bins.clear(grid.bins);
-    bin_prims(prims.data(), n, grid, bins);
+    lanes.bin(prims.data(), n, grid, bins);
     Split split = best_split(bins, grid, nb.box.bounds(), 1.0, Isa::kSse42);
     bool bins_say_leaf = binned_cost(bins, grid.bins) <= split.cost;
     leaves_by_bins += bins_say_leaf;

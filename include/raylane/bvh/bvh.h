@@ -24,7 +24,11 @@ struct BvhNode {
   uint32_t index;  // inner: first child; leaf: first ref in Bvh::refs
   uint16_t count;  // 0 for an inner node; a leaf's number of refs
   uint8_t axis;    // inner: the split axis (children ordered along it); leaf: unused
-  uint8_t pad = 0;
+  uint8_t pad;     // 0
+
+  // Leaves every field unset: the builder sizes the node array and its threads write each
+  // node once (value-initialising a million nodes first took 8.5 ms of one thread).
+  BvhNode() {}
 
   bool is_leaf() const { return count > 0; }
   Bounds3f bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }

@@ -85,9 +85,8 @@ struct Scene {
   uint32_t material_of(PrimRef ref) const;
 
   // Reorders the rows of every table: new row i of kind k is old row order[k][i] (order[k] is
-  // a permutation of table k's rows, k = kind_index); the lights follow their rows. Returns,
-  // per kind, the new row of every old row.
-  std::vector<std::vector<uint32_t>> permute(const std::vector<std::vector<uint32_t>>& order);
+  // a permutation of table k's rows, k = kind_index); the lights follow their rows.
+  void permute(const std::vector<std::vector<uint32_t>>& order);
 
   // Validates one line and applies it: a setting, a material, or rows appended to a table.
   // Problems go to state.diagnostics; returns false if the line was rejected.

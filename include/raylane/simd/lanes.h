@@ -227,6 +227,51 @@ inline void store_pack(double* left, double* right, int j, const Doubles<A>& v) 
   }
 }
 
+// The BVH builder's boxes as [lo, −hi] in eight float lanes (src/bvh/box_lanes.h): the two
+// 128-bit halves of v swapped, [v4..v7, v0..v3].
+template <class A>
+inline Floats<A> swap_halves(const Floats<A>& v) {
+  static_assert(kWidth<A> == 8, "eight float lanes");
+  return Floats<A>(_mm256_permute2f128_ps(__m256(v), __m256(v), 1));
+}
+
+// Four rows of four floats transposed in place within each 128-bit half of A's registers (four
+// or eight float lanes): lane k of r_j becomes lane j of r_k, in each half alike. Intel's
+// _MM_TRANSPOSE4_PS (xmmintrin.h) steps: unpack the floats in pairs, then the pairs as doubles.
+template <class A>
+inline void transpose4(Floats<A>& r0, Floats<A>& r1, Floats<A>& r2, Floats<A>& r3) {
+  if constexpr (kWidth<A> == 8) {
+    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+    __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+    auto pd = [](__m256 x) { return _mm256_castps_pd(x); };
+    r0 = Floats<A>(_mm256_castpd_ps(_mm256_unpacklo_pd(pd(t0), pd(t1))));
+    r1 = Floats<A>(_mm256_castpd_ps(_mm256_unpackhi_pd(pd(t0), pd(t1))));
+    r2 = Floats<A>(_mm256_castpd_ps(_mm256_unpacklo_pd(pd(t2), pd(t3))));
+    r3 = Floats<A>(_mm256_castpd_ps(_mm256_unpackhi_pd(pd(t2), pd(t3))));
+  } else {
+    static_assert(kWidth<A> == 4, "four or eight float lanes");
+    __m128 t0 = _mm_unpacklo_ps(r0, r1), t1 = _mm_unpacklo_ps(r2, r3);
+    __m128 t2 = _mm_unpackhi_ps(r0, r1), t3 = _mm_unpackhi_ps(r2, r3);
+    r0 = Floats<A>(_mm_movelh_ps(t0, t1)), r1 = Floats<A>(_mm_movehl_ps(t1, t0));
+    r2 = Floats<A>(_mm_movelh_ps(t2, t3)), r3 = Floats<A>(_mm_movehl_ps(t3, t2));
+  }
+}
+
+// Float lanes widened (exactly) to double and stored: the low four at lo[0..3] and, with eight
+// lanes, the high four at hi[0..3].
+template <class A>
+inline void store_widened(double* lo, double* hi, const Floats<A>& v) {
+  if constexpr (kWidth<A> == 8) {
+    _mm256_storeu_pd(lo, _mm256_cvtps_pd(_mm256_castps256_ps128(__m256(v))));
+    _mm256_storeu_pd(hi, _mm256_cvtps_pd(_mm256_extractf128_ps(__m256(v), 1)));
+  } else {
+    static_assert(kWidth<A> == 4, "four or eight float lanes");
+    (void)hi;
+    _mm_storeu_pd(lo, _mm_cvtps_pd(__m128(v)));
+    _mm_storeu_pd(lo + 2, _mm_cvtps_pd(_mm_movehl_ps(__m128(v), __m128(v))));
+  }
+}
+
 // signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).
 template <class A>
 inline xsimd::batch_bool<double, A> sign_bit(const Doubles<A>& v) {
