@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <utility>
 
 #include <omp.h>
 
@@ -37,8 +38,9 @@ void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
 // Jittered camera rays for a tile's paths (rays[i] for paths[i]). Sobol's camera groups come from
 // the lanes for the whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
 void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
-                      std::vector<PathState>& paths, std::vector<Rayd>& rays) {
+                      std::vector<PathState>& paths, RayStream& rays) {
   tile_paths(ctx, cam, x0, y0, paths);
+  rays.clear();
   rays.resize(paths.size());
   const bool sobol = ctx.settings.sampler == Sampler::kSobol;
   SobolBatch& s = ctx.buffers.sobol;
@@ -58,7 +60,7 @@ void tile_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
       u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
                          : draw(ctx, p, Dims::camera, {0, 1});
     double x = double(p.pixel % cam.width), y = double(cam.height - 1 - p.pixel / cam.width);
-    rays[i] = cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3]);
+    rays.set(i, ray_cast<float>(cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3])));
   }
 }
 
@@ -92,7 +94,7 @@ void render_tile(TileContext& ctx, Film& f) {
   ThreadBuffers& b = ctx.buffers;
   std::vector<PathState>& paths = b.paths;
   std::vector<uint32_t>&live = b.live, &next_live = b.next_live;
-  std::vector<Rayd>&rays = b.rays, &shadow_rays = b.shadow_rays;
+  RayStream &rays = b.rays, &shadow_rays = b.shadow_rays;
   std::vector<ShadowQuery>&queries = b.queries, &next_queries = b.next_queries;
   std::vector<Hit>& hits = b.hits;
   live.resize(paths.size());
@@ -108,10 +110,7 @@ void render_tile(TileContext& ctx, Film& f) {
     clock.lap(phases.shade);
     ctx.tracer.closest(rays, hits, rays.size(), b.scratch);
     // Shadow rays, aimed at their light: it is seen when nothing else lies before it.
-    b.aims.resize(queries.size());
-    for (std::size_t q = 0; q < queries.size(); ++q)
-      b.aims[q] = queries[q].light;
-    ctx.tracer.occluded(shadow_rays, b.aims, b.blocked, b.scratch);
+    ctx.tracer.occluded(shadow_rays, b.blocked, b.scratch);
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
     if (depth == 0 && !f.aovs.empty()) add_aovs(ctx.tracer.scene(), paths, hits, f);
     if (depth > 0) ctx.stats.bounce_rays += live.size();
@@ -124,7 +123,7 @@ void render_tile(TileContext& ctx, Film& f) {
     b.next_rays.clear();
     shade_wavefront(ctx, depth);
     live.swap(next_live);
-    rays.swap(b.next_rays);
+    std::swap(rays, b.next_rays);
     queries.swap(next_queries);
   }
   clock.lap(phases.shade);

@@ -139,18 +139,20 @@ void write_back(TileContext& ctx) {
   ThreadBuffers& b = ctx.buffers;
   const VertexBatch& vb = b.vertices;
   const std::size_t n = b.lane_count;
-  Appender<Rayd> shadow_rays(b.shadow_rays, n);
+  RayAppender shadow_rays(b.shadow_rays, n, true);
   Appender<ShadowQuery> queries(b.next_queries, n);
   Appender<uint32_t> next_live(b.next_live, n);
-  Appender<Rayd> next_rays(b.next_rays, n);
+  RayAppender next_rays(b.next_rays, n, false);
   for (std::size_t r = 0; r < n; ++r) {
     const LaneRow& row = b.lane_rows[r];
     auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
     if (vb.shadow_ok[r] != 0) {
       const LightQueries& q = b.light_queries;
       const Vec3d o = column3(vb.shadow_o), wi = q.wi(r);
-      shadow_rays.push({o, wi, 0, shadow_ray_tmax(o, column3(vb.p), wi, q.cones.dist[r])});
-      queries.push({row.path, q.light[r], column3(vb.shadow_c)});
+      shadow_rays.push(
+          ray_cast<float>(Rayd{o, wi, 0, shadow_ray_tmax(o, column3(vb.p), wi, q.cones.dist[r])}),
+          q.light[r].bits());
+      queries.push({row.path, column3(vb.shadow_c)});
     }
     if (vb.alive[r] == 0) continue;
     PathState& p = b.paths[row.path];
@@ -158,7 +160,7 @@ void write_back(TileContext& ctx) {
     p.prev_p = column3(vb.p);
     p.prev_pdf = vb.pdf[r];
     p.prev_specular = false;
-    next_rays.push({column3(vb.next_o), column3(vb.wi)});
+    next_rays.push(ray_cast<float>(Rayd{column3(vb.next_o), column3(vb.wi)}));
     next_live.push(row.path);
   }
 }

@@ -19,6 +19,7 @@
 #include "raylane/render/shade_lanes.h"
 #include "raylane/render/sobol.h"
 #include "raylane/render/vertex_lanes.h"
+#include "raylane/trace/ray_stream.h"
 
 namespace raylane::path_detail {
 
@@ -38,9 +39,8 @@ struct PathState {
   uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
 };
 
-struct ShadowQuery {
+struct ShadowQuery {  // its ray, aimed at its light, is in the thread's shadow_rays
   uint32_t path;
-  PrimRef light;
   Vec3d contribution;  // added to the path's radiance if the light is the first thing hit
 };
 
@@ -77,13 +77,12 @@ struct LaneRow {
 struct ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
-  // rays[k] is path live[k]'s ray, next_rays[k] is next_live[k]'s. shadow_rays[q] belongs to
-  // queries[q] (next_queries while a wavefront is shaded), aimed at aims[q] (its light),
-  // blocked[q] is its answer.
-  std::vector<Rayd> rays, next_rays, shadow_rays;
+  // Ray k of `rays` is path live[k]'s, ray k of next_rays is next_live[k]'s: float columns, the
+  // tracer's input as they are written. Shadow ray q belongs to queries[q] (next_queries while
+  // a wavefront is shaded), its end column holds its light, blocked[q] is its answer.
+  RayStream rays, next_rays, shadow_rays;
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
-  std::vector<PrimRef> aims;
   std::vector<uint8_t> blocked;
   TraceScratch scratch;
   std::vector<LaneRow> lane_rows;  // rows [0, lane_count) are this wavefront's
@@ -147,6 +146,10 @@ void start_lane_rows(TileContext& ctx, std::size_t most);
 // nothing reflects here.
 void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
                     const PathState& p, const Rayd& ray, const Hit& hit);
+// A path's ray as the tracer traced it: the stream's float ray, widened exactly.
+inline Rayd ray_of(const RayStream& rays, std::size_t k) {
+  return ray_cast<double>(rays.get(k));
+}
 // The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
 void shade_in_lanes(TileContext& ctx, int depth);
 

@@ -124,9 +124,10 @@ void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const
   Vec3d c;
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
   Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
-  ctx.buffers.shadow_rays.push_back(
-      {o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)});
-  ctx.buffers.next_queries.push_back({path, ls.light, c});
+  RayAppender(ctx.buffers.shadow_rays, 1, true)
+      .push(ray_cast<float>(Rayd{o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)}),
+            ls.light.bits());
+  ctx.buffers.next_queries.push_back({path, c});
 }
 
 // After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`).
@@ -185,7 +186,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
     uint32_t path = b.live[k];
     PathState& p = b.paths[path];
     const Hit& hit = b.hits[k];
-    const Rayd& ray = b.rays[k];
+    const Rayd ray = ray_of(b.rays, k);
     std::optional<uint32_t> material = arrive(ctx, p, ray, hit, depth);
     if (!material) continue;
     if (lanes && ctx.lanes.materials.in_lanes[*material]) {
@@ -196,7 +197,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
     Rayd next;
     if (!shade_vertex_double(ctx, path, p, ray, hit, m, depth, next)) continue;
     b.next_live.push_back(path);
-    b.next_rays.push_back(next);
+    RayAppender(b.next_rays, 1, false).push(ray_cast<float>(next));
   }
   if (b.lane_count > 0) shade_in_lanes(ctx, depth);
 }

@@ -47,8 +47,8 @@ void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>&
   if (!aims.empty() && aims.size() != n)
     throw std::invalid_argument("Tracer::occluded: " + std::to_string(aims.size()) + " aims for " +
                                 std::to_string(n) + " rays");
-  blocked.resize(n);
   if (kind_ != TracerKind::kPacket) {
+    blocked.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       blocked[i] = occluded_ref(rays[i], aims.empty() ? PrimRef::invalid() : aims[i]);
     return;
@@ -60,12 +60,27 @@ void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>&
   stream.end.resize(aims.empty() ? 0 : n);
   for (std::size_t i = 0; i < stream.end.size(); ++i)
     stream.end[i] = aims[i].bits();
-  simd_.occluded(scene_, bvh_, stream, scratch.hits);
+  occluded(stream, blocked, scratch);
+}
+
+void Tracer::occluded(const RayStream& rays, std::vector<uint8_t>& blocked,
+                      TraceScratch& scratch) const {
+  const std::size_t n = rays.size();
+  blocked.resize(n);
+  if (kind_ != TracerKind::kPacket) {
+    const bool aimed = !rays.end.empty();
+    for (std::size_t i = 0; i < n; ++i)
+      blocked[i] = occluded_ref(ray_cast<double>(rays.get(i)),
+                                aimed ? PrimRef::from_bits(rays.end[i]) : PrimRef::invalid());
+    return;
+  }
+  simd_.occluded(scene_, bvh_, rays, scratch.hits);
   for (std::size_t i = 0; i < n; ++i)
     blocked[i] = scratch.hits.prim[i] != PrimRef::kInvalidBits;
 }
 
-void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const {
+void Tracer::complete_by_kind(const RayStream& rays, std::vector<Hit>& hits, std::size_t n,
+                              TraceScratch& scratch) const {
   for (auto& rows : scratch.by_kind)
     rows.clear();
   for (std::size_t i = 0; i < n; ++i)
@@ -74,7 +89,7 @@ void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratc
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
     if constexpr (Kind::surface_in_lanes) {
-      simd_.surfaces(scene_, scratch.rays, tag_of<Kind>, rows, hits.data());
+      simd_.surfaces(scene_, rays, tag_of<Kind>, rows, hits.data());
       return;
     }
     const typename Kind::Table& table = scene_.table<Kind>();
@@ -83,7 +98,7 @@ void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratc
       // The float ray from the stream the packet tracer read, not as_traced(rays[i]): GCC 12's
       // SLP vectoriser dropped the double → float → double round trip when as_traced was
       // inlined into this loop (-O2 and -O3; tests/trace/tracer_test.cpp caught it).
-      Rayd traced = ray_cast<double>(scratch.rays.get(i));
+      Rayd traced = ray_cast<double>(rays.get(i));
       h.surface = surface_ref(table, h.prim.row(), traced, h.t);
       h.front_face = dot(traced.d, h.surface.ng) < 0;
     }
@@ -93,8 +108,8 @@ void Tracer::complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratc
 void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
                      std::size_t with_surface, TraceScratch& scratch) const {
   const std::size_t n = rays.size();
-  if (kind_ != TracerKind::kPacket) {
-    hits.assign(n, Hit{});
+  if (kind_ != TracerKind::kPacket) {  // the references trace the double rays as given
+    hits.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       hits[i] = kind_ == TracerKind::kBvh ? closest_hit_bvh_ref(scene_, bvh_, rays[i])
                                           : closest_hit_ref(scene_, rays[i]);
@@ -105,16 +120,30 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
   stream.end.clear();  // left by occluded()
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
+  closest(stream, hits, with_surface, scratch);
+}
+
+void Tracer::closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t with_surface,
+                     TraceScratch& scratch) const {
+  const std::size_t n = rays.size();
+  hits.resize(n);
+  if (kind_ != TracerKind::kPacket) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Rayd ray = ray_cast<double>(rays.get(i));
+      hits[i] = kind_ == TracerKind::kBvh ? closest_hit_bvh_ref(scene_, bvh_, ray)
+                                          : closest_hit_ref(scene_, ray);
+    }
+    return;
+  }
   HitStream& out = scratch.hits;
-  simd_.closest(scene_, bvh_, stream, out);
+  simd_.closest(scene_, bvh_, rays, out);  // closest hit ignores rays.end
   // Only prim and t: the surfaces follow for the rays that get one (clearing every 96-byte Hit
   // first would be a pass over the batch that nothing reads).
-  hits.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     hits[i].prim = PrimRef::from_bits(out.prim[i]);
     hits[i].t = out.t[i];  // +inf for a miss
   }
-  complete_by_kind(hits, std::min(with_surface, n), scratch);
+  complete_by_kind(rays, hits, std::min(with_surface, n), scratch);
 }
 
 }  // namespace raylane

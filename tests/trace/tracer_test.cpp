@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "raylane/core/warps.h"
@@ -183,6 +184,65 @@ TEST(Tracer, OccludedAnswersWithAndWithoutAims) {
   rays.resize(500);  // the double references are slow
   expect_occluded_answers(Tracer(scene, bvh, TracerKind::kBvh), rays);
   expect_occluded_answers(Tracer(scene, bvh, TracerKind::kScalar), rays);
+}
+
+// The float-stream entry points (the render's) answer as the double ones do for the same rays
+// widened from float: the packet tracer sees the same float rays either way, and the
+// references trace the widened rays. The stream may be the scratch's own.
+void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>& given) {
+  std::vector<Rayd> rays;
+  for (const Rayd& r : given)
+    rays.push_back(ray_cast<double>(ray_cast<float>(r)));
+  std::vector<OcclusionCase> cases = occlusion_cases(tracer, rays);
+  std::vector<Rayd> shadow;
+  std::vector<PrimRef> aims;
+  RayStream stream;
+  for (OcclusionCase& c : cases) {
+    if (shadow.size() % 3 == 0) c.ray.tmin = std::isinf(c.ray.tmax) ? 1.0 : c.ray.tmax / 2;
+    shadow.push_back(c.ray), aims.push_back(c.aim);
+    stream.resize(stream.size() + 1);
+    stream.set(stream.size() - 1, ray_cast<float>(c.ray));
+    stream.end.push_back(c.aim.bits());
+  }
+  TraceScratch scratch;
+  std::vector<uint8_t> want, got;
+  tracer.occluded(shadow, aims, want, scratch);
+  tracer.occluded(stream, got, scratch);
+  ASSERT_EQ(got, want);
+  EXPECT_GT(std::count(got.begin(), got.end(), 1), int(rays.size() / 8));
+
+  std::vector<Hit> hits_want, hits_got;
+  tracer.closest(shadow, hits_want);
+  scratch.rays = stream;  // the stream is the scratch's own, its end column still set
+  tracer.closest(scratch.rays, hits_got, stream.size(), scratch);
+  ASSERT_EQ(hits_got.size(), hits_want.size());
+  int hit = 0;
+  for (std::size_t i = 0; i < hits_want.size(); ++i) {
+    const Hit &a = hits_want[i], &b = hits_got[i];
+    ASSERT_EQ(a.prim, b.prim) << "ray " << i;
+    if (!a.hit()) continue;
+    ++hit;
+    ASSERT_EQ(a.t, b.t) << "ray " << i;
+    ASSERT_TRUE(same_bits(a.surface.p, b.surface.p) && same_bits(a.surface.ng, b.surface.ng) &&
+                same_bits(a.surface.ns, b.surface.ns) && a.front_face == b.front_face)
+        << "ray " << i;
+  }
+  EXPECT_GT(hit, int(rays.size() / 4));
+}
+
+TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
+  ParsedScene parsed = load_builtin_scene();
+  ASSERT_TRUE(parsed.ok());
+  Bvh bvh = build_bvh(parsed.scene);
+  const Scene& scene = parsed.scene;
+  std::vector<Rayd> rays = random_rays(scene, bvh, 2000);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kPacket, isa), rays);
+  }
+  rays.resize(300);  // the double references are slow
+  expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kBvh), rays);
+  expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kScalar), rays);
 }
 
 }  // namespace

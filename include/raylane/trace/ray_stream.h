@@ -41,6 +41,39 @@ struct RayStream {
   Rayf get(std::size_t i) const {
     return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
   }
+  // No rays, no aims (the columns keep their capacity).
+  void clear() {
+    resize(0);
+    end.clear();
+  }
+};
+
+// Appends rays to a stream without a capacity check per column and ray: room for `most` more
+// is made once, and what was not used is trimmed when the appender goes. With `aimed`, the end
+// column grows with the rays (push(ray, end)); without, it is left alone.
+class RayAppender {
+ public:
+  RayAppender(RayStream& s, std::size_t most, bool aimed) : s_(s), next_(s.size()), aimed_(aimed) {
+    s_.resize(next_ + most);
+    if (aimed_) s_.end.resize(next_ + most);
+  }
+  ~RayAppender() {
+    s_.resize(next_);
+    if (aimed_) s_.end.resize(next_);
+  }
+  RayAppender(const RayAppender&) = delete;
+  RayAppender& operator=(const RayAppender&) = delete;
+
+  void push(const Rayf& r) { s_.set(next_++, r); }
+  void push(const Rayf& r, uint32_t end) {
+    s_.end[next_] = end;
+    push(r);
+  }
+
+ private:
+  RayStream& s_;
+  std::size_t next_;
+  bool aimed_;
 };
 
 struct HitStream {

@@ -52,6 +52,11 @@ class Tracer {
   // complete() fills in one of them later.
   void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits, std::size_t with_surface,
                TraceScratch& scratch) const;
+  // closest() for rays already in float columns (the render's wavefronts): the packet tracer
+  // reads them as they are, without a conversion pass; the references trace each ray widened
+  // to double (exactly). `rays` may be scratch.rays.
+  void closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t with_surface,
+               TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
   // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's
@@ -62,15 +67,18 @@ class Tracer {
   // closest() traces them.
   void occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
                 std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
+  // occluded() for float rays, each aimed at rays.end[i] (rays.end empty: no aims).
+  void occluded(const RayStream& rays, std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
 
   const Scene& scene() const { return scene_; }
   TracerKind kind() const { return kind_; }
   Isa isa() const { return simd_.isa(); }
 
  private:
-  // complete() for hits[0, n) of a packet trace whose float rays are in scratch.rays, kind by
-  // kind (one branch on the kind per batch, not per hit).
-  void complete_by_kind(std::vector<Hit>& hits, std::size_t n, TraceScratch& scratch) const;
+  // complete() for hits[0, n) of a packet trace of the float `rays`, kind by kind (one branch
+  // on the kind per batch, not per hit).
+  void complete_by_kind(const RayStream& rays, std::vector<Hit>& hits, std::size_t n,
+                        TraceScratch& scratch) const;
   // occluded() for one ray with the double references.
   bool occluded_ref(const Rayd& ray, PrimRef aim) const;
 
