@@ -96,8 +96,10 @@ void light_columns(TileContext& ctx, bool lights) {
       vb.light_le[k][r] = lit ? q.le[k][r] : 0.0;
       sb.light_wi[k][r] = float(vb.light_wi[k][r]);
     }
-  for (std::size_t r = 0; r < n; ++r)
+  for (std::size_t r = 0; r < n; ++r) {
     vb.light_pdf[r] = q.valid(r) ? q.pdf(r) : 0.0;
+    vb.light_dist[r] = q.cones.dist[r];
+  }
 }
 
 // The float BSDF's answers into the double columns of the vertex lanes.
@@ -133,35 +135,51 @@ class Appender {
   T* next_;
 };
 
-// The vertex lanes' answers back to the paths: shadow rays queued, next rays set, the paths
-// that go on listed.
-void write_back(TileContext& ctx) {
-  ThreadBuffers& b = ctx.buffers;
+// The three columns of c as pointers, taken once per pass: the passes below read a dozen
+// columns per row, more than the registers that would keep the vectors' own pointers.
+struct Column3View {
+  const double *x, *y, *z;
+  explicit Column3View(const VertexBatch::Columns3& c)
+      : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
+  Vec3d operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
+};
+
+// The vertex lanes' shadow rays queued, each aimed at its light.
+void write_shadow_rays(ThreadBuffers& b) {
   const VertexBatch& vb = b.vertices;
   const std::size_t n = b.lane_count;
-  RayAppender shadow_rays(b.shadow_rays, n, true);
+  RayAppender rays(b.shadow_rays, n, true);
   Appender<ShadowQuery> queries(b.next_queries, n);
-  Appender<uint32_t> next_live(b.next_live, n);
-  RayAppender next_rays(b.next_rays, n, false);
+  const Column3View o(vb.shadow_o), wi(vb.light_wi), c(vb.shadow_c);
+  const double *ok = vb.shadow_ok.data(), *tmax = vb.shadow_tmax.data();
+  const PrimRef* light = b.light_queries.light.data();
+  const LaneRow* row = b.lane_rows.data();
   for (std::size_t r = 0; r < n; ++r) {
-    const LaneRow& row = b.lane_rows[r];
-    auto column3 = [r](const VertexBatch::Columns3& c) { return Vec3d(c[0][r], c[1][r], c[2][r]); };
-    if (vb.shadow_ok[r] != 0) {
-      const LightQueries& q = b.light_queries;
-      const Vec3d o = column3(vb.shadow_o), wi = q.wi(r);
-      shadow_rays.push(
-          ray_cast<float>(Rayd{o, wi, 0, shadow_ray_tmax(o, column3(vb.p), wi, q.cones.dist[r])}),
-          q.light[r].bits());
-      queries.push({row.path, column3(vb.shadow_c)});
-    }
-    if (vb.alive[r] == 0) continue;
-    PathState& p = b.paths[row.path];
-    p.beta = column3(vb.next_beta);
-    p.prev_p = column3(vb.p);
-    p.prev_pdf = vb.pdf[r];
-    p.prev_specular = false;
-    next_rays.push(ray_cast<float>(Rayd{column3(vb.next_o), column3(vb.wi)}));
-    next_live.push(row.path);
+    if (ok[r] == 0) continue;
+    rays.push(ray_cast<float>(Rayd{o[r], wi[r], 0, tmax[r]}), light[r].bits());
+    queries.push({row[r].path, c[r]});
+  }
+}
+
+// The vertex lanes' next rays and throughputs back to the paths that go on, listed.
+void write_next_rays(ThreadBuffers& b) {
+  const VertexBatch& vb = b.vertices;
+  const std::size_t n = b.lane_count;
+  RayAppender rays(b.next_rays, n, false);
+  Appender<uint32_t> next_live(b.next_live, n);
+  const Column3View o(vb.next_o), wi(vb.wi), beta(vb.next_beta), p(vb.p);
+  const double *alive = vb.alive.data(), *pdf = vb.pdf.data();
+  const LaneRow* row = b.lane_rows.data();
+  PathState* paths = b.paths.data();
+  for (std::size_t r = 0; r < n; ++r) {
+    if (alive[r] == 0) continue;
+    PathState& path = paths[row[r].path];
+    path.beta = beta[r];
+    path.prev_p = p[r];
+    path.prev_pdf = pdf[r];
+    path.prev_specular = false;
+    rays.push(ray_cast<float>(Rayd{o[r], wi[r]}));
+    next_live.push(row[r].path);
   }
 }
 
@@ -217,7 +235,8 @@ void shade_in_lanes(TileContext& ctx, int depth) {
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, b.shade);
   take_shading(b.shade, b.vertices);
   finish_vertices(ctx.lanes.isa, rules, b.vertices);
-  write_back(ctx);
+  if (lights) write_shadow_rays(b);
+  write_next_rays(b);
 }
 
 }  // namespace raylane::path_detail

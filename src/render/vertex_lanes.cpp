@@ -22,7 +22,8 @@ void VertexBatch::resize(std::size_t rows) {
                     &shadow_c, &shadow_o, &next_beta, &next_o})
       for (Column& c : *v)
         c.resize(padded);
-    for (Column* c : {&t, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_ok, &alive})
+    for (Column* c : {&t, &light_dist, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_tmax,
+                      &shadow_ok, &alive})
       c->resize(padded);
   }
   // Padding rows: no light point, no sample; what the kernel makes of them is unread.

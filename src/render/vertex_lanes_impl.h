@@ -92,7 +92,12 @@ void shadow_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i, const
   const Vec3Lanes<A> c{beta.x * f.x * le.x * scale, beta.y * f.y * le.y * scale,
                        beta.z * f.z * le.z * scale};
   store3<A>(b.shadow_c, i, c);
-  store3<A>(b.shadow_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
+  const Vec3Lanes<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
+  store3<A>(b.shadow_o, i, from);
+  // shadow_ray_tmax: the light point projected on the ray, in dot's order; inf stays inf.
+  const D dist = D::load_unaligned(b.light_dist.data() + i);
+  const D along = (p.x - from.x) * wi.x + (p.y - from.y) * wi.y + (p.z - from.z) * wi.z;
+  xsimd::select(xsimd::isinf(dist), dist, dist + along).store_unaligned(b.shadow_tmax.data() + i);
   as_flag<A>((pdf > D(0.0)) & !all_zero<A>(f) & all_finite<A>(c))
       .store_unaligned(b.shadow_ok.data() + i);
 }

@@ -27,7 +27,7 @@ struct Vertex {
   Vec3d beta, p, ng, o, d;
   double t;
   Vec3d light_wi, le, f;
-  double light_pdf, bsdf_pdf;
+  double light_dist, light_pdf, bsdf_pdf;
   Vec3d wi, value;
   double pdf, u;
 };
@@ -50,6 +50,7 @@ Vertex random_vertex(Rng& rng, int i) {
   v.p = i % 17 == 0 ? Vec3d(0, 0, 0) : v.o + v.d * v.t;
   v.ng = i % 5 == 0 ? Vec3d(0, i % 2 ? 1.0 : -1.0, 0) : random_unit(rng);
   v.light_wi = random_unit(rng);
+  v.light_dist = i % 37 == 0 ? std::numeric_limits<double>::infinity() : spread(rng, -4, 4);
   v.le = Vec3d(1, 2, 3) * spread(rng, -1, 2);
   v.f = i % 13 == 0 ? Vec3d(0, 0, 0) : Vec3d(rng.uniform(), rng.uniform(), 0.5);
   v.light_pdf = i % 11 == 0 ? 0.0 : spread(rng, -3, 3);
@@ -79,7 +80,8 @@ void fill(VertexBatch& b, const std::vector<Vertex>& vs) {
       b.light_wi[k][i] = v.light_wi[k], b.light_le[k][i] = v.le[k], b.light_f[k][i] = v.f[k];
       b.wi[k][i] = v.wi[k], b.value[k][i] = v.value[k];
     }
-    b.t[i] = v.t, b.light_pdf[i] = v.light_pdf, b.light_bsdf_pdf[i] = v.bsdf_pdf;
+    b.t[i] = v.t, b.light_dist[i] = v.light_dist, b.light_pdf[i] = v.light_pdf,
+    b.light_bsdf_pdf[i] = v.bsdf_pdf;
     b.pdf[i] = v.pdf, b.u_roulette[i] = v.u;
   }
 }
@@ -90,7 +92,7 @@ Vec3d row(const VertexBatch::Columns3& c, std::size_t i) {
 
 // Counts of what the rows exercised, so the test can require every branch.
 struct Seen {
-  int shadows = 0, no_shadow = 0, alive = 0, ended = 0;
+  int shadows = 0, no_shadow = 0, alive = 0, ended = 0, environment = 0;
 };
 
 void expect_rows_are_scalar(const VertexRules& rules, const std::vector<Vertex>& vs,
@@ -103,9 +105,12 @@ void expect_rows_are_scalar(const VertexRules& rules, const std::vector<Vertex>&
     Vec3d c;
     bool shadow = shadow_contribution(rules, v.beta, v.f, v.le, v.light_pdf, v.bsdf_pdf, c);
     bool ok = (b.shadow_ok[i] != 0) == shadow;
-    if (shadow)
-      ok = ok && same_bits(row(b.shadow_c, i), c) &&
-           same_bits(row(b.shadow_o, i), offset_ray_origin(v.p, err, v.ng, v.light_wi));
+    if (shadow) {
+      const Vec3d o = offset_ray_origin(v.p, err, v.ng, v.light_wi);
+      ok = ok && same_bits(row(b.shadow_c, i), c) && same_bits(row(b.shadow_o, i), o) &&
+           same_bits(b.shadow_tmax[i], shadow_ray_tmax(o, v.p, v.light_wi, v.light_dist));
+      seen.environment += std::isinf(v.light_dist);
+    }
     Vec3d next;
     bool alive = next_throughput(rules, v.beta, v.value, v.pdf, v.u, next);
     ok = ok && (b.alive[i] != 0) == alive;
@@ -135,6 +140,7 @@ TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
         Seen seen;
         expect_rows_are_scalar(rules, vs, b, seen);
         EXPECT_GT(seen.shadows, 10000);
+        EXPECT_GT(seen.environment, 200);
         EXPECT_GT(seen.no_shadow, 2000);
         EXPECT_GT(seen.alive, 10000);
         EXPECT_GT(seen.ended, roulette ? 4000 : 1000);

@@ -27,17 +27,17 @@ struct VertexBatch {
   // that found it with its t (for the bound on the point's error).
   Columns3 beta, p, ng, ray_o, ray_d;
   Column t;
-  // The light point (light_pdf 0: none): direction, radiance and density, and the BSDF's
-  // f·|cos θi| and density toward it.
+  // The light point (light_pdf 0: none): direction, distance (inf: the environment), radiance
+  // and density, and the BSDF's f·|cos θi| and density toward it.
   Columns3 light_wi, light_le, light_f;
-  Column light_pdf, light_bsdf_pdf;
+  Column light_dist, light_pdf, light_bsdf_pdf;
   // The BSDF's sample (pdf 0: none) and roulette's number.
   Columns3 wi, value;
   Column pdf, u_roulette;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
-  // light, and where it starts.
+  // light, where it starts and where it ends (shadow_ray_tmax).
   Columns3 shadow_c, shadow_o;
-  Column shadow_ok;
+  Column shadow_tmax, shadow_ok;
   // The next ray (alive 1 where the path goes on): the new throughput and origin.
   Columns3 next_beta, next_o;
   Column alive;
@@ -60,8 +60,8 @@ struct VertexRules {
 void finish_vertices(Isa isa, const VertexRules& rules, VertexBatch& batch);
 
 // The scalar steps the lanes transcribe, which the double shading takes one vertex at a time.
-// The ray origins are offset_ray_origin(p, hit_point_error(ray, t), ng, direction)
-// (core/ray_offset.h).
+// The ray origins are offset_ray_origin(p, hit_point_error(ray, t), ng, direction), the shadow
+// ray's end shadow_ray_tmax(origin, p, light_wi, light_dist) (core/ray_offset.h).
 //
 // A shadow ray's contribution if it sees the light, beta·f·Le·(w / light_pdf) with w the power
 // heuristic under MIS: false when it has none (no light point, f = 0, or not finite).
