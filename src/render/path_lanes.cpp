@@ -1,9 +1,11 @@
-// A wavefront's vertices shaded at once, in columns: queue_lane_row copies each vertex's hit
-// and path into the batches' columns as the wavefront arrives, then its numbers (Sobol groups in
-// lanes), its light point (render/lights.h, sample_many), its BSDF in float lanes
-// (render/shade_lanes.h) and its shadow ray and next ray in double lanes (render/vertex_lanes.h)
-// all read and write columns; a last pass writes the paths back. (Each step once gathered what it
-// needed from the hits and paths itself: seven passes over the rows, 18 % of a render.)
+// A wavefront's vertices shaded at once, in columns: queue_lane_row lists each vertex as the
+// wavefront arrives; a few passes copy the listed hits, rays and paths into the batches'
+// columns, a column group per pass (a pass over all thirty columns at once reloaded each
+// column's pointer per row); then the rows' numbers (Sobol groups in lanes), light points
+// (render/lights.h, sample_many), BSDFs in float lanes (render/shade_lanes.h) and shadow rays and
+// next rays in double lanes (render/vertex_lanes.h) all read and write columns; last passes write
+// the rays and the paths back. (Each step once gathered what it needed from the hits and paths
+// itself: seven passes over the rows, 18 % of a render.)
 #include <algorithm>
 #include <cmath>
 
@@ -195,41 +197,102 @@ void start_lane_rows(TileContext& ctx, std::size_t most) {
   if (ctx.settings.sampler == Sampler::kSobol) b.sobol.resize(most);
 }
 
-void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
-                    const PathState& p, const Rayd& ray, const Hit& hit) {
-  const LaneMaterials& lm = ctx.lanes.materials;
-  double c = dot(hit.surface.ns, ray.d);
-  if (c == 0 || !std::isfinite(c) || !(lm.pd[material] + lm.pr[material] + lm.pt[material] > 0))
-    return;  // Bsdf::black()
-  // The row's columns, written while its hit and path are at hand: every later step of
-  // shade_in_lanes reads only columns.
+namespace {
+
+// The queued rows whose BSDF reflects something, kept in order (the rest dropped): a shading
+// normal at a right angle to the ray, or not finite, or a material without lobes is
+// Bsdf::black(), as the double shading decides it.
+void drop_black_rows(TileContext& ctx) {
   ThreadBuffers& b = ctx.buffers;
-  const std::size_t r = b.lane_count++;
-  b.lane_rows[r] = {path, hit_index, material};
-  ShadeBatch& sb = b.shade;
-  VertexBatch& vb = b.vertices;
-  sb.material[r] = int32_t(material);
-  for (int k = 0; k < 3; ++k) {
-    vb.beta[k][r] = p.beta[k], vb.p[k][r] = hit.surface.p[k], vb.ng[k][r] = hit.surface.ng[k];
-    vb.ray_o[k][r] = ray.o[k], vb.ray_d[k][r] = ray.d[k];
-    sb.n[k][r] = float(hit.surface.ns[k]);
-    sb.wo[k][r] = float(-ray.d[k]);
+  const LaneMaterials& lm = ctx.lanes.materials;
+  const Hit* hits = b.hits.data();
+  const float *dx = b.rays.dx.data(), *dy = b.rays.dy.data(), *dz = b.rays.dz.data();
+  LaneRow* rows = b.lane_rows.data();
+  std::size_t kept = 0;
+  for (std::size_t r = 0; r < b.lane_count; ++r) {
+    const LaneRow row = rows[r];
+    const Vec3d d(dx[row.hit], dy[row.hit], dz[row.hit]);
+    const double c = dot(hits[row.hit].surface.ns, d);
+    const uint32_t m = row.material;
+    if (c == 0 || !std::isfinite(c) || !(lm.pd[m] + lm.pr[m] + lm.pt[m] > 0)) continue;
+    rows[kept++] = row;
   }
-  vb.t[r] = hit.t;
-  if (samples_lights(ctx))
-    for (int k = 0; k < 3; ++k)
-      b.light_queries.cones.ref[k][r] = hit.surface.p[k];
-  if (ctx.settings.sampler == Sampler::kSobol) b.sobol.seed[r] = p.pixel_seed;
+  b.lane_count = kept;
 }
+
+// Three columns' pointers, taken once per pass.
+template <class T>
+struct Columns3Out {
+  T *x, *y, *z;
+  explicit Columns3Out(std::array<std::vector<T>, 3>& c)
+      : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
+  template <class V>
+  void set(std::size_t r, const V& v) const {
+    x[r] = T(v[0]), y[r] = T(v[1]), z[r] = T(v[2]);
+  }
+};
+
+// The rows' surfaces into the columns: the point and geometric normal (double) for the vertex
+// lanes and the light sampler, the shading normal (float) for the BSDF, t and the material.
+void surface_columns(TileContext& ctx, bool lights) {
+  ThreadBuffers& b = ctx.buffers;
+  const Hit* hits = b.hits.data();
+  const LaneRow* rows = b.lane_rows.data();
+  const std::size_t n = b.lane_count;
+  const Columns3Out<double> p(b.vertices.p), ng(b.vertices.ng);
+  const Columns3Out<float> ns(b.shade.n);
+  double* t = b.vertices.t.data();
+  int32_t* material = b.shade.material.data();
+  for (std::size_t r = 0; r < n; ++r) {
+    const Hit& h = hits[rows[r].hit];
+    p.set(r, h.surface.p), ng.set(r, h.surface.ng), ns.set(r, h.surface.ns);
+    t[r] = h.t, material[r] = int32_t(rows[r].material);
+  }
+  if (!lights) return;
+  for (int k = 0; k < 3; ++k)
+    std::copy_n(b.vertices.p[k].begin(), n, b.light_queries.cones.ref[k].begin());
+}
+
+// The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs and
+// scrambles into the columns.
+void path_columns(TileContext& ctx, bool sobol) {
+  ThreadBuffers& b = ctx.buffers;
+  const LaneRow* rows = b.lane_rows.data();
+  const std::size_t n = b.lane_count;
+  const RayStream& rays = b.rays;
+  const Columns3Out<double> ray_o(b.vertices.ray_o), ray_d(b.vertices.ray_d);
+  const Columns3Out<float> wo(b.shade.wo);
+  for (std::size_t r = 0; r < n; ++r) {
+    const uint32_t i = rows[r].hit;
+    const float dx = rays.dx[i], dy = rays.dy[i], dz = rays.dz[i];
+    ray_o.set(r, std::array<float, 3>{rays.ox[i], rays.oy[i], rays.oz[i]});
+    ray_d.set(r, std::array<float, 3>{dx, dy, dz});
+    wo.set(r, std::array<float, 3>{-dx, -dy, -dz});
+  }
+  const PathState* paths = b.paths.data();
+  const Columns3Out<double> beta(b.vertices.beta);
+  uint64_t* seed = b.sobol.seed.data();
+  for (std::size_t r = 0; r < n; ++r) {
+    const PathState& path = paths[rows[r].path];
+    beta.set(r, path.beta);
+    if (sobol) seed[r] = path.pixel_seed;
+  }
+}
+
+}  // namespace
 
 void shade_in_lanes(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
   const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;
   const VertexRules rules = vertex_rules(ctx, depth);
-  b.shade.resize(b.lane_count);  // the rows are filled: these set the sizes and padding
+  drop_black_rows(ctx);
+  if (b.lane_count == 0) return;
+  b.shade.resize(b.lane_count);  // these set the sizes and padding
   b.vertices.resize(b.lane_count);
   if (lights) b.light_queries.resize(b.lane_count);
   if (sobol) b.sobol.resize(b.lane_count);
+  surface_columns(ctx, lights);
+  path_columns(ctx, sobol);
   draw_numbers(ctx, depth, lights, rules.roulette);
   light_columns(ctx, lights);
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, b.shade);

@@ -142,15 +142,18 @@ void shade_wavefront(TileContext& ctx, int depth);
 // path_lanes.cpp.
 // Readies the lane batches for at most `most` vertices of this wavefront.
 void start_lane_rows(TileContext& ctx, std::size_t most);
-// A vertex for the lanes: its row's columns (its numbers come in shade_in_lanes). Nothing when
-// nothing reflects here.
-void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material,
-                    const PathState& p, const Rayd& ray, const Hit& hit);
+// A vertex for the lanes: path `path` at hit `hit_index` of the wavefront, on a material with
+// in_lanes. shade_in_lanes fills its columns (and drops it when nothing reflects there).
+inline void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material) {
+  ThreadBuffers& b = ctx.buffers;
+  b.lane_rows[b.lane_count++] = {path, hit_index, material};
+}
 // A path's ray as the tracer traced it: the stream's float ray, widened exactly.
 inline Rayd ray_of(const RayStream& rays, std::size_t k) {
   return ray_cast<double>(rays.get(k));
 }
-// The queued vertices' BSDFs in one lane batch, then each vertex's shadow ray and next ray.
+// The queued vertices' columns, their BSDFs in one lane batch, then each vertex's shadow ray and
+// next ray.
 void shade_in_lanes(TileContext& ctx, int depth);
 
 }  // namespace raylane::path_detail

@@ -190,7 +190,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
     std::optional<uint32_t> material = arrive(ctx, p, ray, hit, depth);
     if (!material) continue;
     if (lanes && ctx.lanes.materials.in_lanes[*material]) {
-      queue_lane_row(ctx, path, uint32_t(k), *material, p, ray, hit);
+      queue_lane_row(ctx, path, uint32_t(k), *material);
       continue;
     }
     const Material& m = ctx.tracer.scene().materials[*material];
