@@ -14,8 +14,9 @@ void shade_lanes_avx512(const LaneMaterials& materials, ShadeBatch& batch) {
   shade_lanes_range<xsimd::avx512bw>(materials, batch);
 }
 
-void sobol_groups_avx512(uint32_t reversed_index, int components, SobolBatch& batch) {
-  sobol_groups_range<xsimd::avx512bw>(reversed_index, components, batch);
+void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components,
+                         SobolBatch& batch) {
+  sobol_groups_range<xsimd::avx512bw>(reversed_index, group, components, batch);
 }
 
 void sample_cones_avx512(ConeBatch& batch) {

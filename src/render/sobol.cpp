@@ -109,7 +109,7 @@ uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
 }
 
 // A group's 64-bit seed for a pixel: its low half scrambles the index, its high half seeds the
-// components' scrambles.
+// components' scrambles. (sobol_lanes_impl.h's group_seeds computes it in lanes.)
 uint64_t group_seed_of(uint64_t seed, uint32_t group) {
   return mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
 }
@@ -117,9 +117,10 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 }  // namespace
 
 namespace detail {
-void sobol_groups_sse42(uint32_t reversed_index, int components, SobolBatch& batch);
-void sobol_groups_avx2(uint32_t reversed_index, int components, SobolBatch& batch);
-void sobol_groups_avx512(uint32_t reversed_index, int components, SobolBatch& batch);
+void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch);
+void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch);
+void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components,
+                         SobolBatch& batch);
 
 const uint32_t* sobol_byte_tables() {
   return &kReversedTables[0][0][0];
@@ -136,18 +137,12 @@ void SobolBatch::resize(std::size_t rows) {
     c.resize(padded_size(), 0);
 }
 
-// The group seeds are 64-bit hashes (mix64), done here a row at a time; the lanes do the rest
-// in 32 bits, as sobol_group does.
+// The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
 void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components) {
-  for (std::size_t i = 0; i < batch.padded_size(); ++i) {
-    uint64_t g = group_seed_of(batch.seed[i], group);
-    batch.scramble[i] = uint32_t(g);
-    batch.component[i] = uint32_t(g >> 32);
-  }
   auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
              : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
                                  : detail::sobol_groups_sse42;
-  fn(reverse_bits(index), components, batch);
+  fn(reverse_bits(index), group, components, batch);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

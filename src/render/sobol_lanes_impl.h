@@ -3,6 +3,9 @@
 // code's, on 32-bit unsigned lanes: the same values bit for bit (tests/render/sobol_test.cpp).
 #pragma once
 
+#include <type_traits>
+
+#include "raylane/render/rng.h"
 #include "raylane/render/sobol.h"
 #include "raylane/simd/lanes.h"
 
@@ -75,10 +78,41 @@ void store_component(SobolBatch& b, std::size_t i, uint32_t c, const U32<A>& poi
   reverse_bits_lanes<A>(v).store_unaligned(b.u[c].data() + i);
 }
 
+// The rows' group seeds, group_seed_of (mix64 of the pixel's seed and the group's salt) split
+// into the index's scramble (low half) and the components' seed (high half). In 64-bit lanes
+// where the instruction set multiplies them (AVX-512DQ's vpmullq); a row at a time elsewhere
+// (AVX2 and SSE4.2 have no 64-bit low multiply).
+template <class A>
+void group_seeds(uint32_t group, SobolBatch& b) {
+  const uint64_t salt = uint64_t(group) * 0x9e3779b97f4a7c15ull;
+  auto split = [&b](std::size_t i, uint64_t g) {
+    b.scramble[i] = uint32_t(g), b.component[i] = uint32_t(g >> 32);
+  };
+  if constexpr (std::is_base_of_v<xsimd::avx512dq, A>) {
+    using U64 = xsimd::batch<uint64_t, A>;
+    constexpr std::size_t W = U64::size;
+    for (std::size_t i = 0; i < b.padded_size(); i += W) {
+      // mix64's steps (render/rng.h), lane by lane.
+      U64 z = (U64::load_unaligned(b.seed.data() + i) ^ U64(salt)) + U64(0x9e3779b97f4a7c15ull);
+      z = (z ^ (z >> 30)) * U64(0xbf58476d1ce4e5b9ull);
+      z = (z ^ (z >> 27)) * U64(0x94d049bb133111ebull);
+      z = z ^ (z >> 31);
+      alignas(64) uint64_t g[W];
+      z.store_aligned(g);
+      for (std::size_t k = 0; k < W; ++k)
+        split(i + k, g[k]);
+    }
+  } else {
+    for (std::size_t i = 0; i < b.padded_size(); ++i)
+      split(i, mix64(b.seed[i] ^ salt));
+  }
+}
+
 // Components [0, components) of the groups; dimensions 2 and 3 (the gathers) only if asked.
 template <class A>
-void sobol_groups_range(uint32_t reversed_index, int components, SobolBatch& b) {
+void sobol_groups_range(uint32_t reversed_index, uint32_t group, int components, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
+  group_seeds<A>(group, b);
   for (std::size_t i = 0; i < b.padded_size(); i += W) {
     U32<A> scramble = U32<A>::load_unaligned(b.scramble.data() + i);
     U32<A> seeds = U32<A>::load_unaligned(b.component.data() + i);
