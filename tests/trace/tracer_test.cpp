@@ -171,19 +171,26 @@ void expect_occluded_answers(const Tracer& tracer, const std::vector<Rayd>& rays
     }
 }
 
-TEST(Tracer, OccludedAnswersWithAndWithoutAims) {
+// `check` on the course scene's random rays with every tracer: the packet tracer at every
+// instruction set on `count` rays, the double references on `reference_count` of them (slow).
+template <class Check>
+void with_every_tracer(int count, std::size_t reference_count, Check check) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
   Bvh bvh = build_bvh(parsed.scene);
   const Scene& scene = parsed.scene;
-  std::vector<Rayd> rays = random_rays(scene, bvh, 4000);
+  std::vector<Rayd> rays = random_rays(scene, bvh, count);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
-    expect_occluded_answers(Tracer(scene, bvh, TracerKind::kPacket, isa), rays);
+    check(Tracer(scene, bvh, TracerKind::kPacket, isa), rays);
   }
-  rays.resize(500);  // the double references are slow
-  expect_occluded_answers(Tracer(scene, bvh, TracerKind::kBvh), rays);
-  expect_occluded_answers(Tracer(scene, bvh, TracerKind::kScalar), rays);
+  rays.resize(reference_count);
+  check(Tracer(scene, bvh, TracerKind::kBvh), rays);
+  check(Tracer(scene, bvh, TracerKind::kScalar), rays);
+}
+
+TEST(Tracer, OccludedAnswersWithAndWithoutAims) {
+  with_every_tracer(4000, 500, expect_occluded_answers);
 }
 
 // The float-stream entry points (the render's) answer as the double ones do for the same rays
@@ -231,18 +238,7 @@ void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>
 }
 
 TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
-  ParsedScene parsed = load_builtin_scene();
-  ASSERT_TRUE(parsed.ok());
-  Bvh bvh = build_bvh(parsed.scene);
-  const Scene& scene = parsed.scene;
-  std::vector<Rayd> rays = random_rays(scene, bvh, 2000);
-  for (Isa isa : supported_isas()) {
-    SCOPED_TRACE(isa_name(isa));
-    expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kPacket, isa), rays);
-  }
-  rays.resize(300);  // the double references are slow
-  expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kBvh), rays);
-  expect_streams_answer_as_rays(Tracer(scene, bvh, TracerKind::kScalar), rays);
+  with_every_tracer(2000, 300, expect_streams_answer_as_rays);
 }
 
 }  // namespace
