@@ -430,7 +430,9 @@ class ChunkDecoder {
   const CoreFile& f_;
   const Layout& l_;
   const std::vector<std::string>& wanted_;
-  exr_decode_pipeline_t dec_ = EXR_DECODE_PIPELINE_INITIALIZER;
+  // Value-initialised: what EXR_DECODE_PIPELINE_INITIALIZER ({0}) does, without clang's
+  // -Wmissing-field-initializers on the macro.
+  exr_decode_pipeline_t dec_{};
   bool started_ = false;
   std::vector<float> out_;
   std::vector<float> scratch_;  // the channels not asked for, one chunk at a time
