@@ -130,6 +130,11 @@ class Appender {
   Appender(const Appender&) = delete;
   Appender& operator=(const Appender&) = delete;
   void push(const T& x) { *next_++ = x; }
+  // push(), kept only if `keep` (RayAppender::push_if).
+  void push_if(bool keep, const T& x) {
+    *next_ = x;
+    next_ += keep;
+  }
 
  private:
   std::vector<T>& v_;
@@ -157,9 +162,9 @@ void write_shadow_rays(ThreadBuffers& b) {
   const PrimRef* light = b.light_queries.light.data();
   const LaneRow* row = b.lane_rows.data();
   for (std::size_t r = 0; r < n; ++r) {
-    if (ok[r] == 0) continue;
-    rays.push(ray_cast<float>(Rayd{o[r], wi[r], 0, tmax[r]}), light[r].bits());
-    queries.push({row[r].path, c[r]});
+    const bool keep = ok[r] != 0;
+    rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r], 0, tmax[r]}), light[r].bits());
+    queries.push_if(keep, {row[r].path, c[r]});
   }
 }
 
@@ -174,14 +179,16 @@ void write_next_rays(ThreadBuffers& b) {
   const LaneRow* row = b.lane_rows.data();
   PathState* paths = b.paths.data();
   for (std::size_t r = 0; r < n; ++r) {
-    if (alive[r] == 0) continue;
+    // A path that ends here gets its state written too: nothing reads it again (it is not
+    // listed in next_live), and the write spares a branch per row.
     PathState& path = paths[row[r].path];
     path.beta = beta[r];
     path.prev_p = p[r];
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
-    rays.push(ray_cast<float>(Rayd{o[r], wi[r]}));
-    next_live.push(row[r].path);
+    const bool keep = alive[r] != 0;
+    rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r]}));
+    next_live.push_if(keep, row[r].path);
   }
 }
 
