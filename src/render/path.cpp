@@ -108,7 +108,14 @@ void render_tile(TileContext& ctx, Film& f) {
   PhaseClock clock(ctx.settings.time_phases);
   for (int depth = 0; !live.empty() || !queries.empty(); ++depth) {
     clock.lap(phases.shade);
-    ctx.tracer.closest(rays, hits, rays.size(), b.scratch);
+    // Surfaces for every hit only where they are all read: the double shading's vertices, the
+    // AOVs of the camera hits. Otherwise prim and t alone, and the surfaces of the vertices that
+    // need one follow: the lanes' into their columns (Tracer::surfaces), the rest one by one.
+    const bool all_surfaces = ctx.settings.shading == Shading::kDouble ||
+                              (depth == 0 && !f.aovs.empty()) ||
+                              ctx.tracer.kind() != TracerKind::kPacket;
+    ctx.tracer.closest(rays, hits, all_surfaces ? rays.size() : 0, b.scratch);
+    b.hits_have_surfaces = all_surfaces;
     // Shadow rays, aimed at their light: it is seen when nothing else lies before it.
     ctx.tracer.occluded(shadow_rays, b.blocked, b.scratch);
     clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);

@@ -48,7 +48,7 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   LightQueries& q = b.light_queries;
   if (ctx.settings.sampler != Sampler::kSobol) {
     for (std::size_t r = 0; r < b.lane_count; ++r) {
-      const PathState& p = b.paths[b.lane_rows[r].path];
+      const PathState& p = b.paths[b.lane_rows.path[r]];
       if (lights) set_light_numbers(q, r, draw(ctx, p, Dims::light(depth), {2, 3, 0, 1}));
       auto u = draw(ctx, p, Dims::bsdf(depth), {2, 0, 1});
       set_bsdf_numbers(ctx, r, u, roulette ? ctx.rng.uniform() : 0.0);
@@ -160,11 +160,11 @@ void write_shadow_rays(ThreadBuffers& b) {
   const Column3View o(vb.shadow_o), wi(vb.light_wi), c(vb.shadow_c);
   const double *ok = vb.shadow_ok.data(), *tmax = vb.shadow_tmax.data();
   const PrimRef* light = b.light_queries.light.data();
-  const LaneRow* row = b.lane_rows.data();
+  const uint32_t* path = b.lane_rows.path.data();
   for (std::size_t r = 0; r < n; ++r) {
     const bool keep = ok[r] != 0;
     rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r], 0, tmax[r]}), light[r].bits());
-    queries.push_if(keep, {row[r].path, c[r]});
+    queries.push_if(keep, {path[r], c[r]});
   }
 }
 
@@ -176,19 +176,19 @@ void write_next_rays(ThreadBuffers& b) {
   Appender<uint32_t> next_live(b.next_live, n);
   const Column3View o(vb.next_o), wi(vb.wi), beta(vb.next_beta), p(vb.p);
   const double *alive = vb.alive.data(), *pdf = vb.pdf.data();
-  const LaneRow* row = b.lane_rows.data();
+  const uint32_t* row_path = b.lane_rows.path.data();
   PathState* paths = b.paths.data();
   for (std::size_t r = 0; r < n; ++r) {
     // A path that ends here gets its state written too: nothing reads it again (it is not
     // listed in next_live), and the write spares a branch per row.
-    PathState& path = paths[row[r].path];
+    PathState& path = paths[row_path[r]];
     path.beta = beta[r];
     path.prev_p = p[r];
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
     const bool keep = alive[r] != 0;
     rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r]}));
-    next_live.push_if(keep, row[r].path);
+    next_live.push_if(keep, row_path[r]);
   }
 }
 
@@ -197,7 +197,7 @@ void write_next_rays(ThreadBuffers& b) {
 void start_lane_rows(TileContext& ctx, std::size_t most) {
   ThreadBuffers& b = ctx.buffers;
   b.lane_count = 0;
-  if (b.lane_rows.size() < most) b.lane_rows.resize(most);
+  b.lane_rows.grow(most);
   b.shade.resize(most);
   b.vertices.resize(most);
   if (samples_lights(ctx)) b.light_queries.resize(most);
@@ -205,27 +205,6 @@ void start_lane_rows(TileContext& ctx, std::size_t most) {
 }
 
 namespace {
-
-// The queued rows whose BSDF reflects something, kept in order (the rest dropped): a shading
-// normal at a right angle to the ray, or not finite, or a material without lobes is
-// Bsdf::black(), as the double shading decides it.
-void drop_black_rows(TileContext& ctx) {
-  ThreadBuffers& b = ctx.buffers;
-  const LaneMaterials& lm = ctx.lanes.materials;
-  const Hit* hits = b.hits.data();
-  const float *dx = b.rays.dx.data(), *dy = b.rays.dy.data(), *dz = b.rays.dz.data();
-  LaneRow* rows = b.lane_rows.data();
-  std::size_t kept = 0;
-  for (std::size_t r = 0; r < b.lane_count; ++r) {
-    const LaneRow row = rows[r];
-    const Vec3d d(dx[row.hit], dy[row.hit], dz[row.hit]);
-    const double c = dot(hits[row.hit].surface.ns, d);
-    const uint32_t m = row.material;
-    if (c == 0 || !std::isfinite(c) || !(lm.pd[m] + lm.pr[m] + lm.pt[m] > 0)) continue;
-    rows[kept++] = row;
-  }
-  b.lane_count = kept;
-}
 
 // Three columns' pointers, taken once per pass.
 template <class T>
@@ -237,51 +216,99 @@ struct Columns3Out {
   void set(std::size_t r, const V& v) const {
     x[r] = T(v[0]), y[r] = T(v[1]), z[r] = T(v[2]);
   }
+  // Row `from` into row `to`.
+  void move(std::size_t to, std::size_t from) const {
+    x[to] = x[from], y[to] = y[from], z[to] = z[from];
+  }
 };
 
-// The rows' surfaces into the columns: the point and geometric normal (double) for the vertex
-// lanes and the light sampler, the shading normal (float) for the BSDF, t and the material.
-void surface_columns(TileContext& ctx, bool lights) {
+// The queued rows' surfaces, straight into the batches' columns: the point and geometric
+// normal (double) for the vertex lanes and the light sampler, the shading normal (float) for
+// the BSDF; dot(ns, d) and the facing into the rows' own columns.
+void surface_columns(TileContext& ctx) {
   ThreadBuffers& b = ctx.buffers;
-  const Hit* hits = b.hits.data();
-  const LaneRow* rows = b.lane_rows.data();
+  VertexBatch& vb = b.vertices;
+  ShadeBatch& sb = b.shade;
+  const SurfaceColumns out{vb.p[0].data(),          vb.p[1].data(),
+                           vb.p[2].data(),          vb.ng[0].data(),
+                           vb.ng[1].data(),         vb.ng[2].data(),
+                           sb.n[0].data(),          sb.n[1].data(),
+                           sb.n[2].data(),          b.lane_rows.cos_ns.data(),
+                           b.lane_rows.front.data()};
+  ctx.tracer.surfaces(b.rays, b.hits, {b.lane_rows.hit.data(), b.lane_count}, out, b.scratch);
+}
+
+// Whether row r's BSDF reflects something: a shading normal at a right angle to the ray, or not
+// finite, or a material without lobes is Bsdf::black(), as the double shading decides it.
+bool reflects(const LaneMaterials& lm, double cos_ns, uint32_t m) {
+  return cos_ns != 0 && std::isfinite(cos_ns) && lm.pd[m] + lm.pr[m] + lm.pt[m] > 0;
+}
+
+// The queued rows whose BSDF reflects something, kept in order with their columns so far (the
+// rest dropped). Seldom any to drop: one pass finds out, a second moves rows only then.
+void drop_black_rows(TileContext& ctx) {
+  ThreadBuffers& b = ctx.buffers;
+  const LaneMaterials& lm = ctx.lanes.materials;
+  LaneRows& rows = b.lane_rows;
   const std::size_t n = b.lane_count;
+  std::size_t first = 0;
+  while (first < n && reflects(lm, rows.cos_ns[first], rows.material[first]))
+    ++first;
+  if (first == n) return;
   const Columns3Out<double> p(b.vertices.p), ng(b.vertices.ng);
   const Columns3Out<float> ns(b.shade.n);
-  double* t = b.vertices.t.data();
-  int32_t* material = b.shade.material.data();
-  for (std::size_t r = 0; r < n; ++r) {
-    const Hit& h = hits[rows[r].hit];
-    p.set(r, h.surface.p), ng.set(r, h.surface.ng), ns.set(r, h.surface.ns);
-    t[r] = h.t, material[r] = int32_t(rows[r].material);
+  std::size_t kept = first;
+  for (std::size_t r = first + 1; r < n; ++r) {
+    if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
+    rows.path[kept] = rows.path[r], rows.hit[kept] = rows.hit[r];
+    rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
+    p.move(kept, r), ng.move(kept, r), ns.move(kept, r);
+    ++kept;
   }
+  b.lane_count = kept;
+}
+
+// The rows' t and material into the columns, and the point for the light sampler.
+void hit_columns(TileContext& ctx, bool lights) {
+  ThreadBuffers& b = ctx.buffers;
+  const Hit* hits = b.hits.data();
+  const uint32_t *hit = b.lane_rows.hit.data(), *material = b.lane_rows.material.data();
+  const std::size_t n = b.lane_count;
+  double* t = b.vertices.t.data();
+  int32_t* shade_material = b.shade.material.data();
+  for (std::size_t r = 0; r < n; ++r)
+    t[r] = hits[hit[r]].t, shade_material[r] = int32_t(material[r]);
   if (!lights) return;
   for (int k = 0; k < 3; ++k)
     std::copy_n(b.vertices.p[k].begin(), n, b.light_queries.cones.ref[k].begin());
 }
 
-// The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs and
-// scrambles into the columns.
+// The rows' rays (the stream's float rays, widened exactly), the paths' throughputs with
+// Beer's law on the segment just travelled, and their scrambles into the columns.
 void path_columns(TileContext& ctx, bool sobol) {
   ThreadBuffers& b = ctx.buffers;
-  const LaneRow* rows = b.lane_rows.data();
+  const LaneRows& rows = b.lane_rows;
   const std::size_t n = b.lane_count;
   const RayStream& rays = b.rays;
   const Columns3Out<double> ray_o(b.vertices.ray_o), ray_d(b.vertices.ray_d);
   const Columns3Out<float> wo(b.shade.wo);
   for (std::size_t r = 0; r < n; ++r) {
-    const uint32_t i = rows[r].hit;
+    const uint32_t i = rows.hit[r];
     const float dx = rays.dx[i], dy = rays.dy[i], dz = rays.dz[i];
     ray_o.set(r, std::array<float, 3>{rays.ox[i], rays.oy[i], rays.oz[i]});
     ray_d.set(r, std::array<float, 3>{dx, dy, dz});
     wo.set(r, std::array<float, 3>{-dx, -dy, -dz});
   }
   const PathState* paths = b.paths.data();
+  const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<double> beta(b.vertices.beta);
+  const double* t = b.vertices.t.data();
   uint64_t* seed = b.sobol.seed.data();
   for (std::size_t r = 0; r < n; ++r) {
-    const PathState& path = paths[rows[r].path];
-    beta.set(r, path.beta);
+    const PathState& path = paths[rows.path[r]];
+    // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
+    beta.set(
+        r, rows.front[r] ? path.beta : path.beta * beer(materials[rows.material[r]], false, t[r]));
     if (sobol) seed[r] = path.pixel_seed;
   }
 }
@@ -292,13 +319,14 @@ void shade_in_lanes(TileContext& ctx, int depth) {
   ThreadBuffers& b = ctx.buffers;
   const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;
   const VertexRules rules = vertex_rules(ctx, depth);
+  surface_columns(ctx);
   drop_black_rows(ctx);
   if (b.lane_count == 0) return;
   b.shade.resize(b.lane_count);  // these set the sizes and padding
   b.vertices.resize(b.lane_count);
   if (lights) b.light_queries.resize(b.lane_count);
   if (sobol) b.sobol.resize(b.lane_count);
-  surface_columns(ctx, lights);
+  hit_columns(ctx, lights);
   path_columns(ctx, sobol);
   draw_numbers(ctx, depth, lights, rules.roulette);
   light_columns(ctx, lights);

@@ -63,13 +63,21 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_;
 };
 
-// A vertex waiting for the lanes: its row in the ShadeBatch and VertexBatch is its index in
-// `lane_rows`. Everything else about it lives in those batches' columns (path_lanes.cpp fills
-// them in one pass), so the row itself is three indices.
-struct LaneRow {
-  uint32_t path;      // index into the tile's paths
-  uint32_t hit;       // index into the wavefront's hits
-  uint32_t material;  // the hit's material row
+// The vertices waiting for the lanes, as columns: row r is vertex r of the ShadeBatch and
+// VertexBatch. Everything else about a row lives in those batches' columns (path_lanes.cpp
+// fills them in a few passes).
+struct LaneRows {
+  std::vector<uint32_t> path;      // index into the tile's paths
+  std::vector<uint32_t> hit;       // index into the wavefront's hits (and rays)
+  std::vector<uint32_t> material;  // the hit's material row
+  // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
+  std::vector<double> cos_ns;
+  std::vector<uint8_t> front;
+
+  void grow(std::size_t n) {
+    if (path.size() >= n) return;
+    path.resize(n), hit.resize(n), material.resize(n), cos_ns.resize(n), front.resize(n);
+  }
 };
 
 // A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
@@ -83,9 +91,10 @@ struct ThreadBuffers {
   RayStream rays, next_rays, shadow_rays;
   std::vector<ShadowQuery> queries, next_queries;
   std::vector<Hit> hits;
+  bool hits_have_surfaces = false;  // or prim and t alone (Tracer::closest's with_surface)
   std::vector<uint8_t> blocked;
   TraceScratch scratch;
-  std::vector<LaneRow> lane_rows;  // rows [0, lane_count) are this wavefront's
+  LaneRows lane_rows;  // rows [0, lane_count) are this wavefront's
   std::size_t lane_count = 0;
   ShadeBatch shade;
   SobolBatch sobol;
@@ -133,6 +142,9 @@ inline std::array<double, 4> draw(TileContext& ctx, const PathState& p, uint32_t
 
 // path_vertex.cpp: what a vertex does with either shading.
 bool samples_lights(const TileContext& ctx);
+// Beer's law on a segment of length t that ends on a surface of a material (1 unless it ends
+// on the inside of a transmissive solid).
+Vec3d beer(const Material& m, bool front_face, double t);
 // What the vertices of this depth follow: MIS or not, roulette or not.
 VertexRules vertex_rules(const TileContext& ctx, int depth);
 // Shades the wavefront's vertices: each live path's hit, in lanes where the settings and the
@@ -143,10 +155,12 @@ void shade_wavefront(TileContext& ctx, int depth);
 // Readies the lane batches for at most `most` vertices of this wavefront.
 void start_lane_rows(TileContext& ctx, std::size_t most);
 // A vertex for the lanes: path `path` at hit `hit_index` of the wavefront, on a material with
-// in_lanes. shade_in_lanes fills its columns (and drops it when nothing reflects there).
+// in_lanes. shade_in_lanes fills its columns, the surface and Beer's law included (and drops
+// it when nothing reflects there); the hit needs only prim and t.
 inline void queue_lane_row(TileContext& ctx, uint32_t path, uint32_t hit_index, uint32_t material) {
   ThreadBuffers& b = ctx.buffers;
-  b.lane_rows[b.lane_count++] = {path, hit_index, material};
+  const std::size_t r = b.lane_count++;
+  b.lane_rows.path[r] = path, b.lane_rows.hit[r] = hit_index, b.lane_rows.material[r] = material;
 }
 // A path's ray as the tracer traced it: the stream's float ray, widened exactly.
 inline Rayd ray_of(const RayStream& rays, std::size_t k) {

@@ -17,17 +17,6 @@ double roulette_uniform(TileContext& ctx, const std::array<double, 4>& bsdf_grou
   return ctx.settings.sampler == Sampler::kSobol ? bsdf_group[3] : ctx.rng.uniform();
 }
 
-// Beer's law inside a transmissive solid (the course: exp(t·ln Kt) per channel, applied to the
-// segment that ends on the inside of a surface). A material with Kt = 0 has no interior.
-Vec3d beer(const Material& m, const Hit& hit) {
-  Vec3d kt(m.kt);
-  if (hit.front_face || kt == Vec3d(0, 0, 0)) return {1, 1, 1};
-  Vec3d a;
-  for (int k = 0; k < 3; ++k)
-    a[k] = kt[k] > 0 ? std::exp(hit.t * std::log(kt[k])) : 0.0;
-  return a;
-}
-
 // What a path gains where it hits an emitter: all of it for a camera ray, for BSDF sampling
 // alone or after a specular bounce (light sampling cannot reach a Dirac lobe); the MIS share
 // after another bounce, nothing for NEE alone (light sampling counted it already).
@@ -97,10 +86,16 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& 
   return sample_light_with(ctx, hit, draw(ctx, p, Dims::light(depth), {2, 3, 0, 1}));
 }
 
+// The hit's surface, if closest() gave prim and t alone.
+void ensure_surface(TileContext& ctx, const Rayd& ray, Hit& hit) {
+  if (!ctx.buffers.hits_have_surfaces) ctx.tracer.complete(ray, hit);
+}
+
 // Where the path meets a surface: emission if it is an emitter (which ends the path, emitters
-// reflect nothing), else Beer's law on the segment just travelled. The material's row if the
-// path may scatter here.
-std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit,
+// reflect nothing). The material's row if the path may scatter here. (Beer's law on the segment
+// just travelled is the caller's: lanes apply it with the surfaces they compute. A path that
+// ends here needs none: nothing reads its throughput again.)
+std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Rayd& ray, Hit& hit,
                                int depth) {
   if (!hit.hit()) {
     add_escape(ctx, p, ray, depth);
@@ -108,12 +103,11 @@ std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Rayd& ray, 
   }
   const Scene& scene = ctx.tracer.scene();
   uint32_t row = scene.material_of(hit.prim);
-  const Material& m = scene.materials[row];
-  if (m.is_light) {
+  if (scene.materials[row].is_light) {
+    ensure_surface(ctx, ray, hit);
     add_emission(ctx, p, ray, hit, depth);
     return std::nullopt;
   }
-  p.beta = p.beta * beer(m, hit);
   if (depth >= ctx.settings.max_depth) return std::nullopt;
   return row;
 }
@@ -168,6 +162,17 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Ra
 
 }  // namespace
 
+// The course: exp(t·ln Kt) per channel, applied to the segment that ends on the inside of a
+// surface. A material with Kt = 0 has no interior.
+Vec3d beer(const Material& m, bool front_face, double t) {
+  Vec3d kt(m.kt);
+  if (front_face || kt == Vec3d(0, 0, 0)) return {1, 1, 1};
+  Vec3d a;
+  for (int k = 0; k < 3; ++k)
+    a[k] = kt[k] > 0 ? std::exp(t * std::log(kt[k])) : 0.0;
+  return a;
+}
+
 bool samples_lights(const TileContext& ctx) {
   return ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty();
 }
@@ -185,7 +190,7 @@ void shade_wavefront(TileContext& ctx, int depth) {
   for (std::size_t k = 0; k < b.live.size(); ++k) {
     uint32_t path = b.live[k];
     PathState& p = b.paths[path];
-    const Hit& hit = b.hits[k];
+    Hit& hit = b.hits[k];
     const Rayd ray = ray_of(b.rays, k);
     std::optional<uint32_t> material = arrive(ctx, p, ray, hit, depth);
     if (!material) continue;
@@ -194,6 +199,8 @@ void shade_wavefront(TileContext& ctx, int depth) {
       continue;
     }
     const Material& m = ctx.tracer.scene().materials[*material];
+    ensure_surface(ctx, ray, hit);
+    p.beta = p.beta * beer(m, hit.front_face, hit.t);
     Rayd next;
     if (!shade_vertex_double(ctx, path, p, ray, hit, m, depth, next)) continue;
     b.next_live.push_back(path);

@@ -58,4 +58,13 @@ void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kin
   fn(scene, rays, kind, rows, hits);
 }
 
+void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
+                          std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
+                          const SurfaceColumns& out) const {
+  auto* fn = isa_ == Isa::kAvx512 ? detail::surface_columns_avx512
+             : isa_ == Isa::kAvx2 ? detail::surface_columns_avx2
+                                  : detail::surface_columns_sse42;
+  fn(scene, rays, kind, rows, ray, hits, out);
+}
+
 }  // namespace raylane

@@ -15,7 +15,13 @@ void trace_avx2(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::
 
 void surfaces_avx2(const Scene& scene, const RayStream& rays, PrimTag kind,
                    std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, hits);
+  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, HitSink{hits});
+}
+
+void surface_columns_avx2(const Scene& scene, const RayStream& rays, PrimTag kind,
+                          std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
+                          const SurfaceColumns& out) {
+  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, ColumnSink{ray, hits, out});
 }
 
 }  // namespace raylane::detail

@@ -162,50 +162,77 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
   }
 }
 
-// The surfaces of hits[j] for j in `rows`, all on Kind, W hits per batch of double lanes; the
+// Where surfaces_range finds a request's hits and puts their surfaces. Request row r is:
+// into the hit itself (hits[r], traced as the stream's ray r)...
+struct HitSink {
+  Hit* hits;
+  uint32_t ray_of(uint32_t r) const { return r; }
+  const Hit& hit_of(uint32_t r) const { return hits[r]; }
+  void store(uint32_t r, const Vec3d& p, const Vec3d& n, double cos_d) const {
+    Hit& h = hits[r];
+    h.surface = {p, n, n};
+    h.front_face = cos_d < 0;
+  }
+};
+
+// ... or into row r of columns, for hit ray[r] (the render's lane rows).
+struct ColumnSink {
+  const uint32_t* ray;
+  const Hit* hits;
+  SurfaceColumns out;
+  uint32_t ray_of(uint32_t r) const { return ray[r]; }
+  const Hit& hit_of(uint32_t r) const { return hits[ray[r]]; }
+  void store(uint32_t r, const Vec3d& p, const Vec3d& n, double cos_d) const {
+    out.px[r] = p.x, out.py[r] = p.y, out.pz[r] = p.z;
+    out.ngx[r] = n.x, out.ngy[r] = n.y, out.ngz[r] = n.z;
+    out.nsx[r] = float(n.x), out.nsy[r] = float(n.y), out.nsz[r] = float(n.z);
+    out.cos_ns[r] = cos_d;  // dot(d, n) = dot(n, d) bit for bit: the products commute
+    out.front[r] = cos_d < 0;
+  }
+};
+
+// The surfaces of request rows `rows`, all on Kind, W hits per batch of double lanes; the
 // last batch repeats its last hit in the spare lanes and stores only its own.
-template <class A, class Kind>
+template <class A, class Kind, class Sink>
 void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
-                    std::span<const uint32_t> rows, Hit* hits) {
+                    std::span<const uint32_t> rows, const Sink& sink) {
   using D = simd::Doubles<A>;
   constexpr int W = simd::kDoubleWidth<A>;
   for (std::size_t i = 0; i < rows.size(); i += W) {
     alignas(64) uint32_t at[W], prim_rows[W];
     alignas(64) double in[7][W];
     for (int k = 0; k < W; ++k) {
-      const uint32_t j = rows[std::min(i + std::size_t(k), rows.size() - 1)];
-      at[k] = j, prim_rows[k] = hits[j].prim.row();
+      const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
+      const uint32_t j = sink.ray_of(r);
+      const Hit& h = sink.hit_of(r);
+      at[k] = r, prim_rows[k] = h.prim.row();
       in[0][k] = rays.ox[j], in[1][k] = rays.oy[j], in[2][k] = rays.oz[j];
       in[3][k] = rays.dx[j], in[4][k] = rays.dy[j], in[5][k] = rays.dz[j];
-      in[6][k] = hits[j].t;
+      in[6][k] = h.t;
     }
     auto col = [&](int c) { return D::load_aligned(in[c]); };
-    const HitRayLanes<A> r{{col(0), col(1), col(2)}, {col(3), col(4), col(5)}, col(6)};
-    const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, r);
+    const HitRayLanes<A> ray{{col(0), col(1), col(2)}, {col(3), col(4), col(5)}, col(6)};
+    const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, ray);
     alignas(64) double out[7][W];
     const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, nullptr};
-    const D cos_d = dot_lanes<A>(r.d, s.n);
+    const D cos_d = dot_lanes<A>(ray.d, s.n);
     outs[6] = &cos_d;
     for (int c = 0; c < 7; ++c)
       outs[c]->store_aligned(out[c]);
     const int n = int(std::min<std::size_t>(W, rows.size() - i));
-    for (int k = 0; k < n; ++k) {
-      Hit& h = hits[at[k]];
-      h.surface.p = {out[0][k], out[1][k], out[2][k]};
-      h.surface.ng = {out[3][k], out[4][k], out[5][k]};
-      h.surface.ns = h.surface.ng;
-      h.front_face = out[6][k] < 0;
-    }
+    for (int k = 0; k < n; ++k)
+      sink.store(at[k], {out[0][k], out[1][k], out[2][k]}, {out[3][k], out[4][k], out[5][k]},
+                 out[6][k]);
   }
 }
 
-template <class A>
+template <class A, class Sink>
 void surfaces_of_kind(const Scene& scene, const RayStream& rays, PrimTag kind,
-                      std::span<const uint32_t> rows, Hit* hits) {
+                      std::span<const uint32_t> rows, const Sink& sink) {
   dispatch(kind, [&](auto k) {
     using Kind = decltype(k);
     if constexpr (Kind::surface_in_lanes)
-      surfaces_range<A, Kind>(scene.table<Kind>(), rays, rows, hits);
+      surfaces_range<A, Kind>(scene.table<Kind>(), rays, rows, sink);
   });
 }
 

@@ -105,6 +105,47 @@ void Tracer::complete_by_kind(const RayStream& rays, std::vector<Hit>& hits, std
   });
 }
 
+namespace {
+
+// One surface into row r of `out`, from a Surface record.
+void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Vec3d& d) {
+  out.px[r] = s.p.x, out.py[r] = s.p.y, out.pz[r] = s.p.z;
+  out.ngx[r] = s.ng.x, out.ngy[r] = s.ng.y, out.ngz[r] = s.ng.z;
+  out.nsx[r] = float(s.ns.x), out.nsy[r] = float(s.ns.y), out.nsz[r] = float(s.ns.z);
+  out.cos_ns[r] = dot(s.ns, d);
+  out.front[r] = dot(d, s.ng) < 0;
+}
+
+}  // namespace
+
+void Tracer::surfaces(const RayStream& rays, const std::vector<Hit>& hits,
+                      std::span<const uint32_t> ray, const SurfaceColumns& out,
+                      TraceScratch& scratch) const {
+  if (kind_ != TracerKind::kPacket) {  // the references' hits come with their surfaces
+    for (std::size_t r = 0; r < ray.size(); ++r)
+      store_surface(out, r, hits[ray[r]].surface, ray_cast<double>(rays.get(ray[r])).d);
+    return;
+  }
+  for (auto& rows : scratch.by_kind)
+    rows.clear();
+  for (std::size_t r = 0; r < ray.size(); ++r)
+    scratch.by_kind[std::size_t(hits[ray[r]].prim.tag())].push_back(uint32_t(r));
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
+    if constexpr (Kind::surface_in_lanes) {
+      simd_.surfaces(scene_, rays, tag_of<Kind>, rows, ray.data(), hits.data(), out);
+      return;
+    }
+    const typename Kind::Table& table = scene_.table<Kind>();
+    for (uint32_t r : rows) {
+      const Hit& h = hits[ray[r]];
+      const Rayd traced = ray_cast<double>(rays.get(ray[r]));
+      store_surface(out, r, surface_ref(table, h.prim.row(), traced, h.t), traced.d);
+    }
+  });
+}
+
 void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
                      std::size_t with_surface, TraceScratch& scratch) const {
   const std::size_t n = rays.size();

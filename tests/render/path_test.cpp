@@ -135,6 +135,32 @@ TEST(PathTracer, IndexMatchedGlassPassesLightThroughAttenuatedByKt) {
     }
 }
 
+// Beer's law inside refracting glass (ior 1.5, which the float shading shades in lanes): the
+// slab above, Kt = (0.9, 0.5, 0.2). Every path from the camera crosses the slab once (Ks = 0:
+// no reflection to speak of) and gains a colour-blind weight times Kt^t per channel, t the
+// distance inside, within 1e-4 of 1 (the smooth lobe tilts the path by ~1/√α). So the image's
+// channels stand as Kt's: G/R = 5/9, B/R = 2/9 to within 1e-4·|ln(Kt ratio)| ≈ 2e-4 relative,
+// whatever the noise; without Beer's law they would be equal, on the wrong face 0.9^4 : 0.5^4.
+TEST(PathTracer, RefractingGlassColoursByBeersLaw) {
+  Scene scene = parse(
+      "screen 16 16\ncamera 0 0 5 0.001\nbrdf 0 0 0 0 0 0 10000 0.9 0.5 0.2 1.5\n"
+      "box -10 -10 1 20 20 1\nlight 1 1 1\nbox -50 -50 -5 100 100 1\n");
+  for (Shading shading : kShadings)
+    for (Integrator integrator : {Integrator::kBrdf, Integrator::kMis}) {
+      SCOPED_TRACE(std::string(shading_name(shading)) + ", " +
+                   std::string(integrator_name(integrator)));
+      PathSettings s;
+      s.shading = shading, s.integrator = integrator, s.spp = 4;
+      Image img = render(scene, s);
+      Vec3d sum(0, 0, 0);
+      for (std::size_t i = 0; i < img.rgb.size(); i += 3)
+        sum += Vec3d(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
+      ASSERT_GT(sum.x, 0.5 * double(img.rgb.size() / 3));  // the light comes through
+      EXPECT_NEAR(sum.y / sum.x, 5.0 / 9, 5.0 / 9 * 2e-4);
+      EXPECT_NEAR(sum.z / sum.x, 2.0 / 9, 2.0 / 9 * 4e-4);
+    }
+}
+
 // A diffuse plane (ρ = 0.5) under a sphere light of radius r = 0.5 and Le = 2 centred d = 3
 // above the foot point: E = π·Le·(r/d)² (the sphere subtends sin²θmax = (r/d)² and sits on the
 // normal), so the plane leaves L = ρ·E/π = ρ·Le·(r/d)² = 1/36 there. The camera looks

@@ -173,10 +173,13 @@ void expect_occluded_answers(const Tracer& tracer, const std::vector<Rayd>& rays
 
 // `check` on the course scene's random rays with every tracer: the packet tracer at every
 // instruction set on `count` rays, the double references on `reference_count` of them (slow).
-template <class Check>
-void with_every_tracer(int count, std::size_t reference_count, Check check) {
+// `change` may alter the scene first.
+template <class Check, class Change = void (*)(Scene&)>
+void with_every_tracer(
+    int count, std::size_t reference_count, Check check, Change change = [](Scene&) {}) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
+  change(parsed.scene);
   Bvh bvh = build_bvh(parsed.scene);
   const Scene& scene = parsed.scene;
   std::vector<Rayd> rays = random_rays(scene, bvh, count);
@@ -239,6 +242,68 @@ void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>
 
 TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
   with_every_tracer(2000, 300, expect_streams_answer_as_rays);
+}
+
+// surfaces() writes complete()'s surfaces into columns, for hits given by prim and t alone (the
+// packet tracer's hits are poisoned first, so nothing is read from their surfaces). The
+// request lists the hits backward, each hit ray twice in a row and every third skipped, so row
+// r is not hit r and the kinds are interleaved.
+void expect_surface_columns_are_completes(const Tracer& tracer, const std::vector<Rayd>& rays) {
+  const RayStream stream = RayStream::from(rays);
+  TraceScratch scratch;
+  std::vector<Hit> hits;
+  tracer.closest(stream, hits, 0, scratch);
+  const double nan = std::nan("");
+  std::vector<uint32_t> request;
+  for (std::size_t i = hits.size(); i-- > 0;) {
+    if (!hits[i].hit() || i % 3 == 0) continue;
+    if (tracer.kind() == TracerKind::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
+    request.insert(request.end(), 2, uint32_t(i));
+  }
+  const std::size_t n = request.size();
+  std::vector<double> p[3], ng[3], cos_ns(n);
+  std::vector<float> ns[3];
+  std::vector<uint8_t> front(n, 2);
+  for (int k = 0; k < 3; ++k)
+    p[k].assign(n, nan), ng[k].assign(n, nan), ns[k].assign(n, nan);
+  const SurfaceColumns out{p[0].data(),  p[1].data(),   p[2].data(),  ng[0].data(),
+                           ng[1].data(), ng[2].data(),  ns[0].data(), ns[1].data(),
+                           ns[2].data(), cos_ns.data(), front.data()};
+  tracer.surfaces(stream, hits, request, out, scratch);
+  int back = 0, smooth = 0, kinds[kPrimKindCount] = {};
+  for (std::size_t r = 0; r < n; ++r) {
+    const Rayd ray = ray_cast<double>(stream.get(request[r]));
+    Hit want = hits[request[r]];
+    tracer.complete(ray, want);
+    const Surface& s = want.surface;
+    ASSERT_TRUE(same_bits(s.p, {p[0][r], p[1][r], p[2][r]}) &&
+                same_bits(s.ng, {ng[0][r], ng[1][r], ng[2][r]}))
+        << "row " << r << " kind " << int(want.prim.tag());
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(float(s.ns[k]), ns[k][r]) << "row " << r;
+    const double c = dot(s.ns, ray.d);
+    ASSERT_EQ(std::memcmp(&c, &cos_ns[r], sizeof c), 0) << "row " << r;
+    ASSERT_EQ(front[r], want.front_face ? 1 : 0) << "row " << r;
+    back += !want.front_face;
+    smooth += !same_bits(s.ns, s.ng);
+    ++kinds[std::size_t(want.prim.tag())];
+  }
+  EXPECT_GT(back, int(n / 50));
+  EXPECT_GT(smooth, int(n / 100));  // interpolated normals: the two normals' columns differ
+  for (std::size_t k = 0; k < kPrimKindCount; ++k)
+    EXPECT_GT(kinds[k], 0) << "no hit on kind " << k;
+}
+
+// The course scene's triangles are flat (their vertex normals are the face's): bent, so that
+// the shading normal differs from the geometric one.
+void bend_vertex_normals(Scene& scene) {
+  TriangleTable& t = scene.table<Triangle>();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    t.n0x[i] += 0.25f, t.n1y[i] -= 0.25f, t.n2z[i] += 0.25f;
+}
+
+TEST(Tracer, SurfaceColumnsAreCompletesSurfaces) {
+  with_every_tracer(4000, 400, expect_surface_columns_are_completes, bend_vertex_normals);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "raylane/simd/isa.h"
 #include "raylane/trace/hit.h"
 #include "raylane/trace/ray_stream.h"
+#include "raylane/trace/surface_columns.h"
 #include "raylane/trace/traversal_counters.h"
 
 namespace raylane {
@@ -64,6 +65,11 @@ class SimdTracer {
   // surface_ref gives them for the stream's ray i (the ray as traced) and h.t.
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                 std::span<const uint32_t> rows, Hit* hits) const;
+  // The same surfaces written as columns: for each r in `rows`, hits[ray[r]]'s (traced as the
+  // stream's ray ray[r]) into row r of `out`. hits need only prim and t.
+  void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
+                std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
+                const SurfaceColumns& out) const;
 
  private:
   void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
@@ -84,6 +90,12 @@ void trace_avx512(const Scene&, const Bvh&, const RayStream&, std::size_t, std::
 void surfaces_sse42(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
 void surfaces_avx2(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
 void surfaces_avx512(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
+void surface_columns_sse42(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
+                           const uint32_t*, const Hit*, const SurfaceColumns&);
+void surface_columns_avx2(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
+                          const uint32_t*, const Hit*, const SurfaceColumns&);
+void surface_columns_avx512(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
+                            const uint32_t*, const Hit*, const SurfaceColumns&);
 }  // namespace detail
 
 }  // namespace raylane

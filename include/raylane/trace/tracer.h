@@ -59,6 +59,11 @@ class Tracer {
                TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
+  // The surfaces of hits[ray[r]] (each a hit, not a miss, of a closest() on `rays`, which may
+  // have given prim and t alone) into row r of `out`, for r in [0, ray.size()): as complete()
+  // gives them, kind by kind (in double lanes where the kind has them).
+  void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
+                const SurfaceColumns& out, TraceScratch& scratch) const;
   // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's
   // traversal ending at the first blocker. aims[i], when `aims` is not empty, is the primitive
   // ray i is aimed at (a shadow ray's light; invalid for none): it does not block the ray, and
