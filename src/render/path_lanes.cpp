@@ -1,11 +1,13 @@
 // A wavefront's vertices shaded at once, in columns: queue_lane_row lists each vertex as the
-// wavefront arrives; a few passes copy the listed hits, rays and paths into the batches'
-// columns, a column group per pass (a pass over all thirty columns at once reloaded each
-// column's pointer per row); then the rows' numbers (Sobol groups in lanes), light points
-// (render/lights.h, sample_many), BSDFs in float lanes (render/shade_lanes.h) and shadow rays and
-// next rays in double lanes (render/vertex_lanes.h) all read and write columns; last passes write
-// the rays and the paths back. (Each step once gathered what it needed from the hits and paths
-// itself: seven passes over the rows, 18 % of a render.)
+// wavefront arrives; the tracer writes their surfaces straight into the batches' columns, and
+// a few passes copy the listed hits, rays and paths into the rest, a column group per pass (a
+// pass over all thirty columns at once reloaded each column's pointer per row); then the rows'
+// numbers (Sobol groups in lanes), light points (render/lights.h, sample_many), BSDFs in float
+// lanes (render/shade_lanes.h) and shadow rays and next rays in double lanes
+// (render/vertex_lanes.h, reading the light points and BSDF answers where those steps left
+// them) all read and write columns; last passes write the rays and the paths back. (Each step
+// once gathered what it needed from the hits and paths itself: seven passes over the rows, 18 %
+// of a render.)
 #include <algorithm>
 #include <cmath>
 
@@ -72,48 +74,29 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
                      roulette ? sobol_number(s, 3, r) : 0.0);
 }
 
-// The rows' light points (sphere lights in lanes) into the columns: the float direction the
-// BSDF is evaluated toward, the double ones the shadow ray needs. All zero without lights.
+// The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated
+// toward (0 for none, and for every row without lights). The vertex lanes read the rest where
+// sample_many left it.
 void light_columns(TileContext& ctx, bool lights) {
   ThreadBuffers& b = ctx.buffers;
   ShadeBatch& sb = b.shade;
-  VertexBatch& vb = b.vertices;
   const std::size_t n = b.lane_count;
   if (!lights) {
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k)
       std::fill_n(sb.light_wi[k].begin(), n, 0.0f);
-      std::fill_n(vb.light_wi[k].begin(), n, 0.0), std::fill_n(vb.light_le[k].begin(), n, 0.0);
-    }
-    std::fill_n(vb.light_pdf.begin(), n, 0.0);
     return;
   }
   PhaseClock clock(ctx.settings.time_phases);
   ctx.lights.sample_many(ctx.lanes.isa, b.light_queries);
   clock.lap(ctx.stats.phases.lights);
   const LightQueries& q = b.light_queries;
-  for (int k = 0; k < 3; ++k)
-    for (std::size_t r = 0; r < n; ++r) {
-      const bool lit = q.valid(r);
-      vb.light_wi[k][r] = lit ? q.cones.wi[k][r] : 0.0;
-      vb.light_le[k][r] = lit ? q.le[k][r] : 0.0;
-      sb.light_wi[k][r] = float(vb.light_wi[k][r]);
-    }
-  for (std::size_t r = 0; r < n; ++r) {
-    vb.light_pdf[r] = q.valid(r) ? q.pdf(r) : 0.0;
-    vb.light_dist[r] = q.cones.dist[r];
-  }
-}
-
-// The float BSDF's answers into the double columns of the vertex lanes.
-void take_shading(const ShadeBatch& sb, VertexBatch& vb) {
-  const std::size_t n = sb.size();
+  const double* pdf = q.cones.pdf.data();
   for (int k = 0; k < 3; ++k) {
-    std::copy_n(sb.light_f[k].begin(), n, vb.light_f[k].begin());
-    std::copy_n(sb.wi[k].begin(), n, vb.wi[k].begin());
-    std::copy_n(sb.value[k].begin(), n, vb.value[k].begin());
+    const double* wi = q.cones.wi[std::size_t(k)].data();
+    float* to = sb.light_wi[std::size_t(k)].data();
+    for (std::size_t r = 0; r < n; ++r)
+      to[r] = pdf[r] > 0 ? float(wi[r]) : 0.0f;  // LightQueries::valid
   }
-  std::copy_n(sb.light_pdf.begin(), n, vb.light_bsdf_pdf.begin());
-  std::copy_n(sb.pdf.begin(), n, vb.pdf.begin());
 }
 
 // Appends up to `most` elements to a vector through a plain pointer: grown once, trimmed when
@@ -157,7 +140,7 @@ void write_shadow_rays(ThreadBuffers& b) {
   const std::size_t n = b.lane_count;
   RayAppender rays(b.shadow_rays, n, true);
   Appender<ShadowQuery> queries(b.next_queries, n);
-  const Column3View o(vb.shadow_o), wi(vb.light_wi), c(vb.shadow_c);
+  const Column3View o(vb.shadow_o), wi(b.light_queries.cones.wi), c(vb.shadow_c);
   const double *ok = vb.shadow_ok.data(), *tmax = vb.shadow_tmax.data();
   const PrimRef* light = b.light_queries.light.data();
   const uint32_t* path = b.lane_rows.path.data();
@@ -174,8 +157,10 @@ void write_next_rays(ThreadBuffers& b) {
   const std::size_t n = b.lane_count;
   RayAppender rays(b.next_rays, n, false);
   Appender<uint32_t> next_live(b.next_live, n);
-  const Column3View o(vb.next_o), wi(vb.wi), beta(vb.next_beta), p(vb.p);
-  const double *alive = vb.alive.data(), *pdf = vb.pdf.data();
+  const Column3View o(vb.next_o), beta(vb.next_beta), p(vb.p);
+  const float *wx = b.shade.wi[0].data(), *wy = b.shade.wi[1].data(), *wz = b.shade.wi[2].data();
+  const double* alive = vb.alive.data();
+  const float* pdf = b.shade.pdf.data();
   const uint32_t* row_path = b.lane_rows.path.data();
   PathState* paths = b.paths.data();
   for (std::size_t r = 0; r < n; ++r) {
@@ -187,7 +172,7 @@ void write_next_rays(ThreadBuffers& b) {
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
     const bool keep = alive[r] != 0;
-    rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r]}));
+    rays.push_if(keep, Rayf{Vec3f(o[r]), {wx[r], wy[r], wz[r]}});
     next_live.push_if(keep, row_path[r]);
   }
 }
@@ -331,8 +316,7 @@ void shade_in_lanes(TileContext& ctx, int depth) {
   draw_numbers(ctx, depth, lights, rules.roulette);
   light_columns(ctx, lights);
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, b.shade);
-  take_shading(b.shade, b.vertices);
-  finish_vertices(ctx.lanes.isa, rules, b.vertices);
+  finish_vertices(ctx.lanes.isa, rules, b.shade, lights ? &b.light_queries : nullptr, b.vertices);
   if (lights) write_shadow_rays(b);
   write_next_rays(b);
 }

@@ -22,8 +22,9 @@ void sample_cones_avx2(ConeBatch& batch) {
   sample_cones_range<xsimd::fma3<xsimd::avx2>>(batch);
 }
 
-void finish_vertices_avx2(const VertexRules& rules, VertexBatch& batch) {
-  finish_vertices_range<xsimd::fma3<xsimd::avx2>>(rules, batch);
+void finish_vertices_avx2(const VertexRules& rules, const ShadeBatch& bsdf,
+                          const LightQueries* lights, VertexBatch& batch) {
+  finish_vertices_range<xsimd::fma3<xsimd::avx2>>(rules, bsdf, lights, batch);
 }
 
 }  // namespace raylane::detail

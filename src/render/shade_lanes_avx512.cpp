@@ -23,8 +23,9 @@ void sample_cones_avx512(ConeBatch& batch) {
   sample_cones_range<xsimd::avx512bw>(batch);
 }
 
-void finish_vertices_avx512(const VertexRules& rules, VertexBatch& batch) {
-  finish_vertices_range<xsimd::avx512bw>(rules, batch);
+void finish_vertices_avx512(const VertexRules& rules, const ShadeBatch& bsdf,
+                            const LightQueries* lights, VertexBatch& batch) {
+  finish_vertices_range<xsimd::avx512bw>(rules, bsdf, lights, batch);
 }
 
 }  // namespace raylane::detail

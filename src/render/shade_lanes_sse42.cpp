@@ -23,8 +23,9 @@ void sample_cones_sse42(ConeBatch& batch) {
   sample_cones_range<xsimd::sse4_2>(batch);
 }
 
-void finish_vertices_sse42(const VertexRules& rules, VertexBatch& batch) {
-  finish_vertices_range<xsimd::sse4_2>(rules, batch);
+void finish_vertices_sse42(const VertexRules& rules, const ShadeBatch& bsdf,
+                           const LightQueries* lights, VertexBatch& batch) {
+  finish_vertices_range<xsimd::sse4_2>(rules, bsdf, lights, batch);
 }
 
 }  // namespace raylane::detail

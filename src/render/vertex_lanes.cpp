@@ -5,9 +5,11 @@
 namespace raylane {
 
 namespace detail {
-void finish_vertices_sse42(const VertexRules&, VertexBatch&);
-void finish_vertices_avx2(const VertexRules&, VertexBatch&);
-void finish_vertices_avx512(const VertexRules&, VertexBatch&);
+void finish_vertices_sse42(const VertexRules&, const ShadeBatch&, const LightQueries*,
+                           VertexBatch&);
+void finish_vertices_avx2(const VertexRules&, const ShadeBatch&, const LightQueries*, VertexBatch&);
+void finish_vertices_avx512(const VertexRules&, const ShadeBatch&, const LightQueries*,
+                            VertexBatch&);
 }  // namespace detail
 
 namespace {
@@ -18,24 +20,20 @@ void VertexBatch::resize(std::size_t rows) {
   size_ = rows;
   std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
   if (t.size() < padded) {  // the columns only grow, as ShadeBatch's
-    for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &light_wi, &light_le, &light_f, &wi, &value,
-                    &shadow_c, &shadow_o, &next_beta, &next_o})
+    for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &shadow_c, &shadow_o, &next_beta, &next_o})
       for (Column& c : *v)
         c.resize(padded);
-    for (Column* c : {&t, &light_dist, &light_pdf, &light_bsdf_pdf, &pdf, &u_roulette, &shadow_tmax,
-                      &shadow_ok, &alive})
+    for (Column* c : {&t, &u_roulette, &shadow_tmax, &shadow_ok, &alive})
       c->resize(padded);
   }
-  // Padding rows: no light point, no sample; what the kernel makes of them is unread.
-  for (std::size_t i = rows; i < padded; ++i)
-    light_pdf[i] = pdf[i] = 0;
 }
 
-void finish_vertices(Isa isa, const VertexRules& rules, VertexBatch& batch) {
+void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
+                     const LightQueries* lights, VertexBatch& batch) {
   auto* fn = isa == Isa::kAvx512 ? detail::finish_vertices_avx512
              : isa == Isa::kAvx2 ? detail::finish_vertices_avx2
                                  : detail::finish_vertices_sse42;
-  fn(rules, batch);
+  fn(rules, bsdf, lights, batch);
 }
 
 bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,

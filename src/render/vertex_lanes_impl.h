@@ -72,17 +72,28 @@ Doubles<A> as_flag(const DMask<A>& m) {
   return xsimd::select(m, Doubles<A>(1.0), Doubles<A>(0.0));
 }
 
+// Float columns [i, i + W) widened to double lanes.
+template <class A>
+Doubles<A> load_widened(const std::vector<float>& c, std::size_t i) {
+  return simd::load_widened<A>(c.data() + i);
+}
+template <class A>
+Vec3Lanes<A> load3_widened(const std::array<std::vector<float>, 3>& c, std::size_t i) {
+  return {load_widened<A>(c[0], i), load_widened<A>(c[1], i), load_widened<A>(c[2], i)};
+}
+
 // queue_shadow_ray's contribution (beta·f·Le·(w / pdf), w the power heuristic under MIS) and
 // origin, for the rows of lanes [i, i + W).
 template <class A>
-void shadow_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i, const Vec3Lanes<A>& beta,
-                  const Vec3Lanes<A>& p, const Vec3Lanes<A>& ng, const Vec3Lanes<A>& o,
-                  const Vec3Lanes<A>& d, const Doubles<A>& t) {
+void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQueries& lights,
+                  VertexBatch& b, std::size_t i, const Vec3Lanes<A>& beta, const Vec3Lanes<A>& p,
+                  const Vec3Lanes<A>& ng, const Vec3Lanes<A>& o, const Vec3Lanes<A>& d,
+                  const Doubles<A>& t) {
   using D = Doubles<A>;
-  const Vec3Lanes<A> wi = load3<A>(b.light_wi, i), le = load3<A>(b.light_le, i),
-                     f = load3<A>(b.light_f, i);
-  const D pdf = D::load_unaligned(b.light_pdf.data() + i);
-  const D bsdf_pdf = D::load_unaligned(b.light_bsdf_pdf.data() + i);
+  const Vec3Lanes<A> wi = load3<A>(lights.cones.wi, i), le = load3<A>(lights.le, i),
+                     f = load3_widened<A>(bsdf.light_f, i);
+  const D pdf = D::load_unaligned(lights.cones.pdf.data() + i);
+  const D bsdf_pdf = load_widened<A>(bsdf.light_pdf, i);
   D w(1.0);
   if (rules.mis) {
     const D a = pdf * pdf, c = bsdf_pdf * bsdf_pdf;
@@ -95,21 +106,22 @@ void shadow_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i, const
   const Vec3Lanes<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
   store3<A>(b.shadow_o, i, from);
   // shadow_ray_tmax: the light point projected on the ray, in dot's order; inf stays inf.
-  const D dist = D::load_unaligned(b.light_dist.data() + i);
+  const D dist = D::load_unaligned(lights.cones.dist.data() + i);
   const D along = (p.x - from.x) * wi.x + (p.y - from.y) * wi.y + (p.z - from.z) * wi.z;
   xsimd::select(xsimd::isinf(dist), dist, dist + along).store_unaligned(b.shadow_tmax.data() + i);
+  // No light point (pdf 0, or NaN): no shadow ray, whatever the other columns hold.
   as_flag<A>((pdf > D(0.0)) & !all_zero<A>(f) & all_finite<A>(c))
       .store_unaligned(b.shadow_ok.data() + i);
 }
 
 // continue_path's throughput (beta·value / pdf, then roulette) and origin.
 template <class A>
-void continue_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i,
+void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatch& b, std::size_t i,
                     const Vec3Lanes<A>& beta, const Vec3Lanes<A>& p, const Vec3Lanes<A>& ng,
                     const Vec3Lanes<A>& o, const Vec3Lanes<A>& d, const Doubles<A>& t) {
   using D = Doubles<A>;
-  const Vec3Lanes<A> wi = load3<A>(b.wi, i), value = load3<A>(b.value, i);
-  const D pdf = D::load_unaligned(b.pdf.data() + i);
+  const Vec3Lanes<A> wi = load3_widened<A>(bsdf.wi, i), value = load3_widened<A>(bsdf.value, i);
+  const D pdf = load_widened<A>(bsdf.pdf, i);
   Vec3Lanes<A> nb{beta.x * value.x / pdf, beta.y * value.y / pdf, beta.z * value.z / pdf};
   DMask<A> alive = pdf > D(0.0);
   if (rules.roulette) {
@@ -124,14 +136,18 @@ void continue_lanes(const VertexRules& rules, VertexBatch& b, std::size_t i,
 }
 
 template <class A>
-void finish_vertices_range(const VertexRules& rules, VertexBatch& b) {
+void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
+                           const LightQueries* lights, VertexBatch& b) {
   constexpr std::size_t W = Doubles<A>::size;
   for (std::size_t i = 0; i < b.size(); i += W) {
     const Vec3Lanes<A> beta = load3<A>(b.beta, i), p = load3<A>(b.p, i), ng = load3<A>(b.ng, i);
     const Vec3Lanes<A> o = load3<A>(b.ray_o, i), d = load3<A>(b.ray_d, i);
     const Doubles<A> t = Doubles<A>::load_unaligned(b.t.data() + i);
-    shadow_lanes<A>(rules, b, i, beta, p, ng, o, d, t);
-    continue_lanes<A>(rules, b, i, beta, p, ng, o, d, t);
+    if (lights)
+      shadow_lanes<A>(rules, bsdf, *lights, b, i, beta, p, ng, o, d, t);
+    else
+      Doubles<A>(0.0).store_unaligned(b.shadow_ok.data() + i);
+    continue_lanes<A>(rules, bsdf, b, i, beta, p, ng, o, d, t);
   }
 }
 

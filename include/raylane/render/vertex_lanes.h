@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "raylane/core/vec3.h"
+#include "raylane/render/lights.h"
+#include "raylane/render/shade_lanes.h"
 #include "raylane/simd/isa.h"
 
 namespace raylane {
@@ -23,17 +25,11 @@ namespace raylane {
 struct VertexBatch {
   using Column = std::vector<double>;
   using Columns3 = std::array<Column, 3>;
-  // Inputs. The vertex: the path's throughput, the hit point and geometric normal, and the ray
-  // that found it with its t (for the bound on the point's error).
+  // Inputs. The vertex: the path's throughput, the hit point and geometric normal, the ray that
+  // found it with its t (for the bound on the point's error), and roulette's number. The light
+  // point and the BSDF's answers are read where their steps left them (finish_vertices).
   Columns3 beta, p, ng, ray_o, ray_d;
-  Column t;
-  // The light point (light_pdf 0: none): direction, distance (inf: the environment), radiance
-  // and density, and the BSDF's f·|cos θi| and density toward it.
-  Columns3 light_wi, light_le, light_f;
-  Column light_dist, light_pdf, light_bsdf_pdf;
-  // The BSDF's sample (pdf 0: none) and roulette's number.
-  Columns3 wi, value;
-  Column pdf, u_roulette;
+  Column t, u_roulette;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
   // light, where it starts and where it ends (shadow_ray_tmax).
   Columns3 shadow_c, shadow_o;
@@ -57,7 +53,13 @@ struct VertexRules {
   double survival = 1;    // roulette's survival probability
 };
 
-void finish_vertices(Isa isa, const VertexRules& rules, VertexBatch& batch);
+// The batch's shadow rays and next rays. Row r's light point is row r of `lights` (its
+// cones.wi, cones.dist, le and cones.pdf; a pdf not above 0: none), or none for every row
+// without `lights`; its BSDF's answers are row r of `bsdf` (sample: wi, value, pdf; at the
+// light point: light_f, light_pdf), widened to double exactly. Both are read as their steps left
+// them, padded at least as far as `batch`.
+void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
+                     const LightQueries* lights, VertexBatch& batch);
 
 // The scalar steps the lanes transcribe, which the double shading takes one vertex at a time.
 // The ray origins are offset_ray_origin(p, hit_point_error(ray, t), ng, direction), the shadow

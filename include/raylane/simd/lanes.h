@@ -272,6 +272,19 @@ inline void store_widened(double* lo, double* hi, const Floats<A>& v) {
   }
 }
 
+// W floats from p (W the double lanes' count) widened, exactly, to double lanes.
+template <class A>
+inline Doubles<A> load_widened(const float* p) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    return Doubles<A>(_mm512_cvtps_pd(_mm256_loadu_ps(p)));
+  } else if constexpr (kDoubleWidth<A> == 4) {
+    return Doubles<A>(_mm256_cvtps_pd(_mm_loadu_ps(p)));
+  } else {
+    static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
+    return Doubles<A>(_mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)))));
+  }
+}
+
 // signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).
 template <class A>
 inline xsimd::batch_bool<double, A> sign_bit(const Doubles<A>& v) {
