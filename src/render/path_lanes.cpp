@@ -32,17 +32,6 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
   q.cones.u1[r] = u[0], q.cones.u2[r] = u[1], q.u_light[r] = u[2], q.u_part[r] = u[3];
 }
 
-// Component c of row r of the last Sobol groups, in [0, 1].
-double sobol_number(const SobolBatch& s, int c, std::size_t r) {
-  return s.u[std::size_t(c)][r] * 0x1p-32;
-}
-
-// Component c of rows [0, n) of the last Sobol groups into `to`.
-void copy_sobol_numbers(const SobolBatch& s, int c, std::size_t n, std::vector<double>& to) {
-  for (std::size_t r = 0; r < n; ++r)
-    to[r] = sobol_number(s, c, r);
-}
-
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
 // the double shading's order (light, BSDF, roulette).
 void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
@@ -57,21 +46,22 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
     }
     return;
   }
+  // Sobol: each group in lanes, its numbers written straight into the columns that read them.
   SobolBatch& s = b.sobol;
   if (lights) {  // only the numbers the lights read (for one sphere light, no table gathers)
     const int read = ctx.lights.numbers_read();
-    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s, read);
-    for (std::size_t r = 0; r < b.lane_count; ++r)
-      q.cones.u1[r] = sobol_number(s, 0, r), q.cones.u2[r] = sobol_number(s, 1, r);
-    if (read > 2) copy_sobol_numbers(s, 2, b.lane_count, q.u_light);
-    if (read > 3) copy_sobol_numbers(s, 3, b.lane_count, q.u_part);
+    SobolNumbers to;
+    to.as_double = {q.cones.u1.data(), q.cones.u2.data(), read > 2 ? q.u_light.data() : nullptr,
+                    read > 3 ? q.u_part.data() : nullptr};
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s, read, to);
   }
-  // Roulette's number only at the depths that have roulette.
-  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s, roulette ? 4 : 3);
-  for (std::size_t r = 0; r < b.lane_count; ++r)
-    set_bsdf_numbers(ctx, r,
-                     {sobol_number(s, 0, r), sobol_number(s, 1, r), sobol_number(s, 2, r), 0.0},
-                     roulette ? sobol_number(s, 3, r) : 0.0);
+  // Roulette's number only at the depths that have roulette (the vertex lanes read it only
+  // there).
+  ShadeBatch& sb = b.shade;
+  SobolNumbers to;
+  to.as_float = {sb.u1.data(), sb.u2.data(), sb.u_lobe.data(), nullptr};
+  if (roulette) to.as_double[3] = b.vertices.u_roulette.data();
+  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s, roulette ? 4 : 3, to);
 }
 
 // The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated

@@ -117,10 +117,12 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 }  // namespace
 
 namespace detail {
-void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch);
-void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch);
-void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components,
-                         SobolBatch& batch);
+void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+                        const SobolNumbers& numbers);
+void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+                       const SobolNumbers& numbers);
+void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+                         const SobolNumbers& numbers);
 
 const uint32_t* sobol_byte_tables() {
   return &kReversedTables[0][0][0];
@@ -138,11 +140,12 @@ void SobolBatch::resize(std::size_t rows) {
 }
 
 // The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components) {
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components,
+                  const SobolNumbers& numbers) {
   auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
              : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
                                  : detail::sobol_groups_sse42;
-  fn(reverse_bits(index), group, components, batch);
+  fn(reverse_bits(index), group, components, batch, numbers);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

@@ -126,4 +126,23 @@ void sobol_groups_range(uint32_t reversed_index, uint32_t group, int components,
   }
 }
 
+// The groups' components as numbers into the callers' columns (SobolNumbers): plain loops,
+// which the compiler vectorises with this file's instruction set (the baseline build has no
+// unsigned-to-double conversion in lanes). The expressions are sobol_group's, so the values are
+// its own bit for bit. (A template on A, though A is unused, so that each instruction set's
+// unit keeps its own copy: one inline function would be one definition for the linker to pick.)
+template <class A>
+void sobol_numbers(int components, const SobolBatch& b, const SobolNumbers& to) {
+  const std::size_t n = b.size();
+  for (std::size_t c = 0; c < std::size_t(components); ++c) {
+    const uint32_t* u = b.u[c].data();
+    if (double* d = to.as_double[c])
+      for (std::size_t r = 0; r < n; ++r)
+        d[r] = u[r] * 0x1p-32;
+    if (float* f = to.as_float[c])
+      for (std::size_t r = 0; r < n; ++r)
+        f[r] = float(u[r] * 0x1p-32);
+  }
+}
+
 }  // namespace raylane::detail

@@ -132,18 +132,45 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
     b.resize(37);
     for (std::size_t i = 0; i < b.size(); ++i)
       b.seed[i] = mix64(i * 7919 + 3);
+    // The numbers' columns: components 0 and 2 as double, 1 and 2 as float, 3 neither; each
+    // one row longer than the batch, to see that nothing past its rows is written.
+    const double kUnwritten = -1;
+    std::array<std::vector<double>, 4> as_double;
+    std::array<std::vector<float>, 4> as_float;
+    SobolNumbers numbers;
+    for (int c : {0, 2})
+      numbers.as_double[c] = (as_double[c] = std::vector<double>(b.size() + 1)).data();
+    for (int c : {1, 2})
+      numbers.as_float[c] = (as_float[c] = std::vector<float>(b.size() + 1)).data();
     for (uint32_t index : {0u, 1u, 5u, 1000u, 0xfffffffeu})
       for (uint32_t group : {0u, 1u, 9u})
         for (int components : {4, 3, 2}) {
           for (auto& column : b.u)
             std::fill(column.begin(), column.end(), 0xdeadbeefu);
-          sobol_groups(isa, index, group, b, components);
-          for (std::size_t i = 0; i < b.size(); ++i) {
-            std::array<double, 4> ref = sobol_group(b.seed[i], index, group);
-            for (int c = 0; c < components; ++c)
-              ASSERT_EQ(b.u[c][i] * 0x1p-32, ref[c]) << "row " << i << " component " << c;
-            for (int c = components; c < 4; ++c)
-              ASSERT_EQ(b.u[c][i], 0xdeadbeefu) << "row " << i << " component " << c;
+          for (auto& column : as_double)
+            std::fill(column.begin(), column.end(), kUnwritten);
+          for (auto& column : as_float)
+            std::fill(column.begin(), column.end(), float(kUnwritten));
+          sobol_groups(isa, index, group, b, components, numbers);
+          for (std::size_t i = 0; i <= b.size(); ++i) {
+            const bool row = i < b.size();
+            std::array<double, 4> ref =
+                row ? sobol_group(b.seed[i], index, group) : std::array<double, 4>{};
+            for (int c = 0; c < 4; ++c) {
+              const bool computed = row && c < components;
+              if (row) {
+                ASSERT_EQ(b.u[c][i], computed ? uint32_t(ref[c] * 0x1p32) : 0xdeadbeefu)
+                    << "row " << i << " component " << c;
+              }
+              if (!as_double[c].empty()) {
+                ASSERT_EQ(as_double[c][i], computed ? ref[c] : kUnwritten)
+                    << "row " << i << " component " << c;
+              }
+              if (!as_float[c].empty()) {
+                ASSERT_EQ(as_float[c][i], computed ? float(ref[c]) : float(kUnwritten))
+                    << "row " << i << " component " << c;
+              }
+            }
           }
         }
   }

@@ -44,9 +44,18 @@ struct SobolBatch {
  private:
   std::size_t size_ = 0;
 };
+// Where sobol_groups also writes component c of rows [0, size) as the number it stands for,
+// u[c]·2^-32 (sobol_group's, bit for bit): into a double column, a float column (rounded to
+// nearest), both or neither (null). The consumers' own columns, written in the same call
+// instead of a pass of their own.
+struct SobolNumbers {
+  std::array<double*, 4> as_double{};
+  std::array<float*, 4> as_float{};
+};
 // Only components [0, components) are computed (at least 2; the others keep what they held):
 // a decision that reads fewer numbers saves the rest, dimensions 2 and 3 most (table gathers).
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components = 4);
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components = 4,
+                  const SobolNumbers& numbers = {});
 
 namespace detail {
 // The byte tables of the first four dimensions, [dimension][byte][value], in the
