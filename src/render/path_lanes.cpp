@@ -117,26 +117,31 @@ class Appender {
 
 // The three columns of c as pointers, taken once per pass: the passes below read a dozen
 // columns per row, more than the registers that would keep the vectors' own pointers.
+template <class T>
 struct Column3View {
-  const double *x, *y, *z;
-  explicit Column3View(const VertexBatch::Columns3& c)
+  const T *x, *y, *z;
+  explicit Column3View(const std::array<std::vector<T>, 3>& c)
       : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
-  Vec3d operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
+  Vec3<T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
 };
 
-// The vertex lanes' shadow rays queued, each aimed at its light.
+// The vertex lanes' shadow rays queued, each aimed at its light: the origin and end as the
+// lanes rounded them, the direction as the BSDF was evaluated toward it (the light point's,
+// rounded to float).
 void write_shadow_rays(ThreadBuffers& b) {
   const VertexBatch& vb = b.vertices;
   const std::size_t n = b.lane_count;
   RayAppender rays(b.shadow_rays, n, true);
   Appender<ShadowQuery> queries(b.next_queries, n);
-  const Column3View o(vb.shadow_o), wi(b.light_queries.cones.wi), c(vb.shadow_c);
-  const double *ok = vb.shadow_ok.data(), *tmax = vb.shadow_tmax.data();
+  const Column3View<float> o(vb.shadow_o), wi(b.shade.light_wi);
+  const Column3View<double> c(vb.shadow_c);
+  const double* ok = vb.shadow_ok.data();
+  const float* tmax = vb.shadow_tmax.data();
   const PrimRef* light = b.light_queries.light.data();
   const uint32_t* path = b.lane_rows.path.data();
   for (std::size_t r = 0; r < n; ++r) {
     const bool keep = ok[r] != 0;
-    rays.push_if(keep, ray_cast<float>(Rayd{o[r], wi[r], 0, tmax[r]}), light[r].bits());
+    rays.push_if(keep, Rayf{o[r], wi[r], 0, tmax[r]}, light[r].bits());
     queries.push_if(keep, {path[r], c[r]});
   }
 }
@@ -147,8 +152,8 @@ void write_next_rays(ThreadBuffers& b) {
   const std::size_t n = b.lane_count;
   RayAppender rays(b.next_rays, n, false);
   Appender<uint32_t> next_live(b.next_live, n);
-  const Column3View o(vb.next_o), beta(vb.next_beta), p(vb.p);
-  const float *wx = b.shade.wi[0].data(), *wy = b.shade.wi[1].data(), *wz = b.shade.wi[2].data();
+  const Column3View<float> o(vb.next_o), wi(b.shade.wi);
+  const Column3View<double> beta(vb.next_beta), p(vb.p);
   const double* alive = vb.alive.data();
   const float* pdf = b.shade.pdf.data();
   const uint32_t* row_path = b.lane_rows.path.data();
@@ -162,7 +167,7 @@ void write_next_rays(ThreadBuffers& b) {
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
     const bool keep = alive[r] != 0;
-    rays.push_if(keep, Rayf{Vec3f(o[r]), {wx[r], wy[r], wz[r]}});
+    rays.push_if(keep, Rayf{o[r], wi[r]});
     next_live.push_if(keep, row_path[r]);
   }
 }

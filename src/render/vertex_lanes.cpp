@@ -20,11 +20,15 @@ void VertexBatch::resize(std::size_t rows) {
   size_ = rows;
   std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
   if (t.size() < padded) {  // the columns only grow, as ShadeBatch's
-    for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &shadow_c, &shadow_o, &next_beta, &next_o})
+    for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &shadow_c, &next_beta})
       for (Column& c : *v)
         c.resize(padded);
-    for (Column* c : {&t, &u_roulette, &shadow_tmax, &shadow_ok, &alive})
+    for (Column* c : {&t, &u_roulette, &shadow_ok, &alive})
       c->resize(padded);
+    for (auto* v : {&shadow_o, &next_o})
+      for (FloatColumn& c : *v)
+        c.resize(padded);
+    shadow_tmax.resize(padded);
   }
 }
 

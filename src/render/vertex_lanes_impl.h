@@ -82,6 +82,14 @@ Vec3Lanes<A> load3_widened(const std::array<std::vector<float>, 3>& c, std::size
   return {load_widened<A>(c[0], i), load_widened<A>(c[1], i), load_widened<A>(c[2], i)};
 }
 
+// Double lanes rounded to float into float columns [i, i + W).
+template <class A>
+void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const Vec3Lanes<A>& v) {
+  simd::store_narrowed<A>(c[0].data() + i, v.x);
+  simd::store_narrowed<A>(c[1].data() + i, v.y);
+  simd::store_narrowed<A>(c[2].data() + i, v.z);
+}
+
 // queue_shadow_ray's contribution (beta·f·Le·(w / pdf), w the power heuristic under MIS) and
 // origin, for the rows of lanes [i, i + W).
 template <class A>
@@ -104,11 +112,12 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
                        beta.z * f.z * le.z * scale};
   store3<A>(b.shadow_c, i, c);
   const Vec3Lanes<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
-  store3<A>(b.shadow_o, i, from);
+  store3_narrowed<A>(b.shadow_o, i, from);
   // shadow_ray_tmax: the light point projected on the ray, in dot's order; inf stays inf.
   const D dist = D::load_unaligned(lights.cones.dist.data() + i);
   const D along = (p.x - from.x) * wi.x + (p.y - from.y) * wi.y + (p.z - from.z) * wi.z;
-  xsimd::select(xsimd::isinf(dist), dist, dist + along).store_unaligned(b.shadow_tmax.data() + i);
+  simd::store_narrowed<A>(b.shadow_tmax.data() + i,
+                          xsimd::select(xsimd::isinf(dist), dist, dist + along));
   // No light point (pdf 0, or NaN): no shadow ray, whatever the other columns hold.
   as_flag<A>((pdf > D(0.0)) & !all_zero<A>(f) & all_finite<A>(c))
       .store_unaligned(b.shadow_ok.data() + i);
@@ -131,7 +140,7 @@ void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatc
   }
   alive = alive & all_finite<A>(nb) & !all_zero<A>(nb);
   store3<A>(b.next_beta, i, nb);
-  store3<A>(b.next_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
+  store3_narrowed<A>(b.next_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
   as_flag<A>(alive).store_unaligned(b.alive.data() + i);
 }
 

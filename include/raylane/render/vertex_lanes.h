@@ -25,6 +25,8 @@ namespace raylane {
 struct VertexBatch {
   using Column = std::vector<double>;
   using Columns3 = std::array<Column, 3>;
+  using FloatColumn = std::vector<float>;
+  using FloatColumns3 = std::array<FloatColumn, 3>;
   // Inputs. The vertex: the path's throughput, the hit point and geometric normal, the ray that
   // found it with its t (for the bound on the point's error), and roulette's number. The light
   // point and the BSDF's answers are read where their steps left them (finish_vertices).
@@ -32,11 +34,15 @@ struct VertexBatch {
   Column t, u_roulette;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
   // light, where it starts and where it ends (shadow_ray_tmax).
-  Columns3 shadow_c, shadow_o;
-  Column shadow_tmax, shadow_ok;
+  Columns3 shadow_c;
+  Column shadow_ok;
   // The next ray (alive 1 where the path goes on): the new throughput and origin.
-  Columns3 next_beta, next_o;
+  Columns3 next_beta;
   Column alive;
+  // The rays' origins and the shadow ray's end as the tracer takes them: computed in double,
+  // rounded to nearest float (ray_cast<float>).
+  FloatColumns3 shadow_o, next_o;
+  FloatColumn shadow_tmax;
 
   std::size_t size() const { return size_; }
   // Rows [0, n), padded to a multiple of 8 lanes. Rows below n keep their values; the columns

@@ -285,6 +285,19 @@ inline Doubles<A> load_widened(const float* p) {
   }
 }
 
+// Double lanes rounded to nearest float (as a scalar cast rounds) and stored at p[0, W).
+template <class A>
+inline void store_narrowed(float* p, const Doubles<A>& v) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    _mm256_storeu_ps(p, _mm512_cvtpd_ps(__m512d(v)));
+  } else if constexpr (kDoubleWidth<A> == 4) {
+    _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(v)));
+  } else {
+    static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
+    _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(__m128d(v)));
+  }
+}
+
 // signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).
 template <class A>
 inline xsimd::batch_bool<double, A> sign_bit(const Doubles<A>& v) {
