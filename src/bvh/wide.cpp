@@ -1,5 +1,7 @@
-// Collapsing the binary BVH into 8-wide nodes (the greedy surface-area rule of Wald et al.
-// 2008, "Getting Rid of Packets", §3: open the largest child until the node is full).
+// Collapsing the binary BVH into 8-wide nodes of least expected wide-node visits (below). The
+// greedy rule it replaced (Wald et al. 2008, "Getting Rid of Packets", §3: open the largest
+// child until the node is full) left the lattice's wide nodes a third full (bench/README.md,
+// issue 17's eighth sitting).
 #include <algorithm>
 #include <array>
 #include <limits>
