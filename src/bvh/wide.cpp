@@ -13,12 +13,6 @@ namespace raylane {
 
 namespace {
 
-double half_area(const BvhNode& n) {
-  double dx = double(n.hi[0]) - n.lo[0], dy = double(n.hi[1]) - n.lo[1];
-  double dz = double(n.hi[2]) - n.lo[2];
-  return dx * dy + dy * dz + dz * dx;
-}
-
 // The collapse that minimises the expected number of wide-node visits of a ray, by dynamic
 // programming over the binary tree (after Ylitie, Karras, Laine 2017, "Efficient Incoherent
 // Ray Traversal on GPUs Using Compressed Wide BVHs", §3.1, with the leaves kept as they are):
@@ -50,7 +44,7 @@ void plan_subtree(const Bvh& bvh, uint32_t b, CollapsePlan& p) {
     for (int j = 0; j < k; ++j)
       if (l[j] + r[k - 1 - j] < open[k]) open[k] = l[j] + r[k - 1 - j], split[k] = uint8_t(j + 1);
   }
-  const double as_node = half_area(n) + open[kWideArity - 1];  // n as a wide node of its own
+  const double as_node = n.half_area() + open[kWideArity - 1];  // n as a wide node of its own
   p.best[b][0] = as_node;
   p.take[b][0] = 0;
   for (int k = 1; k < kWideArity; ++k) {

@@ -14,12 +14,6 @@
 namespace raylane {
 namespace {
 
-double half_area(const BvhNode& n) {
-  double dx = double(n.hi[0]) - n.lo[0], dy = double(n.hi[1]) - n.lo[1];
-  double dz = double(n.hi[2]) - n.lo[2];
-  return dx * dy + dy * dz + dz * dx;
-}
-
 struct Cut {
   int nodes;    // binary nodes in the cut (the wide node's children)
   double cost;  // the wide nodes below them: inner nodes of the cut root wide nodes
@@ -45,7 +39,7 @@ double least_cost_as_root(const Bvh& bvh, uint32_t b) {
   for (const Cut& l : all_cuts(bvh, n.index))
     for (const Cut& r : all_cuts(bvh, n.index + 1))
       if (l.nodes + r.nodes <= kWideArity) best = std::min(best, l.cost + r.cost);
-  return half_area(n) + best;
+  return n.half_area() + best;
 }
 
 TEST(WideCollapse, RootsAreTheCutOfLeastArea) {
@@ -55,7 +49,7 @@ TEST(WideCollapse, RootsAreTheCutOfLeastArea) {
     ASSERT_FALSE(bvh.nodes[0].is_leaf());
     double cost = 0;
     for (uint32_t b = 0; b < bvh.nodes.size(); ++b)
-      if (bvh.wide.of_binary[b] != WideBvh::kNone) cost += half_area(bvh.nodes[b]);
+      if (bvh.wide.of_binary[b] != WideBvh::kNone) cost += bvh.nodes[b].half_area();
     double least = least_cost_as_root(bvh, 0);
     EXPECT_NEAR(cost, least, 1e-12 * least) << "seed " << seed;
   }
