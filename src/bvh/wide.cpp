@@ -1,6 +1,9 @@
-// Collapsing the binary BVH into 8-wide nodes (the greedy surface-area rule of Wald et al.
-// 2008, "Getting Rid of Packets", §3: open the largest child until the node is full).
+// Collapsing the binary BVH into 8-wide nodes of least expected wide-node visits (below). The
+// greedy rule it replaced (Wald et al. 2008, "Getting Rid of Packets", §3: open the largest
+// child until the node is full) left the lattice's wide nodes a third full (bench/README.md,
+// issue 17's eighth sitting).
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include "raylane/bvh/bvh.h"
@@ -10,30 +13,70 @@ namespace raylane {
 
 namespace {
 
-double half_area(const BvhNode& n) {
-  double dx = double(n.hi[0]) - n.lo[0], dy = double(n.hi[1]) - n.lo[1];
-  double dz = double(n.hi[2]) - n.lo[2];
-  return dx * dy + dy * dz + dz * dx;
+// The collapse that minimises the expected number of wide-node visits of a ray, by dynamic
+// programming over the binary tree (after Ylitie, Karras, Laine 2017, "Efficient Incoherent
+// Ray Traversal on GPUs Using Compressed Wide BVHs", §3.1, with the leaves kept as they are):
+// a wide node rooted at binary node n costs its surface area plus the cost of the wide nodes
+// under it, and its children are a cut of n's subtree of at most 8 nodes. best[n][k] is the
+// least cost of a cut of n's subtree with at most k + 1 nodes; take[n][k] how many of them go
+// to n's first child (0: n itself is the cut).
+struct CollapsePlan {
+  std::vector<std::array<double, kWideArity>> best;
+  std::vector<std::array<uint8_t, kWideArity>> take;
+};
+
+// Fills the plan for the subtree of binary node `b`, children first.
+void plan_subtree(const Bvh& bvh, uint32_t b, CollapsePlan& p) {
+  const BvhNode& n = bvh.nodes[b];
+  if (n.is_leaf()) {
+    p.best[b].fill(0.0);  // a leaf is a child slot whatever the collapse
+    p.take[b].fill(0);
+    return;
+  }
+  plan_subtree(bvh, n.index, p);
+  plan_subtree(bvh, n.index + 1, p);
+  const auto &l = p.best[n.index], &r = p.best[n.index + 1];
+  // Opened into k + 1 ≥ 2 slots: j + 1 for the first child, k − j for the second.
+  std::array<double, kWideArity> open;
+  std::array<uint8_t, kWideArity> split{};
+  for (int k = 1; k < kWideArity; ++k) {
+    open[k] = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < k; ++j)
+      if (l[j] + r[k - 1 - j] < open[k]) open[k] = l[j] + r[k - 1 - j], split[k] = uint8_t(j + 1);
+  }
+  const double as_node = n.half_area() + open[kWideArity - 1];  // n as a wide node of its own
+  p.best[b][0] = as_node;
+  p.take[b][0] = 0;
+  for (int k = 1; k < kWideArity; ++k) {
+    bool keep = as_node <= open[k];
+    p.best[b][k] = keep ? as_node : open[k];
+    p.take[b][k] = keep ? 0 : split[k];
+  }
 }
 
-// The binary nodes that become the children of one wide node: start from the two children
-// of `inner` and open the inner child of largest area while there is room.
-int gather_children(const Bvh& bvh, const BvhNode& inner, uint32_t (&out)[kWideArity]) {
-  int n = 0;
-  out[n++] = inner.index;
-  out[n++] = inner.index + 1;
-  while (n < kWideArity) {
-    int best = -1;
-    double best_area = -1;
-    for (int k = 0; k < n; ++k) {
-      const BvhNode& c = bvh.nodes[out[k]];
-      if (!c.is_leaf() && half_area(c) > best_area) best = k, best_area = half_area(c);
-    }
-    if (best < 0) break;
-    uint32_t opened = out[best];
-    out[best] = bvh.nodes[opened].index;
-    out[n++] = bvh.nodes[opened].index + 1;
+// Appends the cut of binary node b's subtree with at most k + 1 nodes that the plan chose.
+void append_cut(const Bvh& bvh, const CollapsePlan& p, uint32_t b, int k, uint32_t* out, int& n) {
+  const int j = p.take[b][k];
+  if (j == 0) {
+    out[n++] = b;
+    return;
   }
+  const uint32_t first = bvh.nodes[b].index;
+  append_cut(bvh, p, first, j - 1, out, n);
+  append_cut(bvh, p, first + 1, k - j, out, n);
+}
+
+// The binary nodes that become the children of the wide node rooted at inner node `b`.
+int gather_children(const Bvh& bvh, const CollapsePlan& p, uint32_t b,
+                    uint32_t (&out)[kWideArity]) {
+  const BvhNode& inner = bvh.nodes[b];
+  const auto &l = p.best[inner.index], &r = p.best[inner.index + 1];
+  int j_best = 1;
+  for (int j = 1; j < kWideArity; ++j)
+    if (l[j - 1] + r[kWideArity - 1 - j] < l[j_best - 1] + r[kWideArity - 1 - j_best]) j_best = j;
+  int n = 0;
+  append_cut(bvh, p, inner.index, j_best - 1, out, n);
+  append_cut(bvh, p, inner.index + 1, kWideArity - 1 - j_best, out, n);
   return n;
 }
 
@@ -65,14 +108,15 @@ void set_slot(const Bvh& bvh, WideNode& w, int k, const BvhNode& b) {
 
 // Makes the wide node for binary node `binary` at wide.nodes[slot], then its inner children,
 // depth first.
-void collapse(const Bvh& bvh, uint32_t binary, uint32_t slot, WideBvh& wide) {
+void collapse(const Bvh& bvh, const CollapsePlan& plan, uint32_t binary, uint32_t slot,
+              WideBvh& wide) {
   uint32_t children[kWideArity];
   const BvhNode& b = bvh.nodes[binary];
   int n = 1;
   if (b.is_leaf()) {
     children[0] = binary;  // a tree that is one leaf: a root with one child
   } else {
-    n = gather_children(bvh, b, children);
+    n = gather_children(bvh, plan, binary, children);
   }
   WideNode w{};
   for (int k = 0; k < kWideArity; ++k) {
@@ -90,7 +134,7 @@ void collapse(const Bvh& bvh, uint32_t binary, uint32_t slot, WideBvh& wide) {
     uint32_t child_slot = uint32_t(wide.nodes.size());
     wide.nodes.push_back({});
     wide.nodes[slot].child[k] = child_slot;
-    collapse(bvh, children[k], child_slot, wide);
+    collapse(bvh, plan, children[k], child_slot, wide);
   }
 }
 
@@ -102,7 +146,11 @@ WideBvh collapse_to_wide(const Bvh& bvh) {
   wide.nodes.reserve(bvh.nodes.size() / 4 + 1);
   wide.of_binary.assign(bvh.nodes.size(), WideBvh::kNone);
   wide.nodes.push_back({});
-  collapse(bvh, 0, 0, wide);
+  CollapsePlan plan;
+  plan.best.resize(bvh.nodes.size());
+  plan.take.resize(bvh.nodes.size());
+  plan_subtree(bvh, 0, plan);
+  collapse(bvh, plan, 0, 0, wide);
   return wide;
 }
 

@@ -93,5 +93,32 @@ TEST(CylinderRef, ThinFarCylinderIsHit) {
   EXPECT_NEAR(t, exact, 8 * 0x1p-53 * 1001);
 }
 
+// The table keeps no axis of its own: the axis is the rounded unit axis times the rounded
+// height, exact in double, so it points along u and is h long to the last bit of h·|u|.
+TEST(CylinderTable, AxisIsTheStoredUnitAxisTimesTheStoredHeight) {
+  CylinderTable c = one_cylinder({1, 2, 3}, {0.3, -1.7, 2.9}, 0.25);
+  Vec3d a = c.axis(0), u(c.unit_axis(0));
+  double h = c.h[0];
+  EXPECT_EQ(a.x, u.x * h);
+  EXPECT_EQ(a.y, u.y * h);
+  EXPECT_EQ(a.z, u.z * h);
+  // Within the rounding of u and h (a few ulps) of the given axis.
+  Vec3d given(0.3f, -1.7f, 2.9f);
+  EXPECT_LE(length(a - given), 4 * 0x1p-24 * length(given));
+}
+
+// An axis whose float components are finite but whose length is not: |a| overflows the float
+// height, so the row is refused rather than given h = inf (and an axis of inf and NaN).
+TEST(CylinderTable, AxisLongerThanTheLargestFloatIsRefused) {
+  CylinderTable c;
+  std::array<double, 7> p{0, 0, 0, 3e38, 3e38, 0, 1};
+  auto err = c.append(p, 0);
+  ASSERT_TRUE(err.has_value());
+  EXPECT_EQ(err->param, 3);
+  EXPECT_EQ(c.size(), 0u);
+  std::array<double, 7> ok{0, 0, 0, 2e38, 0, 0, 1};
+  EXPECT_FALSE(c.append(ok, 0).has_value());
+}
+
 }  // namespace
 }  // namespace raylane

@@ -57,13 +57,15 @@ TEST(TexCoord, CylinderSideAroundTheAxisFrameAndCapsCentred) {
   expect_uv(at({0.5, 0, 4}, {0, 0, 1}), 0.75, 0.5, "top cap");
   expect_uv(at({0, -0.5, 0}, {0, 0, -1}), 0.5, 0.25, "bottom cap");
   // A tilted axis: the frame is the axis's own, so the cap's centre is (0.5, 0.5) and a side
-  // point's v is its height along the axis.
+  // point's v is its height along the axis. The table's axis is its rounded unit axis times its
+  // rounded height (cylinder.h), within a few ulps of (3, 0, 4): the points are placed on it.
   auto tilted = one_row<CylinderTable>(std::array<double, 7>{1, 1, 1, 3, 0, 4, 2});
-  Vec3d a = normalize(Vec3d(3, 0, 4));
+  const double height = length(tilted.axis(0));
+  Vec3d a = normalize(tilted.axis(0));
   Frame f(a);
-  Vec3d side = Vec3d(1, 1, 1) + 2.5 * a + 2.0 * f.t;
+  Vec3d side = Vec3d(1, 1, 1) + (0.5 * height) * a + 2.0 * f.t;
   expect_uv(texcoord_ref(tilted, 0, Surface{side, f.t, f.t}), 0.25, 0.5, "tilted side");
-  Vec3d top = Vec3d(1, 1, 1) + 5.0 * a;
+  Vec3d top = Vec3d(1, 1, 1) + height * a;
   expect_uv(texcoord_ref(tilted, 0, Surface{top, a, a}), 0.5, 0.5, "tilted cap centre");
 }
 

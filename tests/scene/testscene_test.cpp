@@ -70,7 +70,8 @@ TEST(TestScene, BuiltInDefaultIsTheTestScene) {
     EXPECT_EQ(a.p2(i), b.p2(i));
     EXPECT_EQ(a.n1(i), b.n1(i));
   }
-  EXPECT_EQ(builtin.scene.table<Cylinder>().ax, file.scene.table<Cylinder>().ax);
+  EXPECT_EQ(builtin.scene.table<Cylinder>().ux, file.scene.table<Cylinder>().ux);
+  EXPECT_EQ(builtin.scene.table<Cylinder>().h, file.scene.table<Cylinder>().h);
 }
 
 }  // namespace

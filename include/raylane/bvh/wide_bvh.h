@@ -53,8 +53,8 @@ struct WideBvh {
   }
 };
 
-// The 8-wide tree over `bvh`: each wide node takes the binary subtree below a binary node,
-// opening the child of largest surface area until it has 8 children or only leaves remain.
+// The 8-wide tree over `bvh`: each wide node holds a cut of at most 8 nodes of the binary
+// subtree below a binary node, the cuts chosen for the least expected wide-node visits.
 WideBvh collapse_to_wide(const Bvh& bvh);
 
 }  // namespace raylane

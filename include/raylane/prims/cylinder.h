@@ -22,20 +22,25 @@
 
 namespace raylane {
 
-// The defining values (base, axis, radius) as given, rounded to float, plus the derived unit
-// axis and height, computed once in double from those floats (docs/hard-cases.md C6).
+// A cylinder is stored as base b, unit axis u, height h and radius r, in float: u and h are
+// computed once in double from the given axis rounded to float (docs/hard-cases.md C6) and
+// rounded to float, and the axis is u·h, which double holds exactly (two 24-bit significands).
+// The float kernel reads b, u, h, r; the reference, the bounds and the surfaces take the same
+// u·h in double, so all of them see one cylinder. Not storing the given axis as well saves 12
+// of a row's 36 bytes (bench/README.md, issue 17's eighth sitting); the cylinder then differs
+// from one through the given float axis by the rounding of u and h, a few ulps of |a|.
 struct CylinderTable {
   std::vector<float> bx, by, bz;  // base centre
-  std::vector<float> ax, ay, az;  // axis: base to top-cap centre
   std::vector<float> r;
-  std::vector<float> ux, uy, uz;  // derived: unit axis
-  std::vector<float> h;           // derived: |axis|
+  std::vector<float> ux, uy, uz;  // unit axis, rounded
+  std::vector<float> h;           // |axis|, rounded
   std::vector<uint32_t> material;
 
-  auto columns() { return std::tie(bx, by, bz, ax, ay, az, r, ux, uy, uz, h, material); }
+  auto columns() { return std::tie(bx, by, bz, r, ux, uy, uz, h, material); }
   std::size_t size() const { return r.size(); }
   Vec3f base(uint32_t i) const { return {bx[i], by[i], bz[i]}; }
-  Vec3f axis(uint32_t i) const { return {ax[i], ay[i], az[i]}; }
+  // Base to top-cap centre, exactly u·h.
+  Vec3d axis(uint32_t i) const { return Vec3d(unit_axis(i)) * double(h[i]); }
   Vec3f unit_axis(uint32_t i) const { return {ux[i], uy[i], uz[i]}; }
 
   // p = (bx, by, bz, ax, ay, az, r); |a| > 0 and r > 0 after rounding to float.
@@ -44,7 +49,7 @@ struct CylinderTable {
     Vec3d ad(a);
     double len = length(ad);
     if (!(len > 0.0)) return ParamError{3, "cylinder axis must be non-zero"};
-    if (!std::isfinite(len)) return ParamError{3, "cylinder axis is too long"};
+    if (!std::isfinite(float(len))) return ParamError{3, "cylinder axis is too long"};
     float radius = float(p[6]);
     if (!(radius > 0.0f))
       return ParamError{6, p[6] > 0 ? "cylinder radius rounds to 0 in single precision; it must "
@@ -54,9 +59,6 @@ struct CylinderTable {
     bx.push_back(float(p[0]));
     by.push_back(float(p[1]));
     bz.push_back(float(p[2]));
-    ax.push_back(a.x);
-    ay.push_back(a.y);
-    az.push_back(a.z);
     r.push_back(radius);
     ux.push_back(float(u.x));
     uy.push_back(float(u.y));

@@ -53,7 +53,11 @@ template <class A>
 SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
                               const HitRayLanes<A>& r) {
   using D = simd::Doubles<A>;
-  const simd::Vec3Doubles<A> a = load_rows3<A>(c.ax, c.ay, c.az, rows);
+  // The axis u·h (exact in double, cylinder.h), its length and direction as the reference takes
+  // them.
+  const simd::Vec3Doubles<A> uf = load_rows3<A>(c.ux, c.uy, c.uz, rows);
+  const D hf = simd::load_rows<A>(c.h, rows);
+  const simd::Vec3Doubles<A> a{uf.x * hf, uf.y * hf, uf.z * hf};
   const simd::Vec3Doubles<A> base = load_rows3<A>(c.bx, c.by, c.bz, rows);
   const D h = simd::sqrt<A>(dot_lanes<A>(a, a)), radius = simd::load_rows<A>(c.r, rows);
   const simd::Vec3Doubles<A> u{a.x / h, a.y / h, a.z / h};
