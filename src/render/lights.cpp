@@ -158,11 +158,13 @@ void LightSampler::apply_texture(std::size_t k, LightSample& s) const {
 void LightQueries::resize(std::size_t n) {
   size_ = n;
   cones.resize(n);
-  if (u_light.size() < n) {
+  // Padded as the cones are: the vertex lanes read le in whole batches of double lanes.
+  const std::size_t padded = (n + 7) / 8 * 8;
+  if (u_light.size() < padded) {
     for (Column* c : {&u_light, &u_part, &le[0], &le[1], &le[2]})
-      c->resize(n);
-    light.resize(n);
-    cone_light.resize(n);
+      c->resize(padded);
+    light.resize(padded);
+    cone_light.resize(padded);
   }
 }
 

@@ -15,13 +15,15 @@ void trace_avx2(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::
 
 void surfaces_avx2(const Scene& scene, const RayStream& rays, PrimTag kind,
                    std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, HitSink{hits});
+  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows,
+                                             HitSink<xsimd::fma3<xsimd::avx2>>{hits});
 }
 
 void surface_columns_avx2(const Scene& scene, const RayStream& rays, PrimTag kind,
                           std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
                           const SurfaceColumns& out) {
-  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows, ColumnSink{ray, hits, out});
+  surfaces_of_kind<xsimd::fma3<xsimd::avx2>>(scene, rays, kind, rows,
+                                             ColumnSink<xsimd::fma3<xsimd::avx2>>{ray, hits, out});
 }
 
 }  // namespace raylane::detail

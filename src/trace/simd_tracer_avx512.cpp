@@ -14,13 +14,14 @@ void trace_avx512(const Scene& scene, const Bvh& bvh, const RayStream& rays, std
 
 void surfaces_avx512(const Scene& scene, const RayStream& rays, PrimTag kind,
                      std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows, HitSink{hits});
+  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows, HitSink<xsimd::avx512bw>{hits});
 }
 
 void surface_columns_avx512(const Scene& scene, const RayStream& rays, PrimTag kind,
                             std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
                             const SurfaceColumns& out) {
-  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows, ColumnSink{ray, hits, out});
+  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows,
+                                    ColumnSink<xsimd::avx512bw>{ray, hits, out});
 }
 
 }  // namespace raylane::detail

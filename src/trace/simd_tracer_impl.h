@@ -163,7 +163,10 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
 }
 
 // Where surfaces_range finds a request's hits and puts their surfaces. Request row r is:
-// into the hit itself (hits[r], traced as the stream's ray r)...
+// into the hit itself (hits[r], traced as the stream's ray r)... (The sinks are templates on
+// the instruction set, though they do not use it, so that each per-ISA unit keeps its own copy
+// of their inline functions: docs/design.md, "SIMD and the instruction sets".)
+template <class A>
 struct HitSink {
   Hit* hits;
   uint32_t ray_of(uint32_t r) const { return r; }
@@ -176,6 +179,7 @@ struct HitSink {
 };
 
 // ... or into row r of columns, for hit ray[r] (the render's lane rows).
+template <class A>
 struct ColumnSink {
   const uint32_t* ray;
   const Hit* hits;

@@ -14,13 +14,14 @@ void trace_sse42(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
 
 void surfaces_sse42(const Scene& scene, const RayStream& rays, PrimTag kind,
                     std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<xsimd::sse4_2>(scene, rays, kind, rows, HitSink{hits});
+  surfaces_of_kind<xsimd::sse4_2>(scene, rays, kind, rows, HitSink<xsimd::sse4_2>{hits});
 }
 
 void surface_columns_sse42(const Scene& scene, const RayStream& rays, PrimTag kind,
                            std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
                            const SurfaceColumns& out) {
-  surfaces_of_kind<xsimd::sse4_2>(scene, rays, kind, rows, ColumnSink{ray, hits, out});
+  surfaces_of_kind<xsimd::sse4_2>(scene, rays, kind, rows,
+                                  ColumnSink<xsimd::sse4_2>{ray, hits, out});
 }
 
 }  // namespace raylane::detail

@@ -51,7 +51,7 @@ struct LightQueries {
   Column u_light, u_part;
   std::vector<PrimRef> light;
   std::array<Column, 3> le;
-  // Rows [0, n). The columns only grow.
+  // Rows [0, n), padded to a multiple of 8 lanes as ConeBatch. The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
   Vec3d ref(std::size_t r) const { return column3(cones.ref, r); }

@@ -33,14 +33,15 @@ struct VertexBatch {
   Columns3 beta, p, ng, ray_o, ray_d;
   Column t, u_roulette;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
-  // light, where it starts and where it ends (shadow_ray_tmax).
+  // light.
   Columns3 shadow_c;
   Column shadow_ok;
-  // The next ray (alive 1 where the path goes on): the new throughput and origin.
+  // The next ray (alive 1 where the path goes on): the new throughput.
   Columns3 next_beta;
   Column alive;
-  // The rays' origins and the shadow ray's end as the tracer takes them: computed in double,
-  // rounded to nearest float (ray_cast<float>).
+  // Where the shadow ray and the next ray start, and where the shadow ray ends
+  // (shadow_ray_tmax), as the tracer takes them: computed in double, rounded to nearest float
+  // (ray_cast<float>).
   FloatColumns3 shadow_o, next_o;
   FloatColumn shadow_tmax;
 

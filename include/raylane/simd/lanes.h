@@ -281,7 +281,9 @@ inline Doubles<A> load_widened(const float* p) {
     return Doubles<A>(_mm256_cvtps_pd(_mm_loadu_ps(p)));
   } else {
     static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
-    return Doubles<A>(_mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)))));
+    // _mm_loadl_epi64's pointer type may alias the floats (a double* load would not).
+    return Doubles<A>(
+        _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)))));
   }
 }
 
