@@ -118,6 +118,15 @@ struct LaneBsdf {
 
   LaneEval<A> evaluate(const V3<A>& wi) const;
   V3<A> sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const;
+
+  // No lane has a glossy or a transmission lobe (pr = pt = 0; the course scene's materials are
+  // all diffuse): evaluate_diffuse then gives evaluate()'s answers bit for bit, and where every
+  // lane also picks its diffuse lobe (u0 < pd), sample_diffuse gives sample()'s. They are the
+  // same operations on the side the lanes take, without the other lobes' powers, roots and
+  // divisions.
+  bool diffuse_only() const { return simd::none<A>((pr > F<A>(0.0f)) | (pt > F<A>(0.0f))); }
+  LaneEval<A> evaluate_diffuse(const V3<A>& wi) const;
+  V3<A> sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const;
 };
 
 template <class A>
@@ -164,6 +173,22 @@ LaneEval<A> LaneBsdf<A>::evaluate(const V3<A>& wi) const {
   return out;
 }
 
+// evaluate() with pr = pt = 0 in every lane: no total internal reflection and no transmission
+// (both need pt > 0), so f is the diffuse term plus evaluate()'s two zero terms and the density
+// the diffuse one plus (pr + 0)·lobe = +0 (the lobe is finite: a positive density over a
+// positive cosine, or 0). The zeros are added as evaluate() adds them (−0 + 0 is +0).
+template <class A>
+LaneEval<A> LaneBsdf<A>::evaluate_diffuse(const V3<A>& wi) const {
+  const F<A> zero(0.0f), inv_pi(0.318309886183790671538f);
+  F<A> cos_i = dot(wi, n);
+  M<A> reflected = live & (cos_i > zero);
+  LaneEval<A> out;
+  for (int k = 0; k < 3; ++k)
+    out.f[k] = simd::select(reflected, kd[k] * cos_i * inv_pi + zero + zero, zero);
+  out.pdf = simd::select(reflected, pd * cos_i * inv_pi + zero, zero);
+  return out;
+}
+
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (as core/warps.cpp's Frame):
 // local (x, y, z) around n to world.
 template <class A>
@@ -204,21 +229,39 @@ V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& 
   return wi * (one / len);
 }
 
+// sample() where every lane's u0 < pd: the diffuse side of each of its selects.
+template <class A>
+V3<A> LaneBsdf<A>::sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const {
+  const F<A> zero(0.0f), one(1.0f);
+  simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
+  F<A> sin_t = xsimd::sqrt(u1), cos_t = xsimd::sqrt(xsimd::max(zero, one - u1));
+  V3<A> wi = to_world<A>(n, V3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
+  F<A> len = xsimd::sqrt(dot(wi, wi));
+  valid = live & (len > zero) & finite<A>(len);
+  return wi * (one / len);
+}
+
 template <class A>
 void shade_lanes_range(const LaneMaterials& materials, ShadeBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   for (std::size_t i = 0; i < b.size(); i += W) {
     LaneBsdf<A> bsdf(materials, b, i);
     M<A> valid;
-    V3<A> wi = bsdf.sample(simd::load<A>(b.u_lobe.data() + i), simd::load<A>(b.u1.data() + i),
-                           simd::load<A>(b.u2.data() + i), valid);
-    LaneEval<A> e = bsdf.evaluate(wi);
+    const F<A> u0 = simd::load<A>(b.u_lobe.data() + i), u1 = simd::load<A>(b.u1.data() + i),
+               u2 = simd::load<A>(b.u2.data() + i);
+    const bool diffuse = bsdf.diffuse_only();
+    V3<A> wi = diffuse && simd::none<A>(!(u0 < bsdf.pd)) ? bsdf.sample_diffuse(u1, u2, valid)
+                                                         : bsdf.sample(u0, u1, u2, valid);
+    auto evaluate = [&](const V3<A>& w) {
+      return diffuse ? bsdf.evaluate_diffuse(w) : bsdf.evaluate(w);
+    };
+    LaneEval<A> e = evaluate(wi);
     valid = valid & (e.pdf > F<A>(0.0f)) & finite<A>(e.pdf);
     store3<A>(b.wi, i, wi);
     for (int k = 0; k < 3; ++k)
       simd::store<A>(b.value[k].data() + i, simd::select(valid, e.f[k], F<A>(0.0f)));
     simd::store<A>(b.pdf.data() + i, simd::select(valid, e.pdf, F<A>(0.0f)));
-    LaneEval<A> l = bsdf.evaluate(load3<A>(b.light_wi, i));
+    LaneEval<A> l = evaluate(load3<A>(b.light_wi, i));
     for (int k = 0; k < 3; ++k)
       simd::store<A>(b.light_f[k].data() + i, l.f[k]);
     simd::store<A>(b.light_pdf.data() + i, l.pdf);

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <cmath>
 #include <optional>
 
@@ -271,6 +273,58 @@ TEST(ShadeLanes, DegenerateRowsGiveNoSampleAndNoNaN) {
         EXPECT_EQ(b.light_pdf[i], 0.0f) << i;
       }
     }
+  }
+}
+
+// Batches whose materials are all diffuse take the diffuse-only path (evaluate_diffuse,
+// sample_diffuse); a glossy row among them sends the batch down the general path. The same
+// rows give the same answers bit for bit either way: batch `alone` holds diffuse rows only
+// (two kd, a few rows black, some edge-on), `mixed` the same rows with a glossy row
+// after every third, so that every batch of 4, 8 or 16 lanes holds one. A few rows have
+// u0 = 1, which no diffuse lobe takes (pd = 1): their batches sample by the general path.
+TEST(ShadeLanes, DiffuseBatchesAreTheGeneralPathsAnswers) {
+  LaneMaterials materials({make_material({0.7f, 0.5f, 0.3f}, {0, 0, 0}, 10),
+                           make_material({0, 0, 0}, {0, 0, 0}, 10),
+                           make_material({0.2f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, 30)});
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    ShadeBatch alone = random_batch(61, 1, 17);  // 61: a partly filled last batch
+    for (std::size_t i = 7; i < alone.size(); i += 13)
+      alone.material[i] = 1;  // black: its batch samples by the general path
+    for (std::size_t i = 0; i < alone.size(); i += 9)
+      set3(alone.wo, i, Vec3f(1, 0, 0)), set3(alone.n, i, Vec3f(0, 0, 1));
+    for (std::size_t i = 5; i < alone.size(); i += 23)
+      alone.u_lobe[i] = 1.0f;
+    ShadeBatch mixed;
+    mixed.resize(alone.size() + alone.size() / 3);
+    std::vector<std::size_t> at;  // where row i of `alone` is in `mixed`
+    for (std::size_t i = 0, j = 0; i < alone.size(); ++i, ++j) {
+      if (i > 0 && i % 3 == 0) mixed.material[j++] = 2;  // the glossy row
+      at.push_back(j);
+      mixed.material[j] = alone.material[i];
+      for (auto c : {&ShadeBatch::n, &ShadeBatch::wo, &ShadeBatch::light_wi})
+        for (int k = 0; k < 3; ++k)
+          (mixed.*c)[k][j] = (alone.*c)[k][i];
+      mixed.u_lobe[j] = alone.u_lobe[i], mixed.u1[j] = alone.u1[i], mixed.u2[j] = alone.u2[i];
+    }
+    shade_lanes(isa, materials, alone);
+    shade_lanes(isa, materials, mixed);
+    int sampled = 0;
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+      const std::size_t j = at[i];
+      for (auto c : {&ShadeBatch::wi, &ShadeBatch::value, &ShadeBatch::light_f})
+        for (int k = 0; k < 3; ++k) {
+          const ShadeBatch::Column &a = (alone.*c)[k], &m = (mixed.*c)[k];
+          ASSERT_EQ(std::bit_cast<uint32_t>(a[i]), std::bit_cast<uint32_t>(m[j])) << "row " << i;
+        }
+      ASSERT_EQ(std::bit_cast<uint32_t>(alone.pdf[i]), std::bit_cast<uint32_t>(mixed.pdf[j]))
+          << "row " << i;
+      ASSERT_EQ(std::bit_cast<uint32_t>(alone.light_pdf[i]),
+                std::bit_cast<uint32_t>(mixed.light_pdf[j]))
+          << "row " << i;
+      sampled += alone.pdf[i] > 0;
+    }
+    EXPECT_GT(sampled, 30);
   }
 }
 
