@@ -78,22 +78,33 @@ F<A> g1(const F<A>& cos_v, const F<A>& cos_vm, const F<A>& g1_scale) {
 }
 
 // One batch of W shading points: the material's columns gathered, and what Bsdf's constructor
-// derives from the normal and wo.
+// derives from the normal and wo. A batch that takes only diffuse lobes (all_diffuse: no glossy
+// or transmission lobe, and every lane's u0 below pd) gathers only what the diffuse lobe reads
+// (gathers are the lanes' slowest loads); the other columns are then 0 and unread.
 template <class A>
 struct LaneBsdf {
   F<A> kd[3], ks[3], pd, pr, pt, alpha, d_scale, pm_scale, g1_scale;
   V3<A> n, wo;
   F<A> cos_o, eta_o, eta_i;
   M<A> live;  // dot(ns, wo) is finite and not 0 (the scalar Bsdf's black() otherwise)
+  bool diffuse_only_, all_diffuse_;
 
-  LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i) {
+  LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i, const F<A>& u0) {
     auto idx = simd::load<A>(b.material.data() + i);
     auto gather = [&](const std::vector<float>& col) { return simd::gather<A>(col.data(), idx); };
+    pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt);
+    diffuse_only_ = simd::none<A>((pr > F<A>(0.0f)) | (pt > F<A>(0.0f)));
+    all_diffuse_ = diffuse_only_ && simd::none<A>(!(u0 < pd));
     for (int k = 0; k < 3; ++k)
-      kd[k] = gather(m.kd[k]), ks[k] = gather(m.ks[k]);
-    pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt), alpha = gather(m.alpha);
-    d_scale = gather(m.d_scale), pm_scale = gather(m.pm_scale), g1_scale = gather(m.g1_scale);
-    F<A> ior = gather(m.ior);
+      kd[k] = gather(m.kd[k]), ks[k] = F<A>(0.0f);
+    F<A> ior(1.0f);
+    alpha = d_scale = pm_scale = g1_scale = F<A>(0.0f);
+    if (!all_diffuse_) {
+      for (int k = 0; k < 3; ++k)
+        ks[k] = gather(m.ks[k]);
+      alpha = gather(m.alpha), d_scale = gather(m.d_scale), pm_scale = gather(m.pm_scale);
+      g1_scale = gather(m.g1_scale), ior = gather(m.ior);
+    }
     V3<A> ns = load3<A>(b.n, i);
     wo = load3<A>(b.wo, i);
     F<A> c = dot(ns, wo);
@@ -124,7 +135,8 @@ struct LaneBsdf {
   // lane also picks its diffuse lobe (u0 < pd), sample_diffuse gives sample()'s. They are the
   // same operations on the side the lanes take, without the other lobes' powers, roots and
   // divisions.
-  bool diffuse_only() const { return simd::none<A>((pr > F<A>(0.0f)) | (pt > F<A>(0.0f))); }
+  bool diffuse_only() const { return diffuse_only_; }
+  bool all_diffuse() const { return all_diffuse_; }
   LaneEval<A> evaluate_diffuse(const V3<A>& wi) const;
   V3<A> sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const;
 };
@@ -245,13 +257,13 @@ template <class A>
 void shade_lanes_range(const LaneMaterials& materials, ShadeBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   for (std::size_t i = 0; i < b.size(); i += W) {
-    LaneBsdf<A> bsdf(materials, b, i);
     M<A> valid;
     const F<A> u0 = simd::load<A>(b.u_lobe.data() + i), u1 = simd::load<A>(b.u1.data() + i),
                u2 = simd::load<A>(b.u2.data() + i);
+    LaneBsdf<A> bsdf(materials, b, i, u0);
     const bool diffuse = bsdf.diffuse_only();
-    V3<A> wi = diffuse && simd::none<A>(!(u0 < bsdf.pd)) ? bsdf.sample_diffuse(u1, u2, valid)
-                                                         : bsdf.sample(u0, u1, u2, valid);
+    V3<A> wi =
+        bsdf.all_diffuse() ? bsdf.sample_diffuse(u1, u2, valid) : bsdf.sample(u0, u1, u2, valid);
     auto evaluate = [&](const V3<A>& w) {
       return diffuse ? bsdf.evaluate_diffuse(w) : bsdf.evaluate(w);
     };
