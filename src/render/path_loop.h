@@ -82,7 +82,7 @@ struct LaneRows {
 
 // A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
 // once they have grown to a tile's size.
-struct ThreadBuffers {
+struct alignas(128) ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index
   // Ray k of `rays` is path live[k]'s, ray k of next_rays is next_live[k]'s: float columns, the
