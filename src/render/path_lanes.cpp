@@ -23,7 +23,7 @@ namespace {
 void set_bsdf_numbers(TileContext& ctx, std::size_t r, const std::array<double, 4>& u,
                       double u_roulette) {
   ShadeBatch& sb = ctx.buffers.shade;
-  sb.u1[r] = float(u[0]), sb.u2[r] = float(u[1]), sb.u_lobe[r] = float(u[2]);
+  sb.u1[r] = unit_float(u[0]), sb.u2[r] = unit_float(u[1]), sb.u_lobe[r] = unit_float(u[2]);
   ctx.buffers.vertices.u_roulette[r] = u_roulette;
 }
 
@@ -57,9 +57,14 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   }
   // Roulette's number only at the depths that have roulette (the vertex lanes read it only
   // there).
+  // The lobe's number only where a material has more than one lobe (else 0, which picks the
+  // diffuse lobe as every number in [0, 1) would): for a diffuse-only scene below roulette's
+  // depth, no table gathers at all.
   ShadeBatch& sb = b.shade;
+  const bool lobe = !ctx.lanes.materials.lobe_unread;
+  if (!lobe) std::fill_n(sb.u_lobe.begin(), b.lane_count, 0.0f);
   SobolNumbers to;
-  to.as_float = {sb.u1.data(), sb.u2.data(), sb.u_lobe.data(), nullptr};
+  to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
   if (roulette) to.as_double[3] = b.vertices.u_roulette.data();
   sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s, roulette ? 4 : 3, to);
 }

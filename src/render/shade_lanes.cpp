@@ -45,6 +45,7 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     g1_scale.push_back(float(std::sqrt(0.5 * a + 1)));
     // Textured Kd varies per hit: the double Bsdf shades it (issue 15 left lanes for later).
     in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
+    if (in_lanes.back() && (pr.back() > 0 || pt.back() > 0)) lobe_unread = false;
   }
 }
 

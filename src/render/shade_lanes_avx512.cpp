@@ -14,10 +14,10 @@ void shade_lanes_avx512(const LaneMaterials& materials, ShadeBatch& batch) {
   shade_lanes_range<xsimd::avx512bw>(materials, batch);
 }
 
-void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                          const SobolNumbers& numbers) {
-  sobol_groups_range<xsimd::avx512bw>(reversed_index, group, components, batch);
-  sobol_numbers<xsimd::avx512bw>(components, batch, numbers);
+  sobol_groups_range<xsimd::avx512bw>(reversed_index, group, which, batch);
+  sobol_numbers<xsimd::avx512bw>(which, batch, numbers);
 }
 
 void sample_cones_avx512(ConeBatch& batch) {

@@ -14,10 +14,10 @@ void shade_lanes_sse42(const LaneMaterials& materials, ShadeBatch& batch) {
   shade_lanes_range<xsimd::sse4_2>(materials, batch);
 }
 
-void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                         const SobolNumbers& numbers) {
-  sobol_groups_range<xsimd::sse4_2>(reversed_index, group, components, batch);
-  sobol_numbers<xsimd::sse4_2>(components, batch, numbers);
+  sobol_groups_range<xsimd::sse4_2>(reversed_index, group, which, batch);
+  sobol_numbers<xsimd::sse4_2>(which, batch, numbers);
 }
 
 void sample_cones_sse42(ConeBatch& batch) {

@@ -1,5 +1,6 @@
 #include "raylane/render/sobol.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 
@@ -117,11 +118,11 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 }  // namespace
 
 namespace detail {
-void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                         const SobolNumbers& numbers);
-void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                        const SobolNumbers& numbers);
-void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, int components, SobolBatch& batch,
+void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                          const SobolNumbers& numbers);
 
 const uint32_t* sobol_byte_tables() {
@@ -145,7 +146,16 @@ void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, in
   auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
              : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
                                  : detail::sobol_groups_sse42;
-  fn(reverse_bits(index), group, components, batch, numbers);
+  // Components 2 and 3 only where something reads them: below `components`, and, when
+  // `numbers` names destinations, one of them.
+  const bool named = std::any_of(numbers.as_double.begin(), numbers.as_double.end(),
+                                 [](const double* p) { return p; }) ||
+                     std::any_of(numbers.as_float.begin(), numbers.as_float.end(),
+                                 [](const float* p) { return p; });
+  unsigned which = 3u;
+  for (int c = 2; c < components; ++c)
+    if (!named || numbers.as_double[c] || numbers.as_float[c]) which |= 1u << c;
+  fn(reverse_bits(index), group, which, batch, numbers);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

@@ -3,6 +3,7 @@
 // code's, on 32-bit unsigned lanes: the same values bit for bit (tests/render/sobol_test.cpp).
 #pragma once
 
+#include <algorithm>
 #include <type_traits>
 
 #include "raylane/render/rng.h"
@@ -108,9 +109,10 @@ void group_seeds(uint32_t group, SobolBatch& b) {
   }
 }
 
-// Components [0, components) of the groups; dimensions 2 and 3 (the gathers) only if asked.
+// The groups' components in the set `which` (bit c: component c; 0 and 1 always): dimensions 2
+// and 3 (the gathers) only if asked.
 template <class A>
-void sobol_groups_range(uint32_t reversed_index, uint32_t group, int components, SobolBatch& b) {
+void sobol_groups_range(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   group_seeds<A>(group, b);
   for (std::size_t i = 0; i < b.padded_size(); i += W) {
@@ -121,27 +123,29 @@ void sobol_groups_range(uint32_t reversed_index, uint32_t group, int components,
     U32<A> radical = reverse_bits_lanes<A>(r);
     store_component<A>(b, i, 0, radical, seeds);
     store_component<A>(b, i, 1, superset_xor_lanes<A>(radical), seeds);
-    if (components > 2) store_component<A>(b, i, 2, table_point_lanes<A>(r, 2), seeds);
-    if (components > 3) store_component<A>(b, i, 3, table_point_lanes<A>(r, 3), seeds);
+    if (which & 4u) store_component<A>(b, i, 2, table_point_lanes<A>(r, 2), seeds);
+    if (which & 8u) store_component<A>(b, i, 3, table_point_lanes<A>(r, 3), seeds);
   }
 }
 
-// The groups' components as numbers into the callers' columns (SobolNumbers): plain loops,
-// which the compiler vectorises with this file's instruction set (the baseline build has no
-// unsigned-to-double conversion in lanes). The expressions are sobol_group's, so the values are
-// its own bit for bit. (A template on A, though A is unused, so that each instruction set's
-// unit keeps its own copy: one inline function would be one definition for the linker to pick.)
+// The groups' components in `which` as numbers into the callers' columns (SobolNumbers): plain
+// loops, which the compiler vectorises with this file's instruction set (the baseline build has
+// no unsigned-to-double conversion in lanes). The expressions are sobol_group's, so the doubles
+// are its own bit for bit and the floats unit_float's of them. (A template on A, though A is
+// unused, so that each instruction set's unit keeps its own copy: one inline function would be
+// one definition for the linker to pick.)
 template <class A>
-void sobol_numbers(int components, const SobolBatch& b, const SobolNumbers& to) {
+void sobol_numbers(unsigned which, const SobolBatch& b, const SobolNumbers& to) {
   const std::size_t n = b.size();
-  for (std::size_t c = 0; c < std::size_t(components); ++c) {
+  for (std::size_t c = 0; c < 4; ++c) {
+    if (!(which & (1u << c))) continue;
     const uint32_t* u = b.u[c].data();
     if (double* d = to.as_double[c])
       for (std::size_t r = 0; r < n; ++r)
         d[r] = u[r] * 0x1p-32;
     if (float* f = to.as_float[c])
       for (std::size_t r = 0; r < n; ++r)
-        f[r] = float(u[r] * 0x1p-32);
+        f[r] = std::min(float(u[r] * 0x1p-32), kLargestBelowOne);  // unit_float
   }
 }
 

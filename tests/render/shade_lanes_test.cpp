@@ -16,6 +16,7 @@
 #include "raylane/render/bsdf.h"
 #include "raylane/render/rng.h"
 #include "raylane/render/sampling.h"
+#include "raylane/render/sobol.h"
 
 namespace raylane {
 namespace {
@@ -333,6 +334,43 @@ TEST(ShadeLanes, IndexMatchedTransmissionStaysWithTheDoubleBsdf) {
                    make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.5f),
                    make_material({0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0, {0, 0, 0}, 1.0f)});
   EXPECT_EQ(m.in_lanes, (std::vector<uint8_t>{0, 1, 1}));
+}
+
+// lobe_unread holds when every material shaded in lanes is diffuse alone or black, and then
+// the lobe number really is unread: the same rows with numbers 0 and just below 1 give the same
+// samples bit for bit (the render leaves the number out for such scenes).
+TEST(ShadeLanes, LobeNumberIsUnreadOnlyWhenEveryLaneMaterialIsDiffuseAlone) {
+  const Material diffuse = make_material({0.7f, 0.5f, 0.3f}, {0, 0, 0}, 10);
+  const Material black = make_material({0, 0, 0}, {0, 0, 0}, 10);
+  const Material glossy = make_material({0.4f, 0.3f, 0.2f}, {0.3f, 0.3f, 0.3f}, 30);
+  const Material glass = make_material({0, 0, 0}, {0, 0, 0}, 50, {0.9f, 0.8f, 0.9f}, 1.33f);
+  Material textured_glossy = glossy;
+  textured_glossy.texture = 0;  // shaded by the double Bsdf
+  const Material matched = make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.0f);  // too
+  EXPECT_TRUE(LaneMaterials({diffuse, black, textured_glossy, matched}).lobe_unread);
+  EXPECT_FALSE(LaneMaterials({diffuse, glossy}).lobe_unread);
+  EXPECT_FALSE(LaneMaterials({glass, diffuse}).lobe_unread);
+
+  const LaneMaterials m({diffuse, make_material({0.2f, 0.9f, 0.2f}, {0, 0, 0}, 2000)});
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    ShadeBatch low = random_batch(101, 2, 17), high = random_batch(101, 2, 17);
+    for (std::size_t i = 0; i < low.size(); ++i)
+      low.u_lobe[i] = 0.0f, high.u_lobe[i] = unit_float(1.0);
+    shade_lanes(isa, m, low);
+    shade_lanes(isa, m, high);
+    int sampled = 0;
+    for (std::size_t i = 0; i < low.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(low.wi[k][i]), std::bit_cast<uint32_t>(high.wi[k][i]));
+        ASSERT_EQ(std::bit_cast<uint32_t>(low.value[k][i]),
+                  std::bit_cast<uint32_t>(high.value[k][i]));
+      }
+      ASSERT_EQ(std::bit_cast<uint32_t>(low.pdf[i]), std::bit_cast<uint32_t>(high.pdf[i]));
+      sampled += low.pdf[i] > 0;
+    }
+    EXPECT_GT(sampled, 30);
+  }
 }
 
 }  // namespace

@@ -124,7 +124,8 @@ namespace {
 
 // The lanes compute sobol_group for many pixels at once: bit for bit the scalar values, at
 // every instruction set this CPU has, for partly filled batches too; asked for fewer
-// components, the same values for those and the rest untouched.
+// components (or given destinations for some), the same values for those and the rest
+// untouched.
 TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(std::string(isa_name(isa)));
@@ -142,37 +143,74 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
       numbers.as_double[c] = (as_double[c] = std::vector<double>(b.size() + 1)).data();
     for (int c : {1, 2})
       numbers.as_float[c] = (as_float[c] = std::vector<float>(b.size() + 1)).data();
-    for (uint32_t index : {0u, 1u, 5u, 1000u, 0xfffffffeu})
-      for (uint32_t group : {0u, 1u, 9u})
-        for (int components : {4, 3, 2}) {
-          for (auto& column : b.u)
-            std::fill(column.begin(), column.end(), 0xdeadbeefu);
-          for (auto& column : as_double)
-            std::fill(column.begin(), column.end(), kUnwritten);
-          for (auto& column : as_float)
-            std::fill(column.begin(), column.end(), float(kUnwritten));
-          sobol_groups(isa, index, group, b, components, numbers);
-          for (std::size_t i = 0; i <= b.size(); ++i) {
-            const bool row = i < b.size();
-            std::array<double, 4> ref =
-                row ? sobol_group(b.seed[i], index, group) : std::array<double, 4>{};
-            for (int c = 0; c < 4; ++c) {
-              const bool computed = row && c < components;
-              if (row) {
-                ASSERT_EQ(b.u[c][i], computed ? uint32_t(ref[c] * 0x1p32) : 0xdeadbeefu)
-                    << "row " << i << " component " << c;
-              }
-              if (!as_double[c].empty()) {
-                ASSERT_EQ(as_double[c][i], computed ? ref[c] : kUnwritten)
-                    << "row " << i << " component " << c;
-              }
-              if (!as_float[c].empty()) {
-                ASSERT_EQ(as_float[c][i], computed ? float(ref[c]) : float(kUnwritten))
-                    << "row " << i << " component " << c;
+    const SobolNumbers none;
+    for (const SobolNumbers* to : {static_cast<const SobolNumbers*>(&numbers), &none})
+      for (uint32_t index : {0u, 1u, 5u, 1000u, 0xfffffffeu})
+        for (uint32_t group : {0u, 1u, 9u})
+          for (int components : {4, 3, 2}) {
+            for (auto& column : b.u)
+              std::fill(column.begin(), column.end(), 0xdeadbeefu);
+            for (auto& column : as_double)
+              std::fill(column.begin(), column.end(), kUnwritten);
+            for (auto& column : as_float)
+              std::fill(column.begin(), column.end(), float(kUnwritten));
+            sobol_groups(isa, index, group, b, components, *to);
+            const bool named = to == &numbers;
+            for (std::size_t i = 0; i <= b.size(); ++i) {
+              const bool row = i < b.size();
+              std::array<double, 4> ref =
+                  row ? sobol_group(b.seed[i], index, group) : std::array<double, 4>{};
+              for (int c = 0; c < 4; ++c) {
+                // Component 3 has no destination in `numbers`: not computed when it is given.
+                const bool computed = row && c < components && (c < 2 || !named || c != 3);
+                if (row) {
+                  ASSERT_EQ(b.u[c][i], computed ? uint32_t(ref[c] * 0x1p32) : 0xdeadbeefu)
+                      << "row " << i << " component " << c;
+                }
+                const bool written = computed && named;
+                if (!as_double[c].empty()) {
+                  ASSERT_EQ(as_double[c][i], written ? ref[c] : kUnwritten)
+                      << "row " << i << " component " << c;
+                }
+                if (!as_float[c].empty()) {
+                  ASSERT_EQ(as_float[c][i], written ? unit_float(ref[c]) : float(kUnwritten))
+                      << "row " << i << " component " << c;
+                }
               }
             }
           }
-        }
+  }
+}
+
+// A number in [0, 1) as float never rounds up to 1: the float shading's lobe choice (u < pd,
+// pd = 1 for a diffuse-only material) would take a lobe the material does not have. The
+// largest Sobol number, (2^32 − 1)·2^-32, rounds to 1 as a plain float.
+TEST(Sobol, FloatNumbersStayBelowOne) {
+  const double largest = 0xffffffffu * 0x1p-32;
+  ASSERT_EQ(float(largest), 1.0f);  // what unit_float is for
+  EXPECT_LT(unit_float(largest), 1.0f);
+  EXPECT_EQ(unit_float(largest), std::nextafter(1.0f, 0.0f));
+  for (double u : {0.0, 0x1p-40, 0.25, 0.5, 1 - 0x1p-24, 1 - 0x1p-24 - 0x1p-30})
+    EXPECT_EQ(unit_float(u), float(u)) << u;  // rounded to nearest below the tie at 1 − 2^-25
+  for (double u : {1 - 0x1p-25, 1 - 0x1p-26})
+    EXPECT_EQ(unit_float(u), std::nextafter(1.0f, 0.0f)) << u;
+  // The lanes' float columns too: a pixel seed (found by search) whose group 2, sample 3 has a
+  // lobe number that rounds to 1 as a plain float.
+  const uint64_t seed = 0xebddb830daf658b8ull;
+  const double u = sobol_group(seed, 3, 2)[2];
+  ASSERT_EQ(float(u), 1.0f);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    SobolBatch b;
+    b.resize(20);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      b.seed[i] = i == 13 ? seed : mix64(i);
+    std::vector<float> lobe(b.size());
+    SobolNumbers to;
+    to.as_float[2] = lobe.data();
+    sobol_groups(isa, 3, 2, b, 3, to);
+    EXPECT_EQ(lobe[13], unit_float(u));
+    EXPECT_LT(lobe[13], 1.0f);
   }
 }
 

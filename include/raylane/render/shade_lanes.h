@@ -32,6 +32,10 @@ struct LaneMaterials {
   std::vector<float> g1_scale;  // √(α/2 + 1): the Smith G1 approximation's a = g1_scale·cot θv
   std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission,
                                   // a textured Kd)
+  // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):
+  // a sample's lobe number is never read (u < 1 = pd picks the diffuse lobe; black rows are
+  // not shaded), and the render does not draw it.
+  bool lobe_unread = true;
 };
 
 // One wavefront's shading points in float columns. Fill rows [0, size) with resize() and the

@@ -7,6 +7,7 @@
 // depend on the thread or the order they are drawn in.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,14 @@
 #include "raylane/simd/isa.h"
 
 namespace raylane {
+
+// A number u in [0, 1) as float: rounded to nearest, but never up to 1 (every u above
+// 1 − 2^-25 would round to 1). The float shading picks a lobe by u < pd, and pd is 1 for a
+// material that is diffuse alone, so a 1 would pick a lobe it does not have.
+inline constexpr float kLargestBelowOne = 0x1.fffffep-1f;
+inline float unit_float(double u) {
+  return std::min(float(u), kLargestBelowOne);
+}
 
 // The 32-bit Sobol point of `index` in dimension d = 0..3 (dimension 0 is van der Corput's
 // radical inverse; 1..3 use Joe and Kuo's 2008 direction numbers, "Constructing Sobol
@@ -45,15 +54,16 @@ struct SobolBatch {
   std::size_t size_ = 0;
 };
 // Where sobol_groups also writes component c of rows [0, size) as the number it stands for,
-// u[c]·2^-32 (sobol_group's, bit for bit): into a double column, a float column (rounded to
-// nearest), both or neither (null). The consumers' own columns, written in the same call
-// instead of a pass of their own.
+// u[c]·2^-32 (sobol_group's, bit for bit): into a double column, a float column (unit_float:
+// rounded to nearest, and below 1), both or neither (null). The consumers' own columns,
+// written in the same call instead of a pass of their own.
 struct SobolNumbers {
   std::array<double*, 4> as_double{};
   std::array<float*, 4> as_float{};
 };
 // Only components [0, components) are computed (at least 2; the others keep what they held):
 // a decision that reads fewer numbers saves the rest, dimensions 2 and 3 most (table gathers).
+// When `numbers` names destinations, component 2 or 3 without one is not computed either.
 void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components = 4,
                   const SobolNumbers& numbers = {});
 
