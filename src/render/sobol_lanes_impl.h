@@ -86,9 +86,6 @@ void store_component(SobolBatch& b, std::size_t i, uint32_t c, const U32<A>& poi
 template <class A>
 void group_seeds(uint32_t group, SobolBatch& b) {
   const uint64_t salt = uint64_t(group) * 0x9e3779b97f4a7c15ull;
-  auto split = [&b](std::size_t i, uint64_t g) {
-    b.scramble[i] = uint32_t(g), b.component[i] = uint32_t(g >> 32);
-  };
   if constexpr (std::is_base_of_v<xsimd::avx512dq, A>) {
     using U64 = xsimd::batch<uint64_t, A>;
     constexpr std::size_t W = U64::size;
@@ -98,14 +95,13 @@ void group_seeds(uint32_t group, SobolBatch& b) {
       z = (z ^ (z >> 30)) * U64(0xbf58476d1ce4e5b9ull);
       z = (z ^ (z >> 27)) * U64(0x94d049bb133111ebull);
       z = z ^ (z >> 31);
-      alignas(64) uint64_t g[W];
-      z.store_aligned(g);
-      for (std::size_t k = 0; k < W; ++k)
-        split(i + k, g[k]);
+      simd::store_halves<A>(b.scramble.data() + i, b.component.data() + i, z);
     }
   } else {
-    for (std::size_t i = 0; i < b.padded_size(); ++i)
-      split(i, mix64(b.seed[i] ^ salt));
+    for (std::size_t i = 0; i < b.padded_size(); ++i) {
+      const uint64_t g = mix64(b.seed[i] ^ salt);
+      b.scramble[i] = uint32_t(g), b.component[i] = uint32_t(g >> 32);
+    }
   }
 }
 

@@ -300,6 +300,16 @@ inline void store_narrowed(float* p, const Doubles<A>& v) {
   }
 }
 
+// Eight 64-bit lanes split into their low halves at low[0, 8) and high halves at high[0, 8)
+// (AVX-512's truncating vpmovqd; the other sets have no 64-bit lanes worth splitting).
+template <class A>
+inline void store_halves(uint32_t* low, uint32_t* high, const xsimd::batch<uint64_t, A>& v) {
+  static_assert(xsimd::batch<uint64_t, A>::size == 8, "eight 64-bit lanes");
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(low), _mm512_cvtepi64_epi32(__m512i(v)));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(high),
+                      _mm512_cvtepi64_epi32(_mm512_srli_epi64(__m512i(v), 32)));
+}
+
 // signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).
 template <class A>
 inline xsimd::batch_bool<double, A> sign_bit(const Doubles<A>& v) {
