@@ -91,19 +91,21 @@ void ensure_surface(TileContext& ctx, const Rayd& ray, Hit& hit) {
   if (!ctx.buffers.hits_have_surfaces) ctx.tracer.complete(ray, hit);
 }
 
-// Where the path meets a surface: emission if it is an emitter (which ends the path, emitters
-// reflect nothing). The material's row if the path may scatter here. (Beer's law on the segment
-// just travelled is the caller's: lanes apply it with the surfaces they compute. A path that
-// ends here needs none: nothing reads its throughput again.)
-std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, const Rayd& ray, Hit& hit,
-                               int depth) {
+// Where the path meets a surface (the hit of wavefront ray k): emission if it is an emitter
+// (which ends the path, emitters reflect nothing). The material's row if the path may scatter
+// here. (Beer's law on the segment just travelled is the caller's: lanes apply it with the
+// surfaces they compute. A path that ends here needs none: nothing reads its throughput
+// again.) The ray is widened only where it is read: the lane rows take theirs with their
+// surfaces.
+std::optional<uint32_t> arrive(TileContext& ctx, PathState& p, std::size_t k, Hit& hit, int depth) {
   if (!hit.hit()) {
-    add_escape(ctx, p, ray, depth);
+    add_escape(ctx, p, ray_of(ctx.buffers.rays, k), depth);
     return std::nullopt;
   }
   const Scene& scene = ctx.tracer.scene();
   uint32_t row = scene.material_of(hit.prim);
   if (scene.materials[row].is_light) {
+    const Rayd ray = ray_of(ctx.buffers.rays, k);
     ensure_surface(ctx, ray, hit);
     add_emission(ctx, p, ray, hit, depth);
     return std::nullopt;
@@ -191,13 +193,13 @@ void shade_wavefront(TileContext& ctx, int depth) {
     uint32_t path = b.live[k];
     PathState& p = b.paths[path];
     Hit& hit = b.hits[k];
-    const Rayd ray = ray_of(b.rays, k);
-    std::optional<uint32_t> material = arrive(ctx, p, ray, hit, depth);
+    std::optional<uint32_t> material = arrive(ctx, p, k, hit, depth);
     if (!material) continue;
     if (lanes && ctx.lanes.materials.in_lanes[*material]) {
       queue_lane_row(ctx, path, uint32_t(k), *material);
       continue;
     }
+    const Rayd ray = ray_of(b.rays, k);
     const Material& m = ctx.tracer.scene().materials[*material];
     ensure_surface(ctx, ray, hit);
     p.beta = p.beta * beer(m, hit.front_face, hit.t);
