@@ -95,7 +95,7 @@ void render_tile(TileContext& ctx, Film& f) {
   std::vector<PathState>& paths = b.paths;
   std::vector<uint32_t>&live = b.live, &next_live = b.next_live;
   RayStream &rays = b.rays, &shadow_rays = b.shadow_rays;
-  std::vector<ShadowQuery>&queries = b.queries, &next_queries = b.next_queries;
+  ShadowQueries &queries = b.queries, &next_queries = b.next_queries;
   std::vector<Hit>& hits = b.hits;
   live.resize(paths.size());
   for (uint32_t i = 0; i < live.size(); ++i)
@@ -123,7 +123,7 @@ void render_tile(TileContext& ctx, Film& f) {
     if (depth > 0) ctx.stats.bounce_rays += live.size();
     ctx.stats.shadow_rays += queries.size();
     for (std::size_t q = 0; q < queries.size(); ++q)
-      if (b.blocked[q] == 0) paths[queries[q].path].radiance += queries[q].contribution;
+      if (b.blocked[q] == 0) paths[queries.path[q]].radiance += queries.contribution_of(q);
     shadow_rays.clear();
     next_queries.clear();
     next_live.clear();

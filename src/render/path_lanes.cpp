@@ -10,6 +10,7 @@
 // of a render.)
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "raylane/core/ray_offset.h"
 #include "render/path_loop.h"
@@ -94,32 +95,6 @@ void light_columns(TileContext& ctx, bool lights) {
   }
 }
 
-// Appends up to `most` elements to a vector through a plain pointer: grown once, trimmed when
-// done. (push_back's capacity check and its end pointer's store and reload per element made
-// the write-back below a third slower.)
-template <class T>
-class Appender {
- public:
-  Appender(std::vector<T>& v, std::size_t most) : v_(v), start_(v.size()) {
-    v_.resize(start_ + most);
-    next_ = v_.data() + start_;
-  }
-  ~Appender() { v_.resize(std::size_t(next_ - v_.data())); }
-  Appender(const Appender&) = delete;
-  Appender& operator=(const Appender&) = delete;
-  void push(const T& x) { *next_++ = x; }
-  // push(), kept only if `keep` (RayAppender::push_if).
-  void push_if(bool keep, const T& x) {
-    *next_ = x;
-    next_ += keep;
-  }
-
- private:
-  std::vector<T>& v_;
-  std::size_t start_;
-  T* next_;
-};
-
 // The three columns of c as pointers, taken once per pass: the passes below read a dozen
 // columns per row, more than the registers that would keep the vectors' own pointers.
 template <class T>
@@ -130,51 +105,79 @@ struct Column3View {
   Vec3<T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
 };
 
-// The vertex lanes' shadow rays queued, each aimed at its light: the origin and end as the
-// lanes rounded them, the direction as the BSDF was evaluated toward it (the light point's,
-// rounded to float).
-void write_shadow_rays(ThreadBuffers& b) {
-  const VertexBatch& vb = b.vertices;
-  const std::size_t n = b.lane_count;
-  RayAppender rays(b.shadow_rays, n, true);
-  Appender<ShadowQuery> queries(b.next_queries, n);
-  const Column3View<float> o(vb.shadow_o), wi(b.shade.light_wi);
-  const Column3View<double> c(vb.shadow_c);
-  const double* ok = vb.shadow_ok.data();
-  const float* tmax = vb.shadow_tmax.data();
-  const PrimRef* light = b.light_queries.light.data();
-  const uint32_t* path = b.lane_rows.path.data();
-  for (std::size_t r = 0; r < n; ++r) {
-    const bool keep = ok[r] != 0;
-    rays.push_if(keep, Rayf{o[r], wi[r], 0, tmax[r]}, light[r].bits());
-    queries.push_if(keep, {path[r], c[r]});
-  }
+// Room for `rows` more rows and the filter's slack at the end of a stream (trimmed by the
+// caller to what was kept).
+std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
+  const std::size_t at = s.size();
+  s.resize(at + rows + kFilterSlack);
+  if (aimed) s.end.resize(at + rows + kFilterSlack);
+  return at;
 }
 
-// The vertex lanes' next rays and throughputs back to the paths that go on, listed.
-void write_next_rays(ThreadBuffers& b) {
+// The vertex lanes' shadow rays queued, each aimed at its light: the origin and end as the
+// lanes rounded them, the direction as the BSDF was evaluated toward it (the light point's,
+// rounded to float), and each one's query. A filter over the rows, in lanes.
+void write_shadow_rays(TileContext& ctx) {
+  ThreadBuffers& b = ctx.buffers;
   const VertexBatch& vb = b.vertices;
   const std::size_t n = b.lane_count;
-  RayAppender rays(b.next_rays, n, false);
-  Appender<uint32_t> next_live(b.next_live, n);
-  const Column3View<float> o(vb.next_o), wi(b.shade.wi);
+  RayStream& s = b.shadow_rays;
+  ShadowQueries& q = b.next_queries;
+  const std::size_t at = grow_stream(s, n, true), queued = q.size();
+  q.resize(queued + n + kFilterSlack);
+  static_assert(sizeof(PrimRef) == 4, "a light's PrimRef is its 32 bits");
+  RowFilter f;
+  f.keep = vb.shadow_ok.data();
+  f.add(vb.shadow_o[0].data(), s.ox.data() + at);
+  f.add(vb.shadow_o[1].data(), s.oy.data() + at);
+  f.add(vb.shadow_o[2].data(), s.oz.data() + at);
+  f.add(b.shade.light_wi[0].data(), s.dx.data() + at);
+  f.add(b.shade.light_wi[1].data(), s.dy.data() + at);
+  f.add(b.shade.light_wi[2].data(), s.dz.data() + at);
+  f.add(vb.shadow_tmax.data(), s.tmax.data() + at);
+  f.add(reinterpret_cast<const uint32_t*>(b.light_queries.light.data()), s.end.data() + at);
+  f.add(b.lane_rows.path.data(), q.path.data() + queued);
+  for (std::size_t k = 0; k < 3; ++k)
+    f.add(vb.shadow_c[k].data(), q.contribution[k].data() + queued);
+  const std::size_t kept = filter_rows(ctx.lanes.isa, f, n);
+  std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
+  s.resize(at + kept), s.end.resize(at + kept);
+  q.resize(queued + kept);
+}
+
+// The vertex lanes' throughputs back to the paths (every row: a path that ends here is not
+// read again, and the write spares a branch per row), then the next rays of the paths that go
+// on and their list, filtered in lanes.
+void write_next_rays(TileContext& ctx) {
+  ThreadBuffers& b = ctx.buffers;
+  const VertexBatch& vb = b.vertices;
+  const std::size_t n = b.lane_count;
   const Column3View<double> beta(vb.next_beta), p(vb.p);
-  const double* alive = vb.alive.data();
   const float* pdf = b.shade.pdf.data();
   const uint32_t* row_path = b.lane_rows.path.data();
   PathState* paths = b.paths.data();
   for (std::size_t r = 0; r < n; ++r) {
-    // A path that ends here gets its state written too: nothing reads it again (it is not
-    // listed in next_live), and the write spares a branch per row.
     PathState& path = paths[row_path[r]];
     path.beta = beta[r];
     path.prev_p = p[r];
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
-    const bool keep = alive[r] != 0;
-    rays.push_if(keep, Rayf{o[r], wi[r]});
-    next_live.push_if(keep, row_path[r]);
   }
+  RayStream& s = b.next_rays;
+  const std::size_t at = grow_stream(s, n, false), listed = b.next_live.size();
+  b.next_live.resize(listed + n + kFilterSlack);
+  RowFilter f;
+  f.keep = vb.alive.data();
+  for (std::size_t k = 0; k < 3; ++k)
+    f.add(vb.next_o[k].data(), (k == 0 ? s.ox : k == 1 ? s.oy : s.oz).data() + at);
+  for (std::size_t k = 0; k < 3; ++k)
+    f.add(b.shade.wi[k].data(), (k == 0 ? s.dx : k == 1 ? s.dy : s.dz).data() + at);
+  f.add(row_path, b.next_live.data() + listed);
+  const std::size_t kept = filter_rows(ctx.lanes.isa, f, n);
+  std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
+  std::fill_n(s.tmax.begin() + std::ptrdiff_t(at), kept, std::numeric_limits<float>::infinity());
+  s.resize(at + kept);
+  b.next_live.resize(listed + kept);
 }
 
 }  // namespace
@@ -317,8 +320,8 @@ void shade_in_lanes(TileContext& ctx, int depth) {
   light_columns(ctx, lights);
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, b.shade);
   finish_vertices(ctx.lanes.isa, rules, b.shade, lights ? &b.light_queries : nullptr, b.vertices);
-  if (lights) write_shadow_rays(b);
-  write_next_rays(b);
+  if (lights) write_shadow_rays(ctx);
+  write_next_rays(ctx);
 }
 
 }  // namespace raylane::path_detail

@@ -39,9 +39,33 @@ struct PathState {
   uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
 };
 
-struct ShadowQuery {  // its ray, aimed at its light, is in the thread's shadow_rays
-  uint32_t path;
-  Vec3d contribution;  // added to the path's radiance if the light is the first thing hit
+// The shadow rays' queries, as columns (the lanes' write-back fills them in a filter pass): ray
+// q, aimed at its light, is in the thread's shadow_rays; contribution[.][q] is added to path
+// path[q]'s radiance if the light is the first thing it meets.
+struct ShadowQueries {
+  std::vector<uint32_t> path;
+  std::array<std::vector<double>, 3> contribution;
+
+  std::size_t size() const { return path.size(); }
+  bool empty() const { return path.empty(); }
+  void resize(std::size_t n) {
+    path.resize(n);
+    for (auto& c : contribution)
+      c.resize(n);
+  }
+  void clear() { resize(0); }
+  void push_back(uint32_t p, const Vec3d& c) {
+    path.push_back(p);
+    for (int k = 0; k < 3; ++k)
+      contribution[std::size_t(k)].push_back(c[k]);
+  }
+  Vec3d contribution_of(std::size_t q) const {
+    return {contribution[0][q], contribution[1][q], contribution[2][q]};
+  }
+  void swap(ShadowQueries& other) {
+    path.swap(other.path);
+    contribution.swap(other.contribution);
+  }
 };
 
 // A phase timer that reads the clock only when the render asked for phase times.
@@ -89,7 +113,7 @@ struct alignas(128) ThreadBuffers {
   // tracer's input as they are written. Shadow ray q belongs to queries[q] (next_queries while
   // a wavefront is shaded), its end column holds its light, blocked[q] is its answer.
   RayStream rays, next_rays, shadow_rays;
-  std::vector<ShadowQuery> queries, next_queries;
+  ShadowQueries queries, next_queries;
   std::vector<Hit> hits;
   bool hits_have_surfaces = false;  // or prim and t alone (Tracer::closest's with_surface)
   std::vector<uint8_t> blocked;

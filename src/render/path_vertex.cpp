@@ -123,7 +123,7 @@ void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const
   RayAppender(ctx.buffers.shadow_rays, 1, true)
       .push(ray_cast<float>(Rayd{o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)}),
             ls.light.bits());
-  ctx.buffers.next_queries.push_back({path, c});
+  ctx.buffers.next_queries.push_back(path, c);
 }
 
 // After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`).

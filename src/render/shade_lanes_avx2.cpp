@@ -29,4 +29,8 @@ void finish_vertices_avx2(const VertexRules& rules, const ShadeBatch& bsdf,
   finish_vertices_range<xsimd::fma3<xsimd::avx2>>(rules, bsdf, lights, batch);
 }
 
+std::size_t filter_rows_avx2(const RowFilter& filter, std::size_t rows) {
+  return filter_rows_range<xsimd::fma3<xsimd::avx2>>(filter, rows);
+}
+
 }  // namespace raylane::detail

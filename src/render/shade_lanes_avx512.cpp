@@ -29,4 +29,8 @@ void finish_vertices_avx512(const VertexRules& rules, const ShadeBatch& bsdf,
   finish_vertices_range<xsimd::avx512bw>(rules, bsdf, lights, batch);
 }
 
+std::size_t filter_rows_avx512(const RowFilter& filter, std::size_t rows) {
+  return filter_rows_range<xsimd::avx512bw>(filter, rows);
+}
+
 }  // namespace raylane::detail

@@ -29,4 +29,8 @@ void finish_vertices_sse42(const VertexRules& rules, const ShadeBatch& bsdf,
   finish_vertices_range<xsimd::sse4_2>(rules, bsdf, lights, batch);
 }
 
+std::size_t filter_rows_sse42(const RowFilter& filter, std::size_t rows) {
+  return filter_rows_range<xsimd::sse4_2>(filter, rows);
+}
+
 }  // namespace raylane::detail

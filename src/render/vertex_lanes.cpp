@@ -10,6 +10,9 @@ void finish_vertices_sse42(const VertexRules&, const ShadeBatch&, const LightQue
 void finish_vertices_avx2(const VertexRules&, const ShadeBatch&, const LightQueries*, VertexBatch&);
 void finish_vertices_avx512(const VertexRules&, const ShadeBatch&, const LightQueries*,
                             VertexBatch&);
+std::size_t filter_rows_sse42(const RowFilter&, std::size_t);
+std::size_t filter_rows_avx2(const RowFilter&, std::size_t);
+std::size_t filter_rows_avx512(const RowFilter&, std::size_t);
 }  // namespace detail
 
 namespace {
@@ -38,6 +41,13 @@ void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
              : isa == Isa::kAvx2 ? detail::finish_vertices_avx2
                                  : detail::finish_vertices_sse42;
   fn(rules, bsdf, lights, batch);
+}
+
+std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
+  auto* fn = isa == Isa::kAvx512 ? detail::filter_rows_avx512
+             : isa == Isa::kAvx2 ? detail::filter_rows_avx2
+                                 : detail::filter_rows_sse42;
+  return fn(filter, rows);
 }
 
 bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,

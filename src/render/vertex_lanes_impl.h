@@ -5,6 +5,8 @@
 // bit for bit.
 #pragma once
 
+#include <bit>
+#include <cstring>
 #include <limits>
 
 #include "raylane/core/float_util.h"
@@ -158,6 +160,39 @@ void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
       Doubles<A>(0.0).store_unaligned(b.shadow_ok.data() + i);
     continue_lanes<A>(rules, bsdf, b, i, beta, p, ng, o, d, t);
   }
+}
+
+// filter_rows: whole lane batches through the compressing stores, the last rows one by one.
+template <class A>
+std::size_t filter_rows_range(const RowFilter& f, std::size_t n) {
+  constexpr std::size_t W = simd::kWidth<A>, WD = simd::kDoubleWidth<A>;
+  auto at = [](const void* p, std::size_t bytes) { return static_cast<const char*>(p) + bytes; };
+  auto to = [](void* p, std::size_t bytes) { return static_cast<char*>(p) + bytes; };
+  std::size_t m = 0, i = 0;
+  for (; i + W <= n; i += W) {
+    uint32_t keep = 0;
+    for (std::size_t k = 0; k < W; ++k)
+      keep |= uint32_t(f.keep[i + k] != 0) << k;
+    for (int c = 0; c < f.columns4; ++c)
+      simd::store_compressed32<A>(to(f.to4[c], 4 * m), at(f.from4[c], 4 * i), keep);
+    std::size_t kept = m;
+    for (std::size_t j = 0; j < W; j += WD) {
+      const uint32_t part = (keep >> j) & ((1u << WD) - 1);
+      for (int c = 0; c < f.columns8; ++c)
+        simd::store_compressed64<A>(to(f.to8[c], 8 * kept), at(f.from8[c], 8 * (i + j)), part);
+      kept += std::size_t(std::popcount(part));
+    }
+    m = kept;
+  }
+  for (; i < n; ++i) {
+    if (f.keep[i] == 0) continue;
+    for (int c = 0; c < f.columns4; ++c)
+      std::memcpy(to(f.to4[c], 4 * m), at(f.from4[c], 4 * i), 4);
+    for (int c = 0; c < f.columns8; ++c)
+      std::memcpy(to(f.to8[c], 8 * m), at(f.from8[c], 8 * i), 8);
+    ++m;
+  }
+  return m;
 }
 
 }  // namespace raylane::detail

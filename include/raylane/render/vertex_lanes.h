@@ -54,6 +54,30 @@ struct VertexBatch {
   std::size_t size_ = 0;
 };
 
+// A stream filter over a batch's rows, for the write-back of shadow rays and next rays: the
+// rows whose keep flag is not 0 (the vertex lanes' shadow_ok or alive), copied in order from
+// each source column into its destination (filter_rows returns how many). Columns hold 4-byte
+// values (floats, indices) or 8-byte ones (doubles), moved as they are. A destination needs
+// room for the kept rows and kFilterSlack more: the lanes store whole registers.
+struct RowFilter {
+  static constexpr int kMaxColumns = 10;
+  const double* keep = nullptr;
+  std::array<const void*, kMaxColumns> from4{}, from8{};
+  std::array<void*, kMaxColumns> to4{}, to8{};
+  int columns4 = 0, columns8 = 0;
+
+  template <class T>
+  void add(const T* from, T* to) {
+    static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values");
+    if constexpr (sizeof(T) == 4)
+      from4[columns4] = from, to4[columns4++] = to;
+    else
+      from8[columns8] = from, to8[columns8++] = to;
+  }
+};
+inline constexpr std::size_t kFilterSlack = 16;
+std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
+
 struct VertexRules {
   bool mis = false;       // weigh the shadow ray by the power heuristic (else 1)
   bool roulette = false;  // Russian roulette at this depth

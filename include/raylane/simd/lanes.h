@@ -9,7 +9,9 @@
 
 #include <immintrin.h>
 
+#include <array>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 #include <xsimd/xsimd.hpp>
 
@@ -308,6 +310,67 @@ inline void store_halves(uint32_t* low, uint32_t* high, const xsimd::batch<uint6
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(low), _mm512_cvtepi64_epi32(__m512i(v)));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(high),
                       _mm512_cvtepi64_epi32(_mm512_srli_epi64(__m512i(v), 32)));
+}
+
+// Compaction, a stream filter's step: the values at from[0, N) whose bit in `keep` is set,
+// packed to the front and stored at to[0, N), N the lane count for values of their size
+// (kWidth<A> for 4 bytes, kDoubleWidth<A> for 8). All N lanes are stored: those past the
+// kept ones hold nothing of use, and the next step's store overwrites them. AVX-512
+// compresses in a register and stores it whole (vpcompressd's memory form is slow on AMD's
+// cores); AVX2 permutes by the kept lanes' indices, which a 256-entry table holds 3 bits each;
+// SSE4.2 copies lane by lane. Bytes are moved as they are (floats, integers alike).
+namespace detail {
+// Entry m: the indices of m's set bits in order, 3 bits each from bit 0.
+inline constexpr auto kPackedLanes = [] {
+  std::array<uint32_t, 256> t{};
+  for (uint32_t m = 0; m < 256; ++m)
+    for (uint32_t i = 0, k = 0; i < 8; ++i)
+      if (m & (1u << i)) t[m] |= i << (3 * k++);
+  return t;
+}();
+// AVX2: eight 32-bit lanes permuted so that the kept ones come first. (A template on A, unused,
+// so that each instruction set's unit keeps its own copy, compiled with its own flags.)
+template <class A>
+inline __m256i compress8(__m256i v, uint32_t keep) {
+  const __m256i idx =
+      _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(kPackedLanes[keep & 0xff])),
+                                         _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
+                       _mm256_set1_epi32(7));
+  return _mm256_permutevar8x32_epi32(v, idx);
+}
+}  // namespace detail
+
+template <class A>
+inline void store_compressed32(void* to, const void* from, uint32_t keep) {
+  if constexpr (kWidth<A> == 16) {
+    _mm512_storeu_si512(to, _mm512_maskz_compress_epi32(__mmask16(keep), _mm512_loadu_si512(from)));
+  } else if constexpr (kWidth<A> == 8) {
+    const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
+    _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, keep));
+  } else {
+    auto* out = static_cast<unsigned char*>(to);
+    const auto* in = static_cast<const unsigned char*>(from);
+    for (int i = 0; i < kWidth<A>; ++i)
+      if (keep & (1u << i)) std::memcpy(out, in + 4 * i, 4), out += 4;
+  }
+}
+template <class A>
+inline void store_compressed64(void* to, const void* from, uint32_t keep) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    _mm512_storeu_si512(to, _mm512_maskz_compress_epi64(__mmask8(keep), _mm512_loadu_si512(from)));
+  } else if constexpr (kDoubleWidth<A> == 4) {
+    // Four 64-bit lanes as eight 32-bit ones: each kept lane keeps both its halves.
+    uint32_t pairs = 0;
+    for (int i = 0; i < 4; ++i)
+      if (keep & (1u << i)) pairs |= 3u << (2 * i);
+    const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
+    _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, pairs));
+  } else {
+    auto* out = static_cast<unsigned char*>(to);
+    const auto* in = static_cast<const unsigned char*>(from);
+    for (int i = 0; i < kDoubleWidth<A>; ++i)
+      if (keep & (1u << i)) std::memcpy(out, in + 8 * i, 8), out += 8;
+  }
 }
 
 // signbit per lane, for ±0 as well as any other value (copysign carries the sign bit alone).

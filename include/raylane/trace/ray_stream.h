@@ -69,17 +69,6 @@ class RayAppender {
     s_.end[next_] = end;
     push(r);
   }
-  // push(), kept only if `keep`: the ray is written either way and the next one overwrites it
-  // when not kept. A filter over a wavefront's rows without a branch per row (which rows go on
-  // follows the samples, so the branch was mispredicted often).
-  void push_if(bool keep, const Rayf& r) {
-    s_.set(next_, r);
-    next_ += keep;
-  }
-  void push_if(bool keep, const Rayf& r, uint32_t end) {
-    s_.end[next_] = end;
-    push_if(keep, r);
-  }
 
  private:
   RayStream& s_;
