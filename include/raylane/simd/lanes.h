@@ -338,6 +338,14 @@ inline __m256i compress8(__m256i v, uint32_t keep) {
                        _mm256_set1_epi32(7));
   return _mm256_permutevar8x32_epi32(v, idx);
 }
+// SSE4.2: `lanes` values of `bytes` each, the kept ones copied one by one.
+template <class A>
+inline void compress_copy(void* to, const void* from, uint32_t keep, int lanes, int bytes) {
+  auto* out = static_cast<unsigned char*>(to);
+  const auto* in = static_cast<const unsigned char*>(from);
+  for (int i = 0; i < lanes; ++i)
+    if (keep & (1u << i)) std::memcpy(out, in + bytes * i, std::size_t(bytes)), out += bytes;
+}
 }  // namespace detail
 
 template <class A>
@@ -348,10 +356,7 @@ inline void store_compressed32(void* to, const void* from, uint32_t keep) {
     const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
     _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, keep));
   } else {
-    auto* out = static_cast<unsigned char*>(to);
-    const auto* in = static_cast<const unsigned char*>(from);
-    for (int i = 0; i < kWidth<A>; ++i)
-      if (keep & (1u << i)) std::memcpy(out, in + 4 * i, 4), out += 4;
+    detail::compress_copy<A>(to, from, keep, kWidth<A>, 4);
   }
 }
 template <class A>
@@ -366,10 +371,7 @@ inline void store_compressed64(void* to, const void* from, uint32_t keep) {
     const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
     _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, pairs));
   } else {
-    auto* out = static_cast<unsigned char*>(to);
-    const auto* in = static_cast<const unsigned char*>(from);
-    for (int i = 0; i < kDoubleWidth<A>; ++i)
-      if (keep & (1u << i)) std::memcpy(out, in + 8 * i, 8), out += 8;
+    detail::compress_copy<A>(to, from, keep, kDoubleWidth<A>, 8);
   }
 }
 
