@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "raylane/core/ray_offset.h"
 #include "render/path_loop.h"
@@ -54,7 +55,7 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
     SobolNumbers to;
     to.as_double = {q.cones.u1.data(), q.cones.u2.data(), read > 2 ? q.u_light.data() : nullptr,
                     read > 3 ? q.u_part.data() : nullptr};
-    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s, read, to);
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light(depth), s, first_components(read), to);
   }
   // Roulette's number only at the depths that have roulette (the vertex lanes read it only
   // there).
@@ -67,7 +68,8 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   SobolNumbers to;
   to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
   if (roulette) to.as_double[3] = b.vertices.u_roulette.data();
-  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s, roulette ? 4 : 3, to);
+  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf(depth), s,
+               3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
 }
 
 // The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated
@@ -105,12 +107,11 @@ struct Column3View {
   Vec3<T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
 };
 
-// Room for `rows` more rows and the filter's slack at the end of a stream (trimmed by the
-// caller to what was kept).
+// Room for `rows` more rows at the end of a stream (trimmed by the caller to what was kept).
 std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
   const std::size_t at = s.size();
-  s.resize(at + rows + kFilterSlack);
-  if (aimed) s.end.resize(at + rows + kFilterSlack);
+  s.resize(at + rows);
+  if (aimed) s.end.resize(at + rows);
   return at;
 }
 
@@ -124,8 +125,9 @@ void write_shadow_rays(TileContext& ctx) {
   RayStream& s = b.shadow_rays;
   ShadowQueries& q = b.next_queries;
   const std::size_t at = grow_stream(s, n, true), queued = q.size();
-  q.resize(queued + n + kFilterSlack);
-  static_assert(sizeof(PrimRef) == 4, "a light's PrimRef is its 32 bits");
+  q.resize(queued + n);
+  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>,
+                "a light's PrimRef is its 32 bits");
   RowFilter f;
   f.keep = vb.shadow_ok.data();
   f.add(vb.shadow_o[0].data(), s.ox.data() + at);
@@ -165,7 +167,7 @@ void write_next_rays(TileContext& ctx) {
   }
   RayStream& s = b.next_rays;
   const std::size_t at = grow_stream(s, n, false), listed = b.next_live.size();
-  b.next_live.resize(listed + n + kFilterSlack);
+  b.next_live.resize(listed + n);
   RowFilter f;
   f.keep = vb.alive.data();
   for (std::size_t k = 0; k < 3; ++k)

@@ -106,6 +106,9 @@ struct LaneRows {
 
 // A thread's buffers, reused tile after tile: the render loop allocates nothing per sample
 // once they have grown to a tile's size.
+// Aligned to 128 bytes (a cache line and the one the adjacent-line prefetcher pairs with it):
+// the threads' buffers sit side by side in one vector, and a wavefront's resizes write
+// vector headers another thread would otherwise read its columns' pointers next to.
 struct alignas(128) ThreadBuffers {
   std::vector<PathState> paths;
   std::vector<uint32_t> live, next_live;  // paths still going, by index

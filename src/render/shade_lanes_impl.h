@@ -93,8 +93,12 @@ struct LaneBsdf {
     auto idx = simd::load<A>(b.material.data() + i);
     auto gather = [&](const std::vector<float>& col) { return simd::gather<A>(col.data(), idx); };
     pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt);
-    diffuse_only_ = simd::none<A>((pr > F<A>(0.0f)) | (pt > F<A>(0.0f)));
-    all_diffuse_ = diffuse_only_ && simd::none<A>(!(u0 < pd));
+    // Only the batch's own rows decide: its padding gathers material 0, which may be black or
+    // an emitter (pd = 0) and would send every wavefront's last batch the general way.
+    const std::size_t rows = b.size() - i, W = std::size_t(simd::kWidth<A>);
+    const M<A> own = simd::first_lanes<A>(int(rows < W ? rows : W));
+    diffuse_only_ = simd::none<A>(((pr > F<A>(0.0f)) | (pt > F<A>(0.0f))) & own);
+    all_diffuse_ = diffuse_only_ && simd::none<A>((!(u0 < pd)) & own);
     for (int k = 0; k < 3; ++k)
       kd[k] = gather(m.kd[k]), ks[k] = F<A>(0.0f);
     F<A> ior(1.0f);

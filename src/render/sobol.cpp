@@ -1,6 +1,5 @@
 #include "raylane/render/sobol.h"
 
-#include <algorithm>
 #include <array>
 #include <bit>
 
@@ -141,21 +140,12 @@ void SobolBatch::resize(std::size_t rows) {
 }
 
 // The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components,
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, unsigned components,
                   const SobolNumbers& numbers) {
   auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
              : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
                                  : detail::sobol_groups_sse42;
-  // Components 2 and 3 only where something reads them: below `components`, and, when
-  // `numbers` names destinations, one of them.
-  const bool named = std::any_of(numbers.as_double.begin(), numbers.as_double.end(),
-                                 [](const double* p) { return p; }) ||
-                     std::any_of(numbers.as_float.begin(), numbers.as_float.end(),
-                                 [](const float* p) { return p; });
-  unsigned which = 3u;
-  for (int c = 2; c < components; ++c)
-    if (!named || numbers.as_double[c] || numbers.as_float[c]) which |= 1u << c;
-  fn(reverse_bits(index), group, which, batch, numbers);
+  fn(reverse_bits(index), group, (components & kAllComponents) | 3u, batch, numbers);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

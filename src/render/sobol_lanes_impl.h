@@ -3,7 +3,6 @@
 // code's, on 32-bit unsigned lanes: the same values bit for bit (tests/render/sobol_test.cpp).
 #pragma once
 
-#include <algorithm>
 #include <type_traits>
 
 #include "raylane/render/rng.h"
@@ -140,8 +139,12 @@ void sobol_numbers(unsigned which, const SobolBatch& b, const SobolNumbers& to) 
       for (std::size_t r = 0; r < n; ++r)
         d[r] = u[r] * 0x1p-32;
     if (float* f = to.as_float[c])
-      for (std::size_t r = 0; r < n; ++r)
-        f[r] = std::min(float(u[r] * 0x1p-32), kLargestBelowOne);  // unit_float
+      for (std::size_t r = 0; r < n; ++r) {
+        // unit_float's value, spelled out: std::min would be an ordinary inline function
+        // (docs/design.md, "SIMD and the instruction sets").
+        const float v = float(u[r] * 0x1p-32);
+        f[r] = kLargestBelowOne < v ? kLargestBelowOne : v;
+      }
   }
 }
 

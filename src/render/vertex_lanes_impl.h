@@ -5,7 +5,6 @@
 // bit for bit.
 #pragma once
 
-#include <bit>
 #include <cstring>
 #include <limits>
 
@@ -180,7 +179,7 @@ std::size_t filter_rows_range(const RowFilter& f, std::size_t n) {
       const uint32_t part = (keep >> j) & ((1u << WD) - 1);
       for (int c = 0; c < f.columns8; ++c)
         simd::store_compressed64<A>(to(f.to8[c], 8 * kept), at(f.from8[c], 8 * (i + j)), part);
-      kept += std::size_t(std::popcount(part));
+      kept += std::size_t(simd::popcount<A>(part));
     }
     m = kept;
   }

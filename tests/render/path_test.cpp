@@ -10,6 +10,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
 #include "raylane/render/path.h"
+#include "raylane/render/shade_lanes.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 
@@ -207,6 +208,33 @@ TEST(PathTracer, BlackRowsDroppedFromTheLanesChangeNoOtherRow) {
       differ += std::memcmp(&a.rgb[i], &b.rgb[i], sizeof(float)) != 0;
     EXPECT_EQ(differ, 0u);
   }
+}
+
+// A scene whose lane materials are all diffuse alone draws no lobe number (its Sobol BSDF
+// group computes components 0, 1 and roulette's 3): the same scene with an unused glossy
+// material appended draws every number, and its image is the same bit for bit.
+TEST(PathTracer, LeavingOutTheLobeNumberChangesNoImage) {
+  auto load = [](bool glossy_too) {
+    auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
+    EXPECT_TRUE(p.ok());
+    Scene scene = std::move(p.scene);
+    if (glossy_too) {
+      Material glossy;
+      glossy.kd = {0.3f, 0.3f, 0.3f}, glossy.ks = {0.5f, 0.5f, 0.5f}, glossy.alpha = 40;
+      scene.materials.push_back(glossy);
+    }
+    EXPECT_EQ(LaneMaterials(scene.materials).lobe_unread, !glossy_too);
+    return scene;
+  };
+  PathSettings s;
+  s.sampler = Sampler::kSobol, s.spp = 2, s.shading = Shading::kFloat, s.rr_depth = 2;
+  Scene diffuse = load(false), mixed = load(true);
+  Image a = render(diffuse, s), b = render(mixed, s);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i)
+    differ += std::memcmp(&a.rgb[i], &b.rgb[i], sizeof(float)) != 0;
+  EXPECT_EQ(differ, 0u);
 }
 
 // A diffuse plane (ρ = 0.5) under a sphere light of radius r = 0.5 and Le = 2 centred d = 3

@@ -124,8 +124,8 @@ namespace {
 
 // The lanes compute sobol_group for many pixels at once: bit for bit the scalar values, at
 // every instruction set this CPU has, for partly filled batches too; asked for fewer
-// components (or given destinations for some), the same values for those and the rest
-// untouched.
+// components (the render's BSDF group asks for 0, 1 and 3: no lobe number, roulette's), the
+// same values for those and the rest untouched, in the batch and in the numbers' columns.
 TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(std::string(isa_name(isa)));
@@ -133,13 +133,13 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
     b.resize(37);
     for (std::size_t i = 0; i < b.size(); ++i)
       b.seed[i] = mix64(i * 7919 + 3);
-    // The numbers' columns: components 0 and 2 as double, 1 and 2 as float, 3 neither; each
-    // one row longer than the batch, to see that nothing past its rows is written.
+    // The numbers' columns: components 0, 2 and 3 as double, 1 and 2 as float; each one row
+    // longer than the batch, to see that nothing past its rows is written.
     const double kUnwritten = -1;
     std::array<std::vector<double>, 4> as_double;
     std::array<std::vector<float>, 4> as_float;
     SobolNumbers numbers;
-    for (int c : {0, 2})
+    for (int c : {0, 2, 3})
       numbers.as_double[c] = (as_double[c] = std::vector<double>(b.size() + 1)).data();
     for (int c : {1, 2})
       numbers.as_float[c] = (as_float[c] = std::vector<float>(b.size() + 1)).data();
@@ -147,7 +147,8 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
     for (const SobolNumbers* to : {static_cast<const SobolNumbers*>(&numbers), &none})
       for (uint32_t index : {0u, 1u, 5u, 1000u, 0xfffffffeu})
         for (uint32_t group : {0u, 1u, 9u})
-          for (int components : {4, 3, 2}) {
+          for (unsigned components :
+               {kAllComponents, first_components(3), first_components(2), 0xbu, 0x1u}) {
             for (auto& column : b.u)
               std::fill(column.begin(), column.end(), 0xdeadbeefu);
             for (auto& column : as_double)
@@ -155,19 +156,17 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
             for (auto& column : as_float)
               std::fill(column.begin(), column.end(), float(kUnwritten));
             sobol_groups(isa, index, group, b, components, *to);
-            const bool named = to == &numbers;
             for (std::size_t i = 0; i <= b.size(); ++i) {
               const bool row = i < b.size();
               std::array<double, 4> ref =
                   row ? sobol_group(b.seed[i], index, group) : std::array<double, 4>{};
               for (int c = 0; c < 4; ++c) {
-                // Component 3 has no destination in `numbers`: not computed when it is given.
-                const bool computed = row && c < components && (c < 2 || !named || c != 3);
+                const bool computed = row && (c < 2 || (components >> c) & 1u);
                 if (row) {
                   ASSERT_EQ(b.u[c][i], computed ? uint32_t(ref[c] * 0x1p32) : 0xdeadbeefu)
                       << "row " << i << " component " << c;
                 }
-                const bool written = computed && named;
+                const bool written = computed && to == &numbers;
                 if (!as_double[c].empty()) {
                   ASSERT_EQ(as_double[c][i], written ? ref[c] : kUnwritten)
                       << "row " << i << " component " << c;
@@ -208,7 +207,7 @@ TEST(Sobol, FloatNumbersStayBelowOne) {
     std::vector<float> lobe(b.size());
     SobolNumbers to;
     to.as_float[2] = lobe.data();
-    sobol_groups(isa, 3, 2, b, 3, to);
+    sobol_groups(isa, 3, 2, b, first_components(3), to);
     EXPECT_EQ(lobe[13], unit_float(u));
     EXPECT_LT(lobe[13], 1.0f);
   }

@@ -61,11 +61,15 @@ struct SobolNumbers {
   std::array<double*, 4> as_double{};
   std::array<float*, 4> as_float{};
 };
-// Only components [0, components) are computed (at least 2; the others keep what they held):
-// a decision that reads fewer numbers saves the rest, dimensions 2 and 3 most (table gathers).
-// When `numbers` names destinations, component 2 or 3 without one is not computed either.
-void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, int components = 4,
-                  const SobolNumbers& numbers = {});
+// Only the components in the set `components` (bit c: component c) are computed, 0 and 1
+// always; the others keep what they held. A decision that reads fewer numbers saves the rest,
+// dimensions 2 and 3 most (table gathers).
+inline constexpr unsigned kAllComponents = 0xfu;
+constexpr unsigned first_components(int n) {
+  return (1u << n) - 1u;
+}
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch,
+                  unsigned components = kAllComponents, const SobolNumbers& numbers = {});
 
 namespace detail {
 // The byte tables of the first four dimensions, [dimension][byte][value], in the

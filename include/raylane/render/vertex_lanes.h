@@ -10,7 +10,9 @@
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "raylane/core/vec3.h"
@@ -58,7 +60,8 @@ struct VertexBatch {
 // rows whose keep flag is not 0 (the vertex lanes' shadow_ok or alive), copied in order from
 // each source column into its destination (filter_rows returns how many). Columns hold 4-byte
 // values (floats, indices) or 8-byte ones (doubles), moved as they are. A destination needs
-// room for the kept rows and kFilterSlack more: the lanes store whole registers.
+// room for `rows` values; what lies past the kept ones is overwritten (the lanes store whole
+// registers), nothing at or past `rows`.
 struct RowFilter {
   static constexpr int kMaxColumns = 10;
   const double* keep = nullptr;
@@ -69,13 +72,14 @@ struct RowFilter {
   template <class T>
   void add(const T* from, T* to) {
     static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values");
+    static_assert(std::is_trivially_copyable_v<T>, "values moved as bytes");
+    assert((sizeof(T) == 4 ? columns4 : columns8) < kMaxColumns);
     if constexpr (sizeof(T) == 4)
       from4[columns4] = from, to4[columns4++] = to;
     else
       from8[columns8] = from, to8[columns8++] = to;
   }
 };
-inline constexpr std::size_t kFilterSlack = 16;
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
 
 struct VertexRules {
