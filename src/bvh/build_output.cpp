@@ -79,4 +79,21 @@ std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimR
   return order;
 }
 
+std::vector<PrimRef> index_leaves(std::vector<BvhNode>& nodes, const std::vector<PrimRef>& refs) {
+  std::vector<PrimRef> mixed;
+  for (BvhNode& n : nodes) {
+    if (!n.is_leaf()) continue;
+    const PrimRef* r = refs.data() + n.index;
+    const PrimTag tag = r[0].tag();
+    if (std::all_of(r + 1, r + n.count, [tag](PrimRef x) { return x.tag() == tag; })) {
+      n.index = r[0].bits();
+      n.flags = BvhNode::kOneKind;
+      continue;
+    }
+    n.index = uint32_t(mixed.size());
+    mixed.insert(mixed.end(), r, r + n.count);
+  }
+  return mixed;
+}
+
 }  // namespace raylane::bvh_build
