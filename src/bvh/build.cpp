@@ -250,7 +250,7 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   bvh.refs = take_refs(prims.get(), count, threads);
   prims.reset();
   bvh.source_rows = permute_scene(scene, bvh.refs);
-  bvh.refs = index_leaves(bvh.nodes, bvh.refs);
+  bvh.refs = index_leaves(bvh.nodes, bvh.refs, threads);
   if (cfg.wide_nodes) bvh.wide = collapse_to_wide(bvh);
   bvh.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -67,7 +67,8 @@ std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimR
 
 // Points each leaf of one kind at its first row (BvhNode::kOneKind; `refs` permuted: its rows
 // are contiguous) and each other leaf at its refs in the returned array, the mixed leaves' refs
-// in node order.
-std::vector<PrimRef> index_leaves(std::vector<BvhNode>& nodes, const std::vector<PrimRef>& refs);
+// in node order, the same for any number of `threads`.
+std::vector<PrimRef> index_leaves(std::vector<BvhNode>& nodes, const std::vector<PrimRef>& refs,
+                                  int threads);
 
 }  // namespace raylane::bvh_build
