@@ -27,7 +27,8 @@ namespace {
 
 using namespace bvh_build;
 
-static_assert(kMedianSplitDepth + 32 < 256, "a node's depth fits its pad (split_node)");
+static_assert(kMedianSplitDepth + 32 < 256,
+              "a node's depth fits its flags byte while building (split_node)");
 
 // A node still to be built: its slot, its prims [begin, end) and their bounds. Its subtree's
 // other nodes go to slots [desc, desc + 2·count − 2): its children to desc and desc + 1, the
@@ -154,7 +155,7 @@ class Builder {
     const Box4& box = p.bounds.box;
     for (int k = 0; k < 3; ++k)
       n.lo[k] = box.lo[k], n.hi[k] = box.hi[k];
-    n.pad = uint8_t(p.depth);  // for compact_tree's statistics (it zeroes the pad)
+    n.flags = uint8_t(p.depth);  // for compact_tree's statistics (it zeroes the byte)
     BinGrid grid = make_grid(p.bounds, std::clamp(int(p.count()), 2, cfg_.bins));
     Decision d = decide(p, grid, parts);
     if (d.leaf) {
@@ -249,6 +250,7 @@ Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   bvh.refs = take_refs(prims.get(), count, threads);
   prims.reset();
   bvh.source_rows = permute_scene(scene, bvh.refs);
+  bvh.refs = index_leaves(bvh.nodes, bvh.refs, threads);
   if (cfg.wide_nodes) bvh.wide = collapse_to_wide(bvh);
   bvh.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -79,4 +79,49 @@ std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimR
   return order;
 }
 
+std::vector<PrimRef> index_leaves(std::vector<BvhNode>& nodes, const std::vector<PrimRef>& refs,
+                                  int threads) {
+  // In chunks of nodes, the same for any number of threads: first the leaves of one kind are
+  // pointed at their rows and the others' refs counted, then those refs are copied to where
+  // the counts before them put them (sequential, the pass took 13 ms of the 1.31M mesh's
+  // 2-thread build of 200).
+  const int64_t n = int64_t(nodes.size());
+  const int chunks = n > kParallelRows ? 64 : 1;
+  auto chunk_begin = [&](int c) { return n * c / chunks; };
+  std::vector<uint32_t> mixed_before(chunks + 1, 0);
+#pragma omp parallel for num_threads(threads) if (chunks > 1)
+  for (int c = 0; c < chunks; ++c) {
+    uint32_t mixed = 0;
+    for (int64_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
+      BvhNode& leaf = nodes[i];
+      if (!leaf.is_leaf()) continue;
+      const PrimRef* r = refs.data() + leaf.index;
+      const PrimTag tag = r[0].tag();
+      if (std::all_of(r + 1, r + leaf.count, [tag](PrimRef x) { return x.tag() == tag; })) {
+        leaf.index = r[0].bits();
+        leaf.flags = BvhNode::kOneKind;
+      } else {
+        mixed += leaf.count;
+      }
+    }
+    mixed_before[c + 1] = mixed;
+  }
+  for (int c = 0; c < chunks; ++c)
+    mixed_before[c + 1] += mixed_before[c];
+  std::vector<PrimRef> mixed(mixed_before[chunks]);
+#pragma omp parallel for num_threads(threads) if (chunks > 1 && !mixed.empty())
+  for (int c = 0; c < chunks; ++c) {
+    uint32_t at = mixed_before[c];
+    for (int64_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
+      BvhNode& leaf = nodes[i];
+      if (!leaf.is_leaf() || leaf.is_one_kind()) continue;
+      std::copy(refs.begin() + leaf.index, refs.begin() + leaf.index + leaf.count,
+                mixed.begin() + at);
+      leaf.index = at;
+      at += leaf.count;
+    }
+  }
+  return mixed;
+}
+
 }  // namespace raylane::bvh_build

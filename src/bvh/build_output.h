@@ -48,9 +48,9 @@ MallocPtr<T> allocate_unwritten(std::size_t n) {
 MallocPtr<BuildPrim> gather(const Scene& scene, int threads);
 
 // Copies the tree whose root is slots[0] (Pending in build.cpp: a node's children are the two
-// slots its index names, and its pad holds its depth) to `out`: the slots whose `used` flag is
-// 1, in slot order, which is depth first (each node's children adjacent, placed when their
-// parent is, the left subtree's pairs before the right's), child indices renumbered and pads
+// slots its index names, and its flags byte holds its depth) to `out`: the slots whose `used` flag
+// is 1, in slot order, which is depth first (each node's children adjacent, placed when their
+// parent is, the left subtree's pairs before the right's), child indices renumbered and flags
 // zeroed. The result, and the statistics summed along the way (`stats`: counts, depth, leaf
 // sizes, SAH cost), are the same for any number of `threads`. `slot_count` flags are read;
 // `prims` gives the leaves' refs.
@@ -64,5 +64,11 @@ std::vector<PrimRef> take_refs(const BuildPrim* prims, uint32_t n, int threads);
 // Reorders every table into leaf order (Scene::permute) and rewrites the refs to the new rows;
 // returns, per kind, the old row of each new row.
 std::vector<std::vector<uint32_t>> permute_scene(Scene& scene, std::vector<PrimRef>& refs);
+
+// Points each leaf of one kind at its first row (BvhNode::kOneKind; `refs` permuted: its rows
+// are contiguous) and each other leaf at its refs in the returned array, the mixed leaves' refs
+// in node order, the same for any number of `threads`.
+std::vector<PrimRef> index_leaves(std::vector<BvhNode>& nodes, const std::vector<PrimRef>& refs,
+                                  int threads);
 
 }  // namespace raylane::bvh_build

@@ -107,7 +107,7 @@ class Copier {
     while (!stack.empty()) {
       const uint32_t s = stack.back();
       stack.pop_back();
-      if (slots_[s].pad >= stop_depth) {
+      if (slots_[s].flags >= stop_depth) {
         deeper->push_back(s);
         continue;
       }
@@ -124,12 +124,12 @@ class Copier {
   }
 
  private:
-  // Writes the node of `slot` to its place, its child index renumbered and its pad (its depth,
-  // set by the builder) zeroed.
+  // Writes the node of `slot` to its place, its child index renumbered and its flags byte (its
+  // depth, set by the builder) zeroed.
   void place(uint32_t slot, Tally& t) const {
     BvhNode n = slots_[slot];
-    const uint32_t depth = n.pad;
-    n.pad = 0;
+    const uint32_t depth = n.flags;
+    n.flags = 0;
     if (!n.is_leaf()) n.index = rank_(n.index);
     t.add(n, depth, root_area_, prims_, traversal_);
     out_[rank_(slot)] = n;

@@ -88,22 +88,12 @@ void clear_slot(WideNode& w, int k) {
   w.count[k] = 0;
 }
 
-bool leaf_of_one_kind(const Bvh& bvh, const BvhNode& leaf) {
-  PrimTag tag = bvh.refs[leaf.index].tag();
-  for (uint32_t i = leaf.index + 1; i < leaf.index + leaf.count; ++i)
-    if (bvh.refs[i].tag() != tag) return false;
-  return true;
-}
-
-void set_slot(const Bvh& bvh, WideNode& w, int k, const BvhNode& b) {
+void set_slot(WideNode& w, int k, const BvhNode& b) {
   for (int axis = 0; axis < 3; ++axis)
     w.box[axis][0][k] = b.lo[axis], w.box[axis][1][k] = b.hi[axis];
-  w.child[k] = b.index;  // a leaf's first ref; an inner child's index is set by the caller
+  w.child[k] = b.index;  // a leaf's first row or ref; an inner child's index is set by the caller
   w.count[k] = b.count;
-  if (b.is_leaf() && leaf_of_one_kind(bvh, b)) {
-    w.child[k] = bvh.refs[b.index].bits();
-    w.one_kind |= uint8_t(1u << k);
-  }
+  if (b.is_leaf() && b.is_one_kind()) w.one_kind |= uint8_t(1u << k);
 }
 
 // Makes the wide node for binary node `binary` at wide.nodes[slot], then its inner children,
@@ -121,7 +111,7 @@ void collapse(const Bvh& bvh, const CollapsePlan& plan, uint32_t binary, uint32_
   WideNode w{};
   for (int k = 0; k < kWideArity; ++k) {
     if (k < n) {
-      set_slot(bvh, w, k, bvh.nodes[children[k]]);
+      set_slot(w, k, bvh.nodes[children[k]]);
     } else {
       clear_slot(w, k);
     }

@@ -17,14 +17,17 @@ Vec3d inverse(const Vec3d& d) {
 template <class OnHit>
 bool visit_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& leaf, const Rayd& ray,
                 OnHit&& on_hit) {
-  for (uint32_t i = leaf.index; i < leaf.index + leaf.count; ++i) {
-    PrimRef ref = bvh.refs[i];
-    double t = dispatch(ref.tag(), [&](auto kind) {
-      return intersect_ref(scene.table<decltype(kind)>(), ref.row(), ray);
-    });
-    if (t < ray.tmax && on_hit(ref, t)) return true;
-  }
-  return false;
+  bool stop = false;
+  for_each_run(bvh, leaf, [&](PrimRef head, uint32_t rows) {
+    for (uint32_t i = 0; i < rows && !stop; ++i) {
+      PrimRef ref(head.tag(), head.row() + i);
+      double t = dispatch(ref.tag(), [&](auto kind) {
+        return intersect_ref(scene.table<decltype(kind)>(), ref.row(), ray);
+      });
+      stop = t < ray.tmax && on_hit(ref, t);
+    }
+  });
+  return stop;
 }
 
 // Depth-first traversal; `on_hit` may shrink `ray.tmax`; returns true if stopped early.

@@ -30,7 +30,7 @@ void place(SlotTree& t, std::mt19937& rng, uint32_t slot, uint32_t begin, uint32
   t.used[slot] = 1;
   for (int k = 0; k < 3; ++k)
     n.lo[k] = -scale * (0.5f + u(rng)), n.hi[k] = scale * (0.5f + u(rng));
-  n.pad = uint8_t(depth);
+  n.flags = uint8_t(depth);
   const uint32_t count = end - begin;
   if (count == 1 || (count <= 8 && u(rng) < 0.5f)) {
     n.index = begin, n.count = uint16_t(count), n.axis = 0;
@@ -61,8 +61,8 @@ void reference_copy(const SlotTree& t, std::vector<BvhNode>& out, BvhStats& s) {
   const double root_area = half_area(t.slots[0].bounds());
   auto copy = [&](uint32_t slot) {
     BvhNode n = t.slots[slot];
-    const uint32_t depth = n.pad;
-    n.pad = 0;
+    const uint32_t depth = n.flags;
+    n.flags = 0;
     out.push_back(n);
     const double rel = half_area(n.bounds()) / root_area;
     if (!n.is_leaf()) {

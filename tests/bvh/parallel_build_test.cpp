@@ -5,16 +5,19 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
+#include "support/leaf_prims.h"
 #include "support/random_scene.h"
 
 namespace raylane {
 namespace {
 
 using testing::add_closed_uv_sphere;
+using testing::leaf_prims;
 using testing::random_scene;
 
 Bvh build_with_threads(Scene& s, int threads) {
@@ -42,16 +45,16 @@ void expect_same_subtree(const Bvh& a, uint32_t na, const Bvh& b, uint32_t nb) {
   expect_same_subtree(a, x.index + 1, b, y.index + 1);
 }
 
-// Every ref in exactly one leaf and every child inside its parent.
-void expect_valid(const Bvh& bvh) {
-  std::vector<int> covered(bvh.refs.size(), 0);
+// Every primitive in exactly one leaf and every child inside its parent.
+void expect_valid(const Bvh& bvh, std::size_t prims) {
+  std::vector<uint32_t> covered;
   std::vector<uint32_t> stack = {0};
   while (!stack.empty()) {
     const BvhNode& n = bvh.nodes[stack.back()];
     stack.pop_back();
     if (n.is_leaf()) {
-      for (uint32_t i = n.index; i < n.index + n.count; ++i)
-        ++covered[i];
+      for (PrimRef p : leaf_prims(bvh, n))
+        covered.push_back(p.bits());
       continue;
     }
     for (uint32_t c : {n.index, n.index + 1}) {
@@ -60,8 +63,10 @@ void expect_valid(const Bvh& bvh) {
       stack.push_back(c);
     }
   }
-  for (std::size_t i = 0; i < covered.size(); ++i)
-    ASSERT_EQ(covered[i], 1) << "ref " << i;
+  ASSERT_EQ(covered.size(), prims);
+  std::sort(covered.begin(), covered.end());
+  ASSERT_TRUE(std::adjacent_find(covered.begin(), covered.end()) == covered.end())
+      << "a primitive in two leaves";
 }
 
 Scene big_mixed_scene() {
@@ -74,7 +79,7 @@ TEST(BvhParallelBuild, TwoThreadsBuildTheSameValidTreeAsOne) {
   Scene one = big_mixed_scene(), two = one;
   ASSERT_GT(one.primitive_count(), 60000u);
   Bvh a = build_with_threads(one, 1), b = build_with_threads(two, 2);
-  expect_valid(b);
+  expect_valid(b, two.primitive_count());
   ASSERT_EQ(a.refs.size(), b.refs.size());
   for (std::size_t i = 0; i < a.refs.size(); ++i)
     ASSERT_EQ(a.refs[i], b.refs[i]) << i;

@@ -21,16 +21,20 @@ struct Scene;
 struct BvhNode {
   float lo[3];
   float hi[3];
-  uint32_t index;  // inner: first child; leaf: first ref in Bvh::refs
-  uint16_t count;  // 0 for an inner node; a leaf's number of refs
+  // Inner: first child. Leaf of one kind (kOneKind): the PrimRef bits of its first row, its
+  // rows being contiguous; leaf of several kinds: its first ref in Bvh::refs.
+  uint32_t index;
+  uint16_t count;  // 0 for an inner node; a leaf's number of primitives
   uint8_t axis;    // inner: the split axis (children ordered along it); leaf: unused
-  uint8_t pad;     // 0
+  uint8_t flags;   // kOneKind or 0
+  static constexpr uint8_t kOneKind = 1;
 
   // Leaves every field unset: the builder sizes the node array and its threads write each
   // node once (value-initialising a million nodes first took 8.5 ms of one thread).
   BvhNode() {}
 
   bool is_leaf() const { return count > 0; }
+  bool is_one_kind() const { return flags & kOneKind; }
   Bounds3f bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
   // Half the surface area, in double (the wide collapse's cost: src/bvh/wide.cpp).
   double half_area() const {
@@ -63,7 +67,11 @@ struct BvhStats {
 
 struct Bvh {
   std::vector<BvhNode> nodes;  // nodes[0] is the root (a leaf if the scene is tiny)
-  std::vector<PrimRef> refs;   // leaf contents; rows are the scene's rows after permutation
+  // The contents of the leaves that hold more than one kind, sorted by kind (rows are the
+  // scene's rows after permutation). A leaf of one kind needs none: it names its first row
+  // (BvhNode::index), 4 bytes a primitive saved on most scenes (bench/README.md, issue 17's
+  // ninth sitting).
+  std::vector<PrimRef> refs;
   // source_rows[k][r]: the row that row r of kind k's table had before the build permuted it
   // (to report results in the input's order, e.g. triangle indices of a soup). Not used by
   // traversal, so not counted in bytes().
@@ -73,11 +81,27 @@ struct Bvh {
   WideBvh wide;
   BvhStats stats;
 
-  bool empty() const { return refs.empty(); }
+  bool empty() const { return nodes.empty(); }
   std::size_t bytes() const {
     return nodes.size() * sizeof(BvhNode) + refs.size() * sizeof(PrimRef) + wide.bytes();
   }
 };
+
+// Calls f(head, rows) for each run of one kind in `leaf`: rows head.row() … head.row() + rows − 1
+// of head's kind (the tables are permuted into leaf order, so a run's rows are contiguous).
+template <class F>
+inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
+  if (leaf.is_one_kind()) return f(PrimRef::from_bits(leaf.index), uint32_t(leaf.count));
+  uint32_t i = leaf.index, end = leaf.index + leaf.count;
+  while (i < end) {
+    PrimRef head = bvh.refs[i];
+    uint32_t j = i + 1;
+    while (j < end && bvh.refs[j].tag() == head.tag())
+      ++j;
+    f(head, j - i);
+    i = j;
+  }
+}
 
 // Builds the BVH over every primitive of `scene` and has the scene permute its tables into
 // leaf order (Scene::permute). A scene without primitives gives an empty BVH.

@@ -57,24 +57,18 @@ template <class A, bool kSameSides>
   return (t0 <= t1) & r.active;
 }
 
-// Tests `lanes` of the packet against the rows of one leaf: runs of refs of one kind, whose
-// rows are contiguous because the tables were permuted into leaf order.
+// Tests `lanes` of the packet against the rows of one leaf: runs of one kind, whose rows are
+// contiguous because the tables were permuted into leaf order.
 template <class A>
 inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& leaf,
                            const RayPacket<A>& r, const simd::Mask<A>& lanes, HitPacket<A>& h) {
-  uint32_t i = leaf.index, end = leaf.index + leaf.count;
-  while (i < end) {
-    PrimRef first = bvh.refs[i];
-    uint32_t j = i + 1;
-    while (j < end && bvh.refs[j].tag() == first.tag())
-      ++j;
-    uint32_t row_begin = first.row(), row_end = first.row() + (j - i);
-    dispatch(first.tag(), [&](auto kind) {
+  for_each_run(bvh, leaf, [&](PrimRef head, uint32_t rows) {
+    dispatch(head.tag(), [&](auto kind) {
       using Kind = decltype(kind);
-      intersect_packet<A>(scene.table<Kind>(), LanesAreRays<A>{row_begin, row_end, lanes}, r, h);
+      intersect_packet<A>(scene.table<Kind>(),
+                          LanesAreRays<A>{head.row(), head.row() + rows, lanes}, r, h);
     });
-    i = j;
-  }
+  });
 }
 
 // A node waiting on the traversal stack: its box was found overlapped by `lanes`, entered at
