@@ -159,6 +159,16 @@ inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wi
   alignas(64) int32_t prim[W];
   simd::store<A>(t, h.t);
   simd::store<A>(prim, h.prim);
+  // Each lane's shear frame as the packet's set-up computed it (RayShear, per lane: the same
+  // operations as scalar_shear's), so that a lane handed over does not divide again.
+  alignas(64) float shear[3][W];
+  simd::store<A>(shear[0], r.shear.sx), simd::store<A>(shear[1], r.shear.sy);
+  simd::store<A>(shear[2], r.shear.sz);
+  uint32_t z_is[2] = {simd::bits<A>(r.shear.z_is[0]), simd::bits<A>(r.shear.z_is[1])};
+  uint32_t x_is[2] = {simd::bits<A>(r.shear.x_is[0]), simd::bits<A>(r.shear.x_is[1])};
+  auto axis = [](const uint32_t* is, int k) {
+    return (is[0] >> k) & 1u ? 0 : (is[1] >> k) & 1u ? 1 : 2;
+  };
   TraversalCounters single;
   for (uint32_t m = simd::bits<A>(lanes); m; m &= m - 1) {
     int k = __builtin_ctz(m);
@@ -167,7 +177,9 @@ inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wi
                    {col[6][k], col[7][k], col[8][k]},
                    col[9][k],
                    t[k]};
-    RayPacket<L> ray = broadcast_ray<L>(one);
+    const int kz = axis(z_is, k), kx = axis(x_is, k);
+    const ShearScalars frame{shear[0][k], shear[1][k], shear[2][k], kx, 3 - kx - kz, kz};
+    RayPacket<L> ray = broadcast_ray<L>(one, &frame);
     HitPacket<L> hit{FL(t[k]), simd::Ints<L>(prim[k]), FL(0.0f) != FL(0.0f)};
     traverse_ray<A, false, kCount>(scene, bvh, ray, hit, &single, wide_root);
     if (simd::none<L>(hit.found)) continue;

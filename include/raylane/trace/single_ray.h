@@ -53,9 +53,32 @@ inline RayShear<L> scalar_shear(const RayScalars& r) {
   return s;
 }
 
-// The ray in every lane of a packet whose lanes are all active. Contract: single_ray_valid(r).
+// A ray's shear frame as scalars: the axes and the factors RayShear holds in each lane.
+struct ShearScalars {
+  float sx, sy, sz;
+  int kx, ky, kz;
+};
+
+// The frame in every lane, from scalars (no division: a packet's set-up already divided).
 template <class L>
-inline RayPacket<L> broadcast_ray(const RayScalars& r) {
+inline RayShear<L> broadcast_shear(const ShearScalars& f) {
+  using F = simd::Floats<L>;
+  RayShear<L> s;
+  s.sz = F(f.sz), s.sx = F(f.sx), s.sy = F(f.sy);
+  for (int k = 0; k < 3; ++k) {
+    s.x_is[k] = simd::Mask<L>(f.kx == k);
+    s.y_is[k] = simd::Mask<L>(f.ky == k);
+    s.z_is[k] = simd::Mask<L>(f.kz == k);
+  }
+  s.uniform = true;
+  s.kx = f.kx, s.ky = f.ky, s.kz = f.kz;
+  return s;
+}
+
+// The ray in every lane of a packet whose lanes are all active, with its frame when the caller
+// has it (else scalar_shear's). Contract: single_ray_valid(r).
+template <class L>
+inline RayPacket<L> broadcast_ray(const RayScalars& r, const ShearScalars* frame = nullptr) {
   using F = simd::Floats<L>;
   RayPacket<L> p;
   p.ox = F(r.o[0]), p.oy = F(r.o[1]), p.oz = F(r.o[2]);
@@ -64,7 +87,7 @@ inline RayPacket<L> broadcast_ray(const RayScalars& r) {
   p.tmin = F(r.tmin);
   p.end = simd::Ints<L>(int32_t(PrimRef::kInvalidBits));  // single rays go through closest hit
   p.active = simd::Mask<L>(true);
-  p.shear = scalar_shear<L>(r);
+  p.shear = frame ? broadcast_shear<L>(*frame) : scalar_shear<L>(r);
   p.sides.uniform = true;
   for (int k = 0; k < 3; ++k) {
     bool hi = r.inv[k] < 0.0f;  // the sign of d, even for ±0 (docs/hard-cases.md B3)
