@@ -87,12 +87,12 @@ struct Bvh {
   }
 };
 
-// Calls f(head, rows) for each run of one kind in `leaf`: rows head.row() … head.row() + rows − 1
-// of head's kind (the tables are permuted into leaf order, so a run's rows are contiguous).
+// Calls f(head, rows) for each run of one kind in a mixed leaf's refs [first, first + count):
+// rows head.row() … head.row() + rows − 1 of head's kind (the tables are permuted into leaf
+// order, so a run's rows are contiguous). The 8-wide tree's leaves hold the same refs.
 template <class F>
-inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
-  if (leaf.is_one_kind()) return f(PrimRef::from_bits(leaf.index), uint32_t(leaf.count));
-  uint32_t i = leaf.index, end = leaf.index + leaf.count;
+inline void for_each_ref_run(const Bvh& bvh, uint32_t first, uint32_t count, F&& f) {
+  uint32_t i = first, end = first + count;
   while (i < end) {
     PrimRef head = bvh.refs[i];
     uint32_t j = i + 1;
@@ -101,6 +101,12 @@ inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
     f(head, j - i);
     i = j;
   }
+}
+// The same for every run of `leaf`: one run of a one-kind leaf, or its refs' runs.
+template <class F>
+inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
+  if (leaf.is_one_kind()) return f(PrimRef::from_bits(leaf.index), uint32_t(leaf.count));
+  for_each_ref_run(bvh, leaf.index, uint32_t(leaf.count), f);
 }
 
 // Builds the BVH over every primitive of `scene` and has the scene permute its tables into

@@ -114,15 +114,9 @@ inline void intersect_leaf_rows(const Scene& scene, const Bvh& bvh, const WideEn
                                 const RayPacket<L>& r, HitPacket<L>& h) {
   if (leaf.one_kind)
     return intersect_run_rows<L>(scene, PrimRef::from_bits(leaf.child), leaf.count, r, h);
-  uint32_t i = leaf.child, end = leaf.child + leaf.count;
-  while (i < end) {
-    PrimRef head = bvh.refs[i];
-    uint32_t j = i + 1;
-    while (j < end && bvh.refs[j].tag() == head.tag())
-      ++j;
-    intersect_run_rows<L>(scene, head, j - i, r, h);
-    i = j;
-  }
+  for_each_ref_run(bvh, leaf.child, uint32_t(leaf.count), [&](PrimRef head, uint32_t rows) {
+    intersect_run_rows<L>(scene, head, rows, r, h);
+  });
 }
 
 // The closest hit among the lanes of h (each lane holds the closest of the rows it tested),
