@@ -62,6 +62,7 @@ void trace_rays(benchmark::State& state, const std::string& scene, RayKind kind,
     state.counters["nodes/ray"] = c.per_ray(c.node_tests);
     state.counters["prims/ray"] = c.per_ray(c.prim_tests);
     state.counters["lanes_used"] = c.lane_utilisation();
+    state.counters["leaves/ray"] = c.per_ray(c.leaf_visits);
   }
   for (auto _ : state) {
     t.trace(set.rays, set.occlusion, hits);

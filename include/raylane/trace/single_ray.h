@@ -30,40 +30,31 @@ inline bool single_ray_valid(const RayScalars& r) {
          finite(r.d[2]) && dd > 0.0f && r.tmin <= r.tmax;
 }
 
-// The watertight test's frame (Woop et al. 2013, §3) as RayShear computes it per lane: z is
-// the axis of largest |d| (ties to the lowest), x and y follow cyclically, swapped when
-// d_z < 0.
-template <class L>
-inline RayShear<L> scalar_shear(const RayScalars& r) {
-  using F = simd::Floats<L>;
-  float ax = std::fabs(r.d[0]), ay = std::fabs(r.d[1]), az = std::fabs(r.d[2]);
-  int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az) ? 1 : 2;
-  int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
-  if (r.d[kz] < 0.0f) std::swap(kx, ky);
-  RayShear<L> s;
-  float sz = 1.0f / r.d[kz];
-  s.sz = F(sz), s.sx = F(r.d[kx] * sz), s.sy = F(r.d[ky] * sz);
-  for (int k = 0; k < 3; ++k) {
-    s.x_is[k] = simd::Mask<L>(kx == k);
-    s.y_is[k] = simd::Mask<L>(ky == k);
-    s.z_is[k] = simd::Mask<L>(kz == k);
-  }
-  s.uniform = true;
-  s.kx = kx, s.ky = ky, s.kz = kz;
-  return s;
-}
-
 // A ray's shear frame as scalars: the axes and the factors RayShear holds in each lane.
 struct ShearScalars {
   float sx, sy, sz;
   int kx, ky, kz;
 };
 
-// The frame in every lane, from scalars (no division: a packet's set-up already divided).
+// The watertight test's frame (Woop et al. 2013, §3) as RayShear computes it per lane: z is
+// the axis of largest |d| (ties to the lowest), x and y follow cyclically, swapped when
+// d_z < 0. (A template only so that each per-ISA unit keeps its own copy.)
 template <class L>
-inline RayShear<L> broadcast_shear(const ShearScalars& f) {
+inline ShearScalars scalar_shear(const RayScalars& r) {
+  float ax = std::fabs(r.d[0]), ay = std::fabs(r.d[1]), az = std::fabs(r.d[2]);
+  int kz = (ax >= ay && ax >= az) ? 0 : (ay >= az) ? 1 : 2;
+  int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
+  if (r.d[kz] < 0.0f) std::swap(kx, ky);
+  float sz = 1.0f / r.d[kz];
+  return {r.d[kx] * sz, r.d[ky] * sz, sz, kx, ky, kz};
+}
+
+// The frame in every lane, from scalars (no division: they were divided once), written in
+// place: a RayShear returned by value was copied into the packet through the stack, a
+// store-forwarding stall on every ray.
+template <class L>
+inline void broadcast_shear(const ShearScalars& f, RayShear<L>& s) {
   using F = simd::Floats<L>;
-  RayShear<L> s;
   s.sz = F(f.sz), s.sx = F(f.sx), s.sy = F(f.sy);
   for (int k = 0; k < 3; ++k) {
     s.x_is[k] = simd::Mask<L>(f.kx == k);
@@ -72,7 +63,6 @@ inline RayShear<L> broadcast_shear(const ShearScalars& f) {
   }
   s.uniform = true;
   s.kx = f.kx, s.ky = f.ky, s.kz = f.kz;
-  return s;
 }
 
 // The ray in every lane of a packet whose lanes are all active, with its frame when the caller
@@ -87,7 +77,7 @@ inline RayPacket<L> broadcast_ray(const RayScalars& r, const ShearScalars* frame
   p.tmin = F(r.tmin);
   p.end = simd::Ints<L>(int32_t(PrimRef::kInvalidBits));  // single rays go through closest hit
   p.active = simd::Mask<L>(true);
-  p.shear = frame ? broadcast_shear<L>(*frame) : scalar_shear<L>(r);
+  broadcast_shear<L>(frame ? *frame : scalar_shear<L>(r), p.shear);
   p.sides.uniform = true;
   for (int k = 0; k < 3; ++k) {
     bool hi = r.inv[k] < 0.0f;  // the sign of d, even for ±0 (docs/hard-cases.md B3)
