@@ -1,6 +1,7 @@
 // Interval arithmetic in double around float computations: each interval holds every value
 // a float kernel can produce for some quantity (pbrt-v4's `Interval`, src/pbrt/util/float.h,
-// which runs inside pbrt's kernels; ours runs beside raylane's). Used by error_bands.cpp.
+// which runs inside pbrt's kernels; ours runs beside raylane's). Used by error_bands.cpp
+// and error_bands_scene.cpp.
 #pragma once
 
 #include <algorithm>
@@ -10,6 +11,11 @@
 #include "raylane/core/float_util.h"
 
 namespace raylane::testing {
+
+// Distance between two values that may both be the same infinity.
+inline double gap(double a, double b) {
+  return a == b ? 0.0 : std::abs(a - b);
+}
 
 // A closed interval; the default holds everything.
 struct Interval {
