@@ -123,8 +123,12 @@ uint64_t scene_fingerprint(const Scene& scene) {
 }
 
 FilmOrigin film_origin(const Scene& scene, const PathSettings& settings) {
+  return film_origin(scene_fingerprint(scene), settings);
+}
+
+FilmOrigin film_origin(uint64_t scene_print, const PathSettings& settings) {
   return {true,
-          scene_fingerprint(scene),
+          scene_print,
           settings.seed,
           int32_t(settings.integrator),
           settings.max_depth,
@@ -159,8 +163,12 @@ std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run) {
   return out;
 }
 
-uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
-  Hasher h;
+namespace {
+
+// The scene's part of a fingerprint: every table column, material, texel and camera value (a
+// pass over all of the scene's bytes: 0.3 s for a 1.31M-triangle mesh, so it is taken only for
+// a film that is saved or resumed, once).
+void hash_scene(Hasher& h, const Scene& scene) {
   h.value(scene.width), h.value(scene.height);
   if (scene.camera) {
     h.value(scene.camera->eye), h.value(scene.camera->ry), h.value(scene.camera->rotation);
@@ -184,12 +192,34 @@ uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
     std::apply([&](const auto&... c) { (h.column(c), ...); },
                const_cast<Scene&>(scene).table<decltype(kind)>().columns());
   });
+}
+
+// The settings' part, hashed after the scene's.
+void hash_settings(Hasher& h, const PathSettings& settings) {
   h.value(settings.integrator), h.value(settings.seed);
   h.value(settings.max_depth), h.value(settings.rr_depth);
   // Hashed only when not the course's generator, so films from before samplers still fit.
   if (settings.sampler != Sampler::kMt19937) h.value(settings.sampler);
   if (settings.shading != Shading::kDouble) h.value(settings.shading);  // likewise
+}
+
+}  // namespace
+
+uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings) {
+  Hasher h;
+  hash_scene(h, scene);
+  hash_settings(h, settings);
   return h.h;
+}
+
+void identify_film(Film& film, const Scene& scene, const PathSettings& settings) {
+  Hasher with_settings;
+  hash_scene(with_settings, scene);
+  Hasher with_defaults = with_settings;  // scene_fingerprint: the same scene pass, reused
+  hash_settings(with_settings, settings);
+  hash_settings(with_defaults, PathSettings{});
+  film.fingerprint = with_settings.h;
+  film.origin = film_origin(with_defaults.h, settings);
 }
 
 Status save_film(const std::string& path, const Film& film) {

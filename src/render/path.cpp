@@ -188,8 +188,6 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   if (f.sum.empty()) {
     f.width = cam.width, f.height = cam.height, f.passes = 0;
     f.sum.assign(std::size_t(cam.width) * cam.height * 3, 0.0);
-    f.fingerprint = film_fingerprint(scene, settings);
-    f.origin = film_origin(scene, settings);
     f.aovs = settings.aovs;
     f.aov_sum.assign(std::size_t(cam.width) * cam.height * std::size_t(f.aovs.channels()), 0.0);
   }

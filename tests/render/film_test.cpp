@@ -36,12 +36,40 @@ PathSettings settings(int spp) {
   return s;
 }
 
+TEST(Film, IdentifyingAFilmGivesTheFingerprintAndOriginOfItsSettings) {
+  Rendered r = load("sphere.scn");
+  PathSettings s = settings(3);
+  s.seed = 11, s.max_depth = 4;
+  Film film;
+  identify_film(film, r.scene, s);
+  EXPECT_EQ(film.fingerprint, film_fingerprint(r.scene, s));
+  const FilmOrigin want = film_origin(r.scene, s);
+  EXPECT_TRUE(film.origin.known);
+  EXPECT_EQ(film.origin.scene, want.scene);
+  EXPECT_EQ(film.origin.scene, scene_fingerprint(r.scene));
+  EXPECT_EQ(film.origin.seed, 11u);
+  EXPECT_EQ(film.origin.max_depth, 4);
+  EXPECT_EQ(origin_difference(film.origin, want), "");
+}
+
+// A render without a film to save leaves the film's identity alone: the fingerprint's pass
+// over the scene is paid only by --checkpoint and --resume.
+TEST(Film, RenderingDoesNotIdentifyTheFilm) {
+  Rendered r = load("sphere.scn");
+  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Film film;
+  render_path(tracer, settings(1), nullptr, &film);
+  EXPECT_EQ(film.fingerprint, 0u);
+  EXPECT_FALSE(film.origin.known);
+}
+
 TEST(Film, ResumedRenderIsTheUninterruptedRender) {
   Rendered r = load("sphere.scn");
   Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
   Image whole = render_path(tracer, settings(5));
 
   Film film;
+  identify_film(film, r.scene, settings(2));  // the CLI's --checkpoint does this
   render_path(tracer, settings(2), nullptr, &film);
   EXPECT_EQ(film.passes, 2);
   std::string path = testing::temp_dir() + "/a.film";

@@ -9,7 +9,11 @@ namespace raylane::cli {
 
 Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
                            const PathSettings& settings) {
-  if (!c.resume) return Film{};
+  if (!c.resume) {
+    Film film;  // a film to be saved carries what its samples depend on; others need not
+    if (c.checkpoint) identify_film(film, scene, settings);
+    return film;
+  }
   auto film = load_film(*c.resume);
   if (!film) return Error{film.error()};
   if (film->width != scene.width || film->height != scene.height)

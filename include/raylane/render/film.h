@@ -50,6 +50,11 @@ void keep_share(Film& film, const TileShare& share);
 uint64_t film_fingerprint(const Scene& scene, const PathSettings& settings);
 uint64_t scene_fingerprint(const Scene& scene);  // the scene's part alone
 FilmOrigin film_origin(const Scene& scene, const PathSettings& settings);
+FilmOrigin film_origin(uint64_t scene_print, const PathSettings& settings);
+// Sets the film's fingerprint and origin for these settings, in one pass over the scene. Only
+// a film that is saved needs them (render_path leaves them alone): a render or a viewer frame
+// without --checkpoint never pays that pass.
+void identify_film(Film& film, const Scene& scene, const PathSettings& settings);
 
 // What differs between a film's origin and this run's, in the user's terms ("the scene",
 // "--seed 3 (this run: 0)", ...), joined by "; "; empty if nothing (or if the film does not
