@@ -1,8 +1,12 @@
 // Whole path-traced renders, timed (issue 14's yardstick): samples per second — pixels ×
-// passes over wall time — of the course scene, its glass and mirror variants and a large mesh
-// (the benchmark's 1.31M-triangle displaced icosphere, glossy, under a sphere light), per
-// integrator, on 1 and all threads. One pass at the scene's own resolution per iteration,
-// each with its own seed, so every iteration does the same kind of work.
+// passes over wall time — of the course scene, its glass and mirror variants, the course scene
+// with the Stanford bunny on its table (tools/make_bunny writes the mesh) and a large mesh (the
+// benchmark's 1.31M-triangle displaced icosphere, glossy, under a sphere light), per
+// integrator, on 1 and all threads, with the BVH `raylane render` builds (render_bvh_config).
+// One pass at the scene's own resolution per iteration, each with its own seed, so every
+// iteration does the same kind of work. The `/phases` rows time the render's phases as
+// `--stats` does and report the bounce and shadow rays' rate over their tracing time, to set
+// beside bench_trace's rates for the same scene's diffuse and shadow rays.
 //
 //   build/bench/bench_render [--benchmark_filter=...] [--benchmark_repetitions=5 ...]
 #include <benchmark/benchmark.h>
@@ -37,6 +41,17 @@ ParsedScene icosphere_scene() {
   return p;
 }
 
+// The course scene with the bunny on the table: the line the scene file leaves commented out,
+// with the mesh tools/make_bunny writes.
+ParsedScene bunny_scene() {
+  const std::string scenes = std::string(RAYLANE_SOURCE_DIR) + "/scenes/";
+  std::string text = "mesh \"" + std::string(RAYLANE_BENCH_DATA) +
+                     "/bunny.ply\" -0.5 0.8 0.23 5.0 z -90 q 0 0 0.707107 0.707106";
+  ParseOptions options;
+  options.overrides.push_back(text);
+  return load_scene_file(scenes + "testscene.scn", options);
+}
+
 // The course scene (built in), the icosphere or scenes/<name>.scn, loaded and built once.
 const RenderScene* render_scene(const std::string& name) {
   static std::mutex mutex;
@@ -49,50 +64,71 @@ const RenderScene* render_scene(const std::string& name) {
       s->parsed = load_builtin_scene();
     else if (name == "icosphere")
       s->parsed = icosphere_scene();
+    else if (name == "testscene-bunny")
+      s->parsed = bunny_scene();
     else
       s->parsed = load_scene_file(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".scn");
     if (!s->parsed.ok()) return nullptr;
-    s->bvh = build_bvh(s->parsed.scene);
+    s->bvh = build_bvh(s->parsed.scene, render_bvh_config(s->parsed.scene));
     slot = std::move(s);
   }
   return slot.get();
 }
 
 void render_passes(benchmark::State& state, const std::string& name, Integrator integrator,
-                   int threads) {
+                   int threads, bool phases) {
   const RenderScene* s = render_scene(name);
-  if (!s) return state.SkipWithError(("cannot load scene " + name).c_str());
+  if (!s)
+    return state.SkipWithError(("cannot load scene " + name +
+                                (name == "testscene-bunny" ? " (run tools/make_bunny first)" : ""))
+                                   .c_str());
   omp_set_num_threads(threads);
   Tracer tracer(s->parsed.scene, s->bvh, TracerKind::kPacket);
   PathSettings settings;
   settings.integrator = integrator;
   settings.spp = 1;
+  settings.time_phases = phases;
   const double pixels = double(s->parsed.scene.width) * s->parsed.scene.height;
   double samples = 0, rays = 0;
+  PathStats all;
   for (auto _ : state) {
     PathStats stats;
     render_path(tracer, settings, &stats);
     ++settings.seed;
     samples += pixels;
     rays += double(stats.rays());
+    all.phases.add(stats.phases);
+    all.bounce_rays += stats.bounce_rays, all.shadow_rays += stats.shadow_rays;
   }
   state.counters["samples/s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
   state.counters["rays/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
+  if (phases && all.phases.trace_rest > 0) {
+    // Per thread-second of tracing, as --stats reports it.
+    state.counters["traced Mrays/s"] =
+        double(all.bounce_rays + all.shadow_rays) / all.phases.trace_rest * 1e-6;
+    state.counters["shade/trace"] =
+        (all.phases.shade + all.phases.lights) / (all.phases.trace_rest + all.phases.trace_camera);
+  }
 }
 
 void register_all() {
   const int all = omp_get_num_procs();
-  for (const char* scene : {"testscene", "testscene-glass", "testscene-mirror", "icosphere"})
+  auto add = [](const std::string& scene, Integrator integrator, int threads, bool phases) {
+    std::string name = "render/" + scene + "/" + std::string(integrator_name(integrator)) +
+                       (phases ? "/phases" : "") + "/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(name.c_str(), render_passes, scene, integrator, threads, phases)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  };
+  for (const char* scene :
+       {"testscene", "testscene-glass", "testscene-mirror", "testscene-bunny", "icosphere"}) {
     for (Integrator integrator : {Integrator::kMis, Integrator::kNee, Integrator::kBrdf})
       for (int threads : {1, all}) {
-        std::string name = std::string("render/") + scene + "/" +
-                           std::string(integrator_name(integrator)) +
-                           "/threads:" + std::to_string(threads);
-        benchmark::RegisterBenchmark(name.c_str(), render_passes, scene, integrator, threads)
-            ->UseRealTime()
-            ->Unit(benchmark::kMillisecond);
+        add(scene, integrator, threads, false);
         if (all == 1) break;
       }
+    add(scene, Integrator::kMis, 1, true);
+  }
 }
 
 }  // namespace

@@ -185,6 +185,12 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
     return nullptr;
   }
   b->bvh = build_bvh(b->scene, BvhConfig{.wide_nodes = true});
+  // The wide nodes are collapsed from the binary tree after it is built, so without them the
+  // tree is the one render_bvh_config builds (and the scene's rows are in its order).
+  if (!render_bvh_config(b->scene).wide_nodes) {
+    b->packets_only = b->bvh;
+    b->packets_only.wide = WideBvh{};
+  }
   auto& slot = cache[name];
   slot = std::make_unique<BenchScene>(std::move(*b));
   return slot.get();

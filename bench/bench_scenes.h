@@ -15,9 +15,13 @@ namespace raylane::bench {
 struct BenchScene {
   std::string name;
   Scene scene;
-  Bvh bvh;
+  Bvh bvh;               // always with the 8-wide nodes, for the single-ray and hybrid tracers
   Vec3d light;           // the point shadow rays aim at
   double light_gap = 0;  // shadow rays stop this far short of it (a light sphere's radius)
+  // The BVH `raylane render` traces this scene with (render_bvh_config): `bvh` itself when
+  // that has wide nodes, else the same binary tree without them (packets alone).
+  Bvh packets_only{};
+  const Bvh& rendered() const { return packets_only.empty() ? bvh : packets_only; }
 };
 
 // testscene (the course's, built in), bunny (the Stanford bunny of npm's `bunny` package,

@@ -21,17 +21,18 @@ std::string packet_tracer_name(Isa isa, Traversal traversal) {
          (traversal == Traversal::kSingleRays ? "-rays" : "");
 }
 
-BenchTracer packet_tracer(const BenchScene& b, Isa isa, Traversal traversal) {
+BenchTracer packet_tracer(const BenchScene& b, const Bvh& bvh, const std::string& name, Isa isa,
+                          Traversal traversal) {
   SimdTracer t(isa, traversal);
-  return {packet_tracer_name(isa, traversal),
-          [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
+  return {name,
+          [&b, &bvh, t](const RayStream& rays, bool occlusion, HitStream& hits) {
             hits.resize(rays.size());
             parallel_chunks(rays.size(), kTraceChunk, [&](std::size_t begin, std::size_t end) {
-              t.trace_range(b.scene, b.bvh, rays, begin, end, hits, occlusion);
+              t.trace_range(b.scene, bvh, rays, begin, end, hits, occlusion);
             });
           },
-          [&b, t](const RayStream& rays, bool occlusion, HitStream& hits) {
-            return t.trace_counted(b.scene, b.bvh, rays, hits, occlusion);
+          [&b, &bvh, t](const RayStream& rays, bool occlusion, HitStream& hits) {
+            return t.trace_counted(b.scene, bvh, rays, hits, occlusion);
           }};
 }
 
@@ -71,7 +72,7 @@ const HitStream& reference(const BenchScene& b, const RayStream& rays, bool occl
 }  // namespace
 
 std::vector<std::string> bench_tracer_names() {
-  std::vector<std::string> names;
+  std::vector<std::string> names{kRenderTracerName};
   for (Traversal traversal : {Traversal::kPackets, Traversal::kSingleRays})
     for (Isa isa : supported_isas())
       names.push_back(packet_tracer_name(isa, traversal));
@@ -86,9 +87,13 @@ std::vector<std::string> bench_tracer_names() {
 }
 
 BenchTracer bench_tracer(const BenchScene& b, const std::string& name) {
+  // What `raylane render` runs: the widest ISA, packets (hybrid where its BVH has wide nodes).
+  if (name == kRenderTracerName)
+    return packet_tracer(b, b.rendered(), name, best_isa(), Traversal::kPackets);
   for (Traversal traversal : {Traversal::kPackets, Traversal::kSingleRays})
     for (Isa isa : supported_isas())
-      if (name == packet_tracer_name(isa, traversal)) return packet_tracer(b, isa, traversal);
+      if (name == packet_tracer_name(isa, traversal))
+        return packet_tracer(b, b.bvh, name, isa, traversal);
   if (name == "raylane-scalar")
     return {name, [&b](const RayStream& r, bool o, HitStream& h) { trace_scalar(b, r, o, h); },
             nullptr};

@@ -22,11 +22,15 @@ struct BenchTracer {
   std::function<TraversalCounters(const RayStream&, bool occlusion, HitStream&)> count;
 };
 
-// raylane's packet tracer at each ISA this CPU has, with packets ("raylane-avx2") and with
+// What `raylane render` traces with on this CPU ("raylane-render": the widest ISA's packets on
+// the BVH render_bvh_config builds, so hybrid packets where that has 8-wide nodes), then
+// raylane's packet tracer at each ISA this CPU has, on the BVH with 8-wide nodes, with hybrid
+// packets ("raylane-avx2") and with
 // single rays over the 8-wide tree ("raylane-avx2-rays"), raylane's scalar path (single rays
 // through the BVH with the double reference kernels) and, when built with Embree, Embree's
 // single-ray and 16-wide packet calls ("embree-1", "embree-16"), also on a scene built with
 // RTC_SCENE_FLAG_ROBUST ("embree-robust-1", "embree-robust-16").
+inline constexpr const char* kRenderTracerName = "raylane-render";
 std::vector<std::string> bench_tracer_names();
 BenchTracer bench_tracer(const BenchScene& scene, const std::string& name);
 

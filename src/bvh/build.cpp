@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <memory>
 
 #include "bvh/build_lanes.h"
@@ -231,6 +230,12 @@ class Builder {
 };
 
 }  // namespace
+
+BvhConfig render_bvh_config(const Scene& scene) {
+  BvhConfig config;
+  config.wide_nodes = scene.primitive_count() >= kWideNodesFrom;
+  return config;
+}
 
 Bvh build_bvh(Scene& scene, const BvhConfig& config) {
   auto start = std::chrono::steady_clock::now();

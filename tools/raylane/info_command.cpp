@@ -144,12 +144,18 @@ int info_command(const std::vector<std::string>& args) {
   print_materials(s);
   print_textures(s);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh(s, render_bvh_config(s));
   const BvhStats& b = bvh.stats;
   std::printf(
       "bvh: %u inner nodes, %u leaves, depth %u, SAH cost %.2f, %zu bytes, built in "
       "%.3f s\n",
       b.inner_nodes, b.leaves, b.depth, b.sah_cost, bvh.bytes(), b.build_seconds);
+  if (bvh.wide.empty())
+    std::printf("traversal: packets over the binary tree (wide nodes from %zu primitives on)\n",
+                kWideNodesFrom);
+  else
+    std::printf("traversal: hybrid packets, single rays over 8-wide nodes (%zu bytes of them)\n",
+                bvh.wide.bytes());
   std::printf("bvh leaf sizes:");
   for (std::size_t n = 1; n < b.leaf_size_histogram.size(); ++n)
     if (b.leaf_size_histogram[n]) std::printf(" %zu:%u", n, b.leaf_size_histogram[n]);

@@ -109,6 +109,14 @@ inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
   for_each_ref_run(bvh, leaf.index, uint32_t(leaf.count), f);
 }
 
+// The BVH raylane's commands build (render, view, trace, info, and the benchmarks that measure
+// them): with wide nodes from kWideNodesFrom primitives on, so that a packet whose lanes thin
+// out goes on as single rays over the 8-wide tree (the hybrid, trace/packet_traverse.h): the
+// same answers bit for bit, faster on incoherent rays once the tree is deep enough to pay for
+// the wide nodes' memory (bench/README.md, "The render's tracer").
+inline constexpr std::size_t kWideNodesFrom = 4096;
+BvhConfig render_bvh_config(const Scene& scene);
+
 // Builds the BVH over every primitive of `scene` and has the scene permute its tables into
 // leaf order (Scene::permute). A scene without primitives gives an empty BVH.
 Bvh build_bvh(Scene& scene, const BvhConfig& config = {});
