@@ -42,11 +42,12 @@ ParsedScene icosphere_scene() {
 }
 
 // The course scene with the bunny on the table: the line the scene file leaves commented out,
-// with the mesh tools/make_bunny writes.
+// with the mesh `tools/make_bunny --scan-units build/bench-data/bunny-scan.ply` writes (the
+// bunny in the Stanford scan's units, which that line expects).
 ParsedScene bunny_scene() {
   const std::string scenes = std::string(RAYLANE_SOURCE_DIR) + "/scenes/";
   std::string text = "mesh \"" + std::string(RAYLANE_BENCH_DATA) +
-                     "/bunny.ply\" -0.5 0.8 0.23 5.0 z -90 q 0 0 0.707107 0.707106";
+                     "/bunny-scan.ply\" -0.5 0.8 0.23 5.0 z -90 q 0 0 0.707107 0.707106";
   ParseOptions options;
   options.overrides.push_back(text);
   return load_scene_file(scenes + "testscene.scn", options);
@@ -79,9 +80,12 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
                    int threads, bool phases) {
   const RenderScene* s = render_scene(name);
   if (!s)
-    return state.SkipWithError(("cannot load scene " + name +
-                                (name == "testscene-bunny" ? " (run tools/make_bunny first)" : ""))
-                                   .c_str());
+    return state.SkipWithError(
+        ("cannot load scene " + name +
+         (name == "testscene-bunny"
+              ? " (run tools/make_bunny --scan-units build/bench-data/bunny-scan.ply first)"
+              : ""))
+            .c_str());
   omp_set_num_threads(threads);
   Tracer tracer(s->parsed.scene, s->bvh, TracerKind::kPacket);
   PathSettings settings;
