@@ -31,7 +31,7 @@ std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& 
 inline constexpr const char* kSetOptionHelp =
     "a scene line read after the scene's own (repeatable), e.g.\n"
     "--set 'screen 1920 1080' or a camera line; the last camera, screen,\n"
-    "ambient or lens wins, with a warning";
+    "ambient, lens or environment wins, with a warning";
 
 // "raylane: message" on stderr, plus a hint to --help for usage errors.
 int usage_error(const std::string& message);

@@ -13,7 +13,7 @@ usage:
   raylane render [SCENE] [options]   render SCENE (default: the built-in course test scene)
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
   raylane view [SCENE] [options]     look around SCENE in a window, path traced progressively;
-                                     V prints the camera line, P saves the image
+                                     V prints the camera line, S saves the image
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
   raylane convert IN OUT [--exposure E] [--half]

@@ -125,7 +125,8 @@ const std::vector<RenderOption>& render_options() {
       {{"mode", 0, "MODE", false,
         cat("path, or a ray-casting view: ", kRaycastModeNames.list(),
             ".\n"
-            "As PNG, depth is normalised to the image's range and ids become colours;\n"
+            "As PNG, depth runs from white (the nearest hit) to 10 % grey (the farthest),\n"
+            "linear in t, misses black; ids become colours;\n"
             ".hdr and .pfm keep the raw values (t; kind tag + 1, row)"),
         "path"},
        set_mode},
@@ -189,7 +190,8 @@ const std::vector<RenderOption>& render_options() {
         cat("path: also sum ", kAovNames.list(),
             " of the first surface\n"
             "each sample meets (comma-separated), averaged like the colour;\n"
-            "written beside each output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
+            "layers of an .exr output (albedo.R, normal.X, ...); beside any other\n"
+            "output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
         ""},
        [](R& r, V v) {
          auto set = parse_aov_list(v);
