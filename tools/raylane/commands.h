@@ -33,7 +33,9 @@ inline constexpr const char* kSetOptionHelp =
     "--set 'screen 1920 1080' or a camera line; the last camera, screen,\n"
     "ambient, lens or environment wins, with a warning";
 
-// "raylane: message" on stderr, plus a hint to --help for usage errors.
+// "raylane: message" on stderr, plus a hint to --help for usage errors: the command's own
+// (`see raylane render --help`) when one is named, else the program's.
 int usage_error(const std::string& message);
+int usage_error(const std::string& command, const std::string& message);
 
 }  // namespace raylane::cli

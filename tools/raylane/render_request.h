@@ -40,6 +40,8 @@ struct RenderRequest {
   bool exr_half = false;
   bool spp_given = false;
   TileBalance balance = TileBalance::kAuto;  // --balance
+  bool print_phases = false;                 // --stats
+  std::optional<std::string> stats_json;     // --stats-json FILE
   std::vector<std::string> warnings;         // about the options, printed unless --quiet
 };
 

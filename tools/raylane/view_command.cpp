@@ -63,7 +63,7 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
 int view_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, view_specs())) return print_help(view_help());
   auto request = read_view_request(args);
-  if (!request) return usage_error(request.error());
+  if (!request) return usage_error("view", request.error());
 #ifndef RAYLANE_HAVE_SDL2
   std::fprintf(stderr,
                "raylane: this raylane was built without SDL2, so it has no `view` (install "
