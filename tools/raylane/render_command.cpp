@@ -454,12 +454,9 @@ int render_command(const std::vector<std::string>& args) {
   wopts.metadata.push_back(
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
   wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
-  if (r.path) {
-    const PathSettings& p = r.path_settings;
-    wopts.metadata.push_back(cat("RAYLANE_SEED=", p.seed));
-    wopts.metadata.push_back(cat("RAYLANE_INTEGRATOR=", integrator_name(p.integrator)));
-    wopts.metadata.push_back(cat("RAYLANE_SAMPLER=", sampler_name(p.sampler)));
-  }
+  if (r.path)
+    for (std::string& line : path_metadata(r.path_settings))
+      wopts.metadata.push_back(std::move(line));
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
