@@ -1,6 +1,7 @@
 #include "bench_scenes.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -107,15 +108,20 @@ std::optional<BenchScene> make_engine(std::string* why) {
   return b;
 }
 
+std::string& bunny_path_setting() {
+  static std::string path;
+  return path;
+}
+
 // The Stanford bunny of npm's `bunny` package, written as PLY by tools/make_bunny.
 std::optional<BenchScene> make_bunny(std::string* why) {
   BenchScene b;
   b.name = "bunny";
   b.scene.materials.push_back(Material::default_grey());
-  std::string path = std::string(RAYLANE_BENCH_DATA) + "/bunny.ply";
+  std::string path = bunny_path();
   auto r = import_mesh_file(path, MeshPlacement{}, 0, b.scene.table<Triangle>());
   if (!r.ok()) {
-    if (why) *why = "run tools/make_bunny first (" + r.error() + ")";
+    if (why) *why = "run tools/make_bunny first, or name the file with --bunny (" + r.error() + ")";
     return std::nullopt;
   }
   frame(b, {0.3, -1.0, 0.4});
@@ -147,6 +153,20 @@ std::optional<BenchScene> make_icosphere() {
 }
 
 }  // namespace
+
+std::string bunny_path() {
+  if (!bunny_path_setting().empty()) return bunny_path_setting();
+  // The program's own build tree, not a path compiled in: a binary copied or built elsewhere
+  // (another worktree, a build-foo folder) reads the bunny of the tree it sits in.
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return "bench-data/bunny.ply";
+  return (exe.parent_path().parent_path() / "bench-data" / "bunny.ply").string();
+}
+
+void set_bunny_path(std::string path) {
+  bunny_path_setting() = std::move(path);
+}
 
 std::vector<std::string> bench_scene_names() {
   return {"testscene", "bunny", "engine", "icosphere", "sphereflake", "lattice"};

@@ -30,6 +30,11 @@ struct BenchScene {
 // sphereflake (66k spheres), lattice (4096 boxes joined by 11520 cylinders).
 std::vector<std::string> bench_scene_names();
 
+// The bunny's PLY file: bench-data/bunny.ply in the build tree this program was built in (its
+// folder's parent, where tools/make_bunny writes by default), unless set (bench_trace --bunny).
+std::string bunny_path();
+void set_bunny_path(std::string path);
+
 // Builds the scene (and its BVH), or says why it cannot (e.g. a package is not installed).
 // Cached: the same object is returned for the same name.
 const BenchScene* bench_scene(const std::string& name, std::string* why = nullptr);

@@ -9,6 +9,8 @@
 #include <xmmintrin.h>
 
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "bench_scenes.h"
@@ -154,6 +156,9 @@ void register_all() {
 // DIR/<scene>-<rays>.rays (docs/ray-sets.md), for other tracers to run the identical rays,
 // and as DIR/<scene>.ply, for scene files to render (bench/scenes/).
 int export_sets(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return std::fprintf(stderr, "cannot make %s: %s\n", dir.c_str(), ec.message().c_str()), 1;
   for (const std::string& name : bench_scene_names()) {
     std::string why;
     const BenchScene* b = bench_scene(name, &why);
@@ -181,11 +186,38 @@ int export_sets(const std::string& dir) {
 }  // namespace
 }  // namespace raylane::bench
 
+constexpr const char* kUsage =
+    R"(usage: bench_trace [--bunny=FILE] [--export=DIR | Google Benchmark flags]
+
+Rays per second of every tracer on identical ray sets of every benchmark scene (testscene,
+bunny, engine, icosphere, sphereflake, lattice), at 1 thread and at all threads, after checking
+each tracer's answers against the double-precision reference; BVH builds next to Embree's.
+tools/bench_table runs it with repetitions and prints the median table (bench/README.md).
+
+  --export=DIR   write every triangle scene as DIR/<scene>.tris and DIR/<scene>.ply and its
+                 ray sets as DIR/<scene>-<primary|shadow|diffuse>.rays (docs/ray-sets.md), then
+                 exit; DIR is made if missing
+  --bunny=FILE   the bunny's PLY (default: bench-data/bunny.ply of the build tree this program
+                 is in, where tools/make_bunny writes it; without it the bunny is skipped)
+
+Google Benchmark's own flags follow, e.g. --benchmark_filter=REGEX:
+)";
+
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--help" || a == "-h") std::fputs(kUsage, stdout);
+    if (a.rfind("--bunny=", 0) == 0) raylane::bench::set_bunny_path(a.substr(8));
+  }
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a.rfind("--export=", 0) == 0) return raylane::bench::export_sets(a.substr(9));
   }
+  // --bunny is ours: Google Benchmark would reject it as unrecognised.
+  int kept = 1;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]).rfind("--bunny=", 0) != 0) argv[kept++] = argv[i];
+  argc = kept;
   raylane::bench::register_all();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -20,7 +20,11 @@ Result<ImageDiff> compare(const Image& a, const Image& ref) {
     se += diff * diff;
     rel += diff * diff / (double(ref.rgb[i]) * ref.rgb[i] + 1e-2);
     abs_sum += std::abs(diff);
-    d.max_abs = std::max(d.max_abs, std::abs(diff));
+    if (std::abs(diff) > d.max_abs) {
+      d.max_abs = std::abs(diff);
+      d.max_x = uint32_t(i / 3 % a.width), d.max_y = uint32_t(i / 3 / a.width);
+      d.max_channel = int(i % 3);
+    }
   }
   d.rmse = std::sqrt(se / n);
   d.rel_mse = rel / n;
@@ -30,6 +34,22 @@ Result<ImageDiff> compare(const Image& a, const Image& ref) {
     d.rmse = d.rel_mse = d.mean_abs = d.max_abs = kInf;
   }
   return d;
+}
+
+Image relative_error_map(const Image& a, const Image& ref) {
+  Image out(a.width, a.height);
+  const std::size_t pixels = std::size_t(a.width) * a.height;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    double sum = 0;
+    for (std::size_t c = 3 * p; c < 3 * p + 3; ++c) {
+      double diff = double(a.rgb[c]) - ref.rgb[c];
+      sum += diff * diff / (double(ref.rgb[c]) * ref.rgb[c] + 1e-2);
+    }
+    float e =
+        std::isfinite(sum) ? float(std::sqrt(sum / 3)) : std::numeric_limits<float>::infinity();
+    out.rgb[3 * p] = out.rgb[3 * p + 1] = out.rgb[3 * p + 2] = e;
+  }
+  return out;
 }
 
 Vec3d mean(const Image& image) {

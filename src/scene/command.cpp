@@ -60,6 +60,7 @@ bool screen_command(Scene& s, const Line& line, ParseState& state) {
 }
 
 bool camera_command(Scene& s, const Line& line, ParseState& state) {
+  state.camera_rejected_at = line.loc;  // until the line is taken
   auto v = parse_numbers(line, 1, 4, false, state);
   if (!v) return false;
   if (!((*v)[3] > 0)) {
@@ -69,6 +70,7 @@ bool camera_command(Scene& s, const Line& line, ParseState& state) {
   auto rot = parse_orientation(line, 5, state);
   if (!rot) return false;
   note_repeat(state.camera_at, line, state);
+  state.camera_rejected_at = {};
   s.camera = CameraSpec{{(*v)[0], (*v)[1], (*v)[2]}, (*v)[3], *rot};
   return true;
 }

@@ -1,6 +1,7 @@
 #include "raylane/scene/orientation.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "raylane/core/strings.h"
@@ -42,6 +43,18 @@ std::optional<Mat3d> one_rotation(std::string_view form, const std::vector<doubl
   return rotation_quaternion(v[0] / norm, v[1] / norm, v[2] / norm, v[3] / norm);
 }
 
+// "x90" for "x 90": a rotation's letter and its first number written as one token. The hint
+// names the two tokens; anything else gets none.
+std::string run_together_hint(std::string_view form) {
+  if (form.size() < 2 || arity(form.substr(0, 1)) < 0) return "";
+  std::string_view number = form.substr(1);
+  double v = 0;
+  auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), v);
+  if (ec != std::errc() || end != number.data() + number.size()) return "";
+  return cat(" (write '", form.substr(0, 1), " ", number,
+             "': the letter and its numbers are separate tokens)");
+}
+
 }  // namespace
 
 std::optional<Mat3d> parse_orientation(const Line& line, std::size_t first, ParseState& state) {
@@ -51,8 +64,8 @@ std::optional<Mat3d> parse_orientation(const Line& line, std::size_t first, Pars
     std::string_view form = line.tokens[i].text;
     int n = arity(form);
     if (n < 0) {
-      state.problem(line.at(i),
-                    cat("expected a rotation (x, y, z, a or q), found ", in_quotes(form)));
+      state.problem(line.at(i), cat("expected a rotation (x, y, z, a or q), found ",
+                                    in_quotes(form), run_together_hint(form)));
       return std::nullopt;
     }
     std::size_t left = line.tokens.size() - i - 1;

@@ -26,7 +26,13 @@ void finish(ParsedScene& out, ParseState& state, const std::string& filename) {
                                             "reads the texture at (0, 0)"));
   if (state.screen_at.line == 0)
     out.diagnostics.warning({filename, 0, 0}, "no screen line: using 400x300");
-  if (state.camera_at.line == 0) out.diagnostics.error({filename, 0, 0}, "no camera line");
+  // A rejected camera line's error says it all, unless --lenient made it a warning.
+  const FileLoc& rejected = state.camera_rejected_at;
+  if (state.camera_at.line == 0 && (rejected.line == 0 || state.options.lenient))
+    out.diagnostics.error({filename, 0, 0}, rejected.line == 0
+                                                ? std::string("no camera line")
+                                                : cat("no camera line (the one at ",
+                                                      to_string(rejected), " was skipped)"));
 }
 
 }  // namespace

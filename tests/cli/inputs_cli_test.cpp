@@ -93,13 +93,18 @@ TEST(CliInputs, FifosAndDirectoriesAreNotReadAndDoNotHang) {
   ASSERT_EQ(::mkfifo((dir + "/pipe.ply").c_str(), 0600), 0);
   fs::copy_file(source_path("scenes/letterX.ply"), dir + "/x.tris.ply");
   for (std::string args :
-       {"render pipe", "render folder", "info pipe", "render m.scn", "trace pipe.ply none.rays",
+       {"render pipe", "info pipe", "render m.scn", "trace pipe.ply none.rays",
         "convert pipe out.png", "diff pipe pipe", "render s.scn --resume pipe"}) {
     if (args.find("s.scn") != std::string::npos) write_file(dir + "/s.scn", kScene);
     auto r = run_cli(args, dir, 20);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
     EXPECT_NE(r.out.find("not a regular file"), std::string::npos) << args << "\n" << r.out;
   }
+  // A directory given as the scene is named as one (CliMessages has the other kinds).
+  auto folder = run_cli("render folder", dir, 20);
+  EXPECT_EQ(folder.status, 2) << folder.out;
+  EXPECT_NE(folder.out.find("folder: a directory, not a scene file"), std::string::npos)
+      << folder.out;
 }
 
 // A mesh file that names a FIFO (an OBJ's material library, a glTF's buffer) must not hang

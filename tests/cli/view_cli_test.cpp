@@ -2,6 +2,7 @@
 // The window itself is tested end to end under Xvfb (tests/cli/view_e2e.sh).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "support/cli_run.h"
@@ -53,6 +54,22 @@ TEST(ViewCli, WithoutADisplayItSaysSoAndExits2) {
   EXPECT_TRUE(gone.out.find("view needs a display") != std::string::npos ||
               gone.out.find("built without SDL2") != std::string::npos)
       << gone.out;
+}
+
+// An X display that cannot be opened, with no XDG_RUNTIME_DIR (ssh, containers): one line from
+// raylane, no "XDG_RUNTIME_DIR not set" from SDL's Wayland attempt.
+TEST(ViewCli, AnUnreachableDisplayGetsOneLineAndNoWaylandNoise) {
+  for (const char* name : {"WAYLAND_DISPLAY", "SDL_VIDEODRIVER", "XDG_RUNTIME_DIR"})
+    unsetenv(name);
+  setenv("DISPLAY", ":87", 1);
+  CliRun r = run_cli("view", temp_dir(), 60);
+  unsetenv("DISPLAY");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out.find("XDG_RUNTIME_DIR"), std::string::npos) << r.out;
+  if (r.out.find("built without SDL2") == std::string::npos) {
+    EXPECT_EQ(r.out.rfind("raylane: view needs a display", 0), 0u) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  }
 }
 
 }  // namespace

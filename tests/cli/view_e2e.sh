@@ -33,25 +33,7 @@ if [ "${1:-}" != "--inside" ]; then
 fi
 
 raylane=$2 scene=$3 shot=$4
-fail() {
-  echo "FAIL: $*"
-  echo "--- the viewer's stdout:"; cat out.txt || true
-  echo "--- its stderr:"; cat err.txt || true
-  exit 1
-}
-# wait_for SECONDS COMMAND...: until COMMAND succeeds; fails after SECONDS (a slow 2-core CI
-# machine, maybe under the sanitizers, gets generous time; a fast one does not wait for it).
-wait_for() {
-  local end=$((SECONDS + $1))
-  shift
-  until "$@"; do
-    ((SECONDS < end)) || return 1
-    sleep 0.1
-  done
-}
-# has WORD N: out.txt holds at least N lines that start with WORD (counted at every call).
-has() { (($(grep -c "^$1 " out.txt || true) >= $2)); }
-title_says() { xdotool getwindowname "$wid" 2>/dev/null | grep -q "$1"; }
+. "$(dirname "${BASH_SOURCE[0]}")/view_e2e_lib.sh"
 
 touch view-0001.png  # taken: the viewer must not write over it
 # Under the sanitizers (LSAN_OPTIONS set), the viewer runs without the leak check: SDL unloads

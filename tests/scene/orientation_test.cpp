@@ -73,13 +73,27 @@ TEST(Orientation, Errors) {
       "camera 0 0 0 1 q 1 0 0\n"
       "camera 0 0 0 1 x\n"
       "camera 0 0 0 1 y abc\n");
+  EXPECT_THAT(errors(p), ElementsAre("t.scn:1:16: quaternion must be non-zero",
+                                     "t.scn:2:16: rotation axis must be non-zero",
+                                     "t.scn:3:21: expected a rotation (x, y, z, a or q), found 'w'",
+                                     "t.scn:4:16: rotation 'q' takes 4 numbers, found 3",
+                                     "t.scn:5:16: rotation 'x' takes 1 number, found 0",
+                                     "t.scn:6:18: expected a number, found 'abc'"));
+}
+
+TEST(Orientation, ALetterRunIntoItsNumberGetsTheSpacedHint) {
+  auto p = parse(
+      "camera 0 -6 0 0.5 x90\n"
+      "camera 0 -6 0 0.5 z-30.5\n"
+      "camera 0 -6 0 0.5 w3\n"
+      "camera 0 -6 0 0.5 xy\n");
   EXPECT_THAT(errors(p),
-              ElementsAre("t.scn:1:16: quaternion must be non-zero",
-                          "t.scn:2:16: rotation axis must be non-zero",
-                          "t.scn:3:21: expected a rotation (x, y, z, a or q), found 'w'",
-                          "t.scn:4:16: rotation 'q' takes 4 numbers, found 3",
-                          "t.scn:5:16: rotation 'x' takes 1 number, found 0",
-                          "t.scn:6:18: expected a number, found 'abc'", "t.scn: no camera line"));
+              ElementsAre("t.scn:1:19: expected a rotation (x, y, z, a or q), found 'x90' (write "
+                          "'x 90': the letter and its numbers are separate tokens)",
+                          "t.scn:2:19: expected a rotation (x, y, z, a or q), found 'z-30.5' "
+                          "(write 'z -30.5': the letter and its numbers are separate tokens)",
+                          "t.scn:3:19: expected a rotation (x, y, z, a or q), found 'w3'",
+                          "t.scn:4:19: expected a rotation (x, y, z, a or q), found 'xy'"));
 }
 
 }  // namespace

@@ -263,6 +263,19 @@ TEST(Parser, NegativeBoxDiagonalIsTheSameBox) {
   EXPECT_EQ(p.scene.table<Box>().hi(0), Vec3f(1, 4, 1));
 }
 
+TEST(Parser, ARejectedCameraLineIsTheOnlyErrorNotAlsoAMissingCamera) {
+  auto p = parse("screen 4 3\ncamera 0 -6 0 -1\n");
+  EXPECT_THAT(errors(p), ElementsAre("t.scn:2:15: camera ry must be > 0"));
+  // --lenient skips the line, so the scene has no camera: that error stays, naming the line.
+  auto lenient = parse("screen 4 3\ncamera 0 -6 0 -1\n", true);
+  EXPECT_THAT(errors(lenient),
+              ElementsAre("t.scn: no camera line (the one at t.scn:2 was skipped)"));
+  // A later good camera line makes the scene whole; an earlier one does too.
+  EXPECT_TRUE(parse("camera 0 -6 0 -1\ncamera 0 -6 0 1\n", true).ok());
+  EXPECT_THAT(errors(parse("camera 0 -6 0 1\ncamera 0 -6 0 -1\n")),
+              ElementsAre("t.scn:2:15: camera ry must be > 0"));
+}
+
 TEST(Parser, MissingCameraIsAnErrorMissingScreenAWarning) {
   auto p = parse("sphere 0 0 0 1\n");
   EXPECT_THAT(errors(p), ElementsAre("t.scn: no camera line"));

@@ -6,6 +6,8 @@
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
 namespace raylane::testing {
@@ -43,6 +45,21 @@ std::string temp_dir() {
   fs::create_directories(dir);
   all.dirs.push_back(dir);
   return dir.string();
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string dir_with_scene(const std::string& scene) {
+  std::string dir = temp_dir();
+  write_file(dir + "/s.scn", scene);
+  return dir;
 }
 
 }  // namespace raylane::testing

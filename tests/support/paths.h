@@ -9,4 +9,10 @@ std::string source_path(const std::string& relative);  // a path inside the repo
 std::string cli_path();                                // the built `raylane` program
 std::string temp_dir();  // a fresh, empty directory for this test, removed at exit
 
+// A whole file's bytes (empty if it cannot be read), and a file written with `bytes`.
+std::string read_file(const std::string& path);
+void write_file(const std::string& path, const std::string& bytes);
+// A temp_dir() holding `scene` as s.scn, for the CLI tests that render a small scene.
+std::string dir_with_scene(const std::string& scene);
+
 }  // namespace raylane::testing

@@ -31,9 +31,11 @@ std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& 
 inline constexpr const char* kSetOptionHelp =
     "a scene line read after the scene's own (repeatable), e.g.\n"
     "--set 'screen 1920 1080' or a camera line; the last camera, screen,\n"
-    "ambient or lens wins, with a warning";
+    "ambient, lens or environment wins, with a warning";
 
-// "raylane: message" on stderr, plus a hint to --help for usage errors.
+// "raylane: message" on stderr, plus a hint to --help for usage errors: the command's own
+// (`see raylane render --help`) when one is named, else the program's.
 int usage_error(const std::string& message);
+int usage_error(const std::string& command, const std::string& message);
 
 }  // namespace raylane::cli

@@ -1,11 +1,12 @@
 // `raylane convert IN OUT [--exposure E] [--half]`: any image raylane writes (HDR, PFM, EXR)
-// into another of its formats, chosen by OUT's extension (the course's users viewed HDR files this
-// way).
+// or reads as a texture (PNG, JPEG, TGA, BMP) into one of the formats it writes, chosen by OUT's
+// extension (the course's users viewed HDR files this way).
 #include <cstdio>
 
 #include "args.h"
 #include "commands.h"
 #include "file_roles.h"
+#include "image_reading.h"
 #include "raylane/image/write_image.h"
 
 namespace raylane::cli {
@@ -17,32 +18,35 @@ const std::vector<OptionSpec> kConvertOptions = {
 };
 const CommandHelp kConvertHelp{
     "raylane convert IN OUT [--exposure E] [--half]",
-    "Writes the image IN (.hdr, .pfm or .exr) as OUT, in the format OUT's extension names:\n"
-    ".hdr, .pfm, .png (8-bit sRGB) or .exr (RGB, float or --half).",
+    "Writes the image IN (.hdr, .pfm, .exr, or .png, .jpg, .tga, .bmp read as linear RGB) as\n"
+    "OUT, in the format OUT's extension names: .hdr, .pfm, .png (8-bit sRGB) or .exr (RGB,\n"
+    "float or --half).",
     &kConvertOptions, ""};
 }  // namespace
 
 int convert_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, kConvertOptions)) return print_help(kConvertHelp);
   auto parsed = parse_args(args, kConvertOptions);
-  if (!parsed) return usage_error(parsed.error());
-  if (parsed->positional.size() != 2) return usage_error("convert takes IN and OUT");
+  if (!parsed) return usage_error("convert", parsed.error());
+  if (parsed->positional.size() != 2) return usage_error("convert", "convert takes IN and OUT");
   const std::string& in = parsed->positional[0];
   const std::string& out = parsed->positional[1];
   WriteOptions opts;
   if (auto e = parsed->last("exposure")) {
     auto v = parse_double_option("exposure", *e);
-    if (!v) return usage_error(v.error());
+    if (!v) return usage_error("convert", v.error());
     opts.exposure = *v;
   }
   opts.exr_half = parsed->has("half");
   auto format = format_from_path(out);
-  if (!format) return usage_error(format.error());
+  if (!format) return usage_error("convert", format.error());
   if (opts.exr_half && *format != ImageFormat::kExr)
     std::fprintf(stderr, "raylane: warning: --half does nothing unless OUT is an .exr file\n");
+  if (parsed->has("exposure") && *format != ImageFormat::kPng)
+    std::fprintf(stderr, "raylane: warning: --exposure does nothing unless OUT is a .png file\n");
   if (Status s = check_outputs_apart({{in, "the input image"}}, {{out, "the output"}}); !s)
-    return usage_error(s.error());
-  auto image = read_image(in);
+    return usage_error("convert", s.error());
+  auto image = read_any_image(in);
   if (!image) {
     std::fprintf(stderr, "raylane: %s\n", image.error().c_str());
     return kExitUsage;

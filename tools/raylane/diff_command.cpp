@@ -1,10 +1,16 @@
-// `raylane diff IMAGE REFERENCE [--tol T]`: how far an image is from a reference — RMSE,
-// relative MSE, mean and max absolute difference over all channels — and exit status 1 when
-// the RMSE exceeds T (default 0: any difference), as pbrt's `imgtool diff` does for scripts.
+// `raylane diff IMAGE REFERENCE [--tol T] [--heatmap FILE]`: how far an image is from a
+// reference — RMSE, relative MSE, mean and max absolute difference over all channels, and the
+// pixel of the largest — and exit status 1 when the RMSE exceeds T (default 0: any
+// difference), as pbrt's `imgtool diff` does for scripts; --heatmap writes the per-pixel
+// relative error as an image.
 #include <cstdio>
 
 #include "args.h"
 #include "commands.h"
+#include "file_roles.h"
+#include "image_reading.h"
+#include "raylane/core/atomic_file.h"
+#include "raylane/core/strings.h"
 #include "raylane/image/metrics.h"
 #include "raylane/image/write_image.h"
 
@@ -13,29 +19,52 @@ namespace raylane::cli {
 namespace {
 const std::vector<OptionSpec> kDiffOptions = {
     {"tol", 0, "T", false, "the largest RMSE that still counts as equal (exit status 0)", "0"},
+    {"heatmap", 0, "FILE", false,
+     "also write the per-pixel relative error sqrt(mean of (a−b)²/(b²+0.01))\n"
+     "as an image (.hdr, .pfm, .exr keep it; as .png, 1 or more is white)",
+     "none"},
 };
 const CommandHelp kDiffHelp{
-    "raylane diff IMAGE REFERENCE [--tol T]",
-    "Prints how far IMAGE is from REFERENCE (.hdr, .pfm or .exr, the same size): RMSE, relative MSE\n"
-    "(mean of (a−b)²/(b²+0.01)), mean and largest absolute difference over all channels. Exit\n"
-    "status 1 when the RMSE is over T.",
+    "raylane diff IMAGE REFERENCE [--tol T] [--heatmap FILE]",
+    "Prints how far IMAGE is from REFERENCE (the same size; .hdr, .pfm, .exr, or .png, .jpg,\n"
+    ".tga, .bmp read as linear RGB) on one line of names and numbers: rmse, relmse (mean of\n"
+    "(a−b)²/(b²+0.01)), mean_abs and max_abs over all channels, and max_x, max_y, max_channel:\n"
+    "where the largest difference is (pixel column and row from the top left, channel 0-2).\n"
+    "Exit status 1 when the RMSE is over T.",
     &kDiffOptions, ""};
+
+// --heatmap: checked before any work, like every output (never over an input).
+Status check_heatmap(const std::string& heatmap, const std::string& a, const std::string& ref) {
+  auto format = format_from_path(heatmap);
+  if (!format) return Error{format.error()};
+  if (Status s = check_outputs_apart({{a, "the image"}, {ref, "the reference"}},
+                                     {{heatmap, "the --heatmap image"}});
+      !s)
+    return s;
+  if (Status s = check_writable(heatmap); !s)
+    return Error{cat("cannot write --heatmap ", heatmap, ": ", s.error())};
+  return ok_status();
+}
 }  // namespace
 
 int diff_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, kDiffOptions)) return print_help(kDiffHelp);
   auto parsed = parse_args(args, kDiffOptions);
-  if (!parsed) return usage_error(parsed.error());
-  if (parsed->positional.size() != 2) return usage_error("diff takes IMAGE and REFERENCE");
+  if (!parsed) return usage_error("diff", parsed.error());
+  if (parsed->positional.size() != 2) return usage_error("diff", "diff takes IMAGE and REFERENCE");
   double tol = 0;
   if (auto t = parsed->last("tol")) {
-    if (Status s = read_double_option("tol", *t, tol); !s) return usage_error(s.error());
-    if (!(tol >= 0)) return usage_error("--tol must be ≥ 0");
+    if (Status s = read_double_option("tol", *t, tol); !s) return usage_error("diff", s.error());
+    if (!(tol >= 0)) return usage_error("diff", "--tol must be ≥ 0");
   }
   const std::string& a_path = parsed->positional[0];
   const std::string& ref_path = parsed->positional[1];
-  auto a = read_image(a_path);
-  auto ref = read_image(ref_path);
+  auto heatmap = parsed->last("heatmap");
+  if (heatmap)
+    if (Status s = check_heatmap(*heatmap, a_path, ref_path); !s)
+      return usage_error("diff", s.error());
+  auto a = read_any_image(a_path);
+  auto ref = read_any_image(ref_path);
   for (const auto* img : {&a, &ref}) {
     if (img->ok()) continue;
     std::fprintf(stderr, "raylane: %s\n", img->error().c_str());
@@ -51,13 +80,19 @@ int diff_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "raylane: %s\n", d.error().c_str());
     return kExitUsage;
   }
-  std::printf("rmse %.6g relmse %.6g mean_abs %.6g max_abs %.6g\n", d->rmse, d->rel_mse,
-              d->mean_abs, d->max_abs);
+  std::printf("rmse %.6g relmse %.6g mean_abs %.6g max_abs %.6g max_x %u max_y %u max_channel %d\n",
+              d->rmse, d->rel_mse, d->mean_abs, d->max_abs, d->max_x, d->max_y, d->max_channel);
+  if (heatmap) {
+    if (Status s = write_image(*heatmap, relative_error_map(*a, *ref)); !s) {
+      std::fprintf(stderr, "raylane: cannot write %s: %s\n", heatmap->c_str(), s.error().c_str());
+      return kExitFailure;
+    }
+    std::printf("%s\n", heatmap->c_str());
+  }
   if (d->nonfinite > 0) {
-    std::printf(
-        "%llu channel values are NaN or infinite (in %s or %s): the images differ "
-        "beyond any --tol\n",
-        (unsigned long long)d->nonfinite, a_path.c_str(), ref_path.c_str());
+    std::printf("%s %s NaN or infinite (in %s or %s): the images differ beyond any --tol\n",
+                counted(d->nonfinite, "channel value").c_str(), d->nonfinite == 1 ? "is" : "are",
+                a_path.c_str(), ref_path.c_str());
     return kExitFailure;
   }
   return d->rmse > tol ? kExitFailure : kExitOk;

@@ -4,6 +4,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "film_info.h"
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
 #include "raylane/prims/table_util.h"
@@ -68,12 +69,13 @@ const std::vector<OptionSpec> kInfoOptions = {
     {"set", 0, "LINE", true, kSetOptionHelp, ""},
 };
 const CommandHelp kInfoHelp{
-    "raylane info [SCENE | MESH] [--lenient] [--set LINE]...",
+    "raylane info [SCENE | MESH | FILM] [--lenient] [--set LINE]...",
     "Prints what raylane modelled from SCENE (default: the built-in course test scene): the\n"
     "screen and camera, the scene's bounds and each mesh's triangles and bounds, rows and bytes\n"
     "of each primitive table, materials, lights, the BVH (nodes, depth, SAH cost, bytes, build\n"
     "time) and the SIMD kernels this CPU runs. Given a mesh file (any format Assimp reads), it\n"
-    "prints the mesh's triangles, the zero-area ones dropped, its bounds and the files read.",
+    "prints the mesh's triangles, the zero-area ones dropped, its bounds and the files read.\n"
+    "Given a film (--checkpoint), its size, spp, seed, integrator, sampler and AOVs.",
     &kInfoOptions, ""};
 
 }  // namespace
@@ -121,11 +123,13 @@ int info_mesh(const std::string& path) {
 int info_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, kInfoOptions)) return print_help(kInfoHelp);
   auto parsed = parse_args(args, kInfoOptions);
-  if (!parsed) return usage_error(parsed.error());
-  if (parsed->positional.size() > 1) return usage_error("info takes at most one scene file");
+  if (!parsed) return usage_error("info", parsed.error());
+  if (parsed->positional.size() > 1)
+    return usage_error("info", "info takes at most one scene file");
   std::optional<std::string> path;
   if (!parsed->positional.empty()) path = parsed->positional[0];
   if (path && mesh_extension_known(*path)) return info_mesh(*path);
+  if (path && is_film_file(*path)) return info_film(*path);
   std::vector<std::string> overrides;
   if (parsed->has("set")) overrides = parsed->values.at("set");
   auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides);

@@ -12,8 +12,9 @@ constexpr const char* kUsage = R"(raylane — a data-oriented SIMD ray tracer fo
 usage:
   raylane render [SCENE] [options]   render SCENE (default: the built-in course test scene)
   raylane info [SCENE] [--lenient]   print what was modelled: tables, materials, lights, camera
+                                     (or a mesh's triangles, or a film's size, spp and seed)
   raylane view [SCENE] [options]     look around SCENE in a window, path traced progressively;
-                                     V prints the camera line, P saves the image
+                                     V prints the camera line, S saves the image
   raylane trace MESH RAYS [options]  trace an external ray set (.rays) against a mesh (.tris
                                      or any mesh file), print the median Mrays/s, write .hits
   raylane convert IN OUT [--exposure E] [--half]

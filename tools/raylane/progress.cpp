@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdio>
 
+#include "raylane/core/strings.h"
+
 namespace raylane::cli {
 
 namespace {
@@ -98,8 +100,8 @@ void print_phases(const PathStats& s, double seconds, int threads) {
   const PathPhases& p = s.phases;
   double available = seconds * threads;
   double idle = std::max(0.0, available - p.total());
-  std::fprintf(stderr, "where the time went (thread-seconds of %d threads × %.3f s):\n", threads,
-               seconds);
+  std::fprintf(stderr, "where the time went (thread-seconds of %s × %.3f s):\n",
+               counted(threads, "thread").c_str(), seconds);
   const std::pair<const char*, double> rows[] = {{"camera rays", p.camera},
                                                  {"tracing camera rays", p.trace_camera},
                                                  {"tracing bounce + shadow rays", p.trace_rest},

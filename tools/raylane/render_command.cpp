@@ -20,6 +20,7 @@
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
 #include "render_request.h"
+#include "stats_json.h"
 
 namespace raylane::cli {
 
@@ -125,7 +126,8 @@ const std::vector<RenderOption>& render_options() {
       {{"mode", 0, "MODE", false,
         cat("path, or a ray-casting view: ", kRaycastModeNames.list(),
             ".\n"
-            "As PNG, depth is normalised to the image's range and ids become colours;\n"
+            "As PNG, depth runs from white (the nearest hit) to 10 % grey (the farthest),\n"
+            "linear in t, misses black; ids become colours;\n"
             ".hdr and .pfm keep the raw values (t; kind tag + 1, row)"),
         "path"},
        set_mode},
@@ -189,7 +191,8 @@ const std::vector<RenderOption>& render_options() {
         cat("path: also sum ", kAovNames.list(),
             " of the first surface\n"
             "each sample meets (comma-separated), averaged like the colour;\n"
-            "written beside each output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
+            "layers of an .exr output (albedo.R, normal.X, ...); beside any other\n"
+            "output as STEM.albedo.pfm, STEM.normal.pfm, ..."),
         ""},
        [](R& r, V v) {
          auto set = parse_aov_list(v);
@@ -242,6 +245,15 @@ const std::vector<RenderOption>& render_options() {
         "sampling, film, idle) and the rays per second of each kind",
         ""},
        [](R& r, V) {
+         r.path_settings.time_phases = r.print_phases = true;
+         return ok_status();
+       }},
+      {{"stats-json", 0, "FILE", false,
+        "write the summary (size, spp, seconds, rays by kind, Mrays/s, threads,\n"
+        "processes, BVH, outputs) and the phases of --stats as one JSON object",
+        "none"},
+       [](R& r, V v) {
+         r.stats_json = v;
          r.path_settings.time_phases = true;
          return ok_status();
        }},
@@ -320,6 +332,9 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   }
   if (r.exr_half && !has_exr)
     r.warnings.push_back("--half does nothing without an .exr output; it is for -o FILE.exr");
+  if (parsed->has("exposure") && !has_png && !r.also_png)
+    r.warnings.push_back(
+        "--exposure does nothing without a .png output; it is for -o FILE.png or --png");
   if (r.path) r.aov_outputs = aov_siblings(r.outputs, r.path_settings.aovs);
   return r;
 }
@@ -340,6 +355,7 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
   for (const auto& [out, aov] : r.aov_outputs)
     outputs.push_back({out, "an --aov output"});
   if (c.checkpoint) outputs.push_back({*c.checkpoint, "the --checkpoint film"});
+  if (r.stats_json) outputs.push_back({*r.stats_json, "the --stats-json file"});
   return check_outputs_apart(inputs, outputs);
 }
 
@@ -349,6 +365,7 @@ bool outputs_writable(const RenderRequest& r) {
   std::vector<std::string> all = r.outputs;
   for (const auto& [out, aov] : r.aov_outputs)
     all.push_back(out);
+  if (r.stats_json) all.push_back(*r.stats_json);
   for (const auto& out : all) {
     if (Status s = check_writable(out); !s) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
@@ -374,7 +391,7 @@ int render_command(const std::vector<std::string>& args) {
   Cluster cluster;
   silence_unless_root(cluster);
   auto request = read_request(args);
-  if (!request) return usage_error(request.error());
+  if (!request) return usage_error("render", request.error());
   const RenderRequest& r = *request;
   if (!r.quiet)
     for (const std::string& w : r.warnings)
@@ -385,7 +402,7 @@ int render_command(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
-    return usage_error(s.error());
+    return usage_error("render", s.error());
   Scene* scene = &parsed->scene;
   if (cluster.first_failure(!cluster.root() || outputs_writable(r)) >= 0) return kExitUsage;
   if (!r.path && !cluster.root()) return kExitOk;  // a ray-casting view: rank 0 alone
@@ -426,6 +443,7 @@ int render_command(const std::vector<std::string>& args) {
     RaycastStats stats;
     image = render_raycast(tracer, r.mode, &stats);
     rays = stats.camera_rays + stats.shadow_rays;
+    path_stats.camera_rays = stats.camera_rays, path_stats.shadow_rays = stats.shadow_rays;
     what = std::string(raycast_mode_name(r.mode));
   }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -436,18 +454,16 @@ int render_command(const std::vector<std::string>& args) {
   wopts.metadata.push_back(
       cat("RAYLANE_MODE=", r.path ? std::string_view("path") : raycast_mode_name(r.mode)));
   wopts.metadata.push_back(cat("RAYLANE_SPP=", spp));
-  if (r.path) {
-    const PathSettings& p = r.path_settings;
-    wopts.metadata.push_back(cat("RAYLANE_SEED=", p.seed));
-    wopts.metadata.push_back(cat("RAYLANE_INTEGRATOR=", integrator_name(p.integrator)));
-    wopts.metadata.push_back(cat("RAYLANE_SAMPLER=", sampler_name(p.sampler)));
-  }
+  if (r.path)
+    for (std::string& line : path_metadata(r.path_settings))
+      wopts.metadata.push_back(std::move(line));
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
   // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
   Image view = r.path ? Image() : viewable(image, r.mode);
   std::vector<std::pair<std::string, const Image*>> files;
+  std::vector<std::string> written;  // for --stats-json
   for (const auto& out : r.outputs) {
     bool eight_bit = format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
     files.emplace_back(out, eight_bit && !r.path ? &view : &image);
@@ -469,17 +485,24 @@ int render_command(const std::vector<std::string>& args) {
       status = kExitFailure;
     }
     std::printf("%s\n", saved->path.c_str());
+    written.push_back(saved->path);
   }
   if (!r.quiet) {
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.3f s: %llu rays, %.2f Mrays/s; %s tracer, %s, %d "
-                 "threads; BVH of %zu nodes built in %.3f s\n",
-                 scene->width, scene->height, what.c_str(), seconds, (unsigned long long)rays,
+                 "rendered %ux%u (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "
+                 "%s built in %.3f s\n",
+                 scene->width, scene->height, what.c_str(), seconds, counted(rays, "ray").c_str(),
                  rays / seconds * 1e-6, std::string(tracer_kind_name(r.tracer)).c_str(),
-                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(), bvh.nodes.size(),
-                 bvh.stats.build_seconds);
+                 std::string(isa_name(r.isa)).c_str(),
+                 counted(omp_get_max_threads(), "thread").c_str(),
+                 counted(bvh.nodes.size(), "node").c_str(), bvh.stats.build_seconds);
   }
-  if (r.path && r.path_settings.time_phases && !r.quiet) {
+  if (r.stats_json &&
+      !write_summary_json(*r.stats_json,
+                          render_summary(r, *scene, bvh, path_stats, balance, seconds,
+                                         interrupted_run, cluster.size(), std::move(written))))
+    status = kExitFailure;
+  if (r.path && r.print_phases && !r.quiet) {
     print_phases(path_stats, seconds, omp_get_max_threads() * cluster.size());
     if (cluster.distributed()) print_balance(balance, cluster.size());
   }

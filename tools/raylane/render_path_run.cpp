@@ -197,8 +197,8 @@ void print_balance(const PathOutcome& run, int processes) {
                "  %d processes waited for the slowest after each pass: %.3f s of their %.3f s "
                "(%.1f %%)\n",
                processes, run.wait_seconds, all, all > 0 ? 100 * run.wait_seconds / all : 0.0);
-  std::fprintf(stderr, "  tiles dealt again by measured cost: %d times, %d tiles moved\n",
-               run.balances, run.tiles_moved);
+  std::fprintf(stderr, "  tiles dealt again by measured cost: %s, %s moved\n",
+               counted(run.balances, "time").c_str(), counted(run.tiles_moved, "tile").c_str());
 }
 
 }  // namespace raylane::cli

@@ -9,6 +9,7 @@
 #include "checkpoint.h"
 #include "cluster.h"
 #include "raylane/core/enum_names.h"
+#include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
 #include "raylane/render/aov.h"
 #include "raylane/render/path.h"
@@ -40,8 +41,17 @@ struct RenderRequest {
   bool exr_half = false;
   bool spp_given = false;
   TileBalance balance = TileBalance::kAuto;  // --balance
+  bool print_phases = false;                 // --stats
+  std::optional<std::string> stats_json;     // --stats-json FILE
   std::vector<std::string> warnings;         // about the options, printed unless --quiet
 };
+
+// The header lines (HDR, EXR) of a path-traced image after RAYLANE_MODE and RAYLANE_SPP: the
+// settings a re-render or a --resume must match. `raylane render` and view's S write the same.
+inline std::vector<std::string> path_metadata(const PathSettings& p) {
+  return {cat("RAYLANE_SEED=", p.seed), cat("RAYLANE_INTEGRATOR=", integrator_name(p.integrator)),
+          cat("RAYLANE_SAMPLER=", sampler_name(p.sampler))};
+}
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 

@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_kind.h"
 
 namespace raylane::cli {
 
@@ -9,9 +10,20 @@ int usage_error(const std::string& message) {
   return kExitUsage;
 }
 
+int usage_error(const std::string& command, const std::string& message) {
+  std::fprintf(stderr, "raylane: %s\n(see raylane %s --help)\n", message.c_str(), command.c_str());
+  return kExitUsage;
+}
+
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
                                               bool quiet,
                                               const std::vector<std::string>& overrides) {
+  // A film, a mesh, an image or another renderer's scene: one line that says so, not an error
+  // for each of its lines.
+  if (auto foreign = path ? not_a_scene(*path) : std::nullopt) {
+    std::fprintf(stderr, "%s\n", foreign->c_str());
+    return std::nullopt;
+  }
   ParseOptions opts;
   opts.lenient = lenient;
   opts.overrides = overrides;

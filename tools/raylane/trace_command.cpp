@@ -109,12 +109,12 @@ std::vector<HitRecord> to_records(const HitStream& hits, const Bvh& bvh, bool oc
 int trace_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, kTraceOptions)) return print_help(kTraceHelp);
   auto request = read_request(args);
-  if (!request) return usage_error(request.error());
+  if (!request) return usage_error("trace", request.error());
   const TraceRequest& r = *request;
   // Outputs never eat inputs: the answers may not overwrite the ray set or the mesh.
   std::vector<FileRole> inputs = {{r.rays, "the ray set"}};
   if (Status s = check_outputs_apart(inputs, {{r.output, "the output"}}); !s)
-    return usage_error(s.error());
+    return usage_error("trace", s.error());
   std::vector<std::string> mesh_files;
   auto scene = load_mesh(r.mesh, mesh_files);
   if (!scene) {
@@ -124,7 +124,7 @@ int trace_command(const std::vector<std::string>& args) {
   for (const std::string& f : mesh_files)
     inputs.push_back({f, "a mesh file"});
   if (Status s = check_outputs_apart(inputs, {{r.output, "the output"}}); !s)
-    return usage_error(s.error());
+    return usage_error("trace", s.error());
   auto set = read_ray_set(r.rays);
   if (!set) {
     std::fprintf(stderr, "raylane: %s\n", set.error().c_str());
@@ -159,13 +159,15 @@ int trace_command(const std::vector<std::string>& args) {
   std::printf("%s\n", r.output.c_str());
   if (!r.quiet)
     std::fprintf(stderr,
-                 "traced %zu rays (%s) against %zu triangles: median %.2f Mrays/s over %d runs "
-                 "(%.2f … %.2f); %s packets, %d threads; BVH built in %.3f s\n",
-                 set->rays.size(), set->occlusion() ? "occlusion" : "closest hit",
-                 scene->table<Triangle>().size(), set->rays.size() / median * 1e-6, r.repeat,
+                 "traced %s (%s) against %s: median %.2f Mrays/s over %s "
+                 "(%.2f … %.2f); %s packets, %s; BVH built in %.3f s\n",
+                 counted(set->rays.size(), "ray").c_str(),
+                 set->occlusion() ? "occlusion" : "closest hit",
+                 counted(scene->table<Triangle>().size(), "triangle").c_str(),
+                 set->rays.size() / median * 1e-6, counted(r.repeat, "run").c_str(),
                  set->rays.size() / seconds.back() * 1e-6, set->rays.size() / seconds[0] * 1e-6,
-                 std::string(isa_name(r.isa)).c_str(), omp_get_max_threads(),
-                 bvh.stats.build_seconds);
+                 std::string(isa_name(r.isa)).c_str(),
+                 counted(omp_get_max_threads(), "thread").c_str(), bvh.stats.build_seconds);
   return kExitOk;
 }
 

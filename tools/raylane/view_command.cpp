@@ -30,13 +30,15 @@ const CommandHelp& view_help() {
       "raylane view [SCENE] [options]",
       "Shows SCENE (default: the built-in course test scene) in a window, path traced with\n"
       "`raylane render`'s defaults and refined one pass per frame while the camera stands still;\n"
-      "while it moves, the `lit` ray-casting view stands in. The window has the scene's screen\n"
-      "size (a screen larger than 1280x800 is scaled down to fit). After N passes, the image\n"
+      "while it moves, the `lit` ray-casting view stands in. The render has the scene's screen\n"
+      "size, and so has the window, but for a screen larger than 1280x800: it is shown scaled\n"
+      "down to fit (V prints and S saves the scene's size). After N passes, the image\n"
       "S saves is the one `raylane render SCENE --set '<screen>' --set '<camera>' --spp N`\n"
       "writes, bit for bit, with the lines V prints. Needs a display (X11 or Wayland).",
       &view_specs(),
       cat(kViewKeys,
-          "\nThe title shows the mode, the samples per pixel and the rays per second.\n"
+          "\nThe title shows the mode, the samples per pixel, the rays per second and the frames\n"
+          "per second (each frame's own time).\n"
           "The scene language: docs/scene-language.md.")};
   return help;
 }
@@ -63,7 +65,7 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
 int view_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, view_specs())) return print_help(view_help());
   auto request = read_view_request(args);
-  if (!request) return usage_error(request.error());
+  if (!request) return usage_error("view", request.error());
 #ifndef RAYLANE_HAVE_SDL2
   std::fprintf(stderr,
                "raylane: this raylane was built without SDL2, so it has no `view` (install "

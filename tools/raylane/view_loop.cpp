@@ -37,17 +37,12 @@ constexpr double kOrbitDegreesPerHeight = 180;  // a drag across the window's he
 
 enum class Drag { kNone, kLook, kOrbit };
 
-// Frames per second of the frames that did work, smoothed; a pause (idle, converged) is not
-// counted as a slow frame.
+// Frames per second of the frames that did work, smoothed: each frame's own time, from the
+// end of its events to its image on screen, so a pause (idle, converged) between frames does
+// not count, and a frame slower than a second (a 1080p pass on 2 cores) still does.
 struct FrameRate {
   double seconds = 0;  // per frame
-  Clock::time_point last = Clock::now();
-  void tick(Clock::time_point now) {
-    double dt = std::chrono::duration<double>(now - last).count();
-    last = now;
-    if (dt > 1) return;
-    seconds = seconds == 0 ? dt : 0.8 * seconds + 0.2 * dt;
-  }
+  void frame(double dt) { seconds = seconds == 0 ? dt : 0.8 * seconds + 0.2 * dt; }
   double fps() const { return seconds > 0 ? 1 / seconds : 0; }
 };
 
@@ -58,6 +53,7 @@ struct Controls {
   Vec3d pivot;
   bool quit = false;
   bool redraw = true;
+  double window_height = 1;  // pixels: a drag is measured against the window, not the render
 };
 
 // SDL state, released in reverse order of creation.
@@ -170,7 +166,7 @@ void on_event(const SDL_Event& e, ViewSession& s, Controls& c, CameraSpec& camer
       if (c.drag == Drag::kNone) break;
       // Looking: a drag across the window turns the view by its field of view, so the scene
       // follows the cursor. Right and up turn right and up (yaw and pitch count left and up).
-      double h = s.height();
+      double h = c.window_height;
       if (c.drag == Drag::kLook) {
         double k = vertical_fov_degrees(camera.ry) / h;
         camera = fly_look(camera, -e.motion.xrel * k, -e.motion.yrel * k, s.world_up());
@@ -227,8 +223,15 @@ bool idle_until_event(SDL_Event& e, int ms) {
 
 int run_view_window(ViewSession& s, const std::string& name) {
   Sdl sdl;
+  // SDL 2.26 tries Wayland before X11, and libwayland prints "error: XDG_RUNTIME_DIR not set
+  // in the environment." when it cannot look for a compositor. With an X display and no Wayland
+  // one named, X11 is asked for first; SDL_VIDEODRIVER in the environment still wins.
+  if (std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+    SDL_SetHintWithPriority(SDL_HINT_VIDEODRIVER, "x11", SDL_HINT_DEFAULT);
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-    std::fprintf(stderr, "raylane: view needs a display: %s\n", SDL_GetError());
+    const char* display = std::getenv("DISPLAY");
+    std::fprintf(stderr, "raylane: view needs a display: %s (DISPLAY=%s)\n", SDL_GetError(),
+                 display ? display : "");
     return kExitUsage;
   }
   // Failing X11 and Wayland, SDL 2.26 settles for its offscreen driver: a window nobody sees.
@@ -248,15 +251,20 @@ int run_view_window(ViewSession& s, const std::string& name) {
   // found the first one loses it. A blit of one image a frame needs no GPU. The environment's
   // SDL_FRAMEBUFFER_ACCELERATION still wins over this default.
   SDL_SetHintWithPriority(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0", SDL_HINT_DEFAULT);
+  // A screen larger than the largest window is rendered at its own size and shown scaled.
+  auto [window_w, window_h] = fitted_screen(s.width(), s.height());
   sdl.window = SDL_CreateWindow(cat("raylane view: ", name).c_str(), SDL_WINDOWPOS_UNDEFINED,
-                                SDL_WINDOWPOS_UNDEFINED, int(s.width()), int(s.height()), 0);
+                                SDL_WINDOWPOS_UNDEFINED, int(window_w), int(window_h), 0);
   if (!sdl.window) {
     std::fprintf(stderr, "raylane: cannot open the view's window: %s\n", SDL_GetError());
     return kExitUsage;
   }
-  std::fprintf(stderr, "raylane view: %s, %ux%u\n%s", name.c_str(), s.width(), s.height(),
-               kViewKeys);
+  std::fprintf(
+      stderr, "raylane view: %s, %ux%u%s\n%s", name.c_str(), s.width(), s.height(),
+      window_w == s.width() ? "" : cat(", shown in a ", window_w, "x", window_h, " window").c_str(),
+      kViewKeys);
   Controls c;
+  c.window_height = window_h;
   FrameRate frames;
   auto last_frame = Clock::now(), last_move = Clock::now() - std::chrono::seconds(1);
   bool worked = true;
@@ -269,6 +277,7 @@ int run_view_window(ViewSession& s, const std::string& name) {
     while (SDL_PollEvent(&e))
       on_event(e, s, c, camera);
     auto now = Clock::now();
+    auto frame_start = now;
     double dt = std::min(kLongestStep, std::chrono::duration<double>(now - last_frame).count());
     last_frame = now;
     fly_keys(s, dt, camera);
@@ -276,9 +285,9 @@ int run_view_window(ViewSession& s, const std::string& name) {
     if (s.inputs_changed() && s.reload()) c.redraw = true;
     bool moving = std::chrono::duration<double>(now - last_move).count() < kStillSeconds;
     worked = s.step(moving);
-    if (worked) frames.tick(Clock::now());
     if (worked || c.redraw) {
       present(sdl.window, s.display_image(), c.exposure);
+      if (worked) frames.frame(std::chrono::duration<double>(Clock::now() - frame_start).count());
       SDL_SetWindowTitle(sdl.window, title(s, name, c, frames).c_str());
       c.redraw = false;
     }

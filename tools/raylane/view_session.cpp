@@ -12,6 +12,7 @@
 #include "raylane/image/write_image.h"
 #include "raylane/render/camera.h"
 #include "raylane/render/navigation.h"
+#include "render_request.h"
 
 namespace raylane::cli {
 
@@ -71,7 +72,8 @@ std::string view_mode_name(const ViewMode& mode) {
 
 ViewSession::ViewSession(const ViewRequest& request, ParsedScene parsed) : request_(request) {
   if (request.threads > 0) omp_set_num_threads(request.threads);
-  auto [w, h] = fitted_screen(parsed.scene.width, parsed.scene.height);
+  // The scene's own size: what V prints and S saves. Only the window is scaled to fit.
+  uint32_t w = parsed.scene.width, h = parsed.scene.height;
   auto world = make_world(std::move(parsed), w, h);
   std::optional<CameraSpec> camera = world->file_camera;
   adopt(std::move(world), camera);
@@ -194,6 +196,9 @@ Result<std::string> ViewSession::save(double exposure) {
   WriteOptions opts;
   opts.exposure = exposure;
   opts.metadata = {cat("RAYLANE_MODE=", view_mode_name(mode_)), cat("RAYLANE_SPP=", spp)};
+  if (!mode_)  // the path tracer's settings, as `raylane render` writes them
+    for (std::string& line : path_metadata(PathSettings{}))
+      opts.metadata.push_back(std::move(line));
   std::string line = "saved";
   Image shown = display_image();  // for the 8-bit file; HDR and PFM keep the raw values
   for (const std::string& ext : extensions) {

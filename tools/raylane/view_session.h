@@ -27,10 +27,11 @@ struct ViewRequest {
   bool save_pfm = false;  // saves also write view-NNNN.pfm (32-bit float: exact comparisons)
 };
 
-// The largest window: a larger screen is scaled down to fit, keeping its shape.
+// The largest window: a larger screen is shown scaled down to fit, keeping its shape (the
+// render keeps the scene's size).
 inline constexpr uint32_t kMaxViewWidth = 1280, kMaxViewHeight = 800;
 
-// The screen shown for a scene screen of w × h: itself, or scaled down into the largest window.
+// The window for a scene screen of w × h: its size, or scaled down into the largest window.
 std::pair<uint32_t, uint32_t> fitted_screen(uint32_t w, uint32_t h);
 
 // What is shown: the path tracer (nothing) or one ray-casting view.

@@ -28,6 +28,13 @@ std::string cat(const Pieces&... pieces) {
   return s;
 }
 
+// A count and its noun as a message says them: "1 thread", "2 threads", "0 threads" (the noun
+// takes a plain -s).
+template <class Int>
+std::string counted(Int n, std::string_view noun) {
+  return cat(n, " ", noun, n == 1 ? "" : "s");
+}
+
 // Text as a message shows it: control bytes and bytes that are not UTF-8 as \xNN, and the
 // Unicode characters that look like nothing (no-break and other spaces, zero-width
 // characters, byte-order marks) as \uXXXX, so that a person sees what the file holds.

@@ -41,6 +41,9 @@ struct ParseState {
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
   // Where each command that may be given once was first seen; line 0: not yet.
   FileLoc screen_at, camera_at, ambient_at, lens_at, environment_at;
+  // The last camera line that was rejected (line 0: none): its error already says what is
+  // wrong, so no "no camera line" follows it.
+  FileLoc camera_rejected_at;
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);

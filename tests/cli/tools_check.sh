@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# The tools a user runs next to raylane (issue 37): tools/converge and tools/bench_table list
+# every option with its default in --help and take the programs they run as options;
+# tools/converge, run from elsewhere with --raylane, reads each render's --stats-json and draws
+# its plot (gnuplot, which tools/dev installs); bench_trace documents --export and --bunny, finds
+# the bunny in its own build tree and takes another with --bunny.
+#
+#   tools_check.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -euo pipefail
+source_dir=$(realpath "$1") build=$(realpath "$2") work=$3
+rm -rf "$work" && mkdir -p "$work"
+cd "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+
+# Every option of each tool, with its default, in its --help.
+for tool in converge bench_table; do
+  "$source_dir/tools/$tool" --help >"$tool.help" || fail "$tool --help exits $?"
+  options=$(grep -o -E '^  --[a-z-]+' "$tool.help" | sort -u)
+  [ "$(echo "$options" | wc -l)" -ge 6 ] || fail "$tool --help lists only: $options"
+  for o in $options; do
+    # The option's paragraph (up to the next option) names its default.
+    awk -v o="$o" '/^  --/ { if (on) exit; if ($1 == o) on = 1 } on' "$tool.help" |
+      grep -q 'default:' || fail "$tool --help: $o has no default"
+  done
+done
+grep -q -- '--raylane PATH' converge.help || fail "converge takes no --raylane"
+grep -q -- '--bench PATH' bench_table.help || fail "bench_table takes no --bench"
+if "$source_dir/tools/bench_table" --bench "$work/none" >bt.out 2>&1; then
+  fail "bench_table ran without its benchmark program"
+fi
+grep -q "missing or not executable" bt.out || fail "bench_table: $(cat bt.out)"
+
+# A small convergence report, from a folder that is not the repository's.
+"$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
+  --ref-spp 8 --max-spp 2 --methods mis,nee --out report >converge.out 2>&1 ||
+  { cat converge.out; fail "converge exits $?"; }
+[ "$(wc -l <report/converge.csv)" -eq 5 ] || fail "converge.csv: $(cat report/converge.csv)"
+# Its seconds are the renders' --stats-json `seconds`: positive, and no JSON file left behind.
+awk -F, 'NR > 1 && !($3 > 0) {exit 1}' report/converge.csv || fail "seconds: $(cat report/converge.csv)"
+! ls report/*.json >/dev/null 2>&1 || fail "converge left $(ls report/*.json)"
+if command -v gnuplot >/dev/null; then
+  [ "$(head -c 4 report/converge.png | tail -c 3)" = "PNG" ] || fail "no plot: $(cat converge.out)"
+fi
+
+# bench_trace: its help, the bunny of its own build tree, another with --bunny.
+bench=$build/bench/bench_trace
+"$bench" --help >bench.help || fail "bench_trace --help exits $?"
+grep -q -- '--export=DIR' bench.help && grep -q -- '--bunny=FILE' bench.help ||
+  fail "bench_trace --help: $(head -20 bench.help)"
+filter='--benchmark_filter=build/bunny/raylane/threads:1/ --benchmark_min_time=0.01'
+"$bench" $filter >default.out 2>&1 || true
+if [ ! -f "$build/bench-data/bunny.ply" ]; then
+  grep -q "'$build/bench-data/bunny.ply'" default.out || fail "the bunny path: $(cat default.out)"
+fi
+"$bench" $filter --bunny="$source_dir/scenes/letterX.ply" >bunny.out 2>&1 ||
+  fail "bench_trace --bunny: $(cat bunny.out)"
+grep -q 'prims=4 ' bunny.out || fail "bench_trace --bunny did not read the file: $(cat bunny.out)"
+echo "converge, bench_table and bench_trace: help, programs as options, plot, bunny"
