@@ -42,7 +42,12 @@ int main(int argc, char** argv) {
     std::printf("raylane %s\n", RAYLANE_VERSION);
     return raylane::cli::kExitOk;
   }
-  if (args.empty()) return raylane::cli::render_command({});
+  // Bare `raylane` is someone finding out what it does: the usage, never a render that writes
+  // over ./testscene.hdr (`raylane render` renders the built-in scene).
+  if (args.empty()) {
+    std::fputs(kUsage, stderr);
+    return raylane::cli::kExitUsage;
+  }
   std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "render") return raylane::cli::render_command(rest);

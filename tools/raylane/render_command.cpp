@@ -169,7 +169,8 @@ const std::vector<RenderOption>& render_options() {
        set_time},
       {{"checkpoint", 0, "FILE", false,
         "path: save the film to FILE every --checkpoint-every seconds and\n"
-        "when the render stops (done, --time, Ctrl-C)",
+        "when the render stops (done, --time, Ctrl-C, SIGTERM); a FILE that exists\n"
+        "is refused unless it is the --resume film",
         "none"},
        [](R& r, V v) {
          r.checkpoints.checkpoint = v;
@@ -273,7 +274,8 @@ const CommandHelp& render_help() {
       &render_specs(),
       "A path render shows a progress bar (on a terminal) and ends with a summary. The first\n"
       "Ctrl-C finishes the pass in flight and writes the image converged so far (RAYLANE_SPP in\n"
-      "the HDR and EXR headers), exit status 130; a second Ctrl-C exits at once.\n"
+      "the HDR and EXR headers), exit status 130; a second Ctrl-C exits at once. SIGTERM\n"
+      "(timeout, kill, batch schedulers) and SIGUSR1 do the same.\n"
       "The scene language: docs/scene-language.md."};
   return help;
 }
@@ -343,6 +345,20 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
   return check_outputs_apart(inputs, outputs);
 }
 
+// A --checkpoint film that exists holds samples, maybe hours of them: only --resume of that
+// same film may write over it (it is read whole first and saved with more passes).
+Status checkpoint_keeps_samples(const CheckpointOptions& c) {
+  if (!c.checkpoint) return ok_status();
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(*c.checkpoint, ec)))
+    return ok_status();
+  if (c.resume && same_file(*c.checkpoint, *c.resume)) return ok_status();
+  return Error{cat("--checkpoint ", *c.checkpoint,
+                   " already exists and would be replaced at the first checkpoint; continue it "
+                   "with --resume ",
+                   *c.checkpoint, ", or remove it")};
+}
+
 // Every output is checked before rendering starts, so a long render is never lost to a typo.
 bool outputs_writable(const RenderRequest& r) {
   bool ok = true;
@@ -385,6 +401,8 @@ int render_command(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
+    return usage_error(s.error());
+  if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
     return usage_error(s.error());
   Scene* scene = &parsed->scene;
   if (cluster.first_failure(!cluster.root() || outputs_writable(r)) >= 0) return kExitUsage;
