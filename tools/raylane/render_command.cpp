@@ -226,6 +226,8 @@ const std::vector<RenderOption>& render_options() {
          r.lenient = true;
          return ok_status();
        }},
+      {{"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
+       [](R& r, V v) { return read_image_memory_option(v, r.image_memory); }},
       {{"set", 0, "LINE", true, kSetOptionHelp, ""},
        [](R& r, V v) {
          r.overrides.push_back(v);
@@ -395,7 +397,8 @@ int render_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
-  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides);
+  auto parsed =
+      load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides, {r.image_memory, false});
   if (int bad = cluster.first_failure(parsed.has_value()); bad >= 0) {
     if (bad > 0) std::fprintf(stderr, "raylane: rank %d cannot load the scene\n", bad);
     return kExitUsage;
@@ -404,6 +407,10 @@ int render_command(const std::vector<std::string>& args) {
     return usage_error(s.error());
   if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
     return usage_error(s.error());
+  if (Status s = render_fits_in_memory(r, parsed->scene, cluster.distributed()); !s) {
+    std::fprintf(stderr, "raylane: %s; nothing rendered\n", s.error().c_str());
+    return kExitUsage;
+  }
   Scene* scene = &parsed->scene;
   if (cluster.first_failure(!cluster.root() || outputs_writable(r)) >= 0) return kExitUsage;
   if (!r.path && !cluster.root()) return kExitOk;  // a ray-casting view: rank 0 alone

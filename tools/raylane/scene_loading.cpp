@@ -1,5 +1,6 @@
 #include <cstdio>
 
+#include "args.h"
 #include "commands.h"
 
 namespace raylane::cli {
@@ -9,10 +10,19 @@ int usage_error(const std::string& message) {
   return kExitUsage;
 }
 
+Status read_image_memory_option(const std::string& value, uint64_t& bytes) {
+  long mib = 0;
+  if (Status s = read_int_option("image-memory", value, 1, long(1) << 30, mib); !s) return s;
+  bytes = uint64_t(mib) << 20;
+  return ok_status();
+}
+
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                              bool quiet,
-                                              const std::vector<std::string>& overrides) {
+                                              bool quiet, const std::vector<std::string>& overrides,
+                                              SceneImages images) {
   ParseOptions opts;
+  opts.image_memory = images.memory;
+  opts.image_headers_only = images.headers_only;
   opts.lenient = lenient;
   opts.overrides = overrides;
   ParsedScene parsed = path ? load_scene_file(*path, opts) : load_builtin_scene(opts);
