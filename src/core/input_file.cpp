@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -36,6 +37,17 @@ Result<std::string> read_input_file(const std::string& path, uint64_t max_bytes,
     return Error{cat(path, ": ", what, " has ", *size, " bytes; ", max_bytes, " at most")};
   std::ifstream in(path, std::ios::binary);
   std::string bytes(*size, '\0');
+  if (!in.read(bytes.data(), std::streamsize(bytes.size())))
+    return Error{cat(path, ": cannot read ", what, ": read failed")};
+  return bytes;
+}
+
+Result<std::string> read_input_head(const std::string& path, uint64_t max_bytes,
+                                    const std::string& what) {
+  auto size = regular_file_size(path);
+  if (!size) return Error{cat(path, ": cannot read ", what, ": ", size.error())};
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(std::min(*size, max_bytes), '\0');
   if (!in.read(bytes.data(), std::streamsize(bytes.size())))
     return Error{cat(path, ": cannot read ", what, ": read failed")};
   return bytes;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <exception>
 
+#include "image/exr_rgba.h"
 #include "raylane/core/limits.h"
 #include "raylane/core/strings.h"
 
@@ -222,8 +223,19 @@ class ChunkDecoder {
   }
 
  private:
-  // Subsampled and integer channels are not converted to the float pixels raylane keeps.
+  // Subsampled and integer channels are not converted to the float pixels raylane keeps. A
+  // subsampled channel beside them is refused too: OpenEXRCore 3.1 decodes a wanted channel
+  // with the right half of each row left 0 when two subsampled ones are skipped (a
+  // luminance-chroma file's Y beside RY and BY); decode_exr reads such files through OpenEXR's
+  // RGBA interface instead.
   Status check_wanted() const {
+    for (int i = 0; i < l_.channels->num_channels; ++i) {
+      const exr_attr_chlist_entry_t& e = l_.channels->entries[i];
+      if (e.x_sampling != 1 || e.y_sampling != 1)
+        return Error{cat("EXR channel ", text_of(e.name),
+                         " is subsampled; raylane reads the colour of such files (R, G, B or "
+                         "luminance-chroma), not their layers")};
+    }
     for (const std::string& name : wanted_) {
       for (int i = 0; i < l_.channels->num_channels; ++i) {
         const exr_attr_chlist_entry_t& e = l_.channels->entries[i];
@@ -309,6 +321,13 @@ class ChunkDecoder {
   std::vector<float> scratch_;  // the channels not asked for, one chunk at a time
 };
 
+bool has_subsampled(const Layout& l) {
+  for (int i = 0; i < l.channels->num_channels; ++i)
+    if (l.channels->entries[i].x_sampling != 1 || l.channels->entries[i].y_sampling != 1)
+      return true;
+  return false;
+}
+
 // Opens, checks and decodes: every exception (std::bad_alloc above all) becomes an error.
 template <class F>
 auto guarded(F&& body) -> decltype(body()) {
@@ -352,6 +371,7 @@ Result<Image> decode_exr(std::string_view bytes) {
     if (!l) return Error{l.error()};
     if (!l->info.has_rgb && !l->info.has_y)
       return Error{"the EXR file has no R, G, B or Y channel"};
+    if (has_subsampled(*l)) return exr_detail::decode_rgba_interface(bytes);
     std::vector<std::string> wanted =
         l->info.has_rgb ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
     auto data = decode_channels(f, *l, wanted);

@@ -7,6 +7,7 @@
 #include "image/jpeg_decode.h"
 #include "image/stb_decode.h"
 #include "raylane/core/input_file.h"
+#include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
@@ -33,12 +34,12 @@ Result<InputFormat> format_of(std::string_view b, std::string_view name) {
   if (starts_with(b, "\xff\xd8\xff")) return InputFormat::kJpeg;
   if (starts_with(b, "BM")) return InputFormat::kBmp;
   if (starts_with(b, "#?RADIANCE") || starts_with(b, "#?RGBE")) return InputFormat::kHdr;
-  if (starts_with(b, "PF\n") || starts_with(b, "PF\r") || starts_with(b, "PF "))
-    return InputFormat::kPfm;
+  for (std::string_view magic : {"PF", "Pf"})  // colour, grey
+    for (char space : {'\n', '\r', ' '})
+      if (b.size() > 2 && b.substr(0, 2) == magic && b[2] == space) return InputFormat::kPfm;
   if (is_exr(b)) return InputFormat::kExr;
   if (ends_with_tga(name)) return InputFormat::kTga;
-  return Error{
-      "not an image raylane reads (PNG, JPEG, TGA, BMP, Radiance HDR, colour PFM or OpenEXR)"};
+  return Error{"not an image raylane reads (PNG, JPEG, TGA, BMP, Radiance HDR, PFM or OpenEXR)"};
 }
 
 // The most pixels a file of the format can describe per byte of it, so that a header announcing
@@ -110,12 +111,13 @@ Result<Image> decode_hdr(std::string_view bytes) {
   return std::move(file->image);
 }
 
+// The header alone: `raylane info` and the memory check before decoding read no pixel.
 Result<InputImageInfo> probe_hdr(std::string_view bytes) {
-  auto img = decode_hdr(bytes);
-  if (!img) return Error{img.error()};
+  auto size = probe_rgbe(bytes);
+  if (!size) return Error{size.error()};
   InputImageInfo info;
   info.format = InputFormat::kHdr;
-  info.width = img->width, info.height = img->height;
+  info.width = size->width, info.height = size->height;
   info.channels = 3;
   info.is_float = true;
   return info;
@@ -150,7 +152,7 @@ Result<InputImageInfo> probe_pfm(std::string_view bytes) {
   InputImageInfo info;
   info.format = InputFormat::kPfm;
   info.width = h->width, info.height = h->height;
-  info.channels = 3;
+  info.channels = h->channels;
   info.is_float = true;
   return info;
 }
@@ -233,8 +235,13 @@ double srgb_to_linear(double c) {
 }
 
 Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name) {
-  if (bytes.empty()) return Error{"the file is empty"};
-  if (bytes.size() > kMaxImageFileBytes) return Error{"the file is larger than 1 GiB"};
+  return probe_input_image(bytes, name, bytes.size());
+}
+
+Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name,
+                                         uint64_t file_bytes) {
+  if (file_bytes == 0) return Error{"the file is empty"};
+  if (file_bytes > kMaxImageFileBytes) return Error{"the file is larger than 1 GiB"};
   auto format = format_of(bytes, name);
   if (!format) return Error{format.error()};
   auto info = *format == InputFormat::kPfm    ? probe_pfm(bytes)
@@ -243,13 +250,57 @@ Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_vie
               : *format == InputFormat::kExr  ? probe_openexr(bytes)
                                               : probe_stb(bytes, *format);
   if (!info) return info;
-  if (auto s = check_size(*info, bytes.size()); !s) return Error{s.error()};
+  if (auto s = check_size(*info, file_bytes); !s) return Error{s.error()};
   return info;
 }
 
-Result<Image> decode_input_image(std::string_view bytes, std::string_view name) {
+// Per pixel, besides the 12 bytes of linear RGB floats the image ends in (and the file):
+// - stb_image (PNG, BMP, TGA): its samples as stored and converted to 3 channels, then our
+//   copy of those: 4 + 3 samples (1, 2 or 4 bytes each);
+// - JPEG: libjpeg's coefficients of a progressive file at 4:4:4 (2 bytes × 64 per 8×8 block
+//   and component: 6) and its 3-byte output rows;
+// - Radiance HDR: the 4 RGBE bytes of a row at a time, but the float image is built in place:
+//   4 bytes, counted per pixel to stay on the safe side;
+// - PFM: none beyond the floats; OpenEXR: every channel unpacked as float (4 channels).
+uint64_t decode_bytes(const InputImageInfo& info, uint64_t file_bytes) {
+  uint64_t pixels = uint64_t(info.width) * info.height;
+  uint64_t sample = info.is_float ? 4 : info.is_16bit ? 2 : 1;
+  uint64_t working = 0;
+  switch (info.format) {
+    case InputFormat::kPng:
+    case InputFormat::kBmp:
+    case InputFormat::kTga:
+      working = 7 * sample;
+      break;
+    case InputFormat::kJpeg:
+      working = 9;
+      break;
+    case InputFormat::kHdr:
+      working = 4;
+      break;
+    case InputFormat::kPfm:
+      working = 0;
+      break;
+    case InputFormat::kExr:
+      working = 16;
+      break;
+  }
+  return file_bytes + pixels * (12 + working);
+}
+
+std::string image_memory_error(uint64_t needed, uint64_t memory_left, std::string_view what) {
+  return cat(what, " takes ", bytes_text(needed), "; the image memory left is ",
+             bytes_text(memory_left), " (--image-memory MIB raises it)");
+}
+
+Result<Image> decode_input_image(std::string_view bytes, std::string_view name,
+                                 uint64_t memory_left) {
   auto info = probe_input_image(bytes, name);
   if (!info) return Error{info.error()};
+  uint64_t needed = decode_bytes(*info, bytes.size());
+  std::string what = cat("decoding its ", info->width, "x", info->height, " pixels");
+  if (needed > memory_left) return Error{image_memory_error(needed, memory_left, what)};
+  if (Status s = check_memory(needed, what); !s) return Error{s.error()};
   Result<Image> img = Error{""};
   if (info->format == InputFormat::kPfm) {
     img = decode_pfm(bytes);
@@ -277,18 +328,57 @@ Result<Image> decode_input_image(std::string_view bytes, std::string_view name) 
   return img;
 }
 
-Result<InputImageInfo> read_input_image_info(const std::string& path) {
-  auto bytes = read_input_file(path, kMaxImageFileBytes, "the image");
-  if (!bytes) return Error{bytes.error()};
-  auto info = probe_input_image(*bytes, path);
+namespace {
+
+// Enough for every header raylane reads but JPEG's after long APP segments (a JPEG's EXIF
+// thumbnail may take 64 KiB before the frame header): those are probed on the whole file.
+constexpr uint64_t kHeadBytes = 64 << 10;
+
+// The file's first bytes, once they are known to begin an image, and the file's length.
+struct ImageHead {
+  std::string bytes;
+  uint64_t file_bytes = 0;
+};
+
+Result<ImageHead> read_image_head(const std::string& path) {
+  auto size = regular_file_size(path);
+  if (!size) return Error{cat(path, ": cannot read the image: ", size.error())};
+  auto head = read_input_head(path, kHeadBytes, "the image");
+  if (!head) return Error{head.error()};
+  if (head->empty()) return Error{cat(path, ": the file is empty")};
+  if (auto f = format_of(*head, path); !f) return Error{cat(path, ": ", f.error())};
+  return ImageHead{std::move(*head), *size};
+}
+
+// The whole file, if it fits the image memory left.
+Result<std::string> read_whole_image(const std::string& path, uint64_t file_bytes,
+                                     uint64_t memory_left) {
+  if (file_bytes > memory_left && file_bytes <= kMaxImageFileBytes)
+    return Error{cat(path, ": ", image_memory_error(file_bytes, memory_left, "reading the file"))};
+  return read_input_file(path, kMaxImageFileBytes, "the image");
+}
+
+}  // namespace
+
+Result<InputImageInfo> read_input_image_info(const std::string& path, uint64_t memory_left) {
+  auto head = read_image_head(path);
+  if (!head) return Error{head.error()};
+  auto info = probe_input_image(head->bytes, path, head->file_bytes);
+  if (!info && head->bytes.size() < head->file_bytes) {
+    auto bytes = read_whole_image(path, head->file_bytes, memory_left);
+    if (!bytes) return Error{bytes.error()};
+    info = probe_input_image(*bytes, path);
+  }
   if (!info) return Error{cat(path, ": ", info.error())};
   return info;
 }
 
-Result<Image> read_input_image(const std::string& path) {
-  auto bytes = read_input_file(path, kMaxImageFileBytes, "the image");
+Result<Image> read_input_image(const std::string& path, uint64_t memory_left) {
+  auto head = read_image_head(path);
+  if (!head) return Error{head.error()};
+  auto bytes = read_whole_image(path, head->file_bytes, memory_left);
   if (!bytes) return Error{bytes.error()};
-  auto img = decode_input_image(*bytes, path);
+  auto img = decode_input_image(*bytes, path, memory_left);
   if (!img) return Error{cat(path, ": ", img.error())};
   return img;
 }

@@ -65,9 +65,26 @@ void open(Session& s, std::string_view bytes, uint64_t budget_bytes) {
 // After jpeg_read_header: the file's kind is one raylane decodes, or the reason it is not.
 const char* unsupported(const jpeg_decompress_struct& c) {
   if (c.arith_code) return "arithmetic-coded JPEG is not supported";
-  if (c.num_components != 1 && c.num_components != 3)
-    return "only grey and colour (YCbCr or RGB) JPEG is supported, not CMYK";
+  if (c.num_components != 1 && c.num_components != 3 &&
+      !(c.num_components == 4 &&
+        (c.jpeg_color_space == JCS_CMYK || c.jpeg_color_space == JCS_YCCK)))
+    return "only grey, colour (YCbCr or RGB) and CMYK JPEG are supported";
   return nullptr;
+}
+
+// Inks to sRGB bytes, as the common viewers do it (no colour profile): each channel is
+// (1 − ink)·(1 − black). Files with Adobe's APP14 marker store the inks inverted (Photoshop's
+// convention: 255 means no ink), so there the channel is C·K/255 of the stored values; libjpeg
+// hands CMYK over as stored.
+void cmyk_to_rgb(const JSAMPLE* inks, uint32_t width, bool adobe_inverted, JSAMPLE* rgb) {
+  for (uint32_t x = 0; x < width; ++x) {
+    const JSAMPLE* p = inks + 4 * std::size_t(x);
+    unsigned k = adobe_inverted ? p[3] : 255u - p[3];
+    for (int c = 0; c < 3; ++c) {
+      unsigned v = adobe_inverted ? p[c] : 255u - p[c];
+      rgb[3 * std::size_t(x) + c] = JSAMPLE((v * k + 127) / 255);
+    }
+  }
 }
 
 // The setjmp frames: plain data only, so a longjmp out of libjpeg skips no destructor.
@@ -95,12 +112,23 @@ bool read_pixels(Session& s, std::string_view bytes, const Header& h, uint64_t b
     std::snprintf(s.message, sizeof s.message, "the header changed between two reads");
     return false;
   }
-  s.cinfo.out_color_space = JCS_RGB;  // grey is widened to RGB by libjpeg
+  const bool cmyk = s.cinfo.num_components == 4;
+  // Grey is widened to RGB by libjpeg; YCCK becomes CMYK, which libjpeg leaves to us.
+  s.cinfo.out_color_space = cmyk ? JCS_CMYK : JCS_RGB;
   jpeg_start_decompress(&s.cinfo);
+  // A row of inks from libjpeg's own pool (freed with the session, within its budget).
+  JSAMPARRAY inks = cmyk ? (*s.cinfo.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&s.cinfo),
+                                                        JPOOL_IMAGE, h.width * 4, 1)
+                         : nullptr;
   const std::size_t row_bytes = std::size_t(h.width) * 3;
   while (s.cinfo.output_scanline < s.cinfo.output_height) {
     JSAMPROW row = rgb + std::size_t(s.cinfo.output_scanline) * row_bytes;
-    jpeg_read_scanlines(&s.cinfo, &row, 1);
+    if (!cmyk) {
+      jpeg_read_scanlines(&s.cinfo, &row, 1);
+      continue;
+    }
+    jpeg_read_scanlines(&s.cinfo, inks, 1);
+    cmyk_to_rgb(inks[0], h.width, s.cinfo.saw_Adobe_marker != 0, row);
   }
   jpeg_finish_decompress(&s.cinfo);
   return true;

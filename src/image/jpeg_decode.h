@@ -23,7 +23,7 @@ inline constexpr int kMaxJpegScans = 64;
 
 struct Header {
   uint32_t width = 0, height = 0;
-  int components = 0;  // 1 grey, 3 YCbCr or RGB, 4 CMYK/YCCK (refused)
+  int components = 0;  // 1 grey, 3 YCbCr or RGB, 4 CMYK/YCCK (inks, made RGB)
 };
 
 // The frame header (SOF): size and components; false with the reason otherwise.

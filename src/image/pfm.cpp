@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 #include "raylane/core/strings.h"
@@ -37,8 +38,10 @@ std::string encode_pfm(const Image& image) {
 
 Result<PfmHeader> parse_pfm_header(std::string_view b) {
   std::size_t pos = 0;
-  if (token(b, pos) != "PF") return Error{"not a colour PFM file (no PF magic)"};
+  std::string_view magic = token(b, pos);
+  if (magic != "PF" && magic != "Pf") return Error{"not a PFM file (no PF or Pf magic)"};
   PfmHeader h;
+  h.channels = magic == "PF" ? 3 : 1;
   auto num = [&](auto& v) {
     std::string_view t = token(b, pos);
     auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
@@ -46,12 +49,14 @@ Result<PfmHeader> parse_pfm_header(std::string_view b) {
   };
   if (!num(h.width) || !num(h.height) || h.width == 0 || h.height == 0)
     return Error{"bad PFM size"};
-  if (!num(h.scale) || h.scale == 0) return Error{"bad PFM scale"};
+  // from_chars reads "nan" and "inf" too: a scale must be a finite number other than 0.
+  if (!num(h.scale) || h.scale == 0 || !std::isfinite(h.scale))
+    return Error{"bad PFM scale (expected a finite number other than 0)"};
   if (uint64_t(h.width) * h.height > kMaxImagePixels)
     return Error{
         cat("image has ", uint64_t(h.width) * h.height, " pixels; the limit is 2^28 (268435456)")};
   h.data_offset = pos + 1;  // the single whitespace character after the scale
-  uint64_t need = uint64_t(h.width) * h.height * 12;
+  uint64_t need = uint64_t(h.width) * h.height * 4 * uint64_t(h.channels);
   if (h.data_offset > b.size() || b.size() - h.data_offset < need)
     return Error{"truncated PFM data"};
   return h;
@@ -66,11 +71,17 @@ Result<Image> decode_pfm(std::string_view b) {
   bool swap = h->scale > 0;  // positive scale: big endian
   for (uint32_t row = 0; row < ht; ++row) {
     uint32_t y = ht - 1 - row;
-    for (std::size_t k = 0; k < std::size_t(w) * 3; ++k) {
+    for (std::size_t k = 0; k < std::size_t(w) * std::size_t(h->channels); ++k) {
       uint32_t bits;
       std::memcpy(&bits, b.data() + pos, 4);
       pos += 4;
-      img.rgb[img.index(0, y) + k] = std::bit_cast<float>(swap ? byteswap32(bits) : bits);
+      float v = std::bit_cast<float>(swap ? byteswap32(bits) : bits);
+      if (h->channels == 3) {
+        img.rgb[img.index(0, y) + k] = v;
+      } else {  // grey: the value in all three channels
+        std::size_t at = img.index(uint32_t(k), y);
+        img.rgb[at] = img.rgb[at + 1] = img.rgb[at + 2] = v;
+      }
     }
   }
   return img;

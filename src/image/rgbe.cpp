@@ -184,6 +184,14 @@ std::string encode_rgbe(const Image& image, const std::vector<std::string>& meta
   return out;
 }
 
+Result<RgbeSize> probe_rgbe(std::string_view bytes) {
+  Reader r{bytes};
+  RgbeFile f;
+  RgbeSize size;
+  if (Status s = read_header(r, f, size.width, size.height); !s) return Error{s.error()};
+  return size;
+}
+
 Result<RgbeFile> decode_rgbe(std::string_view bytes) {
   Reader r{bytes};
   RgbeFile f;

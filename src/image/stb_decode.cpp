@@ -5,6 +5,7 @@
 // (src/image/input_image.cpp, decode_hdr).
 #include "image/stb_decode.h"
 
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 
@@ -82,6 +83,9 @@ bool probe(std::string_view bytes, Header& out, std::string& why) {
     why = reason();
     return false;
   }
+  // A BMP stored top row first says so by a negative height (Microsoft's BITMAPINFOHEADER,
+  // biHeight); stb_image 2.27's info call passes it on as it is, its loader takes its size.
+  if (out.height < 0 && out.height != INT_MIN) out.height = -out.height;
   out.is_hdr = stbi_is_hdr_from_memory(data(bytes), len) != 0;
   out.is_16bit = stbi_is_16_bit_from_memory(data(bytes), len) != 0;
   return true;

@@ -43,8 +43,13 @@ bool screen_command(Scene& s, const Line& line, ParseState& state) {
   if (!v) return false;
   for (int i = 0; i < 2; ++i) {
     double x = (*v)[i];
-    if (x < 1 || x != std::floor(x) || x > double(kMaxImagePixels)) {
+    if (x < 1 || x != std::floor(x)) {
       state.problem(line.at(1 + i), "screen size must be a whole number >= 1");
+      return false;
+    }
+    if (x > double(kMaxImagePixels)) {
+      state.problem(line.at(1 + i), cat("screen side ", line.tokens[1 + i].text,
+                                        " is more than 2^28 (268435456), the pixel limit"));
       return false;
     }
   }
@@ -63,10 +68,7 @@ bool camera_command(Scene& s, const Line& line, ParseState& state) {
   state.camera_rejected_at = line.loc;  // until the line is taken
   auto v = parse_numbers(line, 1, 4, false, state);
   if (!v) return false;
-  if (!((*v)[3] > 0)) {
-    state.problem(line.at(4), "camera ry must be > 0");
-    return false;
-  }
+  if (!positive_in_float((*v)[3], "camera ry", line, 4, state)) return false;
   auto rot = parse_orientation(line, 5, state);
   if (!rot) return false;
   note_repeat(state.camera_at, line, state);
@@ -82,10 +84,7 @@ bool lens_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(1), "lens radius must be >= 0 (0 is the pinhole)");
     return false;
   }
-  if (!((*v)[1] > 0)) {
-    state.problem(line.at(2), "lens focus distance must be > 0");
-    return false;
-  }
+  if (!positive_in_float((*v)[1], "lens focus distance", line, 2, state)) return false;
   note_repeat(state.lens_at, line, state);
   s.lens = LensSpec{(*v)[0], (*v)[1]};
   return true;

@@ -17,6 +17,13 @@ void append_placed(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>& n,
                    const std::array<TexCoord, 3>& uv, const MeshPlacement& placement,
                    uint32_t material, TriangleTable& table, MeshImportStats& stats);
 
+// Where a file's vertex lands, in float as the table stores it: t + s·R·p.
+Vec3f placed_position(const MeshPlacement& placement, const Vec3d& p);
+// An error naming the vertex (its index in the file, `index`) if its placed position is not
+// finite in float; the mesh line's translation, scale or orientation took it beyond float.
+Status check_placed(const MeshPlacement& placement, const Vec3d& p, uint64_t index,
+                    const std::string& mesh_name);
+
 // A texture file named inside a mesh file, resolved next to it; "*N" (embedded) and "" stay.
 // Files written on Windows name textures with backslashes (".\wood.jpg"), and many name them
 // by their author's absolute path: the first of (the name as written, with '/' for each

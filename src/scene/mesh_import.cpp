@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <new>
 #include <utility>
 
 #include "mesh_append.h"
+#include "mesh_repair.h"
 #include "raylane/core/alloc_budget.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/limits.h"
@@ -42,35 +44,6 @@ void configure(Assimp::Importer& importer) {
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
 }
 
-// Drops faces without indices before post-processing: Debian's Assimp 5.2.5 is built with its
-// assertions on, and its triangulation step aborts the process on such a face (found by
-// fuzz_mesh: a binary PLY whose face list count reads 0). The importer owns the scene; it is
-// edited in place between reading and post-processing, which Assimp's API allows.
-void drop_empty_faces(const aiScene& scene) {
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
-    aiMesh& mesh = *scene.mMeshes[m];
-    unsigned kept = 0;
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices == 0) continue;
-      if (kept != f) {  // move the index array down; the source keeps none
-        std::swap(mesh.mFaces[kept].mIndices, face.mIndices);
-        std::swap(mesh.mFaces[kept].mNumIndices, face.mNumIndices);
-      }
-      ++kept;
-    }
-    mesh.mNumFaces = kept;
-  }
-}
-
-// Whether any mesh of a scene as read has a face of three or more corners (a surface).
-bool has_surface(const aiScene& scene) {
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
-    for (unsigned f = 0; f < scene.mMeshes[m]->mNumFaces; ++f)
-      if (scene.mMeshes[m]->mFaces[f].mNumIndices >= 3) return true;
-  return false;
-}
-
 // The first vertex that is not finite, as "mesh M vertex V (x y z)"; empty if none. Assimp
 // reads inf and NaN coordinates as given; a triangle made of them has no place in a BVH.
 std::string first_nonfinite_vertex(const aiScene& scene) {
@@ -90,9 +63,10 @@ std::string first_nonfinite_vertex(const aiScene& scene) {
 // when the file holds no surface at all (points or lines only, or nothing).
 const aiScene* read_checked(Assimp::Importer& importer, const aiScene* raw, bool& faceless) {
   if (!raw) return nullptr;
-  faceless = !has_surface(*raw);
+  faceless = !mesh_repair::has_surface(*raw);
   if (faceless) return nullptr;
-  drop_empty_faces(*raw);
+  mesh_repair::drop_empty_faces(*raw);
+  mesh_repair::drop_empty_meshes(*raw);
   return importer.ApplyPostProcessing(kImportFlags);
 }
 
@@ -286,6 +260,14 @@ Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
     return Error{cat("mesh ", quote_path(name), " has no faces (points or lines only, or empty)")};
   if (total > kMaxMeshTriangles || table.size() + total > PrimRef::kMaxRows)
     return Error{cat("mesh ", quote_path(name), " has too many triangles (", total, ")")};
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene->mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      if (Status s = check_placed(placement, Vec3d(p.x, p.y, p.z), v, name); !s)
+        return Error{m == 0 ? s.error() : cat(s.error(), " (in its mesh ", m, ")")};
+    }
+  }
   MeshImportStats stats;
   stats.has_uv = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
@@ -307,14 +289,18 @@ Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
   return stats;
 }
 
-// The first bytes of a file: enough for any PLY header the guard needs to read.
-std::string read_head(const std::string& path) {
-  constexpr std::size_t kHeadBytes = 1 << 16;
-  std::string head(kHeadBytes, '\0');
-  std::ifstream in(path, std::ios::binary);
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(in.gcount()));
-  return head;
+// The first bytes of a file: 64 KiB, or for a PLY file whose header is longer (long comment
+// blocks), its whole header up to kMaxPlyHeaderBytes, which the guard reads.
+std::string read_head(const std::string& path, uint64_t file_size) {
+  constexpr uint64_t kHeadBytes = 1 << 16;
+  auto head = read_input_head(path, kHeadBytes, "the mesh");
+  if (!head) return {};
+  if (head->size() < file_size && is_ply(*head, path) &&
+      head->find("\nend_header") == std::string::npos) {
+    auto longer = read_input_head(path, kMaxPlyHeaderBytes, "the mesh");
+    if (longer) return std::move(*longer);
+  }
+  return std::move(*head);
 }
 
 // convert(), with running out of memory for the table an error rather than an exception.
@@ -341,7 +327,7 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
                                          const MaterialChooser& choose) {
   auto size = regular_file_size(path);
   if (!size) return Error{cat("cannot read mesh ", quote_path(path), ": ", size.error())};
-  std::string head = read_head(path);
+  std::string head = read_head(path, *size);
   if (Status s = check_mesh_plausible(head, *size, path); !s) return Error{s.error()};
   if (is_ply(head, path)) {
     auto bytes = read_input_file(path, kMaxMeshFileBytes, "the mesh");
@@ -385,12 +371,36 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
 
 namespace raylane {
 
+Vec3f placed_position(const MeshPlacement& pl, const Vec3d& p) {
+  return Vec3f(pl.translation + pl.scale * (pl.rotation * p));
+}
+
+namespace {
+// "(x y z)" with 9 significant digits, for messages.
+std::string point_text(const Vec3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.9g %.9g %.9g)", p.x, p.y, p.z);
+  return text;
+}
+}  // namespace
+
+Status check_placed(const MeshPlacement& pl, const Vec3d& p, uint64_t index,
+                    const std::string& mesh_name) {
+  Vec3f q = placed_position(pl, p);
+  if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) return ok_status();
+  Vec3d exact = pl.translation + pl.scale * (pl.rotation * p);
+  return Error{cat("mesh ", quote_path(mesh_name), ": vertex ", index, " ", point_text(p),
+                   " is placed at ", point_text(exact),
+                   ", beyond float (the largest is about 3.4e38); expected a translation and "
+                   "scale that keep the mesh within float")};
+}
+
 void append_placed(const std::array<Vec3d, 3>& p_file, const std::array<Vec3d, 3>& n_file,
                    const std::array<TexCoord, 3>& uv, const MeshPlacement& pl, uint32_t material,
                    TriangleTable& table, MeshImportStats& stats) {
   std::array<Vec3f, 3> p, n;
   for (int k = 0; k < 3; ++k) {
-    p[k] = Vec3f(pl.translation + pl.scale * (pl.rotation * p_file[k]));
+    p[k] = placed_position(pl, p_file[k]);
     Vec3d nk = pl.rotation * n_file[k];
     double len = length(nk);
     n[k] = len > 0 && std::isfinite(len) ? Vec3f(nk / len) : Vec3f();

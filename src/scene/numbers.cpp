@@ -110,4 +110,14 @@ std::optional<std::vector<double>> parse_numbers(const Line& line, std::size_t f
   return values;
 }
 
+bool positive_in_float(double v, std::string_view what, const Line& line, std::size_t token,
+                       ParseState& state) {
+  if (v > 0 && float(v) > 0) return true;
+  state.problem(line.at(token), v > 0 ? cat(what,
+                                            " rounds to 0 in single precision; it must be > 0 "
+                                            "after rounding (at least about 1.4e-45)")
+                                      : cat(what, " must be > 0"));
+  return false;
+}
+
 }  // namespace raylane

@@ -112,6 +112,13 @@ class BodyReader {
         return Error{cat(in_.where(), ": expected finite coordinates for vertex ", i, ", found (",
                          number_text(v[0]), " ", number_text(v[1]), " ", number_text(v[2]), ")")};
       mesh_.positions[i] = Vec3f(float(v[0]), float(v[1]), float(v[2]));
+      // What is stored must be finite too: a double property's 1e300, or a float property's
+      // 1e39 in an ASCII file, becomes an infinite float.
+      const Vec3f& stored = mesh_.positions[i];
+      if (!std::isfinite(stored.x) || !std::isfinite(stored.y) || !std::isfinite(stored.z))
+        return Error{cat(in_.where(), ": expected coordinates that fit in a float for vertex ", i,
+                         ", found (", number_text(v[0]), " ", number_text(v[1]), " ",
+                         number_text(v[2]), ")")};
       if (slots.normals) mesh_.normals[i] = Vec3f(float(v[3]), float(v[4]), float(v[5]));
       if (slots.uvs) mesh_.uvs[i] = {v[6], v[7]};
     }

@@ -146,8 +146,15 @@ Result<PlyHeader> read_ply_header(std::string_view bytes, const std::string& nam
   std::size_t pos = 0;
   for (int number = 1;; ++number) {
     std::size_t eol = bytes.find('\n', pos);
+    if (eol != std::string_view::npos && eol >= kMaxPlyHeaderBytes)
+      return Error{cat("mesh ", quote_path(name), ": PLY header is longer than 16 MiB (",
+                       kMaxPlyHeaderBytes, " bytes), the limit")};
     if (eol == std::string_view::npos)
-      return Error{cat("mesh ", quote_path(name), ": PLY header has no end_header line")};
+      return Error{
+          cat("mesh ", quote_path(name),
+              bytes.size() >= kMaxPlyHeaderBytes
+                  ? ": PLY header is longer than 16 MiB (the limit) or has no end_header line"
+                  : ": PLY header has no end_header line")};
     std::string_view line = bytes.substr(pos, eol - pos);
     pos = eol + 1;
     if (!is_printable_text(line)) return bad(number, "holds bytes that are not text");

@@ -97,6 +97,9 @@ Result<MeshImportStats> append_ply(const PlyMesh& mesh, const std::string& name,
   stats.has_uv = !mesh.uvs.empty();
   table_reserve(table, table.size() + mesh.triangles.size());
   if (stats.has_uv && !table.has_uv()) table.add_uv_columns();
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if (Status s = check_placed(placement, Vec3d(mesh.positions[i]), i, name); !s)
+      return Error{s.error()};
   for (const auto& t : mesh.triangles) {
     std::array<Vec3d, 3> p, n;
     std::array<TexCoord, 3> uv{};

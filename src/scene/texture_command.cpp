@@ -37,13 +37,49 @@ std::string where_looked(const ParseState& state, const std::string& name) {
   return cat(quote_path(name), " not found (looked in ", where, ")");
 }
 
+namespace {
+
+uint64_t memory_left(const ParseState& state) {
+  uint64_t limit = state.options.image_memory, used = state.image_memory_used;
+  return used < limit ? limit - used : 0;
+}
+
+// The image at `path` within the image memory the scene has left, which it then takes; only
+// its size when the options ask for headers only. `extra` bytes per pixel are what the reader of
+// the image builds from it besides (the environment's sampling tables).
+Result<Image> read_scene_image(ParseState& state, const std::string& path, uint64_t extra = 0) {
+  if (state.options.image_headers_only) {
+    auto info = read_input_image_info(path, memory_left(state));
+    if (!info) return Error{info.error()};
+    Image sized;
+    sized.width = info->width, sized.height = info->height;
+    return sized;
+  }
+  auto image = read_input_image(path, memory_left(state));
+  if (!image) return image;
+  uint64_t kept =
+      image->rgb.size() * sizeof(float) + extra * uint64_t(image->width) * image->height;
+  if (kept > memory_left(state))
+    return Error{cat(path, ": ", image_memory_error(kept, memory_left(state), "keeping it"))};
+  state.image_memory_used += kept;
+  return image;
+}
+
+// The environment's importance sampling: a luminance and a CDF entry (doubles) per pixel, and
+// the copy of the image the light keeps.
+constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double) + 3 * sizeof(float);
+
+}  // namespace
+
 // The row of Scene::textures holding the image at `path`, read now if it is new.
 Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path) {
   for (const auto& [file, row] : state.texture_files)
     if (file == path) return row;
-  auto image = read_input_image(path);
+  auto image = read_scene_image(state, path);
   if (!image) return Error{image.error()};
-  s.textures.push_back(make_texture(path, std::move(*image)));
+  s.textures.push_back(state.options.image_headers_only
+                           ? Texture{path, std::move(*image), Vec3d(0, 0, 0)}
+                           : make_texture(path, std::move(*image)));
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(path, row);
   state.input_files.push_back(path);
@@ -58,9 +94,13 @@ Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTex
     image = *t.texels;
   } else if (!t.file_bytes.empty()) {
     // The extension names the format for TGA only; the others are known by their contents.
-    image = decode_input_image(t.file_bytes, cat("embedded.", t.extension));
+    image = decode_input_image(t.file_bytes, cat("embedded.", t.extension), memory_left(state));
   }
   if (!image) return Error{image.error()};
+  uint64_t kept = image->rgb.size() * sizeof(float);
+  if (kept > memory_left(state))
+    return Error{image_memory_error(kept, memory_left(state), "keeping it")};
+  state.image_memory_used += kept;
   s.textures.push_back(make_texture(t.name, std::move(*image)));
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(t.name, row);
@@ -109,10 +149,7 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
   }
   auto scale = parse_number(line, 2, state);
   if (!scale) return false;
-  if (!(*scale > 0)) {
-    state.problem(line.at(2), cat("environment scale must be > 0, found ", line.tokens[2].text));
-    return false;
-  }
+  if (!positive_in_float(*scale, "environment scale", line, 2, state)) return false;
   auto rotation = parse_orientation(line, 3, state);
   if (!rotation) return false;
   std::string name = line.tokens[1].name();
@@ -121,7 +158,7 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(1), cat("environment ", where_looked(state, name)));
     return false;
   }
-  auto image = read_input_image(*path);
+  auto image = read_scene_image(state, *path, kEnvironmentExtraBytes);
   if (!image) {
     state.problem(line.at(1),
                   cat("cannot use environment ", quote_path(name), ": ", image.error()));

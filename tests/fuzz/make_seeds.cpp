@@ -13,6 +13,7 @@
 #include "raylane/image/exr.h"
 #include "raylane/image/pfm.h"
 #include "raylane/image/rgbe.h"
+#include "support/hostile_files.h"
 #include "support/jpeg_writer.h"
 
 namespace {
@@ -75,6 +76,9 @@ void mesh_seeds(const fs::path& dir) {
   put(dir / "ascii.ply", std::string(1, '\0') + kPlyAscii);
   put(dir / "binary.ply", std::string(1, '\0') + ply_binary());
   put(dir / "square.obj", std::string(1, '\1') + kObj);
+  // A header longer than the first 64 KiB raylane once read of a mesh (issue 34).
+  put(dir / "long_header.ply",
+      std::string(1, '\0') + raylane::testing::ply_with_long_header(70000));
 }
 
 // A TGA (type 2: uncompressed true colour, 24 bits, bottom-up) and a BMP (24 bits, bottom-up,
@@ -125,6 +129,13 @@ void image_seeds(const fs::path& dir) {
   put(dir / "small.bmp", std::string(1, '\0') + bmp_2x2());
   put(dir / "float.exr", std::string(1, '\0') + exr_seed(false));
   put(dir / "half.exr", std::string(1, '\0') + exr_seed(true));
+  // Issue 34: a PNG bomb (4096² 1-bit pixels in 13 KB, past the image memory budget once
+  // decoded) and a luminance-chroma EXR (Y full, RY and BY subsampled).
+  put(dir / "bomb.png", std::string(1, '\0') + raylane::testing::png_zero_bomb(4096, 4096));
+  put(dir / "yc.exr",
+      std::string(1, '\0') + raylane::testing::exr_luminance_chroma(8, 6, [](int x, int y) {
+        return raylane::Vec3f(x * 0.1f, y * 0.2f, 0.3f);
+      }));
   // Small JPEGs of each coding raylane reads (the models' photos are large and baseline).
   using raylane::testing::JpegKind;
   std::vector<uint8_t> rgb(16 * 8 * 3), grey(16 * 8);

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "raylane/core/strings.h"
@@ -47,6 +48,11 @@ std::string quoted_name(const std::string& path) {
   return out + "\"";
 }
 
+// Models `assimp info` refuses that raylane reads, with their triangles: an empty STL solid
+// beside a real one fails Assimp's validation, and raylane drops it first (issue 34).
+const std::map<std::string, uint32_t> kReadBeyondAssimpInfo = {
+    {"STL/triangle_with_empty_solid.stl", 1}};
+
 TEST(AssimpCorpus, EveryModelLoadsAsAssimpReadsIt) {
   const std::string models = RAYLANE_ASSIMP_MODELS;
   if (!std::filesystem::is_directory(models))
@@ -60,6 +66,12 @@ TEST(AssimpCorpus, EveryModelLoadsAsAssimpReadsIt) {
     ParsedScene p = parse_scene(
         "camera 0 0 5 1\nbrdf 0.5 0.5 0.5 0 0 0 1\nmesh " + quoted_name(path) + " 0 0 0 1\n",
         "c.scn");
+    if (auto beyond = kReadBeyondAssimpInfo.find(e.path); beyond != kReadBeyondAssimpInfo.end()) {
+      ASSERT_TRUE(p.ok() && p.meshes.size() == 1) << to_string(p.diagnostics.items.at(0));
+      EXPECT_EQ(p.meshes[0].triangles, beyond->second);
+      ++loaded;
+      continue;
+    }
     if (e.what == "triangles") {
       if (!p.ok() || p.meshes.size() != 1) {
         // Triangles that are all zero-area: raylane keeps none of them and says so.

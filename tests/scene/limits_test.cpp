@@ -68,7 +68,8 @@ TEST(Limits, LongOrientationList) {
 TEST(Limits, OversizedInputsAreErrors) {
   auto p = parse(std::string(testing::kCameraLine) + "screen 4294967296 1\n");
   ASSERT_EQ(errors(p).size(), 1u);
-  EXPECT_EQ(errors(p)[0], "t.scn:2:8: screen size must be a whole number >= 1");
+  EXPECT_EQ(errors(p)[0],
+            "t.scn:2:8: screen side 4294967296 is more than 2^28 (268435456), the pixel limit");
   std::string word(kMaxLineBytes - 100, 'a');
   p = parse(std::string(testing::kCameraLine) + "sphere " + word + " 0 0 1\n");
   ASSERT_EQ(errors(p).size(), 1u);

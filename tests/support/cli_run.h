@@ -14,4 +14,7 @@ struct CliRun {
 // is killed (coreutils timeout) and reports status 124: a hang fails its test, not the suite.
 CliRun run_cli(const std::string& args, const std::string& dir, int timeout_seconds = 120);
 
+// The same under `ulimit -v` (the address space, in KiB), as a machine with less memory.
+CliRun run_cli_within(const std::string& args, const std::string& dir, uint64_t address_space_kib);
+
 }  // namespace raylane::testing

@@ -20,12 +20,27 @@ int convert_command(const std::vector<std::string>& args);
 int diff_command(const std::vector<std::string>& args);
 int view_command(const std::vector<std::string>& args);  // the interactive viewer (SDL2)
 
+// How a command loads its scene besides --lenient and --set: the image memory (--image-memory)
+// and whether images are read only to their headers (`raylane info`).
+struct SceneImages {
+  uint64_t memory = kDefaultImageMemory;
+  bool headers_only = false;
+};
+
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
 // stderr. `overrides` are the --set lines, read after the scene's own. Returns nothing when the
 // scene has errors.
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
                                               bool quiet,
-                                              const std::vector<std::string>& overrides = {});
+                                              const std::vector<std::string>& overrides = {},
+                                              SceneImages images = {});
+
+// --image-memory MIB: its help, and the value read into bytes.
+inline constexpr const char* kImageMemoryHelp =
+    "what decoding the scene's textures and environment may take in all,\n"
+    "in MiB (decoded pixels and the decoders' memory, counted from each\n"
+    "header before decoding)";
+Status read_image_memory_option(const std::string& value, uint64_t& bytes);
 
 // The --set option's help, shared by the commands that load a scene.
 inline constexpr const char* kSetOptionHelp =

@@ -39,7 +39,7 @@ void print_textures(const Scene& s) {
   std::printf("textures: %zu\n", s.textures.size());
   for (std::size_t i = 0; i < s.textures.size(); ++i) {
     const Texture& t = s.textures[i];
-    std::size_t bytes = t.image.rgb.size() * sizeof(float);
+    std::size_t bytes = std::size_t(t.image.width) * t.image.height * 3 * sizeof(float);
     total += bytes;
     std::printf("  %2zu %u x %u, %zu bytes: %s\n", i, t.image.width, t.image.height, bytes,
                 quote_path(t.file).c_str());
@@ -76,7 +76,9 @@ const CommandHelp kInfoHelp{
     "time) and the SIMD kernels this CPU runs. Given a mesh file (any format Assimp reads), it\n"
     "prints the mesh's triangles, the zero-area ones dropped, its bounds and the files read.\n"
     "Given a film (--checkpoint), its size, spp, seed, integrator, sampler and AOVs.",
-    &kInfoOptions, ""};
+    &kInfoOptions,
+    "Textures and the environment are read to their headers only: their sizes and the bytes\n"
+    "they take when rendered, with no pixel decoded."};
 
 }  // namespace
 
@@ -132,7 +134,9 @@ int info_command(const std::vector<std::string>& args) {
   if (path && is_film_file(*path)) return info_film(*path);
   std::vector<std::string> overrides;
   if (parsed->has("set")) overrides = parsed->values.at("set");
-  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides);
+  // Headers only: info says what a render would model without decoding a pixel.
+  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides,
+                                   {kDefaultImageMemory, true});
   if (!loaded) return kExitUsage;
   Scene& s = loaded->scene;
   std::printf("scene: %s\n", path ? path->c_str() : kBuiltinSceneName);

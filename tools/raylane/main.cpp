@@ -1,5 +1,6 @@
 // raylane: renders CS500 scenes. `raylane --help` lists the commands.
 #include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,7 @@ exit status: 0 done, 1 failed while working (e.g. cannot write), 2 bad input or 
 Documents: docs/ in the repository (docs/README.md lists them).
 )";
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+int run(const std::vector<std::string>& args) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
     std::fputs(kUsage, stdout);
     return raylane::cli::kExitOk;
@@ -43,7 +41,12 @@ int main(int argc, char** argv) {
     std::printf("raylane %s\n", RAYLANE_VERSION);
     return raylane::cli::kExitOk;
   }
-  if (args.empty()) return raylane::cli::render_command({});
+  // Bare `raylane` is someone finding out what it does: the usage, never a render that writes
+  // over ./testscene.hdr (`raylane render` renders the built-in scene).
+  if (args.empty()) {
+    std::fputs(kUsage, stderr);
+    return raylane::cli::kExitUsage;
+  }
   std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "render") return raylane::cli::render_command(rest);
@@ -56,4 +59,18 @@ int main(int argc, char** argv) {
   if (command.size() > 4 && command.substr(command.size() - 4) == ".scn")
     return raylane::cli::render_command(args);
   return raylane::cli::usage_error("unknown command '" + command + "'");
+}
+
+}  // namespace
+
+// Sizes an input announces are checked before they are allocated (a film, textures, meshes
+// within their budget); an allocation that fails all the same ends in this message, exit 2,
+// never in std::terminate's abort.
+int main(int argc, char** argv) {
+  try {
+    return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::bad_alloc&) {
+    std::fputs("raylane: out of memory; nothing written\n", stderr);
+    return raylane::cli::kExitUsage;
+  }
 }

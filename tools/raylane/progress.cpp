@@ -83,11 +83,13 @@ void install_interrupt_handler(bool under_launcher) {
   sa.sa_handler = on_sigint;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
-  if (!under_launcher) return;
-  // Under mpirun, SIGTERM is how mpirun stops its processes when its own Ctrl-C arrives, and
-  // SIGUSR1 is a signal it forwards to them (docs/cluster.md, "What works across processes"): each
-  // only asks for the stop after the pass, never for the immediate exit of a second Ctrl-C.
-  sa.sa_handler = on_stop_request;
+  // SIGTERM is what `timeout`, batch schedulers and `kill` send, SIGUSR1 a stop request: on
+  // one process they stop the render like Ctrl-C, the image converged so far written (and a
+  // second one leaves at once, as a scheduler's grace period ends). Under mpirun, SIGTERM is how
+  // mpirun stops its processes when its own Ctrl-C arrives, and SIGUSR1 a signal it forwards to
+  // them (docs/cluster.md, "What works across processes"): there each only asks for the stop
+  // after the pass, never for the immediate exit of a second Ctrl-C.
+  if (under_launcher) sa.sa_handler = on_stop_request;
   sigaction(SIGTERM, &sa, nullptr);
   sigaction(SIGUSR1, &sa, nullptr);
 }

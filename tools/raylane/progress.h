@@ -37,8 +37,8 @@ class Progress {
 // SIGINT handling for renders: the first Ctrl-C sets the flag (the renderer finishes the
 // passes in flight and the image converged so far is written); a second exits at once with
 // status 130 without writing.
-// SIGINT stops after the pass in flight (a second one exits at once); started by a launcher,
-// SIGTERM and SIGUSR1 stop after the pass too.
+// SIGTERM and SIGUSR1 do the same on one process; started by a launcher, they only ask for the
+// stop after the pass.
 void install_interrupt_handler(bool under_launcher = false);
 bool interrupted();
 

@@ -171,7 +171,8 @@ const std::vector<RenderOption>& render_options() {
        set_time},
       {{"checkpoint", 0, "FILE", false,
         "path: save the film to FILE every --checkpoint-every seconds and\n"
-        "when the render stops (done, --time, Ctrl-C)",
+        "when the render stops (done, --time, Ctrl-C, SIGTERM); a FILE that exists\n"
+        "is refused unless it is the --resume film",
         "none"},
        [](R& r, V v) {
          r.checkpoints.checkpoint = v;
@@ -228,6 +229,8 @@ const std::vector<RenderOption>& render_options() {
          r.lenient = true;
          return ok_status();
        }},
+      {{"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
+       [](R& r, V v) { return read_image_memory_option(v, r.image_memory); }},
       {{"set", 0, "LINE", true, kSetOptionHelp, ""},
        [](R& r, V v) {
          r.overrides.push_back(v);
@@ -285,7 +288,8 @@ const CommandHelp& render_help() {
       &render_specs(),
       "A path render shows a progress bar (on a terminal) and ends with a summary. The first\n"
       "Ctrl-C finishes the pass in flight and writes the image converged so far (RAYLANE_SPP in\n"
-      "the HDR and EXR headers), exit status 130; a second Ctrl-C exits at once.\n"
+      "the HDR and EXR headers), exit status 130; a second Ctrl-C exits at once. SIGTERM\n"
+      "(timeout, kill, batch schedulers) and SIGUSR1 do the same.\n"
       "The scene language: docs/scene-language.md."};
   return help;
 }
@@ -359,6 +363,20 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
   return check_outputs_apart(inputs, outputs);
 }
 
+// A --checkpoint film that exists holds samples, maybe hours of them: only --resume of that
+// same film may write over it (it is read whole first and saved with more passes).
+Status checkpoint_keeps_samples(const CheckpointOptions& c) {
+  if (!c.checkpoint) return ok_status();
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(*c.checkpoint, ec)))
+    return ok_status();
+  if (c.resume && same_file(*c.checkpoint, *c.resume)) return ok_status();
+  return Error{cat("--checkpoint ", *c.checkpoint,
+                   " already exists and would be replaced at the first checkpoint; continue it "
+                   "with --resume ",
+                   *c.checkpoint, ", or remove it")};
+}
+
 // Every output is checked before rendering starts, so a long render is never lost to a typo.
 bool outputs_writable(const RenderRequest& r) {
   bool ok = true;
@@ -396,13 +414,20 @@ int render_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
-  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides);
+  auto parsed =
+      load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides, {r.image_memory, false});
   if (int bad = cluster.first_failure(parsed.has_value()); bad >= 0) {
     if (bad > 0) std::fprintf(stderr, "raylane: rank %d cannot load the scene\n", bad);
     return kExitUsage;
   }
   if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
     return usage_error("render", s.error());
+  if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
+    return usage_error("render", s.error());
+  if (Status s = render_fits_in_memory(r, parsed->scene, cluster.distributed()); !s) {
+    std::fprintf(stderr, "raylane: %s; nothing rendered\n", s.error().c_str());
+    return kExitUsage;
+  }
   Scene* scene = &parsed->scene;
   if (cluster.first_failure(!cluster.root() || outputs_writable(r)) >= 0) return kExitUsage;
   if (!r.path && !cluster.root()) return kExitOk;  // a ray-casting view: rank 0 alone

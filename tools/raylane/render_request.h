@@ -37,6 +37,7 @@ struct RenderRequest {
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
   std::vector<std::string> overrides;                    // --set lines
+  uint64_t image_memory = kDefaultImageMemory;           // --image-memory, in bytes
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;
@@ -73,6 +74,10 @@ struct PathOutcome {
 // Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles
 // shared between the cluster's processes (render_path_run.cpp).
 PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster& cluster);
+
+// An error naming the bytes the film and the images of this render need, unless this process
+// can have them (render_memory.cpp); checked before anything is rendered.
+Status render_fits_in_memory(const RenderRequest& r, const Scene& scene, bool distributed);
 
 // --stats under mpirun: how long the processes waited for the slowest after each pass, and
 // the tiles moved to even them out.

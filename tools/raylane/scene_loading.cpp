@@ -1,5 +1,6 @@
 #include <cstdio>
 
+#include "args.h"
 #include "commands.h"
 #include "file_kind.h"
 
@@ -15,9 +16,16 @@ int usage_error(const std::string& command, const std::string& message) {
   return kExitUsage;
 }
 
+Status read_image_memory_option(const std::string& value, uint64_t& bytes) {
+  long mib = 0;
+  if (Status s = read_int_option("image-memory", value, 1, long(1) << 30, mib); !s) return s;
+  bytes = uint64_t(mib) << 20;
+  return ok_status();
+}
+
 std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& path, bool lenient,
-                                              bool quiet,
-                                              const std::vector<std::string>& overrides) {
+                                              bool quiet, const std::vector<std::string>& overrides,
+                                              SceneImages images) {
   // A film, a mesh, an image or another renderer's scene: one line that says so, not an error
   // for each of its lines.
   if (auto foreign = path ? not_a_scene(*path) : std::nullopt) {
@@ -25,6 +33,8 @@ std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& 
     return std::nullopt;
   }
   ParseOptions opts;
+  opts.image_memory = images.memory;
+  opts.image_headers_only = images.headers_only;
   opts.lenient = lenient;
   opts.overrides = overrides;
   ParsedScene parsed = path ? load_scene_file(*path, opts) : load_builtin_scene(opts);

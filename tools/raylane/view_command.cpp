@@ -5,6 +5,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
 #include "view.h"
 
@@ -19,6 +20,7 @@ const std::vector<OptionSpec>& view_specs() {
       {"spp-limit", 0, "N", false,
        "path: stop adding passes when the film holds N samples per pixel", "4096"},
       {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
+      {"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
       {"pfm", 0, "", false,
        "S also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
   };
@@ -55,6 +57,8 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
   if (auto v = parsed->last("spp-limit"))
     if (Status s = read_int_option("spp-limit", *v, 1, 1 << 24, r.spp_limit); !s)
       return Error{s.error()};
+  if (auto v = parsed->last("image-memory"))
+    if (Status s = read_image_memory_option(*v, r.image_memory); !s) return Error{s.error()};
   if (auto v = parsed->last("threads"))
     if (Status s = read_int_option("threads", *v, 0, 4096, r.threads); !s) return Error{s.error()};
   return r;
@@ -81,8 +85,18 @@ int view_command(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   auto parsed = load_scene_for_cli(request->scene_path, request->lenient, /*quiet=*/false,
-                                   request->overrides);
+                                   request->overrides, {request->image_memory, false});
   if (!parsed) return kExitUsage;
+  // The film's sums (3 doubles), the image shown and the one saved (3 floats each) and the
+  // window's 8-bit pixels, per pixel of the scene's screen.
+  const Scene& scene = parsed->scene;
+  uint64_t bytes = uint64_t(scene.width) * scene.height * (24 + 12 + 12 + 4);
+  if (Status s =
+          check_memory(bytes, cat("the film of a ", scene.width, "x", scene.height, " view"));
+      !s) {
+    std::fprintf(stderr, "raylane: %s\n", s.error().c_str());
+    return kExitUsage;
+  }
   ViewSession session(*request, std::move(*parsed));
   std::string name = request->scene_path
                          ? std::filesystem::path(*request->scene_path).filename().string()

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/limits.h"
 #include "raylane/render/film.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -25,6 +26,7 @@ struct ViewRequest {
   int spp_limit = 4096;   // passes after which the film stops growing
   int threads = 0;        // 0: all cores
   bool save_pfm = false;  // saves also write view-NNNN.pfm (32-bit float: exact comparisons)
+  uint64_t image_memory = kDefaultImageMemory;  // --image-memory, in bytes
 };
 
 // The largest window: a larger screen is shown scaled down to fit, keeping its shape (the

@@ -16,7 +16,10 @@ namespace raylane {
 Status check_writable(const std::string& path);
 
 // Writes `path` through `write`, which gets the temporary file; on any failure the
-// temporary is removed and an existing `path` is left as it was.
+// temporary is removed and an existing `path` is left as it was. A `path` that is a symbolic
+// link stays one: its target is written (atomically, beside the target). A target that is a
+// character device (/dev/null) is written in place, and its write errors reported; a FIFO, a
+// socket or a block device is refused.
 Status write_file_atomically(const std::string& path,
                              const std::function<Status(std::FILE*)>& write);
 Status write_file_atomically(const std::string& path, const std::string& bytes);

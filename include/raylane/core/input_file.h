@@ -19,4 +19,9 @@ Result<uint64_t> regular_file_size(const std::string& path);
 Result<std::string> read_input_file(const std::string& path, uint64_t max_bytes,
                                     const std::string& what);
 
+// The first `max_bytes` of a regular file (all of it if it is shorter), to know its kind before
+// reading the rest; errors as read_input_file's.
+Result<std::string> read_input_head(const std::string& path, uint64_t max_bytes,
+                                    const std::string& what);
+
 }  // namespace raylane

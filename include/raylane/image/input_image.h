@@ -9,7 +9,10 @@
 // Decoders are guarded as the mesh importer is (docs/design.md, "Images in"): the size a
 // header announces is checked against the limit on pixels and against what a file of this
 // length can hold in its format before anything is decoded, and stb_image's own allocations
-// run under a budget, so a short file cannot make it allocate gigabytes.
+// run under a budget, so a short file cannot make it allocate gigabytes. What decoding takes
+// (decode_bytes) must fit the caller's image memory (core/limits.h, kDefaultImageMemory) and
+// this process's memory (core/memory.h), checked from the header before anything is decoded;
+// a file is read whole only once its first bytes are an image's magic number.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +20,7 @@
 #include <string_view>
 
 #include "raylane/core/error.h"
+#include "raylane/core/limits.h"
 #include "raylane/image/image.h"
 
 namespace raylane {
@@ -37,15 +41,29 @@ std::string_view input_format_name(InputFormat f);
 
 // The header only: format, size, channels; the same checks as decode_input_image makes before it
 // decodes. `name` is the file's name, for the TGA fallback (TGA has no magic number).
+// `file_bytes` is the whole file's length when `bytes` holds only its beginning.
 Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name);
+Result<InputImageInfo> probe_input_image(std::string_view bytes, std::string_view name,
+                                         uint64_t file_bytes);
+// The most bytes decoding an image of `info` from a file of `file_bytes` holds at once: the
+// file, the decoder's buffers and the linear RGB floats it ends in.
+uint64_t decode_bytes(const InputImageInfo& info, uint64_t file_bytes);
 // The whole image as linear RGB, top row first; alpha is dropped, grey becomes RGB. Pixels
-// that are negative, NaN or infinite are an error.
-Result<Image> decode_input_image(std::string_view bytes, std::string_view name);
+// that are negative, NaN or infinite are an error, and so is an image whose decode_bytes are
+// more than `memory_left` (the image memory not yet taken) or than this process can have.
+Result<Image> decode_input_image(std::string_view bytes, std::string_view name,
+                                 uint64_t memory_left = kDefaultImageMemory);
 
 // A file, read through read_input_file (regular files only, kMaxImageFileBytes at most).
-// Errors start with the path.
-Result<InputImageInfo> read_input_image_info(const std::string& path);
-Result<Image> read_input_image(const std::string& path);
+// Errors start with the path. The header is read from the file's first bytes; the whole file
+// only when those do not hold it. The image is read whole only after its first bytes are an
+// image's magic number and its length fits `memory_left`.
+Result<InputImageInfo> read_input_image_info(const std::string& path,
+                                             uint64_t memory_left = kDefaultImageMemory);
+Result<Image> read_input_image(const std::string& path, uint64_t memory_left = kDefaultImageMemory);
+
+// "... (--image-memory MIB raises it)": the error for an image that does not fit.
+std::string image_memory_error(uint64_t needed, uint64_t memory_left, std::string_view what);
 
 // The sRGB transfer function's inverse (IEC 61966-2-1): encoded value in [0, 1] → linear.
 double srgb_to_linear(double encoded);

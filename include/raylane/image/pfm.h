@@ -1,6 +1,7 @@
-// Portable float maps (.pfm), colour: `PF`, `W H`, a scale whose sign gives the byte order
-// (−1: little endian), then rows of 3 float32 per pixel, BOTTOM row first (Paul Debevec's
-// HDRShop format definition).
+// Portable float maps (.pfm): `PF` (colour) or `Pf` (grey), `W H`, a scale whose sign gives the
+// byte order (−1: little endian), then rows of 3 (or 1) float32 per pixel, BOTTOM row first
+// (Paul Debevec's HDRShop format definition). raylane writes colour; it reads both, grey as
+// three equal channels.
 #pragma once
 
 #include <cstddef>
@@ -15,7 +16,8 @@ namespace raylane {
 
 struct PfmHeader {
   uint32_t width = 0, height = 0;
-  double scale = 0;             // its sign gives the byte order
+  int channels = 3;             // 3 for PF, 1 for Pf
+  double scale = 0;             // its sign gives the byte order; finite and not 0
   std::size_t data_offset = 0;  // where the pixels start
 };
 

@@ -31,4 +31,11 @@ struct RgbeFile {
 // Reads a whole file. Hostile input gives an error, never a crash or a huge allocation.
 Result<RgbeFile> decode_rgbe(std::string_view bytes);
 
+// The size the header announces (checked as decode_rgbe checks it), without a pixel decoded:
+// `bytes` may be the file's beginning only.
+struct RgbeSize {
+  uint32_t width = 0, height = 0;
+};
+Result<RgbeSize> probe_rgbe(std::string_view bytes);
+
 }  // namespace raylane

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -29,13 +30,15 @@ struct BoxTable {
   Vec3f hi(uint32_t i) const { return {hix[i], hiy[i], hiz[i]}; }
 
   // p = (bx, by, bz, dx, dy, dz); every component of d must be non-zero, and stay so after
-  // both corners are rounded to float.
+  // both corners are rounded to float; both corners must be finite floats.
   std::optional<ParamError> append(std::span<const double, 6> p, uint32_t mat) {
     float a[3], b[3];
     for (int k = 0; k < 3; ++k) {
       if (p[3 + k] == 0.0) return ParamError{3 + k, "box diagonal components must be non-zero"};
       a[k] = float(std::min(p[k], p[k] + p[3 + k]));
       b[k] = float(std::max(p[k], p[k] + p[3 + k]));
+      if (!std::isfinite(a[k]) || !std::isfinite(b[k]))
+        return ParamError{3 + k, "box corner lies beyond float (the largest is about 3.4e38)"};
       if (!(a[k] < b[k]))
         return ParamError{3 + k, "box is thinner than float precision along this axis"};
     }

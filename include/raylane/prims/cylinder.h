@@ -43,7 +43,8 @@ struct CylinderTable {
   Vec3d axis(uint32_t i) const { return Vec3d(unit_axis(i)) * double(h[i]); }
   Vec3f unit_axis(uint32_t i) const { return {ux[i], uy[i], uz[i]}; }
 
-  // p = (bx, by, bz, ax, ay, az, r); |a| > 0 and r > 0 after rounding to float.
+  // p = (bx, by, bz, ax, ay, az, r); |a| > 0 and r > 0 after rounding to float, and the
+  // caps grown by r finite in float.
   std::optional<ParamError> append(std::span<const double, 7> p, uint32_t mat) {
     Vec3f a{float(p[3]), float(p[4]), float(p[5])};
     Vec3d ad(a);
@@ -55,6 +56,9 @@ struct CylinderTable {
       return ParamError{6, p[6] > 0 ? "cylinder radius rounds to 0 in single precision; it must "
                                       "be > 0 after rounding (at least about 1.4e-45)"
                                     : "cylinder radius must be > 0"};
+    for (int k = 0; k < 3; ++k)  // its bounds, both caps grown by r, must be finite floats
+      if (!std::isfinite(float(std::abs(p[k]) + std::abs(double(a[k])) + double(radius))))
+        return ParamError{3, "cylinder reaches beyond float (the largest is about 3.4e38)"};
     Vec3d u = ad / len;
     bx.push_back(float(p[0]));
     by.push_back(float(p[1]));

@@ -29,13 +29,16 @@ struct SphereTable {
   std::size_t size() const { return r.size(); }
   Vec3f center(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
 
-  // p = (cx, cy, cz, r); r must be > 0 after rounding to float.
+  // p = (cx, cy, cz, r); r must be > 0 after rounding to float, and c ± r finite in float.
   std::optional<ParamError> append(std::span<const double, 4> p, uint32_t mat) {
     float radius = float(p[3]);
     if (!(radius > 0.0f))
       return ParamError{3, p[3] > 0 ? "sphere radius rounds to 0 in single precision; it must "
                                       "be > 0 after rounding (at least about 1.4e-45)"
                                     : "sphere radius must be > 0"};
+    for (int k = 0; k < 3; ++k)  // its bounds, centre ± radius, must be finite floats
+      if (!std::isfinite(float(std::abs(p[k]) + double(radius))))
+        return ParamError{3, "sphere reaches beyond float (the largest is about 3.4e38)"};
     cx.push_back(float(p[0]));
     cy.push_back(float(p[1]));
     cz.push_back(float(p[2]));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
+#include "raylane/core/limits.h"
 #include "raylane/scene/mesh_summary.h"
 
 namespace raylane {
@@ -27,6 +28,11 @@ struct ParseOptions {
   // the last camera or screen wins, with a warning. Diagnostics name them "--set:N:COL", N
   // counting the overrides from 1.
   std::vector<std::string> overrides;
+  // What decoding the scene's textures and environment may take in all (core/limits.h).
+  uint64_t image_memory = kDefaultImageMemory;
+  // Read only the images' headers (`raylane info`): textures and the environment get their
+  // size but no pixels (an Image whose rgb is empty), so such a scene describes, never renders.
+  bool image_headers_only = false;
 };
 
 inline constexpr const char* kOverridesName = "--set";
@@ -39,6 +45,7 @@ struct ParseState {
   std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
+  uint64_t image_memory_used = 0;  // by the textures and the environment read so far
   // Where each command that may be given once was first seen; line 0: not yet.
   FileLoc screen_at, camera_at, ambient_at, lens_at, environment_at;
   // The last camera line that was rejected (line 0: none): its error already says what is
@@ -67,6 +74,12 @@ std::optional<double> parse_number(const Line& line, std::size_t token, ParseSta
 
 // Reads tokens [first, first + count) as numbers, after checking that the line holds exactly
 // that many more tokens (`exact`) or at least that many. Reports the first problem.
+// A parameter that must be > 0, by the language's rule for numbers: it is read as a float, so
+// one that rounds to 0 there (1e-46) is 0 (docs/scene-language.md, "Lines and tokens"). Reports
+// "WHAT must be > 0" or "WHAT rounds to 0 in single precision; ..." at the token otherwise.
+bool positive_in_float(double v, std::string_view what, const Line& line, std::size_t token,
+                       ParseState& state);
+
 std::optional<std::vector<double>> parse_numbers(const Line& line, std::size_t first,
                                                  std::size_t count, bool exact, ParseState& state);
 

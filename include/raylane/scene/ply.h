@@ -58,8 +58,14 @@ struct PlyHeader {
 // picks its PLY reader on either, so both must come here).
 bool is_ply(std::string_view head, std::string_view name);
 
+// The longest PLY header raylane reads: 16 MiB, past any comment block a tool writes (a
+// header is read to its end, not to a buffer's size), yet bounded, so a file of text that
+// never says end_header is refused after reading 16 MiB of it.
+inline constexpr uint64_t kMaxPlyHeaderBytes = uint64_t(16) << 20;
+
 // The header, if `bytes` start with one that follows the grammar exactly; errors name the
-// header line ("PLY header line 3: expected …, found …").
+// header line ("PLY header line 3: expected …, found …"). `bytes` must hold the whole header or
+// kMaxPlyHeaderBytes of it.
 Result<PlyHeader> read_ply_header(std::string_view bytes, const std::string& name);
 
 // Whether the header's `vertex` element exists, comes before `face` and is indexable by 32

@@ -1,0 +1,19 @@
+// Luminance-chroma EXR files (Y at full resolution, RY and BY subsampled 2×2: what OpenEXR's
+// RgbaOutputFile writes in its WRITE_YC modes) through OpenEXR's own RGBA interface, which
+// reconstructs RGB from them (filtering the chroma up and converting with the file's
+// chromaticities, "Reading and Writing OpenEXR Image Files with the IlmImf Library",
+// "Luminance/Chroma Images"). Internal to src/image: exr.cpp checks the header first.
+#pragma once
+
+#include <string_view>
+
+#include "raylane/core/error.h"
+#include "raylane/image/image.h"
+
+namespace raylane::exr_detail {
+
+// The image as linear RGB, top row first; alpha is dropped. Call only once OpenEXRCore has
+// checked the header (size within the pixel limit, chunk table within the file).
+Result<Image> decode_rgba_interface(std::string_view bytes);
+
+}  // namespace raylane::exr_detail

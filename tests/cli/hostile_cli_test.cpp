@@ -1,0 +1,121 @@
+// Hostile input through the program (issue 34): a film or a texture that does not fit in memory
+// is refused before it is allocated, naming what and how much (never std::bad_alloc's abort);
+// a decompression bomb is refused by the image memory budget, which --image-memory raises;
+// `info` reads image headers only; an output through a symbolic link keeps the link.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "raylane/core/alloc_budget.h"
+#include "support/cli_run.h"
+#include "support/hostile_files.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_cli;
+using testing::run_cli_within;
+using testing::temp_dir;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+const char* kScene = "camera 0 0 5 1\nbrdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 0 0 1\n";
+
+// The sanitizers reserve terabytes of address space for their shadow memory, so `ulimit -v`
+// cannot stand for a small machine there (AllocBudget::enforced() is false in those builds).
+bool address_space_limits_work() {
+  return AllocBudget::enforced();
+}
+
+TEST(CliHostile, AFilmAtThePixelLimitThatDoesNotFitIsRefusedBeforeRendering) {
+  if (!address_space_limits_work()) GTEST_SKIP() << "sanitizer build";
+  std::string dir = temp_dir();
+  write_file(dir + "/big.scn", std::string("screen 16384 16384\n") + kScene);
+  auto path = run_cli_within("render big.scn --spp 1 -o big.hdr", dir, 2 << 20);  // 2 GiB
+  EXPECT_EQ(path.status, 2) << path.out;
+  EXPECT_NE(path.out.find("a 16384x16384 render (its film and images) needs 12.0 GiB; this "
+                          "process can have"),
+            std::string::npos)
+      << path.out;
+  EXPECT_NE(path.out.find("(ulimit -v); nothing rendered"), std::string::npos) << path.out;
+  auto normal = run_cli_within("render big.scn --mode normal -o big.hdr", dir, 2 << 20);
+  EXPECT_EQ(normal.status, 2) << normal.out;
+  EXPECT_NE(normal.out.find("the 16384x16384 image needs 9.0 GiB"), std::string::npos)
+      << normal.out;
+  EXPECT_FALSE(fs::exists(dir + "/big.hdr"));
+}
+
+// A texture whose pixels fit the budget once raised, but not the process: its 768 MiB of floats
+// alone are more than 700 MiB of address space hold.
+TEST(CliHostile, ATextureThatDoesNotFitInMemoryIsAnErrorNotAnAbort) {
+  if (!address_space_limits_work()) GTEST_SKIP() << "sanitizer build";
+  std::string dir = temp_dir();
+  write_file(dir + "/bomb.png", testing::png_zero_bomb(8192, 8192));
+  write_file(dir + "/t.scn", std::string(kScene) + "texture bomb.png\n");
+  auto r = run_cli_within("render t.scn --spp 1 --image-memory 4096 -o t.hdr", dir, 700 << 10);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("decoding its 8192x8192 pixels needs 1.2 GiB; this process can have"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(dir + "/t.hdr"));
+  // `info` reads the header only: the bomb's size, with nothing decoded, in the same memory.
+  auto info = run_cli_within("info t.scn", dir, 700 << 10);
+  EXPECT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("8192 x 8192, 805306368 bytes:"), std::string::npos) << info.out;
+}
+
+TEST(CliHostile, APngBombIsRefusedUnlessTheBudgetIsRaised) {
+  std::string dir = temp_dir();
+  write_file(dir + "/bomb.png", testing::png_zero_bomb(8192, 8192));
+  write_file(dir + "/t.scn", std::string(kScene) + "texture bomb.png\n");
+  auto r = run_cli("render t.scn --spp 1 -o t.hdr", dir);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("t.scn:4:9: cannot use texture 'bomb.png': "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("decoding its 8192x8192 pixels takes 1.2 GiB; the image memory left is "
+                       "192.0 MiB (--image-memory MIB raises it)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(dir + "/t.hdr"));
+  auto bad = run_cli("render t.scn --image-memory lots", dir);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--image-memory"), std::string::npos) << bad.out;
+}
+
+// -o through a link writes the link's target (atomically, beside it) and keeps the link; a link
+// to a device is written in place, and its write error reported.
+TEST(CliHostile, AnOutputThroughASymbolicLinkKeepsTheLink) {
+  std::string dir = temp_dir();
+  write_file(dir + "/s.scn", std::string("screen 8 6\n") + kScene);
+  fs::create_directory(dir + "/renders");
+  write_file(dir + "/renders/full.hdr", "old");
+  fs::create_symlink("renders/full.hdr", dir + "/full.hdr");
+  fs::create_symlink("renders/new.pfm", dir + "/dangling.pfm");
+  auto r = run_cli("render s.scn --mode normal -o full.hdr -o dangling.pfm -q", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(fs::is_symlink(dir + "/full.hdr"));
+  EXPECT_TRUE(fs::is_symlink(dir + "/dangling.pfm"));
+  EXPECT_EQ(read_file(dir + "/renders/full.hdr").rfind("#?RADIANCE", 0), 0u);
+  EXPECT_EQ(read_file(dir + "/renders/new.pfm").rfind("PF\n8 6", 0), 0u);
+  for (const auto& e : fs::directory_iterator(dir + "/renders"))  // no temporary left behind
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  if (!fs::exists("/dev/full")) return;
+  fs::create_symlink("/dev/full", dir + "/full.pfm");
+  auto full = run_cli("render s.scn --mode normal -o full.pfm -q", dir);
+  EXPECT_EQ(full.status, 1) << full.out;
+  EXPECT_NE(full.out.find("No space left on device"), std::string::npos) << full.out;
+  EXPECT_TRUE(fs::is_symlink(dir + "/full.pfm"));
+}
+
+}  // namespace
+}  // namespace raylane

@@ -1,0 +1,109 @@
+// Work is never thrown away (issue 34, class 8): a --checkpoint film that exists is refused
+// unless it is the film resumed, SIGTERM and SIGUSR1 stop a render like Ctrl-C (the image so far
+// written), and bare `raylane` prints the usage instead of rendering over ./testscene.hdr.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/cli_run.h"
+#include "support/paths.h"
+
+extern char** environ;
+
+namespace raylane {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::cli_path;
+using testing::run_cli;
+using testing::source_path;
+using testing::temp_dir;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+const char* kTinyScene =
+    "screen 4 4\ncamera 0 0 5 1\nbrdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 0 0 1\nlight 1 1 1\n"
+    "sphere 0 3 3 1\n";
+
+TEST(CliWorkKept, AnExistingCheckpointFilmIsOnlyContinuedNeverReplaced) {
+  std::string dir = temp_dir();
+  std::ofstream(dir + "/tiny.scn") << kTinyScene;
+  ASSERT_EQ(run_cli("render tiny.scn --spp 3 --checkpoint f.film -o a.hdr -q", dir).status, 0);
+  std::string film = read_file(dir + "/f.film");
+  ASSERT_GT(film.size(), 100u);
+  for (std::string again : {"render tiny.scn --spp 5 --checkpoint f.film -o b.hdr -q",
+                            "render tiny.scn --spp 5 --resume a.hdr --checkpoint f.film -q",
+                            "tiny.scn --spp 1 --checkpoint ./f.film -o b.hdr"}) {
+    auto r = run_cli(again, dir);
+    EXPECT_EQ(r.status, 2) << again << "\n" << r.out;
+    EXPECT_NE(r.out.find("f.film already exists and would be replaced at the first checkpoint; "
+                         "continue it with --resume"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(read_file(dir + "/f.film"), film) << again;
+    EXPECT_FALSE(fs::exists(dir + "/b.hdr"));
+  }
+  // The film resumed may be saved again with more passes; a ray-casting view writes no film.
+  auto resumed = run_cli("render tiny.scn --spp 5 --resume f.film --checkpoint f.film -q", dir);
+  EXPECT_EQ(resumed.status, 0) << resumed.out;
+  EXPECT_NE(read_file(dir + "/f.film"), film);
+  EXPECT_EQ(run_cli("render tiny.scn --mode normal --checkpoint f.film -o n.hdr -q", dir).status,
+            0);
+}
+
+// Starts a long render, sends `sig` once it is under way, and returns the exit status; the
+// image goes to `out`.
+int render_and_signal(int sig, const std::string& out) {
+  std::string exe = cli_path(), scene = source_path("scenes/testscene.scn");
+  std::vector<std::string> args = {exe, "render", scene, "--spp", "1000000", "--quiet", "-o", out};
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid;
+  if (posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  kill(pid, sig);
+  int st = 0;
+  if (waitpid(pid, &st, 0) != pid || !WIFEXITED(st)) return -1;
+  return WEXITSTATUS(st);
+}
+
+// `timeout`, batch schedulers and `kill` send SIGTERM: on one process it ends the render after
+// the pass in flight like Ctrl-C, with the image so far and status 130; so does SIGUSR1.
+TEST(CliWorkKept, SigtermAndSigusr1WriteTheImageSoFarLikeCtrlC) {
+  std::string dir = temp_dir();
+  for (int sig : {SIGTERM, SIGUSR1}) {
+    std::string out = dir + "/sig" + std::to_string(sig) + ".hdr";
+    EXPECT_EQ(render_and_signal(sig, out), 130) << "signal " << sig;
+    std::string text = read_file(out);
+    auto at = text.find("RAYLANE_SPP=");
+    ASSERT_NE(at, std::string::npos) << "signal " << sig << ": no image";
+    int spp = std::atoi(text.c_str() + at + 12);
+    EXPECT_GE(spp, 1);
+    EXPECT_LT(spp, 1000000);
+  }
+}
+
+TEST(CliWorkKept, BareRaylanePrintsTheUsageAndWritesNothing) {
+  std::string dir = temp_dir();
+  auto r = run_cli("", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("usage:\n  raylane render [SCENE] [options]"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace raylane

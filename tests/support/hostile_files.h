@@ -1,0 +1,27 @@
+// Hostile inputs built in the test (issue 34), shared by the tests and the fuzzers' seeds: a
+// PNG decompression bomb, a PLY whose header is longer than any buffer, an OpenEXR
+// luminance-chroma file.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "raylane/core/vec3.h"
+
+namespace raylane::testing {
+
+// A 1-bit grey PNG of w×h black pixels whose rows of zeros are deflated as runs of 258 bytes,
+// 13 bits each (fixed Huffman codes, RFC 1951 3.2.6): 8192×8192 pixels, which decode to 64 Mi
+// samples, take about 53 KB.
+std::string png_zero_bomb(uint32_t w, uint32_t h);
+
+// A binary PLY of one triangle whose header holds `comment_bytes` of comment lines first.
+std::string ply_with_long_header(std::size_t comment_bytes);
+
+// An OpenEXR file of w×h pixels written by OpenEXR's RgbaOutputFile as luminance-chroma
+// (Y full, RY and BY subsampled 2×2: WRITE_YC), from colour(x, y); ZIP compressed, Y and
+// chroma kept to half precision (setYCRounding(10, 10)).
+std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, int)>& colour);
+
+}  // namespace raylane::testing
