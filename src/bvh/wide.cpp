@@ -118,7 +118,6 @@ void collapse(const Bvh& bvh, const CollapsePlan& plan, uint32_t binary, uint32_
   }
   w.arity = uint8_t(n);
   wide.nodes[slot] = w;
-  wide.of_binary[binary] = slot;
   for (int k = 0; k < n; ++k) {
     if (bvh.nodes[children[k]].is_leaf()) continue;
     uint32_t child_slot = uint32_t(wide.nodes.size());
@@ -134,7 +133,6 @@ WideBvh collapse_to_wide(const Bvh& bvh) {
   WideBvh wide;
   if (bvh.empty()) return wide;
   wide.nodes.reserve(bvh.nodes.size() / 4 + 1);
-  wide.of_binary.assign(bvh.nodes.size(), WideBvh::kNone);
   wide.nodes.push_back({});
   CollapsePlan plan;
   plan.best.resize(bvh.nodes.size());

@@ -8,6 +8,7 @@
 #include "raylane/trace/ray_traverse.h"
 #include "raylane/trace/simd_tracer.h"
 #include "raylane/trace/single_ray.h"
+#include "raylane/trace/wide_packet_traverse.h"
 
 namespace raylane::detail {
 
@@ -68,16 +69,20 @@ inline RayScalars ray_scalars(const RayStream& s, std::size_t i) {
   return r;
 }
 
-// One packet, closest hit or any hit, counted or not.
+// One packet, closest hit or any hit, counted or not. Closest-hit packets of mixed directions
+// walk the 8-wide tree where there is one (trace/wide_packet_traverse.h); the others the binary.
 template <class A>
 void traverse(const Scene& scene, const Bvh& bvh, RayPacket<A>& r, HitPacket<A>& h, bool any_hit,
               TraversalCounters* c) {
+  const bool wide = !any_hit && !r.sides.uniform && !bvh.wide.empty();
   if (c) {
     ++c->packets;
     c->rays += uint64_t(__builtin_popcount(simd::bits<A>(r.active)));
+    if (wide) return traverse_wide_packet<A, true>(scene, bvh, r, h, c);
     if (any_hit) return traverse_packet<A, true, true>(scene, bvh, r, h, c);
     return traverse_packet<A, false, true>(scene, bvh, r, h, c);
   }
+  if (wide) return traverse_wide_packet<A, false>(scene, bvh, r, h, nullptr);
   if (any_hit) return traverse_packet<A, true>(scene, bvh, r, h);
   traverse_packet<A, false>(scene, bvh, r, h);
 }

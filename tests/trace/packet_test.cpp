@@ -9,6 +9,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <string>
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/scene/parser.h"
@@ -381,9 +382,9 @@ TEST_P(SimdTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   EXPECT_FLOAT_EQ(counted.t[36], 4.0f);
 }
 
-// Packets of mixed directions hand their last few lanes to single rays over the 8-wide tree
-// (trace/packet_traverse.h): the answers are those of the packets alone, on the tree without
-// wide nodes, bit for bit, and the hand-over did happen.
+// Packets of mixed directions walk the 8-wide tree and hand their last few lanes to single rays
+// over it (trace/wide_packet_traverse.h): the answers are those of the packets alone, on the
+// tree without wide nodes, bit for bit, and the hand-over did happen.
 TEST(SimdTracer, HybridPacketsAnswerAsPacketsAlone) {
   Scene s = random_scene(31, 400, 10);
   testing::add_closed_uv_sphere(s, 24, 16, 32, {2, -1, 3});
@@ -402,6 +403,48 @@ TEST(SimdTracer, HybridPacketsAnswerAsPacketsAlone) {
     EXPECT_GT(std::count_if(hybrid.prim.begin(), hybrid.prim.end(),
                             [](uint32_t p) { return p != PrimRef::kInvalidBits; }),
               1000);
+  }
+}
+
+// Packets of mixed directions walk the 8-wide tree (trace/wide_packet_traverse.h). Eight
+// spheres, one in each octant about the origin, one per leaf, make a wide root whose eight
+// children are those leaves. Rays from the origin, ray j toward the sphere of octant j mod 8,
+// (not normalised), fill packets of mixed directions at every width: each packet tests the root's
+// eight child boxes once (the binary walk would test 15: the root and seven pairs), enters one leaf
+// per sphere its lanes aim at, and every ray hits its own sphere.
+TEST(SimdTracer, MixedPacketsTestEachChildOfAWideNodeOnce) {
+  std::string text = "camera 0 0 0 1\n";
+  auto sign = [](int octant, int axis) { return (octant >> axis) & 1 ? -1.0 : 1.0; };
+  for (int o = 0; o < 8; ++o)
+    text += "sphere " + std::to_string(5 * sign(o, 0)) + " " + std::to_string(5 * sign(o, 1)) +
+            " " + std::to_string(5 * sign(o, 2)) + " 1\n";
+  Scene s = parse_scene(text, "octants.scn").scene;
+  Bvh bvh = build_bvh(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
+  ASSERT_EQ(bvh.wide.nodes.size(), 1u);
+  ASSERT_EQ(bvh.wide.nodes[0].arity, 8);
+  std::vector<Rayd> rays;
+  for (int j = 0; j < 16; ++j)
+    rays.push_back({{0, 0, 0}, {sign(j % 8, 0), sign(j % 8, 1), sign(j % 8, 2)}});
+  const auto& spheres = s.table<Sphere>();
+  for (Isa isa : supported_isas()) {
+    SimdTracer tracer(isa, Traversal::kPackets);
+    HitStream hits;
+    TraversalCounters c =
+        tracer.trace_counted(s, bvh, RayStream::from(rays), hits, /*any_hit=*/false);
+    const uint64_t width = uint64_t(tracer.width());
+    EXPECT_EQ(c.packets, 16 / width) << isa_name(isa);
+    EXPECT_EQ(c.node_tests, 8 * c.packets) << isa_name(isa);
+    EXPECT_EQ(c.leaf_visits, c.packets * std::min<uint64_t>(width, 8)) << isa_name(isa);
+    EXPECT_EQ(c.single_rays, 0u) << isa_name(isa);
+    for (int j = 0; j < 16; ++j) {
+      ASSERT_NE(hits.prim[j], PrimRef::kInvalidBits) << isa_name(isa) << " ray " << j;
+      const uint32_t row = PrimRef::from_bits(hits.prim[j]).row();
+      EXPECT_EQ(spheres.cx[row] * sign(j % 8, 0), 5.0f) << isa_name(isa) << " ray " << j;
+      EXPECT_EQ(spheres.cy[row] * sign(j % 8, 1), 5.0f) << isa_name(isa) << " ray " << j;
+      EXPECT_EQ(spheres.cz[row] * sign(j % 8, 2), 5.0f) << isa_name(isa) << " ray " << j;
+      EXPECT_NEAR(hits.t[j], (std::sqrt(75.0) - 1.0) / std::sqrt(3.0), 1e-5)
+          << isa_name(isa) << " ray " << j;
+    }
   }
 }
 

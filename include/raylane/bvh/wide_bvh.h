@@ -35,22 +35,15 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode) == 256);
 
-// Single-ray traversal stacks hold this many entries: a wide node pushes at most 7 of its
-// children, and the tree is at most as deep as the binary one.
+// Stacks over the wide tree (single rays, mixed packets) hold this many entries: a wide node pushes
+// at most 7 of its children, and the tree is at most as deep as the binary one.
 inline constexpr int kWideStackSize = 7 * 64 + 1;
 
 struct WideBvh {
-  static constexpr uint32_t kNone = ~0u;
   std::vector<WideNode> nodes;  // nodes[0] is the root; empty when the BVH is
-  // of_binary[b]: the wide node whose subtree is binary node b's, or kNone (the binary nodes
-  // inside a wide node). Packets hand their last few lanes to single rays there
-  // (trace/packet_traverse.h).
-  std::vector<uint32_t> of_binary;
 
   bool empty() const { return nodes.empty(); }
-  std::size_t bytes() const {
-    return nodes.size() * sizeof(WideNode) + of_binary.size() * sizeof(uint32_t);
-  }
+  std::size_t bytes() const { return nodes.size() * sizeof(WideNode); }
 };
 
 // The 8-wide tree over `bvh`: each wide node holds a cut of at most 8 nodes of the binary

@@ -91,6 +91,26 @@ inline Floats<A> min_keep(const Floats<A>& x, const Floats<A>& acc) {
   }
 }
 
+// The smallest lane of x (xsimd 8.1 has no horizontal minimum): halves folded onto each
+// other with MINPS. Contract: no lane is NaN (MINPS would then answer by operand order).
+template <class A>
+inline float reduce_min(const Floats<A>& x) {
+  __m128 m;
+  if constexpr (kWidth<A> == 16) {
+    __m256 lo = _mm512_castps512_ps256(__m512(x));
+    __m256 hi = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(__m512(x)), 1));
+    __m256 m8 = _mm256_min_ps(lo, hi);
+    m = _mm_min_ps(_mm256_castps256_ps128(m8), _mm256_extractf128_ps(m8, 1));
+  } else if constexpr (kWidth<A> == 8) {
+    m = _mm_min_ps(_mm256_castps256_ps128(__m256(x)), _mm256_extractf128_ps(__m256(x), 1));
+  } else {
+    m = __m128(x);
+  }
+  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+  return _mm_cvtss_f32(m);
+}
+
 template <class A>
 inline Floats<A> load(const float* p) {
   return Floats<A>::load_unaligned(p);

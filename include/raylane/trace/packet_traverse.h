@@ -8,8 +8,6 @@
 #include "raylane/prims/prim_packets.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/packet.h"
-#include "raylane/trace/ray_traverse.h"
-#include "raylane/trace/single_ray.h"
 #include "raylane/trace/traversal_counters.h"
 
 namespace raylane {
@@ -30,21 +28,26 @@ inline simd::Floats<A> widen_far(const simd::Floats<A>& x) {
 // once, to the smallest far value, instead of to each: that widens tfar too, which can only add a
 // visit. A far value of −inf (a ray parallel to a slab and outside it, or an exit that overflows
 // behind the origin) widens to NaN and the box is rejected, rightly: the ray cannot be inside it.
-template <class A, bool kSameSides>
-[[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
+//
+// `plane(k, hi)` gives the box's hi (hi = 1) or lo (0) plane on axis k: a binary node's box, or
+// one child slot of a wide node (trace/wide_packet_traverse.h), tested by the same arithmetic.
+template <class A, bool kSameSides, class Planes>
+[[gnu::always_inline]] inline simd::Mask<A> slab_overlap(const Planes& plane, const RayPacket<A>& r,
                                                          const simd::Floats<A>& tfar,
                                                          simd::Floats<A>& tnear) {
   using F = simd::Floats<A>;
   const SlabSides<A>& sides = r.sides;
   F t0 = r.tmin, t1 = tfar;
-  auto axis = [&](int k, const F& o, const F& inv) {
+  // Inlined by force: GCC 12 called this lambda out of line once `plane` was a parameter, its
+  // accumulators through memory (primary rays 0.55-0.85x, bench/README.md, issue 39).
+  auto axis = [&](int k, const F& o, const F& inv) __attribute__((always_inline)) {
     F near, far;
     if constexpr (kSameSides) {
       bool hi = sides.near_hi[k];
-      near = F(hi ? n.hi[k] : n.lo[k]), far = F(hi ? n.lo[k] : n.hi[k]);
+      near = F(plane(k, hi)), far = F(plane(k, !hi));
     } else {
-      near = simd::select<A>(sides.hi_first[k], F(n.hi[k]), F(n.lo[k]));
-      far = simd::select<A>(sides.hi_first[k], F(n.lo[k]), F(n.hi[k]));
+      near = simd::select<A>(sides.hi_first[k], F(plane(k, 1)), F(plane(k, 0)));
+      far = simd::select<A>(sides.hi_first[k], F(plane(k, 0)), F(plane(k, 1)));
     }
     t0 = simd::max_keep<A>((near - o) * inv, t0);
     t1 = simd::min_keep<A>((far - o) * inv, t1);
@@ -57,17 +60,35 @@ template <class A, bool kSameSides>
   return (t0 <= t1) & r.active;
 }
 
+template <class A, bool kSameSides>
+[[gnu::always_inline]] inline simd::Mask<A> node_overlap(const BvhNode& n, const RayPacket<A>& r,
+                                                         const simd::Floats<A>& tfar,
+                                                         simd::Floats<A>& tnear) {
+  auto plane = [&](int k, bool hi) __attribute__((always_inline)) {
+    return hi ? n.hi[k] : n.lo[k];
+  };
+  return slab_overlap<A, kSameSides>(plane, r, tfar, tnear);
+}
+
+// Tests `lanes` of the packet against rows head.row() … head.row() + rows − 1 of head's kind.
+template <class A>
+inline void intersect_run_lanes(const Scene& scene, PrimRef head, uint32_t rows,
+                                const RayPacket<A>& r, const simd::Mask<A>& lanes,
+                                HitPacket<A>& h) {
+  dispatch(head.tag(), [&](auto kind) {
+    using Kind = decltype(kind);
+    intersect_packet<A>(scene.table<Kind>(), LanesAreRays<A>{head.row(), head.row() + rows, lanes},
+                        r, h);
+  });
+}
+
 // Tests `lanes` of the packet against the rows of one leaf: runs of one kind, whose rows are
 // contiguous because the tables were permuted into leaf order.
 template <class A>
 inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& leaf,
                            const RayPacket<A>& r, const simd::Mask<A>& lanes, HitPacket<A>& h) {
   for_each_run(bvh, leaf, [&](PrimRef head, uint32_t rows) {
-    dispatch(head.tag(), [&](auto kind) {
-      using Kind = decltype(kind);
-      intersect_packet<A>(scene.table<Kind>(),
-                          LanesAreRays<A>{head.row(), head.row() + rows, lanes}, r, h);
-    });
+    intersect_run_lanes<A>(scene, head, rows, r, lanes, h);
   });
 }
 
@@ -75,11 +96,12 @@ inline void intersect_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& le
 // `tnear`. When it is popped, the lanes whose closest hit has since come nearer than tnear
 // drop out — the same answer as testing the box again (the widening is monotone, so
 // t0 ≤ widen(min(far, t)) is t0 ≤ widen(far) and t0 ≤ widen(t)).
-template <class A>
+// `Node`: a binary node's index, or a wide node's child (trace/wide_packet_traverse.h).
+template <class A, class Node = uint32_t>
 struct PacketEntry {
   simd::Floats<A> tnear;
   simd::Mask<A> lanes;
-  uint32_t node;
+  Node node;
 };
 
 // A child as one packet test saw it: the lanes that overlap its box, and where they enter.
@@ -126,77 +148,6 @@ inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd
   return left_child_nearer<A, kSameSides>(n, r, lanes, left, right) != kAnyHit;
 }
 
-// A packet whose lanes have spread out keeps few of them busy at each node, while one ray over
-// the 8-wide tree tests eight boxes per step (bench/README.md: diffuse rays of the 1.31M mesh
-// used 17 % of the lanes). So, as in Embree's hybrid traversal (Benthin et al. 2012,
-// "Combining Single and Packet-Ray Tracing for Arbitrary Ray Distributions on the Intel MIC
-// Architecture"), once at most W/4 lanes of a mixed-direction packet enter a node, each of
-// them finishes that subtree alone (trace/ray_traverse.h), where the 8-wide tree has a node
-// for it (BvhConfig::wide_nodes). Measured (bench_trace, AVX-512, 1 thread, medians of 5
-// interleaved runs against the packets alone): diffuse rays 1.075x on the engine, 1.04x on
-// the 1.31M mesh, 0.99-1.01x on the bunny, lattice and sphereflake; W/8 and W/2 did no better.
-// Not for coherent packets (kSameSides: primary rays lost up to 12 % on the lattice and
-// sphereflake) nor for occlusion (shadow rays 0.86-0.93x at every threshold tried).
-template <class A>
-inline constexpr int kSingleRayLanes = simd::kWidth<A> / 4;
-
-// The lanes of `lanes` find their closest hits in the subtree below wide node `wide_root` one
-// at a time, each from its closest hit so far; their answers go back into h.
-template <class A, bool kCount>
-inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wide_root,
-                                 const RayPacket<A>& r, const simd::Mask<A>& lanes, HitPacket<A>& h,
-                                 TraversalCounters* c) {
-  using L = RayLanes<A>;
-  using FL = simd::Floats<L>;
-  using F = simd::Floats<A>;
-  constexpr int W = simd::kWidth<A>;
-  alignas(64) float col[10][W];
-  const F* src[10] = {&r.ox, &r.oy,     &r.oz,     &r.dx,     &r.dy,
-                      &r.dz, &r.inv_dx, &r.inv_dy, &r.inv_dz, &r.tmin};
-  for (int k = 0; k < 10; ++k)
-    simd::store<A>(col[k], *src[k]);
-  alignas(64) float t[W];
-  alignas(64) int32_t prim[W];
-  simd::store<A>(t, h.t);
-  simd::store<A>(prim, h.prim);
-  // Each lane's shear frame as the packet's set-up computed it (RayShear, per lane: the same
-  // operations as scalar_shear's), so that a lane handed over does not divide again.
-  alignas(64) float shear[3][W];
-  simd::store<A>(shear[0], r.shear.sx), simd::store<A>(shear[1], r.shear.sy);
-  simd::store<A>(shear[2], r.shear.sz);
-  uint32_t z_is[2] = {simd::bits<A>(r.shear.z_is[0]), simd::bits<A>(r.shear.z_is[1])};
-  uint32_t x_is[2] = {simd::bits<A>(r.shear.x_is[0]), simd::bits<A>(r.shear.x_is[1])};
-  auto axis = [](const uint32_t* is, int k) {
-    return (is[0] >> k) & 1u ? 0 : (is[1] >> k) & 1u ? 1 : 2;
-  };
-  TraversalCounters single;
-  for (uint32_t m = simd::bits<A>(lanes); m; m &= m - 1) {
-    int k = __builtin_ctz(m);
-    RayScalars one{{col[0][k], col[1][k], col[2][k]},
-                   {col[3][k], col[4][k], col[5][k]},
-                   {col[6][k], col[7][k], col[8][k]},
-                   col[9][k],
-                   t[k]};
-    const int kz = axis(z_is, k), kx = axis(x_is, k);
-    const ShearScalars frame{shear[0][k], shear[1][k], shear[2][k], kx, 3 - kx - kz, kz};
-    RayPacket<L> ray = broadcast_ray<L>(one, &frame);
-    HitPacket<L> hit{FL(t[k]), simd::Ints<L>(prim[k]), FL(0.0f) != FL(0.0f)};
-    traverse_ray<A, false, kCount>(scene, bvh, ray, hit, &single, wide_root);
-    if (simd::none<L>(hit.found)) continue;
-    t[k] = settle_closest<L>(hit);
-    prim[k] = hit.prim.get(0);
-  }
-  F t_new = simd::load<A>(t);
-  h.found = h.found | (t_new < h.t);
-  h.t = t_new;
-  h.prim = simd::load<A>(prim);
-  if constexpr (kCount) {
-    c->single_rays += uint64_t(__builtin_popcount(simd::bits<A>(lanes)));
-    c->single_node_tests += single.node_tests;
-    c->single_prim_tests += single.prim_tests;
-  }
-}
-
 // Closest hit (kAnyHit = false) or occlusion (true) for one packet; h.t starts at tmax.
 // kCount = true is the instrumented copy used by the benchmark; `c` is unused otherwise.
 // kSameSides: every active lane meets each slab from the same side (RayPacket::sides), so
@@ -217,19 +168,12 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
     }
     return lanes;
   };
-  const bool hybrid = !kAnyHit && !kSameSides && !bvh.wide.empty();
   PacketEntry<A> stack[kBvhStackSize];
   int top = 0;
   F tnear;
   uint32_t cur = 0;
   simd::Mask<A> lanes = test(bvh.nodes[0], tnear);
   if (simd::none<A>(lanes)) return;
-  // The wide node where the lanes entering binary node `node` go on as single rays, if any.
-  auto single_ray_root = [&](uint32_t node) -> uint32_t {
-    if (!hybrid || __builtin_popcount(simd::bits<A>(lanes)) > kSingleRayLanes<A>)
-      return WideBvh::kNone;
-    return bvh.wide.of_binary[node];
-  };
   for (;;) {
     const BvhNode& n = bvh.nodes[cur];
     if (n.is_leaf()) {
@@ -243,8 +187,6 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
         r.active = r.active & !h.found;
         if (simd::none<A>(r.active)) return;
       }
-    } else if (uint32_t w = single_ray_root(cur); w != WideBvh::kNone) {
-      lanes_as_single_rays<A, kCount>(scene, bvh, w, r, lanes, h, c);
     } else {
       F t_left, t_right;
       simd::Mask<A> left = test(bvh.nodes[n.index], t_left);

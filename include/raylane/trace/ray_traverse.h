@@ -108,13 +108,19 @@ inline void intersect_run_rows(const Scene& scene, PrimRef head, uint32_t count,
   });
 }
 
+// Calls f(head, rows) for each run of one kind of a wide node's leaf child: its one run, or
+// the runs of its refs.
+template <class F>
+inline void for_each_leaf_run(const Bvh& bvh, const WideEntry& leaf, F&& f) {
+  if (leaf.one_kind) return f(PrimRef::from_bits(leaf.child), uint32_t(leaf.count));
+  for_each_ref_run(bvh, leaf.child, uint32_t(leaf.count), f);
+}
+
 // Tests the rows of one leaf: one run, or runs of one kind each found through the refs.
 template <class L>
 inline void intersect_leaf_rows(const Scene& scene, const Bvh& bvh, const WideEntry& leaf,
                                 const RayPacket<L>& r, HitPacket<L>& h) {
-  if (leaf.one_kind)
-    return intersect_run_rows<L>(scene, PrimRef::from_bits(leaf.child), leaf.count, r, h);
-  for_each_ref_run(bvh, leaf.child, uint32_t(leaf.count), [&](PrimRef head, uint32_t rows) {
+  for_each_leaf_run(bvh, leaf, [&](PrimRef head, uint32_t rows) {
     intersect_run_rows<L>(scene, head, rows, r, h);
   });
 }
