@@ -371,7 +371,15 @@ Result<Image> decode_exr(std::string_view bytes) {
     if (!l) return Error{l.error()};
     if (!l->info.has_rgb && !l->info.has_y)
       return Error{"the EXR file has no R, G, B or Y channel"};
-    if (has_subsampled(*l)) return exr_detail::decode_rgba_interface(bytes);
+    if (has_subsampled(*l)) {
+      auto img = exr_detail::decode_rgba_interface(bytes);
+      // OpenEXR's C++ reader parses the header again: a damaged header it reads differently
+      // from the core reader (a fuzzer found one) is refused, not handed on at another size.
+      if (img && (img->width != l->info.width || img->height != l->info.height))
+        return Error{cat("the EXR header reads as ", l->info.width, "x", l->info.height, " and as ",
+                         img->width, "x", img->height, "; the file is damaged")};
+      return img;
+    }
     std::vector<std::string> wanted =
         l->info.has_rgb ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
     auto data = decode_channels(f, *l, wanted);

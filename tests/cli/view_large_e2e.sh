@@ -40,7 +40,11 @@ wait_for 90 title_says "path 1 spp" || fail "not at 1 spp within 90 s: '$(xdotoo
 geometry=$(xdotool getwindowgeometry "$wid" | grep -o 'Geometry: [0-9x]*')
 [ "$geometry" = "Geometry: 1280x800" ] || fail "the window is '$geometry', not 1280x800"
 fps=$(xdotool getwindowname "$wid" | grep -o '[0-9.]* fps' | cut -d' ' -f1)
-awk -v f="$fps" 'BEGIN { exit !(f > 0) }' || fail "the title says '$fps fps'"
+# The title shows one decimal: under the sanitizers a 1600x1000 frame can take more than 20 s,
+# which reads 0.0 there, so that build only checks that a figure is shown.
+[ -n "$fps" ] || fail "the title shows no fps: '$(xdotool getwindowname "$wid")'"
+[ -n "${LSAN_OPTIONS:-}" ] || awk -v f="$fps" 'BEGIN { exit !(f > 0) }' ||
+  fail "the title says '$fps fps'"
 xdotool key v
 wait_for 30 has screen 1 || fail "V printed no screen line"
 xdotool key s
