@@ -176,4 +176,13 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
   return s;
 }
 
+Vec3d beer_transmittance(const Material& m, bool front_face, double t) {
+  Vec3d kt(m.kt);
+  if (front_face || kt == Vec3d(0, 0, 0)) return {1, 1, 1};
+  Vec3d a;
+  for (int k = 0; k < 3; ++k)
+    a[k] = kt[k] > 0 ? std::exp(t * std::log(kt[k])) : 0.0;
+  return a;
+}
+
 }  // namespace raylane

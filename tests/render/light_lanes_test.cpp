@@ -137,8 +137,8 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
     EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
 }
 
-// The render computes only the numbers numbers_read() names (render/path_lanes.cpp): the
-// others must change nothing sample() returns, and the count must be what each scene needs.
+// The render computes only the numbers numbers_read() names (render/wavefront/lane_vertices.cpp):
+// the others must change nothing sample() returns, and the count must be what each scene needs.
 TEST(LightLanes, NumbersReadAreAllSamplingReads) {
   const char* kScenes[][2] = {
       {"light 1 1 1\nsphere 0 3 0 0.5\n", "2"},

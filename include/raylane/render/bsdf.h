@@ -60,4 +60,9 @@ class Bsdf {
   double pd_ = 0, pr_ = 0, pt_ = 0, sum_ = 0;
 };
 
+// Beer's law on a ray's segment of length t that ends on a surface of material m: the course's
+// exp(t·ln Kt) per channel where the segment ends on the inside of a transmissive solid, 1
+// elsewhere (a material with Kt = 0 has no interior).
+Vec3d beer_transmittance(const Material& m, bool front_face, double t);
+
 }  // namespace raylane

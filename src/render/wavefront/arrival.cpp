@@ -1,0 +1,78 @@
+// The stage after tracing: the shadow rays' answers, and where each ray arrived — the
+// environment for an escaped ray, the emission of an emitter it hit (both finish the path
+// here), or a queue of vertices to shade.
+#include "raylane/render/sampling.h"
+#include "render/wavefront/stages.h"
+
+namespace raylane::path_detail {
+
+namespace {
+
+// Light sampling's weight for what a path meets at the end of a ray: all of it for a camera ray,
+// for BSDF sampling alone or after a specular bounce (light sampling cannot reach a Dirac lobe);
+// the MIS share after another bounce, nothing for NEE alone (light sampling counted it
+// already). `light_pdf` is called only for the MIS share.
+template <class LightPdf>
+double emission_weight(const TileContext& ctx, const PathState& p, int depth, LightPdf light_pdf) {
+  bool sampled_light_too = depth > 0 && !p.prev_specular;
+  if (!sampled_light_too || ctx.settings.integrator == Integrator::kBrdf) return 1;
+  if (ctx.settings.integrator == Integrator::kNee) return 0;
+  return power_heuristic(p.prev_pdf, light_pdf());
+}
+
+// What a path gains where it hits an emitter (its density for MIS is the light sampler's).
+void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit, int depth) {
+  Vec3d le = ctx.lights.emitted(hit);
+  if (le == Vec3d(0, 0, 0)) return;
+  double w = emission_weight(ctx, p, depth, [&] { return ctx.lights.pdf(p.prev_p, ray.d, hit); });
+  p.radiance += p.beta * le * w;
+}
+
+// What a path gains when its ray leaves the scene: the environment (its density for MIS is the
+// environment's).
+void add_escape(TileContext& ctx, PathState& p, const Rayd& ray, int depth) {
+  Vec3d le = ctx.lights.escaped(ray.d);
+  if (le == Vec3d(0, 0, 0)) return;
+  double w = emission_weight(ctx, p, depth, [&] { return ctx.lights.environment_pdf(ray.d); });
+  p.radiance += p.beta * le * w;
+}
+
+}  // namespace
+
+void add_unblocked_shadows(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  const ShadowQueue& s = w.shadows;
+  for (std::size_t q = 0; q < s.size(); ++q)
+    if (w.blocked[q] == 0) w.paths[s.path[q]].radiance += s.contribution_of(q);
+}
+
+void sort_arrivals(TileContext& ctx, int depth) {
+  Wavefront& w = ctx.wave;
+  const Scene& scene = ctx.tracer.scene();
+  const bool lanes = ctx.settings.shading == Shading::kFloat;
+  w.double_vertices.clear();
+  if (lanes) start_lane_vertices(ctx, w.rays.size());
+  for (std::size_t k = 0; k < w.rays.size(); ++k) {
+    const uint32_t path = w.rays.path[k];
+    PathState& p = w.paths[path];
+    Hit& hit = w.hits[k];
+    if (!hit.hit()) {
+      add_escape(ctx, p, ray_of(w.rays.rays, k), depth);
+      continue;
+    }
+    const uint32_t material = scene.material_of(hit.prim);
+    if (scene.materials[material].is_light) {  // emitters reflect nothing: the path ends
+      const Rayd ray = ray_of(w.rays.rays, k);
+      if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
+      add_emission(ctx, p, ray, hit, depth);
+      continue;
+    }
+    if (depth >= ctx.settings.max_depth) continue;
+    if (lanes && ctx.lanes.materials.in_lanes[material])
+      w.lane_vertices.push(path, uint32_t(k), material);
+    else
+      w.double_vertices.ray.push_back(uint32_t(k)), w.double_vertices.material.push_back(material);
+  }
+}
+
+}  // namespace raylane::path_detail

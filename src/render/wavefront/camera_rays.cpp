@@ -1,0 +1,90 @@
+// The wavefront's first stage: a tile's paths and their camera rays; and the AOVs of the camera
+// rays' hits.
+#include <algorithm>
+
+#include "raylane/render/texturing.h"
+#include "render/wavefront/stages.h"
+
+namespace raylane::path_detail {
+
+namespace {
+
+// A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), before their
+// camera rays: pixel and Sobol scramble.
+void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                std::vector<PathState>& paths) {
+  paths.clear();
+  uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
+  for (uint32_t by = y0; by < y1; by += kBlock)
+    for (uint32_t bx = x0; bx < x1; bx += kBlock)
+      for (uint32_t y = by; y < std::min(by + kBlock, y1); ++y)
+        for (uint32_t x = bx; x < std::min(bx + kBlock, x1); ++x) {
+          PathState p;
+          p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
+          p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
+          paths.push_back(p);
+        }
+}
+
+}  // namespace
+
+// Jittered camera rays for a tile's paths (ray i for path i). Sobol's camera groups come from
+// the lanes for the whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
+void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
+  Wavefront& w = ctx.wave;
+  std::vector<PathState>& paths = w.paths;
+  tile_paths(ctx, cam, x0, y0, paths);
+  RayStream& rays = w.rays.rays;
+  w.rays.clear();
+  rays.resize(paths.size());
+  w.rays.path.resize(paths.size());
+  for (uint32_t i = 0; i < paths.size(); ++i)
+    w.rays.path[i] = i;
+  const bool sobol = ctx.settings.sampler == Sampler::kSobol;
+  SobolBatch& s = w.lane_vertices.sobol;
+  if (sobol) {
+    s.resize(paths.size());
+    for (std::size_t i = 0; i < paths.size(); ++i)
+      s.seed[i] = paths[i].pixel_seed;
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    PathState& p = paths[i];
+    std::array<double, 4> u;
+    if (sobol)
+      for (int c = 0; c < 4; ++c)
+        u[std::size_t(c)] = s.u[std::size_t(c)][i] * 0x1p-32;
+    else  // the lens's numbers only with a lens: a pinhole render draws what it always drew
+      u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
+                         : draw(ctx, p, Dims::camera, {0, 1});
+    double x = double(p.pixel % cam.width), y = double(cam.height - 1 - p.pixel / cam.width);
+    rays.set(i, ray_cast<float>(cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3])));
+  }
+}
+
+// The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there
+// hit i belongs to path i. A sample that meets nothing adds zeros.
+void add_camera_aovs(const TileContext& ctx, Film& film) {
+  const Scene& scene = ctx.tracer.scene();
+  const std::vector<PathState>& paths = ctx.wave.paths;
+  const std::vector<Hit>& hits = ctx.wave.hits;
+  const AovSet set = film.aovs;
+  const std::size_t stride = std::size_t(set.channels());
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const Hit& h = hits[i];
+    if (!h.hit()) continue;
+    double* out = &film.aov_sum[paths[i].pixel * stride];
+    auto add = [&](Aov a, const Vec3d& v) {
+      if (!set.has(a)) return;
+      double* at = out + set.offset(a);
+      for (int k = 0; k < aov_channels(a); ++k)
+        at[k] += v[k];
+    };
+    if (set.has(Aov::kAlbedo)) add(Aov::kAlbedo, albedo_at(scene, h.prim, h.surface));
+    add(Aov::kNormal, h.surface.ns);
+    add(Aov::kDepth, {h.t, h.t, h.t});
+    add(Aov::kPosition, h.surface.p);
+  }
+}
+
+}  // namespace raylane::path_detail

@@ -1,0 +1,249 @@
+// The stage that shades the lane_vertices queue at once, in columns: sort_arrivals lists each
+// vertex as the wavefront arrives; the tracer writes their surfaces straight into the batches'
+// columns, and a few passes copy the listed hits, rays and paths into the rest, a column group
+// per pass (a pass over all thirty columns at once reloaded each column's pointer per row);
+// then the rows' numbers (Sobol groups in lanes), light points (render/lights.h, sample_many),
+// BSDFs in float lanes (render/shade_lanes.h) and shadow rays and next rays in double lanes
+// (render/vertex_lanes.h, reading the light points and BSDF answers where those steps left
+// them) all read and write columns; lane_write_back.cpp writes the rays and the paths back.
+// (Each step once gathered what it needed from the hits and paths itself: seven passes over
+// the rows, 18 % of a render.)
+#include <algorithm>
+#include <cmath>
+
+#include "raylane/render/bsdf.h"
+#include "render/wavefront/stages.h"
+
+namespace raylane::path_detail {
+
+namespace {
+
+// The BSDF group's numbers for row r: (u1, u2, lobe) for the float lanes, roulette's for the
+// double ones (0 where this depth has no roulette).
+void set_bsdf_numbers(TileContext& ctx, std::size_t r, const std::array<double, 4>& u,
+                      double u_roulette) {
+  ShadeBatch& sb = ctx.wave.lane_vertices.shade;
+  sb.u1[r] = unit_float(u[0]), sb.u2[r] = unit_float(u[1]), sb.u_lobe[r] = unit_float(u[2]);
+  ctx.wave.lane_vertices.vertices.u_roulette[r] = u_roulette;
+}
+
+// The light group's numbers for row r: (u1, u2, u_light, u_part).
+void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 4>& u) {
+  q.cones.u1[r] = u[0], q.cones.u2[r] = u[1], q.u_light[r] = u[2], q.u_part[r] = u[3];
+}
+
+// The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
+// the double shading's order (light, BSDF, roulette).
+void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  LightQueries& q = lv.light_queries;
+  if (ctx.settings.sampler != Sampler::kSobol) {
+    for (std::size_t r = 0; r < lv.count; ++r) {
+      const PathState& p = w.paths[lv.path[r]];
+      if (lights) set_light_numbers(q, r, draw(ctx, p, Dims::light_group(depth), kLightDrawOrder));
+      auto u = draw(ctx, p, Dims::bsdf_group(depth), kBsdfDrawOrder);
+      set_bsdf_numbers(ctx, r, u, roulette ? ctx.rng.uniform() : 0.0);
+    }
+    return;
+  }
+  // Sobol: each group in lanes, its numbers written straight into the columns that read them.
+  SobolBatch& s = lv.sobol;
+  if (lights) {  // only the numbers the lights read (for one sphere light, no table gathers)
+    const int read = ctx.lights.numbers_read();
+    SobolNumbers to;
+    to.as_double = {q.cones.u1.data(), q.cones.u2.data(), read > 2 ? q.u_light.data() : nullptr,
+                    read > 3 ? q.u_part.data() : nullptr};
+    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light_group(depth), s, first_components(read), to);
+  }
+  // Roulette's number only at the depths that have roulette (the vertex lanes read it only
+  // there).
+  // The lobe's number only where a material has more than one lobe (else 0, which picks the
+  // diffuse lobe as every number in [0, 1) would): for a diffuse-only scene below roulette's
+  // depth, no table gathers at all.
+  ShadeBatch& sb = lv.shade;
+  const bool lobe = !ctx.lanes.materials.lobe_unread;
+  if (!lobe) std::fill_n(sb.u_lobe.begin(), lv.count, 0.0f);
+  SobolNumbers to;
+  to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
+  if (roulette) to.as_double[3] = lv.vertices.u_roulette.data();
+  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf_group(depth), s,
+               3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
+}
+
+// The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated
+// toward (0 for none, and for every row without lights). The vertex lanes read the rest where
+// sample_many left it.
+void light_columns(TileContext& ctx, bool lights) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  ShadeBatch& sb = lv.shade;
+  const std::size_t n = lv.count;
+  if (!lights) {
+    for (int k = 0; k < 3; ++k)
+      std::fill_n(sb.light_wi[k].begin(), n, 0.0f);
+    return;
+  }
+  PhaseClock clock(ctx.settings.time_phases);
+  ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
+  clock.lap(ctx.stats.phases.lights);
+  const LightQueries& q = lv.light_queries;
+  const double* pdf = q.cones.pdf.data();
+  for (int k = 0; k < 3; ++k) {
+    const double* wi = q.cones.wi[std::size_t(k)].data();
+    float* to = sb.light_wi[std::size_t(k)].data();
+    for (std::size_t r = 0; r < n; ++r)
+      to[r] = pdf[r] > 0 ? float(wi[r]) : 0.0f;  // LightQueries::valid
+  }
+}
+
+}  // namespace
+
+void start_lane_vertices(TileContext& ctx, std::size_t most) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  lv.count = 0;
+  lv.grow(most);
+  lv.shade.resize(most);
+  lv.vertices.resize(most);
+  if (samples_lights(ctx)) lv.light_queries.resize(most);
+  if (ctx.settings.sampler == Sampler::kSobol) lv.sobol.resize(most);
+}
+
+namespace {
+
+// Three columns' pointers, taken once per pass.
+template <class T>
+struct Columns3Out {
+  T *x, *y, *z;
+  explicit Columns3Out(std::array<std::vector<T>, 3>& c)
+      : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
+  template <class V>
+  void set(std::size_t r, const V& v) const {
+    x[r] = T(v[0]), y[r] = T(v[1]), z[r] = T(v[2]);
+  }
+  // Row `from` into row `to`.
+  void move(std::size_t to, std::size_t from) const {
+    x[to] = x[from], y[to] = y[from], z[to] = z[from];
+  }
+};
+
+// The queued rows' surfaces, straight into the batches' columns: the point and geometric
+// normal (double) for the vertex lanes and the light sampler, the shading normal (float) for
+// the BSDF; dot(ns, d) and the facing into the rows' own columns.
+void surface_columns(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  VertexBatch& vb = lv.vertices;
+  ShadeBatch& sb = lv.shade;
+  const SurfaceColumns out{vb.p[0].data(),  vb.p[1].data(),   vb.p[2].data(), vb.ng[0].data(),
+                           vb.ng[1].data(), vb.ng[2].data(),  sb.n[0].data(), sb.n[1].data(),
+                           sb.n[2].data(),  lv.cos_ns.data(), lv.front.data()};
+  ctx.tracer.surfaces(w.rays.rays, w.hits, {lv.ray.data(), lv.count}, out, w.scratch);
+}
+
+// Whether row r's BSDF reflects something: a shading normal at a right angle to the ray, or not
+// finite, or a material without lobes is Bsdf::black(), as the double shading decides it.
+bool reflects(const LaneMaterials& lm, double cos_ns, uint32_t m) {
+  return cos_ns != 0 && std::isfinite(cos_ns) && lm.pd[m] + lm.pr[m] + lm.pt[m] > 0;
+}
+
+// The queued rows whose BSDF reflects something, kept in order with their columns so far (the
+// rest dropped). Seldom any to drop: one pass finds out, a second moves rows only then.
+void drop_black_rows(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  const LaneMaterials& lm = ctx.lanes.materials;
+  LaneVertexQueue& rows = lv;
+  const std::size_t n = lv.count;
+  std::size_t first = 0;
+  while (first < n && reflects(lm, rows.cos_ns[first], rows.material[first]))
+    ++first;
+  if (first == n) return;
+  const Columns3Out<double> p(lv.vertices.p), ng(lv.vertices.ng);
+  const Columns3Out<float> ns(lv.shade.n);
+  std::size_t kept = first;
+  for (std::size_t r = first + 1; r < n; ++r) {
+    if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
+    rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r];
+    rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
+    p.move(kept, r), ng.move(kept, r), ns.move(kept, r);
+    ++kept;
+  }
+  lv.count = kept;
+}
+
+// The rows' t and material into the columns, and the point for the light sampler.
+void hit_columns(TileContext& ctx, bool lights) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  const Hit* hits = w.hits.data();
+  const uint32_t *hit = lv.ray.data(), *material = lv.material.data();
+  const std::size_t n = lv.count;
+  double* t = lv.vertices.t.data();
+  int32_t* shade_material = lv.shade.material.data();
+  for (std::size_t r = 0; r < n; ++r)
+    t[r] = hits[hit[r]].t, shade_material[r] = int32_t(material[r]);
+  if (!lights) return;
+  for (int k = 0; k < 3; ++k)
+    std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
+}
+
+// The rows' rays (the stream's float rays, widened exactly), the paths' throughputs with
+// Beer's law on the segment just travelled, and their scrambles into the columns.
+void path_columns(TileContext& ctx, bool sobol) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  const LaneVertexQueue& rows = lv;
+  const std::size_t n = lv.count;
+  const RayStream& rays = w.rays.rays;
+  const Columns3Out<double> ray_o(lv.vertices.ray_o), ray_d(lv.vertices.ray_d);
+  const Columns3Out<float> wo(lv.shade.wo);
+  for (std::size_t r = 0; r < n; ++r) {
+    const uint32_t i = rows.ray[r];
+    const float dx = rays.dx[i], dy = rays.dy[i], dz = rays.dz[i];
+    ray_o.set(r, std::array<float, 3>{rays.ox[i], rays.oy[i], rays.oz[i]});
+    ray_d.set(r, std::array<float, 3>{dx, dy, dz});
+    wo.set(r, std::array<float, 3>{-dx, -dy, -dz});
+  }
+  const PathState* paths = w.paths.data();
+  const std::vector<Material>& materials = ctx.tracer.scene().materials;
+  const Columns3Out<double> beta(lv.vertices.beta);
+  const double* t = lv.vertices.t.data();
+  uint64_t* seed = lv.sobol.seed.data();
+  for (std::size_t r = 0; r < n; ++r) {
+    const PathState& path = paths[rows.path[r]];
+    // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
+    beta.set(r, rows.front[r]
+                    ? path.beta
+                    : path.beta * beer_transmittance(materials[rows.material[r]], false, t[r]));
+    if (sobol) seed[r] = path.pixel_seed;
+  }
+}
+
+}  // namespace
+
+void shade_lane_vertices(TileContext& ctx, int depth) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;
+  const VertexRules rules = vertex_rules(ctx, depth);
+  surface_columns(ctx);
+  drop_black_rows(ctx);
+  if (lv.count == 0) return;
+  lv.shade.resize(lv.count);  // these set the sizes and padding
+  lv.vertices.resize(lv.count);
+  if (lights) lv.light_queries.resize(lv.count);
+  if (sobol) lv.sobol.resize(lv.count);
+  hit_columns(ctx, lights);
+  path_columns(ctx, sobol);
+  draw_numbers(ctx, depth, lights, rules.roulette);
+  light_columns(ctx, lights);
+  shade_lanes(ctx.lanes.isa, ctx.lanes.materials, lv.shade);
+  finish_vertices(ctx.lanes.isa, rules, lv.shade, lights ? &lv.light_queries : nullptr,
+                  lv.vertices);
+  if (lights) write_lane_shadow_rays(ctx);
+  write_lane_next_rays(ctx);
+}
+
+}  // namespace raylane::path_detail

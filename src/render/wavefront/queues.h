@@ -1,0 +1,124 @@
+// The path tracer's wavefront (include from src/render only): a tile's paths and the queues
+// its stages hand each other, named by purpose as pbrt-v4's wavefront integrator names its
+// queues (Pharr, Jakob, Humphreys, "Physically Based Rendering", 4th ed., ch. 15). The stages
+// themselves are listed in render/wavefront/stages.h, and run in that order by path.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "raylane/core/vec3.h"
+#include "raylane/render/lights.h"
+#include "raylane/render/shade_lanes.h"
+#include "raylane/render/sobol.h"
+#include "raylane/render/vertex_lanes.h"
+#include "raylane/trace/ray_stream.h"
+#include "raylane/trace/tracer.h"
+
+namespace raylane::path_detail {
+
+// A path between wavefronts. Its ray is not here: it waits in a RayQueue.
+struct PathState {
+  Vec3d beta{1, 1, 1};  // throughput
+  Vec3d radiance{0, 0, 0};
+  Vec3d prev_p;                // the vertex the ray left (for the light pdf of MIS)
+  double prev_pdf = 0;         // the BSDF density of the ray's direction
+  bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
+  std::size_t pixel = 0;
+  uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
+};
+
+// Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
+struct RayQueue {
+  std::vector<uint32_t> path;  // index into the wavefront's paths
+  RayStream rays;
+
+  std::size_t size() const { return path.size(); }
+  bool empty() const { return path.empty(); }
+  void clear() { path.clear(), rays.clear(); }
+  void swap(RayQueue& other) { path.swap(other.path), std::swap(rays, other.rays); }
+};
+
+// Shadow rays, each aimed at its light (the stream's end column), and what each adds to its
+// path if the light is the first thing it meets: contribution[.][q] to path[q]'s radiance.
+struct ShadowQueue {
+  RayStream rays;
+  std::vector<uint32_t> path;
+  std::array<std::vector<double>, 3> contribution;
+
+  std::size_t size() const { return path.size(); }
+  bool empty() const { return path.empty(); }
+  // The query columns (the rays are sized by whoever writes them).
+  void resize_queries(std::size_t n) {
+    path.resize(n);
+    for (auto& c : contribution)
+      c.resize(n);
+  }
+  void clear() { rays.clear(), resize_queries(0); }
+  void push_back(uint32_t p, const Vec3d& c) {
+    path.push_back(p);
+    for (int k = 0; k < 3; ++k)
+      contribution[std::size_t(k)].push_back(c[k]);
+  }
+  Vec3d contribution_of(std::size_t q) const {
+    return {contribution[0][q], contribution[1][q], contribution[2][q]};
+  }
+  void swap(ShadowQueue& other) {
+    std::swap(rays, other.rays), path.swap(other.path), contribution.swap(other.contribution);
+  }
+};
+
+// Hits on a material shaded one by one in double: ray k of the wavefront, its material row.
+struct DoubleVertexQueue {
+  std::vector<uint32_t> ray, material;
+  void clear() { ray.clear(), material.clear(); }
+};
+
+// Hits on a material shaded in lanes, as columns: row r is vertex r of every batch below
+// (the shading stage fills their columns in a few passes). Rows [0, count) are this
+// wavefront's; the columns only grow.
+struct LaneVertexQueue {
+  std::size_t count = 0;
+  std::vector<uint32_t> path;      // index into the wavefront's paths
+  std::vector<uint32_t> ray;       // index into the wavefront's rays and hits
+  std::vector<uint32_t> material;  // the hit's material row
+  // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
+  std::vector<double> cos_ns;
+  std::vector<uint8_t> front;
+  ShadeBatch shade;            // the BSDF's float lanes
+  SobolBatch sobol;            // the rows' Sobol scrambles and numbers
+  LightQueries light_queries;  // light group numbers and light points, when lights are sampled
+  VertexBatch vertices;        // the double lanes after the BSDF: shadow rays, next rays
+
+  void grow(std::size_t n) {
+    if (path.size() >= n) return;
+    path.resize(n), ray.resize(n), material.resize(n), cos_ns.resize(n), front.resize(n);
+  }
+  void push(uint32_t p, uint32_t k, uint32_t m) {
+    const std::size_t r = count++;
+    path[r] = p, ray[r] = k, material[r] = m;
+  }
+};
+
+// A thread's wavefront, reused tile after tile: the render loop allocates nothing per sample
+// once its queues have grown to a tile's size. Each depth traces `rays` and `shadows` (the
+// shadow rays of the vertices before), then its stages sort the hits into `double_vertices`
+// and `lane_vertices` (escaped rays and emitters are finished as they are sorted), and shading
+// fills `next_rays` and `next_shadows`.
+// Aligned to 128 bytes (a cache line and the one the adjacent-line prefetcher pairs with it):
+// the threads' wavefronts sit side by side in one vector, and a queue's resizes write vector
+// headers another thread would otherwise read its columns' pointers next to.
+struct alignas(128) Wavefront {
+  std::vector<PathState> paths;
+  RayQueue rays, next_rays;
+  ShadowQueue shadows, next_shadows;
+  std::vector<Hit> hits;            // hits[k] for rays ray k
+  bool hits_have_surfaces = false;  // or prim and t alone (Tracer::closest's with_surface)
+  std::vector<uint8_t> blocked;     // blocked[q] for shadow ray q
+  DoubleVertexQueue double_vertices;
+  LaneVertexQueue lane_vertices;
+  TraceScratch scratch;
+};
+
+}  // namespace raylane::path_detail
