@@ -119,6 +119,8 @@ class LightSampler {
   // The sample of sample_many's row r, a sphere light k's, where the kernel's answer needs more:
   // a point inside the sphere (sampled by area) or a texture.
   LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;
+  // sample_many for a scene whose one light is a sphere, without an environment.
+  void sample_one_sphere(Isa isa, LightQueries& q) const;
   // s.le times the light's texture at s.p, for a textured light.
   void apply_texture(std::size_t k, LightSample& s) const;
   // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
