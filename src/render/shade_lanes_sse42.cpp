@@ -1,5 +1,7 @@
 // The render loop's lanes compiled for one instruction set (flags set in CMakeLists.txt): the
-// BSDF, the Sobol groups, the sphere lights' cones and what follows the BSDF.
+// BSDF, the Sobol groups, the sphere lights' cones, what follows the BSDF and the pinhole's
+// camera rays.
+#include "render/camera_lanes_impl.h"
 #include "render/light_lanes_impl.h"
 #include "render/shade_lanes_impl.h"
 #include "render/sobol_lanes_impl.h"
@@ -31,6 +33,10 @@ void finish_vertices_sse42(const VertexRules& rules, const ShadeBatch& bsdf,
 
 std::size_t filter_rows_sse42(const RowFilter& filter, std::size_t rows) {
   return filter_rows_range<xsimd::sse4_2>(filter, rows);
+}
+
+std::size_t pinhole_rays_sse42(const Camera& cam, const PixelPoints& points, RayStream& out) {
+  return pinhole_rays_range<xsimd::sse4_2>(cam, points, out);
 }
 
 }  // namespace raylane::detail

@@ -2,6 +2,7 @@
 // rays' hits.
 #include <algorithm>
 
+#include "raylane/render/camera_lanes.h"
 #include "raylane/render/texturing.h"
 #include "render/wavefront/stages.h"
 
@@ -10,10 +11,12 @@ namespace raylane::path_detail {
 namespace {
 
 // A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), before their
-// camera rays: pixel and Sobol scramble.
-void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
-                std::vector<PathState>& paths) {
+// camera rays: pixel and Sobol scramble, and the pixel's corner in the camera's points.
+void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
+  std::vector<PathState>& paths = ctx.wave.paths;
+  CameraPoints& points = ctx.wave.camera;
   paths.clear();
+  points.x.clear(), points.y.clear();
   uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
   for (uint32_t by = y0; by < y1; by += kBlock)
     for (uint32_t bx = x0; bx < x1; bx += kBlock)
@@ -23,7 +26,24 @@ void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
           p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
           paths.push_back(p);
+          points.x.push_back(double(x)), points.y.push_back(double(y));
         }
+  points.resize(paths.size());
+}
+
+// The pinhole's camera rays with Sobol numbers: the jitter from the lanes straight into the
+// points' columns, the rays from the camera's lanes (bit for bit what the loop below makes).
+void pinhole_sobol_rays(TileContext& ctx, const Camera& cam) {
+  Wavefront& w = ctx.wave;
+  CameraPoints& points = w.camera;
+  SobolNumbers to;
+  to.as_double = {points.jx.data(), points.jy.data(), nullptr, nullptr};
+  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, w.lane_vertices.sobol, first_components(2),
+               to);
+  pinhole_rays(
+      ctx.lanes.isa, cam,
+      {points.x.data(), points.y.data(), points.jx.data(), points.jy.data(), w.paths.size()},
+      w.rays.rays);
 }
 
 }  // namespace
@@ -33,7 +53,7 @@ void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
 void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
   Wavefront& w = ctx.wave;
   std::vector<PathState>& paths = w.paths;
-  tile_paths(ctx, cam, x0, y0, paths);
+  tile_paths(ctx, cam, x0, y0);
   RayStream& rays = w.rays.rays;
   w.rays.clear();
   rays.resize(paths.size());
@@ -46,8 +66,10 @@ void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
     s.resize(paths.size());
     for (std::size_t i = 0; i < paths.size(); ++i)
       s.seed[i] = paths[i].pixel_seed;
+    if (!cam.has_lens()) return pinhole_sobol_rays(ctx, cam);
     sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
   }
+  const CameraPoints& points = w.camera;
   for (std::size_t i = 0; i < paths.size(); ++i) {
     PathState& p = paths[i];
     std::array<double, 4> u;
@@ -57,8 +79,8 @@ void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
     else  // the lens's numbers only with a lens: a pinhole render draws what it always drew
       u = cam.has_lens() ? draw(ctx, p, Dims::camera, {0, 1, 2, 3})
                          : draw(ctx, p, Dims::camera, {0, 1});
-    double x = double(p.pixel % cam.width), y = double(cam.height - 1 - p.pixel / cam.width);
-    rays.set(i, ray_cast<float>(cam.ray_through_lens(x + u[0], y + u[1], u[2], u[3])));
+    rays.set(i, ray_cast<float>(
+                    cam.ray_through_lens(points.x[i] + u[0], points.y[i] + u[1], u[2], u[3])));
   }
 }
 

@@ -69,6 +69,13 @@ struct ShadowQueue {
   }
 };
 
+// The tile's pixel points for its camera rays: path i's pixel corner (x[i], y[i]) in the
+// pixel grid (y up from the bottom edge) and its jitter (jx[i], jy[i]).
+struct CameraPoints {
+  std::vector<double> x, y, jx, jy;
+  void resize(std::size_t n) { x.resize(n), y.resize(n), jx.resize(n), jy.resize(n); }
+};
+
 // Hits on a material shaded one by one in double: ray k of the wavefront, its material row.
 struct DoubleVertexQueue {
   std::vector<uint32_t> ray, material;
@@ -111,6 +118,7 @@ struct LaneVertexQueue {
 // headers another thread would otherwise read its columns' pointers next to.
 struct alignas(128) Wavefront {
   std::vector<PathState> paths;
+  CameraPoints camera;
   RayQueue rays, next_rays;
   ShadowQueue shadows, next_shadows;
   std::vector<Hit> hits;            // hits[k] for rays ray k
