@@ -1,6 +1,7 @@
 #include "raylane/trace/simd_tracer.h"
 
-#include <stdexcept>
+#include <cassert>
+
 #include <string>
 
 namespace raylane {
@@ -39,10 +40,7 @@ TraversalCounters SimdTracer::trace_counted(const Scene& scene, const Bvh& bvh,
 void SimdTracer::trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
                        std::size_t end, HitStream& hits, bool any_hit,
                        TraversalCounters* counters) const {
-  if (!rays.end.empty() && rays.end.size() != rays.size())
-    throw std::invalid_argument("RayStream: the end column holds " +
-                                std::to_string(rays.end.size()) + " entries for " +
-                                std::to_string(rays.size()) + " rays");
+  assert(rays.end.empty() || rays.end.size() == rays.size());  // the contract in simd_tracer.h
   auto* fn = isa_ == Isa::kAvx512 ? detail::trace_avx512
              : isa_ == Isa::kAvx2 ? detail::trace_avx2
                                   : detail::trace_sse42;

@@ -1,7 +1,8 @@
 #include "raylane/trace/tracer.h"
 
+#include <cassert>
+
 #include <algorithm>
-#include <stdexcept>
 #include <string>
 
 #include "raylane/prims/prim_list.h"
@@ -44,9 +45,7 @@ bool Tracer::occluded_ref(const Rayd& ray, PrimRef aim) const {
 void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
                       std::vector<uint8_t>& blocked, TraceScratch& scratch) const {
   const std::size_t n = rays.size();
-  if (!aims.empty() && aims.size() != n)
-    throw std::invalid_argument("Tracer::occluded: " + std::to_string(aims.size()) + " aims for " +
-                                std::to_string(n) + " rays");
+  assert(aims.empty() || aims.size() == n);  // the contract in tracer.h
   if (kind_ != TracerKind::kPacket) {
     blocked.resize(n);
     for (std::size_t i = 0; i < n; ++i)

@@ -50,7 +50,8 @@ class SimdTracer {
   // A ray aimed at a primitive (rays.end) is blocked by anything else before that primitive's
   // hit, within (tmin, tmax); the primitive itself does not block it. (Something beyond the
   // aim's hit may still block it if found first: keep tmax at the aimed-at point.) rays.end is
-  // empty or one entry per ray (std::invalid_argument otherwise); closest hit ignores it.
+  // empty or one entry per ray (a contract: the caller's to keep, asserted in debug builds);
+  // closest hit ignores it.
   void occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
   // Rays [begin, end) of the stream into the same entries of `hits`, which must already hold
   // rays.size() entries: one chunk of a stream that the caller splits over its threads.

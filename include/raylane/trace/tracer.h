@@ -69,7 +69,7 @@ class Tracer {
   // ray i is aimed at (a shadow ray's light; invalid for none): it does not block the ray, and
   // the ray is blocked only by what lies before it (SimdTracer::occluded; the references say
   // whether the closest hit is something else). SIMD rays are traced rounded to float, as
-  // closest() traces them.
+  // closest() traces them. Contract: `aims` is empty or holds one entry per ray.
   void occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
                 std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
   // occluded() for float rays, each aimed at rays.end[i] (rays.end empty: no aims).
