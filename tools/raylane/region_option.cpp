@@ -45,8 +45,7 @@ Status read_region_option(const std::string& value, std::optional<PixelRegion>& 
   return ok_status();
 }
 
-Status region_fits(const RenderRequest& r, const Scene& scene) {
-  const auto& region = r.path_settings.region;
+Status region_fits(const std::optional<PixelRegion>& region, const Scene& scene) {
   if (!region) return ok_status();
   if (Status s = check_region(*region, scene.width, scene.height); !s)
     return Error{cat("--region ", s.error(), " (the scene's screen, after any --set)")};

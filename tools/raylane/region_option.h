@@ -20,7 +20,7 @@ inline constexpr const char* kRegionHelp =
 Status read_region_option(const std::string& value, std::optional<PixelRegion>& out);
 
 // The region within the scene's screen (known only once --set lines are read).
-Status region_fits(const RenderRequest& r, const Scene& scene);
+Status region_fits(const std::optional<PixelRegion>& region, const Scene& scene);
 
 // The region of an image the size of the screen; without a region, the image.
 Image crop_to_region(Image image, const std::optional<PixelRegion>& region);

@@ -427,7 +427,8 @@ int render_command(const std::vector<std::string>& args) {
     return usage_error("render", s.error());
   if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
     return usage_error("render", s.error());
-  if (Status s = region_fits(r, parsed->scene); !s) return usage_error("render", s.error());
+  if (Status s = region_fits(r.path_settings.region, parsed->scene); !s)
+    return usage_error("render", s.error());
   if (Status s = render_fits_in_memory(r, parsed->scene, cluster.distributed()); !s) {
     std::fprintf(stderr, "raylane: %s; nothing rendered\n", s.error().c_str());
     return kExitUsage;
