@@ -46,8 +46,10 @@ class FileStream : public Imf::OStream {
 };
 
 Status check_layer(const Image& image, const ExrLayer& layer) {
-  if (layer.name.empty() || layer.name.find('.') != std::string::npos)
-    return Error{cat("bad EXR layer name ", in_quotes(layer.name), " (not empty, no '.')")};
+  // Nested layers ("diffuse.direct") are names with dots between non-empty parts.
+  const std::string& n = layer.name;
+  if (n.empty() || n.front() == '.' || n.back() == '.' || n.find("..") != std::string::npos)
+    return Error{cat("bad EXR layer name ", in_quotes(n), " (not empty, no empty part)")};
   if (layer.channels.empty()) return Error{cat("EXR layer ", layer.name, " has no channels")};
   for (const auto& c : layer.channels)
     if (c.empty() || c.find('.') != std::string::npos)

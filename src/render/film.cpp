@@ -21,6 +21,8 @@ constexpr char kMagic2[8] = {'R', 'L', 'F', 'I', 'L', 'M', '2', '\0'};
 constexpr std::size_t kHeader1 = 32, kHeader2 = 64;
 constexpr char kAovMagic[4] = {'A', 'O', 'V', '1'};
 constexpr std::size_t kAovHeader = 8;  // the magic and the set's bits
+constexpr char kRegionMagic[4] = {'R', 'G', 'N', '1'};
+constexpr std::size_t kRegionBytes = 20;  // the magic and x0, y0, x1, y1
 
 // The header of either format, read into a film (sums not yet read).
 Film read_header(const char* head, bool second_format) {
@@ -46,6 +48,8 @@ Film read_header(const char* head, bool second_format) {
 Status read_aovs(std::ifstream& in, const std::string& path, uint64_t bytes, uint64_t pixels,
                  Film& f) {
   char head[kAovHeader];
+  if (bytes < kAovHeader)
+    return Error{cat(path, ": expected AOVs after the colour sums, found ", bytes, " bytes")};
   if (!in.read(head, kAovHeader)) return Error{cat(path, ": read failed")};
   std::memcpy(&f.aovs.bits, head + 4, 4);
   if (std::memcmp(head, kAovMagic, 4) != 0 || f.aovs.empty() || f.aovs.bits >> kAovCount)
@@ -59,6 +63,27 @@ Status read_aovs(std::ifstream& in, const std::string& path, uint64_t bytes, uin
   if (!in.read(reinterpret_cast<char*>(f.aov_sum.data()),
                std::streamsize(f.aov_sum.size() * sizeof(double))))
     return Error{cat(path, ": read failed")};
+  return ok_status();
+}
+
+// The region part of a film file, if the next bytes (of `bytes` left) are one; `bytes` then
+// counts what is left after it.
+Status read_region(std::ifstream& in, const std::string& path, uint64_t& bytes, Film& f) {
+  if (bytes < kRegionBytes) return ok_status();
+  char part[kRegionBytes];
+  if (!in.read(part, 4)) return Error{cat(path, ": read failed")};
+  if (std::memcmp(part, kRegionMagic, 4) != 0) {
+    in.seekg(-4, std::ios::cur);
+    return ok_status();
+  }
+  if (!in.read(part + 4, kRegionBytes - 4)) return Error{cat(path, ": read failed")};
+  PixelRegion r;
+  std::memcpy(&r.x0, part + 4, 4), std::memcpy(&r.y0, part + 8, 4);
+  std::memcpy(&r.x1, part + 12, 4), std::memcpy(&r.y1, part + 16, 4);
+  if (Status s = check_region(r, f.width, f.height); !s)
+    return Error{cat(path, ": the film's region ", s.error(), ": the film is damaged")};
+  f.region = r;
+  bytes -= kRegionBytes;
   return ok_status();
 }
 
@@ -235,6 +260,11 @@ Status save_film(const std::string& path, const Film& film) {
   out.append(reinterpret_cast<const char*>(&o.sampler), 4);
   out.append(reinterpret_cast<const char*>(&o.shading), 4);
   out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
+  if (const auto& r = film.region) {
+    const uint32_t corners[4] = {r->x0, r->y0, r->x1, r->y1};
+    out.append(kRegionMagic, 4);
+    out.append(reinterpret_cast<const char*>(corners), sizeof corners);
+  }
   if (!film.aovs.empty()) {
     out.append(kAovMagic, 4);
     out.append(reinterpret_cast<const char*>(&film.aovs.bits), 4);
@@ -281,8 +311,10 @@ Result<Film> load_film(const std::string& path) {
   f.sum.resize(pixels * 3);
   if (!in.read(reinterpret_cast<char*>(f.sum.data()), std::streamsize(pixels * 24)))
     return Error{cat(path, ": read failed")};
-  if (size > colour_end) {
-    if (Status s = read_aovs(in, path, size - colour_end, pixels, f); !s) return Error{s.error()};
+  uint64_t after_colour = size - colour_end;
+  if (Status s = read_region(in, path, after_colour, f); !s) return Error{s.error()};
+  if (after_colour > 0) {
+    if (Status s = read_aovs(in, path, after_colour, pixels, f); !s) return Error{s.error()};
   }
   // A film raylane wrote holds finite sums only (non-finite samples are dropped before they
   // reach it), so anything else is damage, and continuing would spread it to the image.

@@ -131,6 +131,9 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t t = 0; t < tiles; ++t) {
         if (!share.owns(uint64_t(t))) continue;
+        if (settings.region &&
+            !region_meets_tile(*settings.region, cam.width, cam.height, uint64_t(t)))
+          continue;
         double started = tile_seconds.empty() ? 0 : thread_cpu_seconds();
         TileContext ctx{wave,     tracer, lights,
                         settings, lanes,  Rng::for_tile(settings.seed, t, pass),

@@ -176,7 +176,8 @@ Image viewable(const Image& raw, RaycastMode mode) {
   return out;
 }
 
-Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats) {
+Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats,
+                     const std::optional<PixelRegion>& region) {
   const Scene& scene = tracer.scene();
   Camera camera = Camera::from_scene(scene);
   Image image(scene.width, scene.height);
@@ -185,9 +186,10 @@ Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats
   // Bands of rows over the threads; each band writes only its own pixels.
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : camera_rays_total, shadow_rays_total)
   for (std::ptrdiff_t b = 0; b < bands; ++b) {
-    uint32_t y0 = uint32_t(b) * kBand;
+    uint32_t y0 = uint32_t(b) * kBand, rows = std::min<uint32_t>(kBand, scene.height - y0);
+    if (region && !region_meets_rows(*region, scene.height, y0, rows)) continue;
     RaycastStats st;
-    render_band(tracer, camera, mode, y0, std::min<uint32_t>(kBand, scene.height - y0), image, st);
+    render_band(tracer, camera, mode, y0, rows, image, st);
     camera_rays_total += st.camera_rays;
     shadow_rays_total += st.shadow_rays;
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -130,6 +131,48 @@ TEST(CliExr, AovsAreLayersOfTheExrOutput) {
   ASSERT_EQ(only.status, 0) << only.out;
   EXPECT_EQ(only.out, "c.exr\n");
   EXPECT_FALSE(std::ifstream(dir + "/c.depth.pfm").good());
+}
+
+// convert from EXR to EXR keeps what render wrote beside the colour: every layer's channels
+// bit for bit and every string attribute of the header; --half keeps them as halves. Nested
+// layer names (LAYER.SUB.CHANNEL, as compositors write them) come through too.
+TEST(CliExr, ConvertFromExrToExrKeepsTheLayersAndTheMetadata) {
+  std::string dir = temp_dir();
+  write_tiny_scene(dir);
+  auto r = run_cli("render tiny.scn --spp 2 --aov albedo,normal,depth,position -o a.exr -q", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto c = run_cli("convert a.exr b.exr", dir);
+  ASSERT_EQ(c.status, 0) << c.out;
+  EXPECT_EQ(c.out, "b.exr\n");
+  const std::string a = read_file(dir + "/a.exr"), b = read_file(dir + "/b.exr");
+  auto ia = probe_exr(a), ib = probe_exr(b);
+  ASSERT_TRUE(ia && ib);
+  EXPECT_EQ(ib->channels, ia->channels);
+  EXPECT_EQ(ib->metadata, ia->metadata);
+  EXPECT_TRUE(has_line(ib->metadata, "RAYLANE_SEED=0"));
+  for (const std::string& layer : ia->layers) {
+    SCOPED_TRACE(layer);
+    auto la = decode_exr_layer(a, layer), lb = decode_exr_layer(b, layer);
+    ASSERT_TRUE(la && lb);
+    EXPECT_EQ(lb->channels, la->channels);
+    ASSERT_EQ(lb->data.size(), la->data.size());
+    EXPECT_EQ(std::memcmp(lb->data.data(), la->data.data(), la->data.size() * sizeof(float)), 0);
+  }
+  ASSERT_EQ(run_cli("convert a.exr h.exr --half", dir).status, 0);
+  auto ih = probe_exr(read_file(dir + "/h.exr"));
+  ASSERT_TRUE(ih);
+  EXPECT_EQ(ih->channels, ia->channels);
+  EXPECT_EQ(ih->metadata, ia->metadata);
+
+  Image img(3, 2);
+  ExrLayer nested{"diffuse.direct", {"R", "G", "B"}, std::vector<float>(18, 0.25f)};
+  WriteOptions opts;
+  opts.exr_layers = {nested};
+  ASSERT_TRUE(write_image(dir + "/n.exr", img, opts).ok());
+  ASSERT_EQ(run_cli("convert n.exr m.exr", dir).status, 0);
+  auto got = decode_exr_layer(read_file(dir + "/m.exr"), "diffuse.direct");
+  ASSERT_TRUE(got) << got.error();
+  EXPECT_EQ(got->data, nested.data);
 }
 
 }  // namespace

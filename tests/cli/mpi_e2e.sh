@@ -2,7 +2,7 @@
 # `mpirun -np R raylane render` end to end (docs/cluster.md): the same file, byte for byte, as a
 # plain run for R = 1..4 and 1 or 2 threads; --time and a stop request end every process after
 # the same pass; tiles dealt again by cost keep the image; a checkpoint written at R = 3
-# resumes at R = 2 to the uninterrupted image;
+# resumes at R = 2 to the uninterrupted image; a --region is shared and resumed likewise;
 # a scene error is printed once and the job exits 2; a killed process ends the job without a
 # hang; Ctrl-C writes the image once. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
 set -uo pipefail
@@ -41,6 +41,24 @@ for np in 2 3; do
   grep -q "dealt again by measured cost: 2 times" "balanced$np.err" ||
     fail "balanced np $np: $(grep 'dealt again' "balanced$np.err")"
 done
+
+# --region, one tile column wide (5 tiles a row: dealing every tile round-robin would give the
+# column's tiles to one process): the processes share the region's tiles and write the
+# one-process region render (which the unit tests hold to the whole render's pixels); a region
+# checkpoint written by 3 processes resumes at 2 to it.
+region=(--region 16,0,32,52)
+"$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 6 -q -o region.pfm > /dev/null ||
+  fail "region: plain run"
+for np in 2 3; do
+  mpi "$np" "$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 6 --threads 1 \
+    --balance always -q -o "region$np.pfm" > /dev/null 2>&1 || fail "region np $np: exit $?"
+  cmp -s region.pfm "region$np.pfm" || fail "region np $np: another image"
+done
+mpi 3 "$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 3 --threads 1 -q \
+  --checkpoint region.film -o region-3spp.pfm > /dev/null 2>&1 || fail "region checkpoint: exit $?"
+mpi 2 "$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 6 --threads 1 -q \
+  --resume region.film -o region-resumed.pfm > /dev/null 2>&1 || fail "region resume: exit $?"
+cmp -s region.pfm region-resumed.pfm || fail "region resumed at R = 2: not the uninterrupted image"
 
 # --time: rank 0's clock decides for everyone, so the image is a plain run's at that spp.
 mpi 3 "$raylane" render "$scene" "${small[@]}" --time 1 --threads 1 -o timed.pfm \

@@ -5,8 +5,9 @@
 # earlier one wrote (room.hdr, room.film). Each must exit 0 (`raylane diff`: 0 or 1, its
 # verdict) and print no usage message, and every image a render names on stdout must exist.
 #
-# What a test cannot run as written runs smaller, and the log says how: renders at 48×36 and
-# 2 spp (3 when resuming) with --time 1; the benchmarks and the convergence report (minutes
+# What a test cannot run as written runs smaller, and the log says how: renders at 48×36 (a
+# --region line at the scene's size, which its rectangle needs) and 2 spp (3 when resuming)
+# with --time 1; the benchmarks and the convergence report (minutes
 # each) show their --help or list their benchmarks. Lines that need a display or mpirun are
 # left to View.EndToEndUnderXvfb and Mpi.EndToEnd, and `bash tools/dev` is the quick start this
 # test runs after. HOME is a folder of the test's, so the install block installs there.
@@ -38,9 +39,10 @@ smaller() {
     "tools/bench_table"* | "tools/converge"*) echo "${line%% *} --help" ;;
     "build/bench/bench_render"*) echo "build/bench/bench_render --benchmark_list_tests" ;;
     "build/raylane render"* | "build/raylane scenes/"* | "raylane render"*)
-      local spp=2
+      local spp=2 screen=" --set 'screen 48 36'"
       [[ $line == *--resume* ]] && spp=3
-      echo "$line --set 'screen 48 36'" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/" ;;
+      [[ $line == *--region* ]] && screen=""  # its rectangle is in the scene's own screen
+      echo "$line$screen" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/" ;;
     *) echo "$line" ;;
   esac
 }

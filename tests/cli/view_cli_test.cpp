@@ -19,17 +19,17 @@ TEST(ViewCli, HelpListsTheOptionsAndTheKeys) {
   CliRun r = run_cli("view --help", temp_dir());
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out.rfind("usage: raylane view [SCENE]", 0), 0u) << r.out;
-  for (std::string text :
-       {"--set LINE", "--lenient", "--spp-limit N", "--threads N", "--pfm", "arrow keys", "right drag",
-        "wheel", "[ ]", "1..8", "V ", "S (P, Ctrl+S)", "R ", "Q, Esc", "bit for bit"})
+  for (std::string text : {"--set LINE", "--lenient", "--spp-limit N", "--threads N", "--pfm",
+                           "--region X0,Y0,X1,Y1", "arrow keys", "right drag", "wheel", "[ ]",
+                           "1..8", "V ", "S (P, Ctrl+S)", "R ", "Q, Esc", "bit for bit"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text;
   CliRun top = run_cli("--help", temp_dir());
   EXPECT_NE(top.out.find("raylane view [SCENE]"), std::string::npos) << top.out;
 }
 
 TEST(ViewCli, BadOptionsAreUsageErrors) {
-  for (std::string args :
-       {"view --spp-limit 0", "view --threads -1", "view a.scn b.scn", "view --frobnicate"}) {
+  for (std::string args : {"view --spp-limit 0", "view --threads -1", "view a.scn b.scn",
+                           "view --frobnicate", "view --region 1,2,3", "view --region 5,0,5,9"}) {
     CliRun r = run_cli(args, temp_dir());
     EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
     EXPECT_NE(r.out.find("raylane: "), std::string::npos) << r.out;

@@ -5,7 +5,8 @@
 #   - the printed screen and camera lines parse (raylane render reads them) and the camera moved;
 #   - the saved image skips a name already taken and is, bit for bit, what `raylane render`
 #     writes for the printed lines at the printed spp;
-#   - a screenshot of the window is a picture, not a blank.
+#   - a screenshot of the window is a picture, not a blank;
+#   - with --region, S saves the rectangle, bit for bit what `raylane render --region` writes.
 #
 #   view_e2e.sh RAYLANE SCENE WORKDIR [SCREENSHOT]   (SCREENSHOT: also keep the window's picture)
 #
@@ -77,10 +78,7 @@ echo "camera 5 3 3 0.2 q 0.416981 0.279589 0.480987 0.718247" >>"$scene"
 wait_for 30 grep -q "reloaded the scene, and its new camera" err.txt || fail "no reload"
 xdotool key v
 wait_for 30 has camera 3 || fail "the third V printed no camera line"
-xdotool key q
-wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Q did not quit"
-wait "$pid" || fail "the viewer exited with status $?"
-trap - EXIT
+quit_viewer
 
 # The lines: screen, camera, and a camera that moved.
 screen=$(grep '^screen ' out.txt | tail -1)
@@ -116,5 +114,27 @@ read -r colours size <<<"$(convert shot.png -format '%k %wx%h' info:)"
 [ "$size" = 160x120 ] || fail "the screenshot is $size"
 ((colours > 100)) || fail "the screenshot has $colours colours: blank?"
 [ -z "$shot" ] || cp shot.png "$shot"
+
+# --region: the viewer renders the rectangle alone and S saves it, bit for bit what
+# `raylane render --region` writes at the saved spp (the scene as edited above: its camera).
+mkdir region && cd region
+"${view_env[@]}" "$raylane" view "$scene" --set 'screen 160 120' --spp-limit 2 --pfm \
+  --region 20,10,100,70 >out.txt 2>err.txt &
+pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 60 xdotool search --sync --name '^raylane view' | head -1) || true
+[ -n "$wid" ] || fail "--region: no window within 60 s"
+xdotool windowfocus --sync "$wid"
+wait_for 60 title_says "path 2 spp" || fail "--region: not at 2 spp within 60 s"
+xdotool key s
+wait_for 30 has saved 1 || fail "--region: S saved nothing"
+quit_viewer
+[[ "$(grep '^saved ' out.txt)" == *"(path, 2 spp)" ]] || fail "--region: not saved at 2 spp"
+"$raylane" render "$scene" --set 'screen 160 120' --region 20,10,100,70 --spp 2 -o render.pfm \
+  -q >render.txt 2>&1 || fail "--region: raylane render: $(cat render.txt)"
+"$raylane" diff view-0001.pfm render.pfm >diff.txt 2>&1 ||
+  fail "--region: the saved view-0001.pfm is not render --region's: $(cat diff.txt)"
+cd ..
+
 echo "ok: moved from '$first' to '$last'; the saved image is the render's at $spp spp;" \
-  "the window shows $colours colours"
+  "the window shows $colours colours; a --region view saves render --region's image"

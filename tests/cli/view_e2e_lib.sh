@@ -19,3 +19,10 @@ wait_for() {
 # has WORD N: out.txt holds at least N lines that start with WORD (counted at every call).
 has() { (($(grep -c "^$1 " out.txt || true) >= $2)); }
 title_says() { xdotool getwindowname "$wid" 2>/dev/null | grep -q "$1"; }
+# quit_viewer: Q, then the viewer ($pid) exits, with status 0; its EXIT trap is dropped.
+quit_viewer() {
+  xdotool key q
+  wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Q did not quit"
+  wait "$pid" || fail "the viewer exited with status $?"
+  trap - EXIT
+}

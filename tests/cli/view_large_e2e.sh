@@ -49,10 +49,7 @@ xdotool key v
 wait_for 30 has screen 1 || fail "V printed no screen line"
 xdotool key s
 wait_for 60 has saved 1 || fail "S saved nothing"
-xdotool key q
-wait_for 30 bash -c "! kill -0 $pid 2>/dev/null" || fail "Q did not quit"
-wait "$pid" || fail "the viewer exited with status $?"
-trap - EXIT
+quit_viewer
 
 [ "$(grep '^screen ' out.txt)" = "screen 1600 1000" ] || fail "V printed '$(grep '^screen ' out.txt)'"
 hdr=$(grep '^saved ' out.txt | grep -o 'view-[0-9]*\.hdr')

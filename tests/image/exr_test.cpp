@@ -191,11 +191,15 @@ TEST(Exr, BadLayersAreRefused) {
   Image img = ramp(2, 2);
   std::FILE* f = std::tmpfile();
   ExrLayer short_data{"a", {"R"}, std::vector<float>(3)};
-  ExrLayer dotted{"a.b", {"R"}, std::vector<float>(4)};
   ExrLayer unnamed{"", {"R"}, std::vector<float>(4)};
   ExrLayer twice{"a", {"R", "R"}, std::vector<float>(8)};
-  for (const ExrLayer& bad : {short_data, dotted, unnamed, twice})
+  ExrLayer dotted_channel{"a", {"R.x"}, std::vector<float>(4)};
+  for (const ExrLayer& bad : {short_data, unnamed, twice, dotted_channel})
     EXPECT_FALSE(write_exr(f, img, {bad}).ok()) << bad.name;
+  // A nested layer ("diffuse.direct") has dots between non-empty parts only.
+  for (const char* name : {".a", "a.", "a..b", "."})
+    EXPECT_FALSE(write_exr(f, img, {{name, {"R"}, std::vector<float>(4)}}).ok()) << name;
+  EXPECT_TRUE(write_exr(f, img, {{"a.b", {"R"}, std::vector<float>(4)}}).ok());
   std::fclose(f);
 }
 

@@ -116,7 +116,7 @@ TEST(Film, FingerprintFollowsWhatShapesTheSamples) {
 
 TEST(Film, HostileFilmFilesAreErrors) {
   std::string dir = testing::temp_dir();
-  Film f{2, 1, 3, std::vector<double>(6, 0.5), 42, {}, {}, {}};
+  Film f{2, 1, 3, std::vector<double>(6, 0.5), 42, {}, {}, {}, {}};
   ASSERT_TRUE(save_film(dir + "/ok.film", f).ok());
   auto ok = load_film(dir + "/ok.film");
   ASSERT_TRUE(ok.ok()) << ok.error();
@@ -130,7 +130,8 @@ TEST(Film, HostileFilmFilesAreErrors) {
   EXPECT_NE(short_file.error().find("a 2x1 film has 112 bytes, the file has 80"), std::string::npos)
       << short_file.error();
 
-  Film huge{1u << 20, 1u << 20, 1, {}, 0, {}, {}, {}};  // 2^40 pixels announced, 32 bytes present
+  // 2^40 pixels announced, 32 bytes present.
+  Film huge{1u << 20, 1u << 20, 1, {}, 0, {}, {}, {}, {}};
   ASSERT_TRUE(save_film(dir + "/huge.film", huge).ok());
   auto h = load_film(dir + "/huge.film");
   ASSERT_FALSE(h.ok());

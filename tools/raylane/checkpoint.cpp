@@ -12,6 +12,7 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
   if (!c.resume) {
     Film film;  // a film to be saved carries what its samples depend on; others need not
     if (c.checkpoint) identify_film(film, scene, settings);
+    film.region = settings.region;
     return film;
   }
   auto film = load_film(*c.resume);
@@ -24,6 +25,14 @@ Result<Film> starting_film(const CheckpointOptions& c, const Scene& scene,
     if (what.empty()) what = "another scene or other --seed, --integrator or --max-depth";
     return Error{
         cat(*c.resume, ": the film was rendered with ", what, "; resume with the same ones")};
+  }
+  if (film->region != settings.region) {
+    auto text = [](const std::optional<PixelRegion>& r) {
+      return r ? cat("--region ", region_text(*r)) : std::string("the whole image");
+    };
+    return Error{cat(*c.resume, ": the film holds ", text(film->region), ", this run asks for ",
+                     text(settings.region), "; resume with ",
+                     film->region ? text(film->region) : "no --region")};
   }
   if (film->aovs != settings.aovs)
     return Error{cat(*c.resume, ": the film sums the AOVs (", aov_list_text(film->aovs),

@@ -3,8 +3,10 @@
 // extension (the course's users viewed HDR files this way).
 #include <cstdio>
 
+#include "aov_outputs.h"
 #include "args.h"
 #include "commands.h"
+#include "exr_extras.h"
 #include "file_roles.h"
 #include "image_reading.h"
 #include "raylane/image/write_image.h"
@@ -20,7 +22,8 @@ const CommandHelp kConvertHelp{
     "raylane convert IN OUT [--exposure E] [--half]",
     "Writes the image IN (.hdr, .pfm, .exr, or .png, .jpg, .tga, .bmp read as linear RGB) as\n"
     "OUT, in the format OUT's extension names: .hdr, .pfm, .png (8-bit sRGB) or .exr (RGB,\n"
-    "float or --half).",
+    "float or --half). From .exr to .exr, the layers (render's --aov: albedo.R, ...) and the\n"
+    "header's string attributes (RAYLANE_SPP, ...) are kept too.",
     &kConvertOptions, ""};
 }  // namespace
 
@@ -50,6 +53,17 @@ int convert_command(const std::vector<std::string>& args) {
   if (!image) {
     std::fprintf(stderr, "raylane: %s\n", image.error().c_str());
     return kExitUsage;
+  }
+  if (*format == ImageFormat::kExr && is_exr(in)) {
+    auto extras = read_exr_extras(in);
+    if (!extras) {
+      std::fprintf(stderr, "raylane: %s\n", extras.error().c_str());
+      return kExitUsage;
+    }
+    for (const std::string& what : extras->not_kept)
+      std::fprintf(stderr, "raylane: warning: %s: %s is not kept\n", in.c_str(), what.c_str());
+    opts.exr_layers = std::move(extras->layers);
+    opts.metadata = std::move(extras->metadata);
   }
   if (Status s = write_image(out, *image, opts); !s) {
     std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());

@@ -59,8 +59,10 @@ int info_film(const std::string& path) {
         "unknown)\n");
   }
   std::printf("aovs: %s\n", aov_list(film->aovs).c_str());
-  std::printf("continue with: raylane render SCENE --resume %s --spp N (N > %d)\n",
-              quote_path(path).c_str(), film->passes);
+  std::string region = film->region ? cat(" --region ", region_text(*film->region)) : "";
+  if (film->region) std::printf("region: %s\n", region_text(*film->region).c_str());
+  std::printf("continue with: raylane render SCENE --resume %s%s --spp N (N > %d)\n",
+              quote_path(path).c_str(), region.c_str(), film->passes);
   return kExitOk;
 }
 

@@ -19,6 +19,7 @@
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
+#include "region_option.h"
 #include "render_request.h"
 #include "stats_json.h"
 
@@ -201,6 +202,8 @@ const std::vector<RenderOption>& render_options() {
          r.path_settings.aovs = *set;
          return ok_status();
        }},
+      {{"region", 0, "X0,Y0,X1,Y1", false, kRegionHelp, "the whole image"},
+       [](R& r, V v) { return read_region_option(v, r.path_settings.region); }},
       {{"png", 0, "", false, "also write a PNG beside the first output", ""},
        [](R& r, V) {
          r.also_png = true;
@@ -424,6 +427,8 @@ int render_command(const std::vector<std::string>& args) {
     return usage_error("render", s.error());
   if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
     return usage_error("render", s.error());
+  if (Status s = region_fits(r.path_settings.region, parsed->scene); !s)
+    return usage_error("render", s.error());
   if (Status s = render_fits_in_memory(r, parsed->scene, cluster.distributed()); !s) {
     std::fprintf(stderr, "raylane: %s; nothing rendered\n", s.error().c_str());
     return kExitUsage;
@@ -466,7 +471,8 @@ int render_command(const std::vector<std::string>& args) {
                cluster.distributed() ? cat(", ", cluster.size(), " processes") : "");
   } else {
     RaycastStats stats;
-    image = render_raycast(tracer, r.mode, &stats);
+    const auto& region = r.path_settings.region;
+    image = crop_to_region(render_raycast(tracer, r.mode, &stats, region), region);
     rays = stats.camera_rays + stats.shadow_rays;
     path_stats.camera_rays = stats.camera_rays, path_stats.shadow_rays = stats.shadow_rays;
     what = std::string(raycast_mode_name(r.mode));
@@ -482,6 +488,8 @@ int render_command(const std::vector<std::string>& args) {
   if (r.path)
     for (std::string& line : path_metadata(r.path_settings))
       wopts.metadata.push_back(std::move(line));
+  if (const auto& region = r.path_settings.region)
+    wopts.metadata.push_back(cat("RAYLANE_REGION=", region_text(*region)));
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
@@ -514,10 +522,14 @@ int render_command(const std::vector<std::string>& args) {
   }
   if (!r.quiet) {
     std::fprintf(stderr,
-                 "rendered %ux%u (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "
+                 "rendered %ux%u%s (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "
                  "%s built in %.3f s\n",
-                 scene->width, scene->height, what.c_str(), seconds, counted(rays, "ray").c_str(),
-                 rays / seconds * 1e-6, std::string(tracer_kind_name(r.tracer)).c_str(),
+                 image.width, image.height,
+                 image.width == scene->width && image.height == scene->height
+                     ? ""
+                     : cat(" of ", scene->width, "x", scene->height).c_str(),
+                 what.c_str(), seconds, counted(rays, "ray").c_str(), rays / seconds * 1e-6,
+                 std::string(tracer_kind_name(r.tracer)).c_str(),
                  std::string(isa_name(r.isa)).c_str(),
                  counted(omp_get_max_threads(), "thread").c_str(),
                  counted(bvh.nodes.size(), "node").c_str(), bvh.stats.build_seconds);

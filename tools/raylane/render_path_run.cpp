@@ -11,6 +11,7 @@
 #include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/render/tile_share.h"
+#include "region_option.h"
 #include "render_request.h"
 
 namespace raylane::cli {
@@ -166,6 +167,8 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
                  film->passes, r.path_settings.spp);
   PathSettings settings = r.path_settings;
   settings.share = cluster.share();
+  if (settings.region)
+    settings.share = region_share(settings.share, *settings.region, scene.width, scene.height);
   if (cluster.distributed() && !film->sum.empty()) keep_share(*film, settings.share);
   PassLoop loop(r, cluster, *film);
   settings.time_limit = 0;  // the loop decides, on rank 0's clock, for every process
@@ -188,6 +191,7 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
   for (const auto& [path, aov] : r.aov_outputs)
     out.aov_images.emplace_back(path, film->aov_image(aov));
   out.exr_layers = exr_layers_of(*film);
+  crop_to_region(out, settings.region);
   return out;
 }
 

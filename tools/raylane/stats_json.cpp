@@ -83,7 +83,9 @@ std::string summary_json(const RenderSummary& s) {
     outputs += cat(i ? ", " : "", json_string(s.outputs[i]));
   outputs += "]";
   JsonObject o;
-  o.count("width", s.width).count("height", s.height).string("mode", s.mode);
+  o.count("width", s.width).count("height", s.height);
+  if (!s.region.empty()) o.raw("region", s.region);
+  o.string("mode", s.mode);
   if (s.mode == "path")
     o.string("integrator", s.integrator).string("sampler", s.sampler).string("shading", s.shading);
   o.count("spp", uint64_t(s.spp))
@@ -125,6 +127,8 @@ RenderSummary render_summary(const RenderRequest& r, const Scene& scene, const B
                              bool interrupted, int processes, std::vector<std::string> written) {
   RenderSummary s;
   s.width = scene.width, s.height = scene.height;
+  if (const auto& g = r.path_settings.region)
+    s.region = cat("[", g->x0, ", ", g->y0, ", ", g->x1, ", ", g->y1, "]");
   s.mode = r.path ? "path" : std::string(raycast_mode_name(r.mode));
   if (r.path) {
     const PathSettings& p = r.path_settings;

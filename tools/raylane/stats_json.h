@@ -13,8 +13,9 @@ namespace raylane::cli {
 
 // What the summary line and --stats print, as plain values.
 struct RenderSummary {
-  uint32_t width = 0, height = 0;
-  std::string mode;                          // "path" or a ray-casting view
+  uint32_t width = 0, height = 0;  // the screen's
+  std::string region;              // --region as a JSON array [x0, y0, x1, y1]; empty: none
+  std::string mode;                // "path" or a ray-casting view
   std::string integrator, sampler, shading;  // path only
   int spp = 0;
   bool interrupted = false;

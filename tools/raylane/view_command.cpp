@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
+#include "region_option.h"
 #include "view.h"
 
 namespace raylane::cli {
@@ -23,6 +24,10 @@ const std::vector<OptionSpec>& view_specs() {
       {"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
       {"pfm", 0, "", false,
        "S also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
+      {"region", 0, "X0,Y0,X1,Y1", false,
+       "render only this pixel rectangle (black around it), as render's\n"
+       "--region; S saves the rectangle alone",
+       "the whole screen"},
   };
   return specs;
 }
@@ -59,6 +64,8 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
       return Error{s.error()};
   if (auto v = parsed->last("image-memory"))
     if (Status s = read_image_memory_option(*v, r.image_memory); !s) return Error{s.error()};
+  if (auto v = parsed->last("region"))
+    if (Status s = read_region_option(*v, r.region); !s) return Error{s.error()};
   if (auto v = parsed->last("threads"))
     if (Status s = read_int_option("threads", *v, 0, 4096, r.threads); !s) return Error{s.error()};
   return r;
@@ -87,6 +94,8 @@ int view_command(const std::vector<std::string>& args) {
   auto parsed = load_scene_for_cli(request->scene_path, request->lenient, /*quiet=*/false,
                                    request->overrides, {request->image_memory, false});
   if (!parsed) return kExitUsage;
+  if (Status s = region_fits(request->region, parsed->scene); !s)
+    return usage_error("view", s.error());
   // The film's sums (3 doubles), the image shown and the one saved (3 floats each) and the
   // window's 8-bit pixels, per pixel of the scene's screen.
   const Scene& scene = parsed->scene;

@@ -12,6 +12,7 @@
 #include "raylane/image/write_image.h"
 #include "raylane/render/camera.h"
 #include "raylane/render/navigation.h"
+#include "region_option.h"
 #include "render_request.h"
 
 namespace raylane::cli {
@@ -135,6 +136,7 @@ void ViewSession::render_pass() {
   // `raylane render --spp N` sums, in the same order, so the images agree bit for bit.
   PathSettings settings;  // render's defaults: mis, sobol, float shading, seed 0
   settings.spp = film_.passes + 1;
+  settings.region = request_.region;
   PathStats stats;
   auto start = Clock::now();
   image_ = render_path(*world_->tracer, settings, &stats, &film_);
@@ -145,7 +147,7 @@ void ViewSession::render_pass() {
 void ViewSession::render_view(RaycastMode mode) {
   RaycastStats stats;
   auto start = Clock::now();
-  image_ = render_raycast(*world_->tracer, mode, &stats);
+  image_ = render_raycast(*world_->tracer, mode, &stats, request_.region);
   mrays_per_second_ =
       (stats.camera_rays + stats.shadow_rays) / std::max(1e-9, seconds_since(start)) * 1e-6;
 }
@@ -199,11 +201,16 @@ Result<std::string> ViewSession::save(double exposure) {
   if (!mode_)  // the path tracer's settings, as `raylane render` writes them
     for (std::string& line : path_metadata(PathSettings{}))
       opts.metadata.push_back(std::move(line));
+  if (request_.region)
+    opts.metadata.push_back(cat("RAYLANE_REGION=", region_text(*request_.region)));
   std::string line = "saved";
-  Image shown = display_image();  // for the 8-bit file; HDR and PFM keep the raw values
+  // The 8-bit file's image as shown (HDR and PFM keep the raw values), both cut to a --region
+  // as `raylane render --region` cuts them.
+  const Image saved = crop_to_region(image_, request_.region);
+  const Image shown = crop_to_region(display_image(), request_.region);
   for (const std::string& ext : extensions) {
     std::string path = stem + ext;
-    if (Status s = write_image(path, ext == ".png" ? shown : image_, opts); !s)
+    if (Status s = write_image(path, ext == ".png" ? shown : saved, opts); !s)
       return Error{cat(path, ": ", s.error())};
     line += " " + path;
   }

@@ -26,6 +26,7 @@ struct ViewRequest {
   int spp_limit = 4096;   // passes after which the film stops growing
   int threads = 0;        // 0: all cores
   bool save_pfm = false;  // saves also write view-NNNN.pfm (32-bit float: exact comparisons)
+  std::optional<PixelRegion> region;  // --region: rendered alone (black around it), and saved
   uint64_t image_memory = kDefaultImageMemory;  // --image-memory, in bytes
 };
 

@@ -22,7 +22,7 @@ namespace raylane {
 
 // Extra channels beside RGB, all of one layer: stored as "<name>.<channel>".
 struct ExrLayer {
-  std::string name;                   // "albedo"; not empty, no '.'
+  std::string name;                   // "albedo"; not empty, dots only between parts
   std::vector<std::string> channels;  // "R", "G", "B" or "X", "Y", "Z" or "Z"; no '.'
   std::vector<float> data;            // width·height·channels.size(), interleaved, top row first
 };

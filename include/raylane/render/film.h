@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,9 @@ struct Film {
   std::vector<double> sum;   // 3 per pixel, top row first
   uint64_t fingerprint = 0;  // of the scene and the settings whose samples these are
   FilmOrigin origin;
-  AovSet aovs;                  // which AOVs the film sums (render/aov.h)
-  std::vector<double> aov_sum;  // aovs.channels() per pixel, top row first
+  AovSet aovs;                        // which AOVs the film sums (render/aov.h)
+  std::vector<double> aov_sum;        // aovs.channels() per pixel, top row first
+  std::optional<PixelRegion> region;  // --region: the pixels it sums; none: the whole image
 
   Image image() const;  // the mean over the passes (black before the first)
   // The mean of one AOV the film sums; depth in all three channels.
@@ -65,7 +67,8 @@ std::string origin_difference(const FilmOrigin& film, const FilmOrigin& run);
 // fingerprint, scene fingerprint, seed (uint64 each), max depth, roulette depth, sampler,
 // shading (uint32 each; the sampler's and the shading's words were 0 before there was a
 // choice), then
-// width·height·3 float64 sums; little endian. A film with AOVs ends in "AOV1", the set's bits
+// width·height·3 float64 sums; little endian. A film of a --region goes on with "RGN1" and
+// its x0, y0, x1, y1 (uint32 each). A film with AOVs ends in "AOV1", the set's bits
 // (uint32) and width·height·channels float64 AOV sums. Written atomically. The first
 // format ("RLFILM1\0", a 32-byte header: width, height, passes, 0, fingerprint) is still read.
 Status save_film(const std::string& path, const Film& film);

@@ -18,6 +18,7 @@
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
 #include "raylane/render/aov.h"
+#include "raylane/render/region.h"
 #include "raylane/render/tile_share.h"
 #include "raylane/trace/tracer.h"
 
@@ -77,6 +78,9 @@ struct PathSettings {
   bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
   AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/aov.h)
   TileShare share;           // the tiles this process renders (all of them by default)
+  // Only the tiles that meet this pixel rectangle are rendered (render/region.h); the film
+  // stays the image's size, zero elsewhere.
+  std::optional<PixelRegion> region;
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return
   std::function<void(int passes_done)> on_pass;  // progress, called after each pass
   // Called after each pass but the last one taken, after on_pass (on every process of a job at

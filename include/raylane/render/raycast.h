@@ -8,6 +8,7 @@
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
 #include "raylane/render/camera.h"
+#include "raylane/render/region.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/tracer.h"
 
@@ -38,8 +39,11 @@ struct RaycastStats {
 };
 
 // Renders every pixel; camera rays go out in 4×4-pixel tiles (coherent packets), rows are
-// stored top row first (Image's convention).
-Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr);
+// stored top row first (Image's convention). With a region, only the bands of rows that meet it
+// are traced (each whole, so its packets and pixels are those of a whole render); the image
+// keeps the screen's size, zero elsewhere.
+Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr,
+                     const std::optional<PixelRegion>& region = std::nullopt);
 
 // The image of a view as a person can look at it in an 8-bit file: `depth` normalised to the
 // image's range of hit distances (nearest 1, farthest 0.1, misses 0), `id` as a distinct
