@@ -73,7 +73,7 @@ const RenderScene* render_scene(const std::string& name) {
     else
       s->parsed = load_scene_file(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".scn");
     if (!s->parsed.ok()) return nullptr;
-    s->bvh = build_bvh(s->parsed.scene, render_bvh_config(s->parsed.scene));
+    s->bvh = build_bvh_and_reorder(s->parsed.scene, render_bvh_config(s->parsed.scene));
     slot = std::move(s);
   }
   return slot.get();

@@ -204,7 +204,7 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
     if (why && why->empty()) *why = "no such scene or it failed to build: " + name;
     return nullptr;
   }
-  b->bvh = build_bvh(b->scene, BvhConfig{.wide_nodes = true});
+  b->bvh = build_bvh_and_reorder(b->scene, BvhConfig{.wide_nodes = true});
   // The wide nodes are collapsed from the binary tree after it is built, so without them the
   // tree is the one render_bvh_config builds (and the scene's rows are in its order).
   if (!render_bvh_config(b->scene).wide_nodes) {

@@ -191,7 +191,7 @@ Row measure(const InputSet& s, const Bvh& bvh, const std::vector<Rayd>& rays,
 }
 
 void print_set(InputSet& s, int count) {
-  Bvh bvh = build_bvh(s.scene);
+  Bvh bvh = build_bvh_and_reorder(s.scene);
   std::vector<Rayd> rays = make_rays(s, count);
   std::vector<Hit> ref(rays.size());
   std::vector<testing::RayVerdict> verdicts(rays.size());

@@ -237,7 +237,7 @@ BvhConfig render_bvh_config(const Scene& scene) {
   return config;
 }
 
-Bvh build_bvh(Scene& scene, const BvhConfig& config) {
+Bvh build_bvh_and_reorder(Scene& scene, const BvhConfig& config) {
   auto start = std::chrono::steady_clock::now();
   Bvh bvh;
   const int threads = omp_in_parallel() ? 1 : omp_get_max_threads();

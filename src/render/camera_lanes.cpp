@@ -2,13 +2,13 @@
 
 #include <algorithm>
 
+#include "render/render_lanes.h"
+
 namespace raylane {
 
 void pinhole_rays(Isa isa, const Camera& cam, const PixelPoints& points, RayStream& out) {
-  auto* fn = isa == Isa::kAvx512 ? detail::pinhole_rays_avx512
-             : isa == Isa::kAvx2 ? detail::pinhole_rays_avx2
-                                 : detail::pinhole_rays_sse42;
-  const std::size_t n = points.size, done = fn(cam, points, out);
+  const std::size_t n = points.size,
+                    done = detail::render_lanes(isa).pinhole_rays(cam, points, out);
   // What every ray shares: the eye and the ray's whole length (ray_through's Rayd{eye, d}).
   const Rayf shared = ray_cast<float>(Rayd{cam.eye, {0, 0, 1}});
   std::fill_n(out.ox.begin(), n, shared.o.x);

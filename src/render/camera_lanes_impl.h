@@ -1,5 +1,5 @@
 // pinhole_rays (render/camera_lanes.h) in double lanes, instantiated per instruction set by
-// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. The steps are Camera::ray_through's
+// src/render/render_lanes_<isa>.cpp. Include from nowhere else. The steps are Camera::ray_through's
 // in its order: d = normalize(right·(dx·rx) + up·(dy·ry) + forward), dx = 2x/W − 1, and
 // normalize(a) = a / sqrt(a·a) with the dot product summed x, y, z.
 #pragma once

@@ -1,12 +1,8 @@
 #include "raylane/render/light_lanes.h"
 
-namespace raylane {
+#include "render/render_lanes.h"
 
-namespace detail {
-void sample_cones_sse42(ConeBatch&);
-void sample_cones_avx2(ConeBatch&);
-void sample_cones_avx512(ConeBatch&);
-}  // namespace detail
+namespace raylane {
 
 namespace {
 constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
@@ -31,10 +27,7 @@ void ConeBatch::resize(std::size_t rows) {
 }
 
 void sample_cones(Isa isa, ConeBatch& batch) {
-  auto* fn = isa == Isa::kAvx512 ? detail::sample_cones_avx512
-             : isa == Isa::kAvx2 ? detail::sample_cones_avx2
-                                 : detail::sample_cones_sse42;
-  fn(batch);
+  detail::render_lanes(isa).sample_cones(batch);
 }
 
 }  // namespace raylane

@@ -1,5 +1,5 @@
 // sample_cones (render/light_lanes.h) in double lanes, instantiated per instruction set by
-// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. Each step is the scalar
+// src/render/render_lanes_<isa>.cpp. Include from nowhere else. Each step is the scalar
 // code's (Sphere::sample_subtended, cone_one_minus_cos, sample_uniform_cone, sincos_2pi and
 // Frame), in the same order, so the two differ only where the compiler fuses a multiply-add.
 #pragma once

@@ -4,14 +4,9 @@
 
 #include "raylane/core/vec3.h"
 #include "raylane/core/warps.h"
+#include "render/render_lanes.h"
 
 namespace raylane {
-
-namespace detail {
-void shade_lanes_sse42(const LaneMaterials&, ShadeBatch&);
-void shade_lanes_avx2(const LaneMaterials&, ShadeBatch&);
-void shade_lanes_avx512(const LaneMaterials&, ShadeBatch&);
-}  // namespace detail
 
 namespace {
 
@@ -75,10 +70,7 @@ void ShadeBatch::resize(std::size_t rows) {
 }
 
 void shade_lanes(Isa isa, const LaneMaterials& materials, ShadeBatch& batch) {
-  auto* fn = isa == Isa::kAvx512 ? detail::shade_lanes_avx512
-             : isa == Isa::kAvx2 ? detail::shade_lanes_avx2
-                                 : detail::shade_lanes_sse42;
-  fn(materials, batch);
+  detail::render_lanes(isa).shade(materials, batch);
 }
 
 }  // namespace raylane

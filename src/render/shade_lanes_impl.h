@@ -1,5 +1,5 @@
 // The body of the lane BSDF (render/shade_lanes.h), instantiated once per instruction set by
-// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. It is Bsdf (src/render/bsdf.cpp)
+// src/render/render_lanes_<isa>.cpp. Include from nowhere else. It is Bsdf (src/render/bsdf.cpp)
 // rewritten for lanes: every branch of the scalar code becomes a mask, both sides of each are
 // computed and the lane's side is selected, so a NaN or inf on the side not taken never
 // reaches a result (selects, never multiplications by a mask).

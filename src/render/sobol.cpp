@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "raylane/render/rng.h"
+#include "render/render_lanes.h"
 
 namespace raylane {
 
@@ -117,13 +118,6 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 }  // namespace
 
 namespace detail {
-void sobol_groups_sse42(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
-                        const SobolNumbers& numbers);
-void sobol_groups_avx2(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
-                       const SobolNumbers& numbers);
-void sobol_groups_avx512(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
-                         const SobolNumbers& numbers);
-
 const uint32_t* sobol_byte_tables() {
   return &kReversedTables[0][0][0];
 }
@@ -142,10 +136,8 @@ void SobolBatch::resize(std::size_t rows) {
 // The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
 void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, unsigned components,
                   const SobolNumbers& numbers) {
-  auto* fn = isa == Isa::kAvx512 ? detail::sobol_groups_avx512
-             : isa == Isa::kAvx2 ? detail::sobol_groups_avx2
-                                 : detail::sobol_groups_sse42;
-  fn(reverse_bits(index), group, (components & kAllComponents) | 3u, batch, numbers);
+  detail::render_lanes(isa).sobol_groups(reverse_bits(index), group,
+                                         (components & kAllComponents) | 3u, batch, numbers);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

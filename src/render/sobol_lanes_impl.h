@@ -1,5 +1,5 @@
 // sobol_group (src/render/sobol.cpp) in lanes, one pixel per lane, instantiated per instruction
-// set by src/render/shade_lanes_<isa>.cpp. Include from nowhere else. Every step is the scalar
+// set by src/render/render_lanes_<isa>.cpp. Include from nowhere else. Every step is the scalar
 // code's, on 32-bit unsigned lanes: the same values bit for bit (tests/render/sobol_test.cpp).
 #pragma once
 

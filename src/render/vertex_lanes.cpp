@@ -1,19 +1,9 @@
 #include "raylane/render/vertex_lanes.h"
 
 #include "raylane/render/sampling.h"
+#include "render/render_lanes.h"
 
 namespace raylane {
-
-namespace detail {
-void finish_vertices_sse42(const VertexRules&, const ShadeBatch&, const LightQueries*,
-                           VertexBatch&);
-void finish_vertices_avx2(const VertexRules&, const ShadeBatch&, const LightQueries*, VertexBatch&);
-void finish_vertices_avx512(const VertexRules&, const ShadeBatch&, const LightQueries*,
-                            VertexBatch&);
-std::size_t filter_rows_sse42(const RowFilter&, std::size_t);
-std::size_t filter_rows_avx2(const RowFilter&, std::size_t);
-std::size_t filter_rows_avx512(const RowFilter&, std::size_t);
-}  // namespace detail
 
 namespace {
 constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
@@ -37,17 +27,11 @@ void VertexBatch::resize(std::size_t rows) {
 
 void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
                      const LightQueries* lights, VertexBatch& batch) {
-  auto* fn = isa == Isa::kAvx512 ? detail::finish_vertices_avx512
-             : isa == Isa::kAvx2 ? detail::finish_vertices_avx2
-                                 : detail::finish_vertices_sse42;
-  fn(rules, bsdf, lights, batch);
+  detail::render_lanes(isa).finish_vertices(rules, bsdf, lights, batch);
 }
 
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
-  auto* fn = isa == Isa::kAvx512 ? detail::filter_rows_avx512
-             : isa == Isa::kAvx2 ? detail::filter_rows_avx2
-                                 : detail::filter_rows_sse42;
-  return fn(filter, rows);
+  return detail::render_lanes(isa).filter_rows(filter, rows);
 }
 
 bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,

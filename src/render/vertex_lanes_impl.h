@@ -1,5 +1,5 @@
 // finish_vertices (render/vertex_lanes.h) in double lanes, instantiated per instruction set by
-// src/render/shade_lanes_<isa>.cpp. Include from nowhere else. Each step is the scalar code's
+// src/render/render_lanes_<isa>.cpp. Include from nowhere else. Each step is the scalar code's
 // (wavefront/double_vertices.cpp's queue_shadow_ray and continue_path, core/ray_offset.cpp,
 // power_heuristic, next_double_up/down) in the same order; the build has -ffp-contract=off, so the
 // two agree bit for bit.

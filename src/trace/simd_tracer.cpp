@@ -2,6 +2,8 @@
 
 #include <cassert>
 
+#include "trace/tracer_lanes.h"
+
 #include <string>
 
 namespace raylane {
@@ -9,6 +11,9 @@ namespace raylane {
 std::string_view traversal_name(Traversal t) {
   return t == Traversal::kPackets ? "packets" : "rays";
 }
+
+SimdTracer::SimdTracer(Isa isa, Traversal traversal)
+    : isa_(isa), lanes_(&detail::tracer_lanes(isa)), traversal_(traversal) {}
 
 void SimdTracer::closest(const Scene& scene, const Bvh& bvh, const RayStream& rays,
                          HitStream& hits) const {
@@ -40,29 +45,36 @@ TraversalCounters SimdTracer::trace_counted(const Scene& scene, const Bvh& bvh,
 void SimdTracer::trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
                        std::size_t end, HitStream& hits, bool any_hit,
                        TraversalCounters* counters) const {
-  assert(rays.end.empty() || rays.end.size() == rays.size());  // the contract in simd_tracer.h
-  auto* fn = isa_ == Isa::kAvx512 ? detail::trace_avx512
-             : isa_ == Isa::kAvx2 ? detail::trace_avx2
-                                  : detail::trace_sse42;
+  assert(rays.aim.empty() || rays.aim.size() == rays.size());  // the contract in simd_tracer.h
   const Traversal traversal = bvh.wide.empty() && !bvh.empty() ? Traversal::kPackets : traversal_;
-  fn(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
+  lanes_->trace(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
 }
 
 void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                           std::span<const uint32_t> rows, Hit* hits) const {
-  auto* fn = isa_ == Isa::kAvx512 ? detail::surfaces_avx512
-             : isa_ == Isa::kAvx2 ? detail::surfaces_avx2
-                                  : detail::surfaces_sse42;
-  fn(scene, rays, kind, rows, hits);
+  lanes_->surfaces(scene, rays, kind, rows, hits);
 }
 
 void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                           std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
                           const SurfaceColumns& out) const {
-  auto* fn = isa_ == Isa::kAvx512 ? detail::surface_columns_avx512
-             : isa_ == Isa::kAvx2 ? detail::surface_columns_avx2
-                                  : detail::surface_columns_sse42;
-  fn(scene, rays, kind, rows, ray, hits, out);
+  lanes_->surface_columns(scene, rays, kind, rows, ray, hits, out);
 }
+
+namespace detail {
+
+const TracerLanes& tracer_lanes(Isa isa) {
+  switch (isa) {
+    case Isa::kAvx512:
+      return kTracerLanesAvx512;
+    case Isa::kAvx2:
+      return kTracerLanesAvx2;
+    case Isa::kSse42:
+      break;
+  }
+  return kTracerLanesSse42;
+}
+
+}  // namespace detail
 
 }  // namespace raylane

@@ -1,27 +1,30 @@
-// The packet tracer compiled for one instruction set (flags set in CMakeLists.txt).
+// The packet tracer (trace/tracer_lanes.h) compiled for one instruction set (flags set in
+// CMakeLists.txt).
 #include "trace/simd_tracer_impl.h"
+#include "trace/tracer_lanes.h"
 
 static_assert(XSIMD_WITH_AVX512BW,
               "this file must be compiled with the flags of its instruction set");
 
 namespace raylane::detail {
 
-void trace_avx512(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
-                  std::size_t end, HitStream& hits, bool any_hit, Traversal traversal,
-                  TraversalCounters* counters) {
-  trace_range<xsimd::avx512bw>(scene, bvh, rays, begin, end, hits, any_hit, traversal, counters);
+namespace {
+
+using A = xsimd::avx512bw;
+
+void surfaces_into_hits(const Scene& scene, const RayStream& rays, PrimTag kind,
+                        std::span<const uint32_t> rows, Hit* hits) {
+  surfaces_of_kind<A>(scene, rays, kind, rows, HitSink<A>{hits});
 }
 
-void surfaces_avx512(const Scene& scene, const RayStream& rays, PrimTag kind,
-                     std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows, HitSink<xsimd::avx512bw>{hits});
+void surfaces_into_columns(const Scene& scene, const RayStream& rays, PrimTag kind,
+                           std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
+                           const SurfaceColumns& out) {
+  surfaces_of_kind<A>(scene, rays, kind, rows, ColumnSink<A>{ray, hits, out});
 }
 
-void surface_columns_avx512(const Scene& scene, const RayStream& rays, PrimTag kind,
-                            std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
-                            const SurfaceColumns& out) {
-  surfaces_of_kind<xsimd::avx512bw>(scene, rays, kind, rows,
-                                    ColumnSink<xsimd::avx512bw>{ray, hits, out});
-}
+}  // namespace
+
+const TracerLanes kTracerLanesAvx512 = {trace_range<A>, surfaces_into_hits, surfaces_into_columns};
 
 }  // namespace raylane::detail

@@ -47,15 +47,15 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   tmax = col(s.tmax);
   // Whole packets load the aims straight too; a partial one's spare lanes are inactive.
   const auto none = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
-  if (s.end.empty()) {
-    r.end = none;
+  if (s.aim.empty()) {
+    r.aim = none;
   } else if (n == W) {
-    r.end = simd::load<A>(reinterpret_cast<const int32_t*>(s.end.data() + i));
+    r.aim = simd::load<A>(reinterpret_cast<const int32_t*>(s.aim.data() + i));
   } else {
     alignas(64) int32_t end[W];
     for (int k = 0; k < W; ++k)
-      end[k] = k < n ? int32_t(s.end[i + std::size_t(k)]) : int32_t(PrimRef::kInvalidBits);
-    r.end = simd::load<A>(end);
+      end[k] = k < n ? int32_t(s.aim[i + std::size_t(k)]) : int32_t(PrimRef::kInvalidBits);
+    r.aim = simd::load<A>(end);
   }
   set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n));
   return r;
@@ -105,7 +105,7 @@ void trace_range_single(const Scene& scene, const Bvh& bvh, const RayStream& ray
     bool valid = single_ray_valid(one) && !bvh.wide.empty();
     if (valid && c) ++c->packets, ++c->rays;
     // A ray aimed at a primitive goes through closest hit: blocked when that is something else.
-    const uint32_t aim = rays.end.empty() ? PrimRef::kInvalidBits : rays.end[i];
+    const uint32_t aim = rays.aim.empty() ? PrimRef::kInvalidBits : rays.aim[i];
     const bool plain_any_hit = any_hit && aim == PrimRef::kInvalidBits;
     if (valid) {
       RayPacket<L> r = broadcast_ray<L>(one);

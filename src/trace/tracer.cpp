@@ -56,9 +56,9 @@ void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>&
   stream.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
-  stream.end.resize(aims.empty() ? 0 : n);
-  for (std::size_t i = 0; i < stream.end.size(); ++i)
-    stream.end[i] = aims[i].bits();
+  stream.aim.resize(aims.empty() ? 0 : n);
+  for (std::size_t i = 0; i < stream.aim.size(); ++i)
+    stream.aim[i] = aims[i].bits();
   occluded(stream, blocked, scratch);
 }
 
@@ -67,10 +67,10 @@ void Tracer::occluded(const RayStream& rays, std::vector<uint8_t>& blocked,
   const std::size_t n = rays.size();
   blocked.resize(n);
   if (kind_ != TracerKind::kPacket) {
-    const bool aimed = !rays.end.empty();
+    const bool aimed = !rays.aim.empty();
     for (std::size_t i = 0; i < n; ++i)
       blocked[i] = occluded_ref(ray_cast<double>(rays.get(i)),
-                                aimed ? PrimRef::from_bits(rays.end[i]) : PrimRef::invalid());
+                                aimed ? PrimRef::from_bits(rays.aim[i]) : PrimRef::invalid());
     return;
   }
   simd_.occluded(scene_, bvh_, rays, scratch.hits);
@@ -157,7 +157,7 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
   }
   RayStream& stream = scratch.rays;
   stream.resize(n);
-  stream.end.clear();  // left by occluded()
+  stream.aim.clear();  // left by occluded()
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   closest(stream, hits, with_surface, scratch);
@@ -176,7 +176,7 @@ void Tracer::closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t 
     return;
   }
   HitStream& out = scratch.hits;
-  simd_.closest(scene_, bvh_, rays, out);  // closest hit ignores rays.end
+  simd_.closest(scene_, bvh_, rays, out);  // closest hit ignores rays.aim
   // Only prim and t: the surfaces follow for the rays that get one (clearing every 96-byte Hit
   // first would be a pass over the batch that nothing reads).
   for (std::size_t i = 0; i < n; ++i) {

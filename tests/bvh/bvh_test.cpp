@@ -136,7 +136,7 @@ void expect_invariants(const Scene& s, const Bvh& bvh) {
 TEST(Bvh, RecordsWhereEveryRowCameFrom) {
   Scene before = random_scene(5, 60);
   Scene after = before;
-  Bvh bvh = build_bvh(after);
+  Bvh bvh = build_bvh_and_reorder(after);
   ASSERT_EQ(bvh.source_rows.size(), kPrimKindCount);
   EXPECT_EQ(bvh.source_rows[uint32_t(tag_of<Sphere>)].size(), before.table<Sphere>().size());
   for (uint32_t r = 0; r < after.table<Sphere>().size(); ++r) {
@@ -151,7 +151,7 @@ TEST(Bvh, RecordsWhereEveryRowCameFrom) {
 
 TEST(Bvh, InvariantsOnAMixedScene) {
   Scene s = random_scene(1, 500);
-  Bvh bvh = build_bvh(s, {.wide_nodes = true});
+  Bvh bvh = build_bvh_and_reorder(s, {.wide_nodes = true});
   expect_invariants(s, bvh);
   EXPECT_EQ(bvh.stats.leaves + bvh.stats.inner_nodes, bvh.nodes.size());
   EXPECT_GT(bvh.stats.sah_cost, 0);
@@ -163,7 +163,7 @@ TEST(Bvh, PermutationKeepsEveryRowAndRemapsLights) {
   std::multiset<float> light_radii;
   for (PrimRef l : s.lights)
     light_radii.insert(s.table<Sphere>().r[l.row()]);
-  build_bvh(s);
+  build_bvh_and_reorder(s);
   EXPECT_EQ(radii, std::multiset<float>(s.table<Sphere>().r.begin(), s.table<Sphere>().r.end()));
   std::multiset<float> after;
   for (PrimRef l : s.lights) {
@@ -175,7 +175,7 @@ TEST(Bvh, PermutationKeepsEveryRowAndRemapsLights) {
 
 TEST(Bvh, EmptySceneGivesEmptyBvh) {
   Scene s;
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   EXPECT_TRUE(bvh.empty());
   EXPECT_TRUE(bvh.wide.empty());
   EXPECT_FALSE(closest_hit_bvh_ref(s, bvh, {{0, 0, 0}, {0, 0, 1}}).hit());
@@ -191,7 +191,7 @@ TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
     s.table<Triangle>().append(p, n, 0);
   for (int i = 0; i < 200; ++i)
     s.table<Sphere>().append(std::array<double, 4>{1e30 * (i % 3 - 1), 1e30, -1e30, 1e29}, 0);
-  Bvh bvh = build_bvh(s, {.wide_nodes = true});
+  Bvh bvh = build_bvh_and_reorder(s, {.wide_nodes = true});
   expect_invariants(s, bvh);
   Hit h = closest_hit_bvh_ref(s, bvh, {{1.1, 1.1, 5}, {0, 0, -1}});
   ASSERT_TRUE(h.hit());
@@ -207,7 +207,7 @@ TEST(Bvh, ExponentialSpacingKeepsDepthBounded) {
     double x = std::ldexp(1.0, i);
     s.table<Sphere>().append(std::array<double, 4>{x, 0, 0, x * 0.1}, 0);
   }
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_invariants(s, bvh);
 }
 
@@ -229,7 +229,7 @@ void expect_bvh_equals_brute_force(const Scene& s, const Bvh& bvh, const std::ve
 TEST(BvhTraversal, EqualsBruteForceOnRandomScenes) {
   for (double offset : {0.0, 1e4, 1e5}) {
     Scene s = random_scene(3, 200, 10, 0.6, {offset, -offset, offset});
-    Bvh bvh = build_bvh(s);
+    Bvh bvh = build_bvh_and_reorder(s);
     expect_bvh_equals_brute_force(s, bvh, random_rays(4, 20000, 12, {offset, -offset, offset}));
   }
 }
@@ -238,7 +238,7 @@ TEST(BvhTraversal, EqualsBruteForceOnEveryShippedScene) {
   for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
     auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
     ASSERT_TRUE(p.ok()) << name;
-    Bvh bvh = build_bvh(p.scene);
+    Bvh bvh = build_bvh_and_reorder(p.scene);
     expect_invariants(p.scene, bvh);
     // Rays from the camera's eye towards the scene, and from random points inside it.
     std::vector<Rayd> rays = random_rays(6, 20000, 3);
@@ -265,7 +265,7 @@ TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
       s.table<Triangle>().append({a, c, b}, {n, n, n}, 0);
       s.table<Triangle>().append({b, c, d}, {n, n, n}, 0);
     }
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   std::vector<Rayd> rays;
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-10, 10);
@@ -293,7 +293,7 @@ TEST(BvhTraversal, SphereLeavesHoldSeveralAndStayExact) {
         std::array<double, 4> p{i + jitter(rng), j + jitter(rng), k + jitter(rng), 0.3};
         ASSERT_FALSE(s.table<Sphere>().append(p, 0));
       }
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_invariants(s, bvh);
   const double per_sphere =
       double(bvh.bytes() + table_bytes(s.table<Sphere>())) / s.table<Sphere>().size();

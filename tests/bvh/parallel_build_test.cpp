@@ -23,7 +23,7 @@ using testing::random_scene;
 Bvh build_with_threads(Scene& s, int threads) {
   int before = omp_get_max_threads();
   omp_set_num_threads(threads);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   omp_set_num_threads(before);
   return bvh;
 }

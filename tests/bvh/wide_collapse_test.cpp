@@ -45,7 +45,7 @@ double least_cost_as_root(const Bvh& bvh, uint32_t b) {
 TEST(WideCollapse, RootsAreTheCutOfLeastArea) {
   for (uint32_t seed = 1; seed <= 12; ++seed) {
     Scene s = testing::random_scene(seed, 4 + int(seed % 4));  // 16 … 28 primitives
-    Bvh bvh = build_bvh(s, {.max_leaf = 2, .forced_leaf = 2, .wide_nodes = true});
+    Bvh bvh = build_bvh_and_reorder(s, {.max_leaf = 2, .forced_leaf = 2, .wide_nodes = true});
     ASSERT_FALSE(bvh.nodes[0].is_leaf());
     // A wide node's box, the union of its children's, is that of the binary node it roots.
     double cost = 0;

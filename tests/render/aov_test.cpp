@@ -28,7 +28,7 @@ Loaded course_scene(int scale = 1) {
   auto p = load_scene_file(testing::source_path("scenes/testscene.scn"), opts);
   EXPECT_TRUE(p.ok());
   Loaded l{std::move(p.scene), {}};
-  l.bvh = build_bvh(l.scene);
+  l.bvh = build_bvh_and_reorder(l.scene);
   return l;
 }
 

@@ -25,7 +25,7 @@ Rendered load(const char* name) {
   auto p = load_scene_file(testing::source_path(std::string("scenes/") + name));
   EXPECT_TRUE(p.ok());
   Rendered r{std::move(p.scene), {}};
-  r.bvh = build_bvh(r.scene);
+  r.bvh = build_bvh_and_reorder(r.scene);
   return r;
 }
 

@@ -25,7 +25,7 @@ Image render_sphere(double z, double rho, double lens_r, double focus, int spp) 
                          " ", focus, "\nlight 1 1 1\nsphere 0 0 ", -z, " ", rho, "\n");
   auto p = parse_scene(text, "lens.scn");
   EXPECT_TRUE(p.ok());
-  Bvh bvh = build_bvh(p.scene);
+  Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, TracerKind::kPacket);
   PathSettings s;
   s.spp = spp;

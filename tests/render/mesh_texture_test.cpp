@@ -36,7 +36,7 @@ std::vector<Vec3f> albedo_colours(const std::string& mesh_path, std::vector<std:
   auto p = testing::parse(head + camera);
   EXPECT_TRUE(p.ok());
   if (warns) *warns = warnings(p);
-  Bvh bvh = build_bvh(p.scene);
+  Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, TracerKind::kPacket);
   Image out = render_raycast(tracer, RaycastMode::kAlbedo);
   std::vector<Vec3f> hit;

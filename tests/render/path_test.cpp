@@ -36,7 +36,7 @@ PixelStats pixel_stats(const Image& img) {
 }
 
 Image render(Scene& scene, const PathSettings& settings, PathStats* stats = nullptr) {
-  Bvh bvh = build_bvh(scene);
+  Bvh bvh = build_bvh_and_reorder(scene);
   Tracer tracer(scene, bvh, TracerKind::kPacket);
   return render_path(tracer, settings, stats);
 }
@@ -367,7 +367,7 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
   auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
   ASSERT_TRUE(p.ok());
   p.scene.width = 32, p.scene.height = 24;
-  Bvh bvh = build_bvh(p.scene);
+  Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, TracerKind::kPacket);
   constexpr int kSeeds = 16;
   Vec3d mean[2], se[2];

@@ -18,7 +18,7 @@ struct Rendered {
 Rendered render(const std::string& scene_name, RaycastMode mode, TracerKind kind, Isa isa) {
   auto p = load_scene_file(testing::source_path("scenes/" + scene_name));
   EXPECT_TRUE(p.ok());
-  Bvh bvh = build_bvh(p.scene);
+  Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, kind, isa);
   Rendered r;
   r.image = render_raycast(tracer, mode, &r.stats);

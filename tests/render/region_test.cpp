@@ -31,7 +31,7 @@ World course_scene() {
   EXPECT_TRUE(p.ok());
   World w{std::move(p.scene), {}};
   w.scene.width = 72, w.scene.height = 52;
-  w.bvh = build_bvh(w.scene);
+  w.bvh = build_bvh_and_reorder(w.scene);
   return w;
 }
 

@@ -96,7 +96,7 @@ void expect_light_never_blocks_itself(const std::string& kind, std::vector<doubl
       SCOPED_TRACE(kind + " scale " + std::to_string(scale) + " at x " + std::to_string(at.x));
       ParsedScene parsed = light_scene(kind, numbers, scale, at);
       ASSERT_TRUE(parsed.ok()) << to_string(parsed.diagnostics.items.front());
-      Bvh bvh = build_bvh(parsed.scene);
+      Bvh bvh = build_bvh_and_reorder(parsed.scene);
       Shadows s = shadow_rays(parsed.scene, scale, at, 20000);
       expect_every_tracer_says(parsed.scene, bvh, s.rays, s.aims, 0);
       if (kind != "sphere") {
@@ -124,7 +124,7 @@ TEST(ShadowRays, AnOccluderJustInFrontOfTheLightBlocks) {
     shell << "brdf 0.5 0.5 0.5 0 0 0 1 0 0 0 1\nsphere 0 0 0 " << 1.0001 * scale << '\n';
     ParsedScene parsed = light_scene("sphere", {0, 0, 0, 1}, scale, Vec3d(0, 0, 0), shell.str());
     ASSERT_TRUE(parsed.ok()) << to_string(parsed.diagnostics.items.front());
-    Bvh bvh = build_bvh(parsed.scene);
+    Bvh bvh = build_bvh_and_reorder(parsed.scene);
     LightSampler lights(parsed.scene);
     Rng rng(29);
     std::vector<Rayd> rays;

@@ -28,7 +28,7 @@ Loaded load_sphere() {
   auto p = load_scene_file(testing::source_path("scenes/sphere.scn"));
   EXPECT_TRUE(p.ok());
   Loaded r{std::move(p.scene), {}};
-  r.bvh = build_bvh(r.scene);
+  r.bvh = build_bvh_and_reorder(r.scene);
   return r;
 }
 

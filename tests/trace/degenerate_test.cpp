@@ -82,7 +82,7 @@ TEST(DegenerateGeometry, EveryPrimitiveAtOnePoint) {
     add_sphere(s, 1, 2, 3, 1e-3);
     add_triangle(s, {1, 2, 3}, {1, 2, 3}, {1, 2, 3});  // zero area: no surface to hit
   }
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_sane(bvh, 6000);
   expect_agreement(s, bvh, rays_towards({1, 2, 10}, {1, 2, 3}, 2e-3, 64));
 }
@@ -91,7 +91,7 @@ TEST(DegenerateGeometry, HundredThousandCoincidentTriangles) {
   Scene s;
   for (int i = 0; i < 100000; ++i)
     add_triangle(s, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_sane(bvh, 100000);
   // The reference costs 10^5 tests per ray: a few rays suffice, half of them miss.
   expect_agreement(s, bvh, rays_towards({0, 0, 5}, {0, 0, 0}, 1.5, 16));
@@ -115,7 +115,7 @@ TEST(DegenerateGeometry, LargeCoordinatesAgreeWithTheReference) {
   Scene s;
   std::vector<Rayd> rays;
   huge_scene(s, rays, 1e12);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_sane(bvh, 400);
   expect_agreement(s, bvh, rays);
 }
@@ -128,7 +128,7 @@ TEST(DegenerateGeometry, HugeCoordinatesFinishWithoutFalseHits) {
   Scene s;
   std::vector<Rayd> rays;
   huge_scene(s, rays, 1e30);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   expect_sane(bvh, 400);
   int misses = expect_agreement(s, bvh, rays, /*exact=*/false);
   std::printf("at 1e30: %d of %zu rays differ from the reference\n", misses, rays.size());

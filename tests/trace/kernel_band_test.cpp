@@ -326,7 +326,7 @@ void check_ray(const Rayd& ray, const RayVerdict& v, const Hit& ref, float t, ui
 // every path and checks each answer.
 void check_scene(Scene& s, const std::vector<Rayd>& rays, const std::vector<KernelPath>& paths,
                  std::vector<Tally>& tallies) {
-  Bvh bvh = build_bvh(s, {.wide_nodes = true});
+  Bvh bvh = build_bvh_and_reorder(s, {.wide_nodes = true});
   std::vector<RayVerdict> verdicts(rays.size());
   std::vector<Hit> refs(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {

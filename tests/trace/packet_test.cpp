@@ -83,7 +83,7 @@ class SimdTracerTest : public ::testing::TestWithParam<TracerConfig> {
 TEST_P(SimdTracerTest, AgreesWithReferenceOnRandomScenes) {
   for (double offset : {0.0, 1e2, 1e4}) {
     Scene s = random_scene(11, 300, 10, 0.6, {offset, offset, -offset});
-    Bvh bvh = build_bvh(s, kWithWideNodes);
+    Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
     // 10001 rays: the last packet is partly filled.
     Agreement a = compare(s, bvh, tracer(), random_rays(12, 10001, 12, {offset, offset, -offset}));
     EXPECT_GT(a.hits, a.rays / 10);
@@ -97,7 +97,7 @@ TEST_P(SimdTracerTest, AgreesWithReferenceOnShippedScenes) {
   for (const char* name : {"testscene", "sphere", "box", "cylinder", "mesh"}) {
     auto p = load_scene_file(testing::source_path(std::string("scenes/") + name + ".scn"));
     ASSERT_TRUE(p.ok());
-    Bvh bvh = build_bvh(p.scene, kWithWideNodes);
+    Bvh bvh = build_bvh_and_reorder(p.scene, kWithWideNodes);
     // 10^5 rays per scene (issue 3), every ISA.
     Agreement a = compare(p.scene, bvh, tracer(), random_rays(13, 100000, 3));
     EXPECT_EQ(a.disagreements_outside_band, 0) << name;
@@ -110,7 +110,7 @@ TEST_P(SimdTracerTest, AgreesWithReferenceOnShippedScenes) {
 // docs/hard-cases.md N1: invalid rays miss without a NaN, and do not disturb their packet mates.
 TEST_P(SimdTracerTest, InvalidRaysMissAndLeaveOtherLanesAlone) {
   Scene s = random_scene(14, 50, 3);
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(15, 64, 3);
   const double nan = std::nan(""), inf = INFINITY;
   rays[1].o.x = nan;
@@ -137,7 +137,7 @@ TEST_P(SimdTracerTest, BoxFacePlaneAndSignedZeroRays) {
   Scene s;
   s.materials.push_back(Material{});
   s.table<Box>().append(std::array<double, 6>{0, 0, 0, 1, 1, 1}, 0);
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   std::vector<Rayd> rays;
   for (double x : {0.0, 0.5, 1.0})
     for (double y : {0.0, 0.5, 1.0})
@@ -162,7 +162,7 @@ TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
     Scene s;
     Vec3d c(offset, -offset, offset);
     testing::add_closed_uv_sphere(s, 16, 24, 48, c);
-    Bvh bvh = build_bvh(s, kWithWideNodes);
+    Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
     const auto& t = s.table<Triangle>();
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(-0.25, 0.25), w(0, 1);
@@ -195,7 +195,7 @@ TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
 
 TEST_P(SimdTracerTest, OcclusionMatchesReference) {
   Scene s = random_scene(18, 300, 10);
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   std::vector<Rayd> rays = random_rays(19, 5000, 12);
   for (auto& r : rays)
     r.tmax = 4.0;
@@ -217,7 +217,7 @@ TEST_P(SimdTracerTest, OcclusionMatchesReference) {
   EXPECT_EQ(disagreements_outside_band, 0) << band << " rays in the band";
 }
 
-// Occlusion aimed at a primitive (RayStream::end): the aim does not block, what lies before it
+// Occlusion aimed at a primitive (RayStream::aim): the aim does not block, what lies before it
 // does. Each ray is aimed at its first surface A (tmax just past it: clear), at its second B
 // (tmax just past B: blocked by A, clear if B is A's far side) or at nothing (plain occlusion),
 // against the reference on the float ray: blocked when the closest hit is not the aim. Rays
@@ -225,7 +225,7 @@ TEST_P(SimdTracerTest, OcclusionMatchesReference) {
 // SimdTracer::occluded), as are rays in the kernels' error band.
 TEST_P(SimdTracerTest, AimedOcclusionMatchesReference) {
   Scene s = random_scene(18, 300, 10);
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   std::vector<Rayd> rays;
   std::vector<uint32_t> aims;
   std::vector<uint8_t> want;
@@ -256,7 +256,7 @@ TEST_P(SimdTracerTest, AimedOcclusionMatchesReference) {
     ++kinds[kind];
   }
   RayStream stream = RayStream::from(rays);
-  stream.end = aims;
+  stream.aim = aims;
   HitStream hits;
   tracer().occluded(s, bvh, stream, hits);
   for (std::size_t i = 0; i < rays.size(); ++i)
@@ -286,7 +286,7 @@ TEST_P(SimdTracerTest, CoherentAndMixedPacketsAnswerBitForBitAlike) {
   if (!packets()) GTEST_SKIP() << "a single ray has one permutation and octant by construction";
   Scene s = random_scene(23, 300, 10);
   testing::add_closed_uv_sphere(s, 24, 16, 32, {2, -1, 3});
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   std::vector<Rayd> valid = random_rays(25, 20003, 12);
   for (std::size_t i = 0; i < valid.size(); i += 3)
     valid[i].tmax = 6.0;  // short segments too: occlusion needs some misses
@@ -351,7 +351,7 @@ TEST_P(SimdTracerTest, CoherentAndMixedPacketsAnswerBitForBitAlike) {
 // up: on a one-sphere scene the root is the only node, a leaf with one primitive.
 TEST_P(SimdTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
   Scene s = random_scene(7, 40);
-  Bvh bvh = build_bvh(s, kWithWideNodes);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   RayStream stream = RayStream::from(random_rays(8, 1000, 12));
   const SimdTracer tracer = this->tracer();
   HitStream plain, counted;
@@ -367,7 +367,7 @@ TEST_P(SimdTracerTest, CountedTraversalAnswersAlikeAndCountsExactly) {
     EXPECT_LE(c.lanes_active, c.node_tests * uint64_t(c.width));
   }
   Scene one = parse_scene("camera 0 0 5 1\nsphere 0 0 0 1\n", "one.scn").scene;
-  Bvh one_bvh = build_bvh(one, kWithWideNodes);
+  Bvh one_bvh = build_bvh_and_reorder(one, kWithWideNodes);
   std::vector<Rayd> down(37, Rayd{{0, 0, 5}, {0, 0, -1}});
   TraversalCounters c =
       tracer.trace_counted(one, one_bvh, RayStream::from(down), counted, /*any_hit=*/false);
@@ -389,7 +389,7 @@ TEST(SimdTracer, HybridPacketsAnswerAsPacketsAlone) {
   Scene s = random_scene(31, 400, 10);
   testing::add_closed_uv_sphere(s, 24, 16, 32, {2, -1, 3});
   Scene s_wide = s;
-  Bvh binary = build_bvh(s), wide = build_bvh(s_wide, kWithWideNodes);
+  Bvh binary = build_bvh_and_reorder(s), wide = build_bvh_and_reorder(s_wide, kWithWideNodes);
   RayStream stream = RayStream::from(random_rays(32, 6000, 12));
   for (Isa isa : supported_isas()) {
     SimdTracer tracer(isa, Traversal::kPackets);
@@ -419,7 +419,7 @@ TEST(SimdTracer, MixedPacketsTestEachChildOfAWideNodeOnce) {
     text += "sphere " + std::to_string(5 * sign(o, 0)) + " " + std::to_string(5 * sign(o, 1)) +
             " " + std::to_string(5 * sign(o, 2)) + " 1\n";
   Scene s = parse_scene(text, "octants.scn").scene;
-  Bvh bvh = build_bvh(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
+  Bvh bvh = build_bvh_and_reorder(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
   ASSERT_EQ(bvh.wide.nodes.size(), 1u);
   ASSERT_EQ(bvh.wide.nodes[0].arity, 8);
   std::vector<Rayd> rays;
@@ -472,7 +472,7 @@ TEST(SimdTracer, OcclusionPacketsVisitTheFartherChildFirst) {
   // split axis, along which coherent packets order the children.
   tri.append({Vec3f(-19.5f, -19.5f, 5), Vec3f(20.5f, -19.5f, 5), Vec3f(0.5f, 20.5f, 5)},
              {up, up, up}, 0);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   ASSERT_EQ(bvh.nodes[0].axis, 2);
   ASSERT_EQ(bvh.nodes[bvh.nodes[0].index + 1].count, 1);  // the blocker, alone
   for (Vec3d light : {Vec3d(5, 5, 10), Vec3d(0.5, 0.5, 10)}) {
@@ -498,7 +498,7 @@ TEST(SimdTracer, OcclusionPacketsVisitTheFartherChildFirst) {
 // packets' answers, rather than missing everything.
 TEST(SimdTracer, SingleRaysWithoutWideNodesGoAsPackets) {
   Scene s = random_scene(21, 200, 10);
-  Bvh bvh = build_bvh(s);
+  Bvh bvh = build_bvh_and_reorder(s);
   ASSERT_TRUE(bvh.wide.empty());
   RayStream stream = RayStream::from(random_rays(22, 3000, 12));
   HitStream packets, rays;

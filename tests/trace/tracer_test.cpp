@@ -77,7 +77,7 @@ void expect_batch_answers_are_one_by_one(const Scene& scene, const Bvh& bvh, Isa
 TEST(Tracer, BatchSurfacesAndFacingAreTheOneByOneAnswers) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
-  Bvh bvh = build_bvh(parsed.scene);
+  Bvh bvh = build_bvh_and_reorder(parsed.scene);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
     expect_batch_answers_are_one_by_one(parsed.scene, bvh, isa);
@@ -180,7 +180,7 @@ void with_every_tracer(
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
   change(parsed.scene);
-  Bvh bvh = build_bvh(parsed.scene);
+  Bvh bvh = build_bvh_and_reorder(parsed.scene);
   const Scene& scene = parsed.scene;
   std::vector<Rayd> rays = random_rays(scene, bvh, count);
   for (Isa isa : supported_isas()) {
@@ -212,7 +212,7 @@ void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>
     shadow.push_back(c.ray), aims.push_back(c.aim);
     stream.resize(stream.size() + 1);
     stream.set(stream.size() - 1, ray_cast<float>(c.ray));
-    stream.end.push_back(c.aim.bits());
+    stream.aim.push_back(c.aim.bits());
   }
   TraceScratch scratch;
   std::vector<uint8_t> want, got;
@@ -223,7 +223,7 @@ void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>
 
   std::vector<Hit> hits_want, hits_got;
   tracer.closest(shadow, hits_want);
-  scratch.rays = stream;  // the stream is the scratch's own, its end column still set
+  scratch.rays = stream;  // the stream is the scratch's own, its aim column still set
   tracer.closest(scratch.rays, hits_got, stream.size(), scratch);
   ASSERT_EQ(hits_got.size(), hits_want.size());
   int hit = 0;

@@ -35,7 +35,7 @@ Scene spheres_on_diagonal(int octant) {
 TEST(WideOrder, SingleRaysVisitTheNearestChildFirstInEveryOctant) {
   for (int octant = 0; octant < 8; ++octant) {
     Scene s = spheres_on_diagonal(octant);
-    Bvh bvh = build_bvh(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
+    Bvh bvh = build_bvh_and_reorder(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
     ASSERT_EQ(bvh.wide.nodes.size(), 1u);
     ASSERT_EQ(bvh.wide.nodes[0].arity, 8);
     const std::vector<Rayd> rays = {
@@ -56,7 +56,7 @@ TEST(WideOrder, SingleRaysVisitTheNearestChildFirstInEveryOctant) {
 TEST(WideOrder, MixedPacketsVisitTheNearestChildFirstInEveryOctant) {
   for (int octant = 0; octant < 8; ++octant) {
     Scene s = spheres_on_diagonal(octant);
-    Bvh bvh = build_bvh(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
+    Bvh bvh = build_bvh_and_reorder(s, {.max_leaf = 1, .forced_leaf = 1, .wide_nodes = true});
     for (Isa isa : supported_isas()) {
       SimdTracer tracer(isa, Traversal::kPackets);
       const int width = tracer.width();

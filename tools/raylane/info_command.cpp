@@ -152,7 +152,7 @@ int info_command(const std::vector<std::string>& args) {
   print_materials(s);
   print_textures(s);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
-  Bvh bvh = build_bvh(s, render_bvh_config(s));
+  Bvh bvh = build_bvh_and_reorder(s, render_bvh_config(s));
   const BvhStats& b = bvh.stats;
   std::printf(
       "bvh: %u inner nodes, %u leaves, depth %u, SAH cost %.2f, %zu bytes, built in "

@@ -440,7 +440,7 @@ int render_command(const std::vector<std::string>& args) {
 
   // The BVH is built for every tracer: it permutes the tables, so all tracers name the same
   // primitive by the same row (and `--mode id` images compare across tracers).
-  Bvh bvh = build_bvh(*scene, render_bvh_config(*scene));
+  Bvh bvh = build_bvh_and_reorder(*scene, render_bvh_config(*scene));
   Tracer tracer(*scene, bvh, r.tracer, r.isa);
   auto start = std::chrono::steady_clock::now();
   uint64_t rays = 0;

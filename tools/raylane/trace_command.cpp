@@ -136,7 +136,7 @@ int trace_command(const std::vector<std::string>& args) {
   }
   if (r.threads > 0) omp_set_num_threads(r.threads);
 
-  Bvh bvh = build_bvh(*scene, render_bvh_config(*scene));
+  Bvh bvh = build_bvh_and_reorder(*scene, render_bvh_config(*scene));
   SimdTracer tracer(r.isa);
   HitStream hits;
   hits.resize(set->rays.size());

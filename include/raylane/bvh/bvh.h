@@ -117,8 +117,9 @@ inline void for_each_run(const Bvh& bvh, const BvhNode& leaf, F&& f) {
 inline constexpr std::size_t kWideNodesFrom = 4096;
 BvhConfig render_bvh_config(const Scene& scene);
 
-// Builds the BVH over every primitive of `scene` and has the scene permute its tables into
-// leaf order (Scene::permute). A scene without primitives gives an empty BVH.
-Bvh build_bvh(Scene& scene, const BvhConfig& config = {});
+// Builds the BVH over every primitive of `scene` and reorders the scene: its tables are permuted
+// into leaf order (Scene::permute; Bvh::source_rows maps the new rows to the old), so that a
+// leaf's primitives are consecutive rows. A scene without primitives gives an empty BVH.
+Bvh build_bvh_and_reorder(Scene& scene, const BvhConfig& config = {});
 
 }  // namespace raylane

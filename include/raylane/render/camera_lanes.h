@@ -2,7 +2,8 @@
 // steps in its order and precision (the build has -ffp-contract=off), each ray rounded to float
 // as the render's wavefront stores it, so the lanes give Camera::ray_through's rays bit for bit
 // (tests/render/camera_lanes_test.cpp). The kernel lives in the per-ISA units
-// src/render/shade_lanes_<isa>.cpp, picked at run time like the tracer's.
+// src/render/render_lanes_<isa>.cpp, picked at run time through their table
+// (src/render/render_lanes.h).
 #pragma once
 
 #include <cstddef>
@@ -23,13 +24,5 @@ struct PixelPoints {
 // Rays [0, points.size) of `out` (sized by the caller) are the pinhole camera's rays through the
 // points, rounded to float. Contract: !cam.has_lens().
 void pinhole_rays(Isa isa, const Camera& cam, const PixelPoints& points, RayStream& out);
-
-namespace detail {
-// The kernel per instruction set: the rays of the points [0, size rounded down to the lane
-// width); pinhole_rays does the rest one by one.
-std::size_t pinhole_rays_sse42(const Camera& cam, const PixelPoints& points, RayStream& out);
-std::size_t pinhole_rays_avx2(const Camera& cam, const PixelPoints& points, RayStream& out);
-std::size_t pinhole_rays_avx512(const Camera& cam, const PixelPoints& points, RayStream& out);
-}  // namespace detail
 
 }  // namespace raylane

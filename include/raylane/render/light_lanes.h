@@ -5,7 +5,8 @@
 // scalar routine). LightSampler::sample_many routes sphere lights here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
-// src/render/shade_lanes_<isa>.cpp, picked at run time like the tracer's.
+// src/render/render_lanes_<isa>.cpp, picked at run time through their table
+// (src/render/render_lanes.h).
 #pragma once
 
 #include <array>

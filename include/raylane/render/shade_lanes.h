@@ -6,7 +6,8 @@
 // what the lanes do not: index-matched transmission, a Dirac lobe.
 //
 // Baseline code includes this header; the kernels live in per-ISA translation units
-// (src/render/shade_lanes_<isa>.cpp), picked at run time like the tracer's.
+// (src/render/render_lanes_<isa>.cpp), picked at run time through their table
+// (src/render/render_lanes.h).
 #pragma once
 
 #include <array>

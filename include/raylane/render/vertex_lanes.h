@@ -6,7 +6,8 @@
 // and the error analysis of the ray offsets (docs/hard-cases.md §5) is unchanged.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
-// src/render/shade_lanes_<isa>.cpp, picked at run time like the tracer's.
+// src/render/render_lanes_<isa>.cpp, picked at run time through their table
+// (src/render/render_lanes.h).
 #pragma once
 
 #include <array>

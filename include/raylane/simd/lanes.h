@@ -1,7 +1,7 @@
 // The only header that includes xsimd: lane types for float, double and int32 and the few
 // operations the kernels need, for any instruction set A (SSE4.2: 4 lanes, AVX2: 8, AVX-512: 16).
 // Include it only from the per-ISA translation units (src/trace/simd_tracer_*.cpp,
-// src/render/shade_lanes_*.cpp, src/bvh/bin_lanes_*.cpp) and the templates they
+// src/render/render_lanes_*.cpp, src/bvh/bin_lanes_*.cpp) and the templates they
 // instantiate; baseline code talks to them through simd/isa.h or their own headers.
 // Masks: combine them with &, | and ! only. In xsimd 8.1, `^` of two AVX-512 masks and `!=` of
 // two SSE double masks compute their OR (found by tests/trace/tracer_test.cpp).

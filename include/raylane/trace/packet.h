@@ -100,8 +100,8 @@ struct RayPacket {
   F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (docs/hard-cases.md B3)
   F tmin;
   // Occlusion: the primitive each lane is aimed at, whose hit shortens the segment instead of
-  // blocking it (RayStream::end); PrimRef::kInvalidBits for none. Unread by closest hit.
-  simd::Ints<A> end;
+  // blocking it (RayStream::aim); PrimRef::kInvalidBits for none. Unread by closest hit.
+  simd::Ints<A> aim;
   simd::Mask<A> active;  // lanes that hold a valid ray still being traced
   // Set with `active`, from the lanes valid then. `active` only ever loses lanes (any-hit
   // traversal retires the lanes that found a hit), so what held for every active lane then

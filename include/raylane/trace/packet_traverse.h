@@ -183,7 +183,7 @@ inline void traverse_packet_loop(const Scene& scene, const Bvh& bvh, RayPacket<A
         // A lane whose closest hit so far is the primitive it is aimed at has not found a
         // blocker: the kernel shortened its segment to that hit, and it goes on looking
         // before it. (A blocker found first retires the lane at once.)
-        h.found = h.found & !simd::equal<A>(h.prim, r.end);
+        h.found = h.found & !simd::equal<A>(h.prim, r.aim);
         r.active = r.active & !h.found;
         if (simd::none<A>(r.active)) return;
       }

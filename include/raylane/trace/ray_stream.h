@@ -14,11 +14,11 @@ namespace raylane {
 
 struct RayStream {
   std::vector<float> ox, oy, oz, dx, dy, dz, tmin, tmax;
-  // Occlusion only, optional (empty, or one entry per ray): end[i] is the PrimRef bits of the
+  // Occlusion only, optional (empty, or one entry per ray): aim[i] is the PrimRef bits of the
   // primitive ray i is aimed at, a light for a shadow ray (PrimRef::kInvalidBits: none). Its
   // surface ends the ray's segment instead of blocking it (SimdTracer::occluded). resize() and
   // set() leave it alone.
-  std::vector<uint32_t> end;
+  std::vector<uint32_t> aim;
 
   std::size_t size() const { return ox.size(); }
   void resize(std::size_t n) {
@@ -44,29 +44,29 @@ struct RayStream {
   // No rays, no aims (the columns keep their capacity).
   void clear() {
     resize(0);
-    end.clear();
+    aim.clear();
   }
 };
 
 // Appends rays to a stream without a capacity check per column and ray: room for `most` more
-// is made once, and what was not used is trimmed when the appender goes. With `aimed`, the end
-// column grows with the rays (push(ray, end)); without, it is left alone.
+// is made once, and what was not used is trimmed when the appender goes. With `aimed`, the aim
+// column grows with the rays (push(ray, aim)); without, it is left alone.
 class RayAppender {
  public:
   RayAppender(RayStream& s, std::size_t most, bool aimed) : s_(s), next_(s.size()), aimed_(aimed) {
     s_.resize(next_ + most);
-    if (aimed_) s_.end.resize(next_ + most);
+    if (aimed_) s_.aim.resize(next_ + most);
   }
   ~RayAppender() {
     s_.resize(next_);
-    if (aimed_) s_.end.resize(next_);
+    if (aimed_) s_.aim.resize(next_);
   }
   RayAppender(const RayAppender&) = delete;
   RayAppender& operator=(const RayAppender&) = delete;
 
   void push(const Rayf& r) { s_.set(next_++, r); }
-  void push(const Rayf& r, uint32_t end) {
-    s_.end[next_] = end;
+  void push(const Rayf& r, uint32_t aim) {
+    s_.aim[next_] = aim;
     push(r);
   }
 

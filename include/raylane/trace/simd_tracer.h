@@ -34,11 +34,14 @@ std::string_view traversal_name(Traversal t);  // "packets", "rays"
 // width (4, 8, 16), so the packets are the ones one serial pass would make.
 inline constexpr std::size_t kTraceChunk = 256;
 
+namespace detail {
+struct TracerLanes;
+}  // namespace detail
+
 class SimdTracer {
  public:
   // Contract: isa_supported(isa).
-  explicit SimdTracer(Isa isa = best_isa(), Traversal traversal = Traversal::kPackets)
-      : isa_(isa), traversal_(traversal) {}
+  explicit SimdTracer(Isa isa = best_isa(), Traversal traversal = Traversal::kPackets);
   Isa isa() const { return isa_; }
   Traversal traversal() const { return traversal_; }
   int width() const { return isa_width(isa_); }  // rays per packet
@@ -47,9 +50,9 @@ class SimdTracer {
   // components, a zero direction or tmin > tmax miss without traversal (docs/hard-cases.md N1).
   void closest(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
   // Occlusion: hits.prim = 0 where something lies in (tmin, tmax), kInvalidBits elsewhere.
-  // A ray aimed at a primitive (rays.end) is blocked by anything else before that primitive's
+  // A ray aimed at a primitive (rays.aim) is blocked by anything else before that primitive's
   // hit, within (tmin, tmax); the primitive itself does not block it. (Something beyond the
-  // aim's hit may still block it if found first: keep tmax at the aimed-at point.) rays.end is
+  // aim's hit may still block it if found first: keep tmax at the aimed-at point.) rays.aim is
   // empty or one entry per ray (a contract: the caller's to keep, asserted in debug builds);
   // closest hit ignores it.
   void occluded(const Scene& scene, const Bvh& bvh, const RayStream& rays, HitStream& hits) const;
@@ -76,27 +79,8 @@ class SimdTracer {
   void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,
              std::size_t end, HitStream& hits, bool any_hit, TraversalCounters* counters) const;
   Isa isa_;
+  const detail::TracerLanes* lanes_;  // isa_'s kernels (src/trace/tracer_lanes.h)
   Traversal traversal_;
 };
-
-namespace detail {
-// Defined in src/trace/simd_tracer_<isa>.cpp, each compiled for its instruction set. Trace
-// rays [begin, end) of the stream; count what the traversal does into `counters` unless null.
-void trace_sse42(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                 bool any_hit, Traversal traversal, TraversalCounters* counters);
-void trace_avx2(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                bool any_hit, Traversal traversal, TraversalCounters* counters);
-void trace_avx512(const Scene&, const Bvh&, const RayStream&, std::size_t, std::size_t, HitStream&,
-                  bool any_hit, Traversal traversal, TraversalCounters* counters);
-void surfaces_sse42(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
-void surfaces_avx2(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
-void surfaces_avx512(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>, Hit*);
-void surface_columns_sse42(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
-                           const uint32_t*, const Hit*, const SurfaceColumns&);
-void surface_columns_avx2(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
-                          const uint32_t*, const Hit*, const SurfaceColumns&);
-void surface_columns_avx512(const Scene&, const RayStream&, PrimTag, std::span<const uint32_t>,
-                            const uint32_t*, const Hit*, const SurfaceColumns&);
-}  // namespace detail
 
 }  // namespace raylane

@@ -72,7 +72,7 @@ class Tracer {
   // closest() traces them. Contract: `aims` is empty or holds one entry per ray.
   void occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>& aims,
                 std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
-  // occluded() for float rays, each aimed at rays.end[i] (rays.end empty: no aims).
+  // occluded() for float rays, each aimed at rays.aim[i] (rays.aim empty: no aims).
   void occluded(const RayStream& rays, std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
 
   const Scene& scene() const { return scene_; }

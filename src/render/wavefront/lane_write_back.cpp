@@ -24,7 +24,7 @@ struct Column3View {
 std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
   const std::size_t at = s.size();
   s.resize(at + rows);
-  if (aimed) s.end.resize(at + rows);
+  if (aimed) s.aim.resize(at + rows);
   return at;
 }
 
@@ -53,13 +53,13 @@ void write_lane_shadow_rays(TileContext& ctx) {
   f.add(lv.shade.light_wi[1].data(), s.dy.data() + at);
   f.add(lv.shade.light_wi[2].data(), s.dz.data() + at);
   f.add(vb.shadow_tmax.data(), s.tmax.data() + at);
-  f.add(reinterpret_cast<const uint32_t*>(lv.light_queries.light.data()), s.end.data() + at);
+  f.add(reinterpret_cast<const uint32_t*>(lv.light_queries.light.data()), s.aim.data() + at);
   f.add(lv.path.data(), q.path.data() + queued);
   for (std::size_t k = 0; k < 3; ++k)
     f.add(vb.shadow_c[k].data(), q.contribution[k].data() + queued);
   const std::size_t kept = filter_rows(ctx.lanes.isa, f, n);
   std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
-  s.resize(at + kept), s.end.resize(at + kept);
+  s.resize(at + kept), s.aim.resize(at + kept);
   q.resize_queries(queued + kept);
 }
 

@@ -40,7 +40,7 @@ struct RayQueue {
   void swap(RayQueue& other) { path.swap(other.path), std::swap(rays, other.rays); }
 };
 
-// Shadow rays, each aimed at its light (the stream's end column), and what each adds to its
+// Shadow rays, each aimed at its light (the stream's aim column), and what each adds to its
 // path if the light is the first thing it meets: contribution[.][q] to path[q]'s radiance.
 struct ShadowQueue {
   RayStream rays;

@@ -1,0 +1,46 @@
+// The render's lane kernels, compiled once per instruction set (render_lanes_sse42.cpp,
+// render_lanes_avx2.cpp, render_lanes_avx512.cpp, each from the same *_impl.h sources) into one
+// table of entry points each: the BSDF, the Sobol groups, the sphere lights' cones, what follows
+// the BSDF, the row filter and the pinhole's camera rays. The public functions (shade_lanes,
+// sobol_groups, sample_cones, finish_vertices, filter_rows, pinhole_rays) look their kernel up
+// here, the one place an instruction set picks one (as bvh/build_lanes.h does for the builder).
+// This header has no xsimd.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "raylane/render/camera_lanes.h"
+#include "raylane/render/light_lanes.h"
+#include "raylane/render/shade_lanes.h"
+#include "raylane/render/sobol.h"
+#include "raylane/render/vertex_lanes.h"
+#include "raylane/simd/isa.h"
+
+namespace raylane::detail {
+
+struct RenderLanes {
+  // shade_lanes (render/shade_lanes.h).
+  void (*shade)(const LaneMaterials& materials, ShadeBatch& batch);
+  // sobol_groups (render/sobol.h) for the bit-reversed index, components `which` (0 and 1
+  // among them), and their numbers into the callers' columns.
+  void (*sobol_groups)(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
+                       const SobolNumbers& numbers);
+  // sample_cones (render/light_lanes.h).
+  void (*sample_cones)(ConeBatch& batch);
+  // finish_vertices (render/vertex_lanes.h).
+  void (*finish_vertices)(const VertexRules& rules, const ShadeBatch& bsdf,
+                          const LightQueries* lights, VertexBatch& batch);
+  // filter_rows (render/vertex_lanes.h): returns the rows kept.
+  std::size_t (*filter_rows)(const RowFilter& filter, std::size_t rows);
+  // pinhole_rays (render/camera_lanes.h) for the points [0, the count rounded down to the lane
+  // width): returns that count.
+  std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);
+};
+
+extern const RenderLanes kRenderLanesSse42, kRenderLanesAvx2, kRenderLanesAvx512;
+
+// The kernels for `isa`, which the CPU must support (isa_supported).
+const RenderLanes& render_lanes(Isa isa);
+
+}  // namespace raylane::detail
