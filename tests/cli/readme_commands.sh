@@ -6,7 +6,7 @@
 # verdict) and print no usage message, and every image a render names on stdout must exist.
 #
 # What a test cannot run as written runs smaller, and the log says how: renders at 48×36 and
-# 2 spp (3 when resuming) with --time 1; the benchmarks and the convergence report (minutes
+# 2 spp (3 when resuming) with --time 1 and --save-at 1,2; the benchmarks and the convergence report (minutes
 # each) show their --help or list their benchmarks. Lines that need a display or mpirun are
 # left to View.EndToEndUnderXvfb and Mpi.EndToEnd, and `bash tools/dev` is the quick start this
 # test runs after. HOME is a folder of the test's, so the install block installs there.
@@ -40,7 +40,7 @@ smaller() {
     "build/raylane render"* | "build/raylane scenes/"* | "raylane render"*)
       local spp=2
       [[ $line == *--resume* ]] && spp=3
-      echo "$line --set 'screen 48 36'" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/" ;;
+      echo "$line --set 'screen 48 36'" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/; s/--save-at [0-9,]+/--save-at 1,2/" ;;
     *) echo "$line" ;;
   esac
 }

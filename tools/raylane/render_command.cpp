@@ -13,6 +13,7 @@
 #include "cluster.h"
 #include "commands.h"
 #include "file_roles.h"
+#include "pass_series.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_fallback.h"
@@ -26,12 +27,10 @@ namespace raylane::cli {
 
 namespace {
 
-constexpr int kMaxSpp = 1 << 24;
-
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
     "spp",        "integrator", "sampler",          "shading", "seed", "max-depth", "time",
-    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance"};
+    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance",   "save-at"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -188,6 +187,11 @@ const std::vector<RenderOption>& render_options() {
          r.checkpoints.resume = v;
          return ok_status();
        }},
+      {{"save-at", 0, "LIST", false,
+        "path: also write the image after each listed pass (e.g. 1,4,16,64),\n"
+        "as STEM.N.EXT beside each output: the file --spp N writes, bit for bit",
+        "none"},
+       set_save_at},
       {{"aov", 0, "LIST", false,
         cat("path: also sum ", kAovNames.list(),
             " of the first surface\n"
@@ -317,6 +321,7 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   }
   // A time budget without --spp: render until it is spent.
   if (r.path_settings.time_limit > 0 && !r.spp_given) r.path_settings.spp = kMaxSpp;
+  if (Status s = check_save_at(r); !s) return Error{s.error()};
   if (!r.path)
     for (std::string_view name : kPathOnlyOptions)
       if (parsed->has(std::string(name)))
@@ -358,6 +363,8 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
     outputs.push_back({out, "the output"});
   for (const auto& [out, aov] : r.aov_outputs)
     outputs.push_back({out, "an --aov output"});
+  for (const std::string& out : series_outputs(r))
+    outputs.push_back({out, "a --save-at output"});
   if (c.checkpoint) outputs.push_back({*c.checkpoint, "the --checkpoint film"});
   if (r.stats_json) outputs.push_back({*r.stats_json, "the --stats-json file"});
   return check_outputs_apart(inputs, outputs);
@@ -384,6 +391,8 @@ bool outputs_writable(const RenderRequest& r) {
   for (const auto& [out, aov] : r.aov_outputs)
     all.push_back(out);
   if (r.stats_json) all.push_back(*r.stats_json);
+  for (const std::string& out : series_outputs(r))
+    all.push_back(out);
   for (const auto& out : all) {
     if (Status s = check_writable(out); !s) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
@@ -446,7 +455,7 @@ int render_command(const std::vector<std::string>& args) {
   int spp = 1;
   PathStats path_stats;
   PathOutcome balance;  // the MPI job's wait and tile moves (--stats)
-  bool interrupted_run = false;
+  bool interrupted_run = false, series_failed = false;
   if (r.path) {
     PathOutcome run = run_path(r, tracer, cluster);
     if (run.status != kExitOk) return run.status;
@@ -458,6 +467,7 @@ int render_command(const std::vector<std::string>& args) {
     balance.wait_seconds = run.wait_seconds, balance.busy_seconds = run.busy_seconds;
     balance.tiles_moved = run.tiles_moved, balance.balances = run.balances;
     interrupted_run = run.interrupted;
+    series_failed = run.series_failed;
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
@@ -482,7 +492,7 @@ int render_command(const std::vector<std::string>& args) {
   if (r.path)
     for (std::string& line : path_metadata(r.path_settings))
       wopts.metadata.push_back(std::move(line));
-  int status = kExitOk;
+  int status = series_failed ? kExitFailure : kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
   // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.

@@ -41,6 +41,7 @@ struct RenderRequest {
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;
+  std::vector<int> save_at;  // --save-at: passes after which the image is written too, sorted
   TileBalance balance = TileBalance::kAuto;  // --balance
   bool print_phases = false;                 // --stats
   std::optional<std::string> stats_json;     // --stats-json FILE
@@ -55,6 +56,7 @@ inline std::vector<std::string> path_metadata(const PathSettings& p) {
 }
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+constexpr int kMaxSpp = 1 << 24;
 
 // A path render's results on rank 0 (other ranks hold their own share's only).
 struct PathOutcome {
@@ -65,10 +67,11 @@ struct PathOutcome {
   int status = 0;            // kExitUsage when the film to resume cannot be used
   bool interrupted = false;  // Ctrl-C on any process stopped it
   // An MPI job's balance, summed over its processes (printed by --stats).
-  double wait_seconds = 0;  // waiting in the agreement after each pass for the slowest process
-  double busy_seconds = 0;  // rendering passes
-  int tiles_moved = 0;      // tiles dealt to another process, over all the times
-  int balances = 0;         // times the tiles were dealt again (--balance)
+  double wait_seconds = 0;     // waiting in the agreement after each pass for the slowest process
+  double busy_seconds = 0;     // rendering passes
+  int tiles_moved = 0;         // tiles dealt to another process, over all the times
+  int balances = 0;            // times the tiles were dealt again (--balance)
+  bool series_failed = false;  // a --save-at image went to a rescue file or nowhere
 };
 
 // Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles
