@@ -5,28 +5,22 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
+#include "support/cli_run.h"
 #include "support/paths.h"
 
 namespace raylane {
 namespace {
 
-using testing::cli_path;
+using testing::read_file;
 using testing::source_path;
 using testing::temp_dir;
 
 namespace fs = std::filesystem;
 
+// The exit status of `raylane ARGS`, run in the working directory.
 int run_status(const std::string& args) {
-  std::string cmd = "'" + cli_path() + "' " + args + " >/dev/null 2>&1";
-  int st = std::system(cmd.c_str());
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+  return testing::run_cli(args, ".").status;
 }
 
 // Byte for byte, without printing images on a failure.

@@ -132,20 +132,26 @@ void PassSeries::write(const Film& film, int passes) {
   for (std::size_t i = 0; i < files.size(); ++i) {
     const std::string& out = files[i].first;
     const Image& file_image = i < colour.size() ? image : files[i].second;
-    auto saved = write_image_or_fallback(out, file_image, is_exr(out) ? exr_wopts : wopts);
-    if (!saved) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
-      failed_ = true;
-      continue;
-    }
-    if (saved->is_fallback) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
-                   saved->first_error.c_str(), saved->path.c_str());
-      failed_ = true;
-    }
-    std::printf("%s\n", saved->path.c_str());
-    std::fflush(stdout);
+    write_render_output(out, file_image, is_exr(out) ? exr_wopts : wopts, failed_);
   }
+  std::fflush(stdout);
+}
+
+std::optional<std::string> write_render_output(const std::string& out, const Image& image,
+                                               const WriteOptions& options, bool& failed) {
+  auto saved = write_image_or_fallback(out, image, options);
+  if (!saved) {
+    std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
+    failed = true;
+    return std::nullopt;
+  }
+  if (saved->is_fallback) {
+    std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
+                 saved->first_error.c_str(), saved->path.c_str());
+    failed = true;
+  }
+  std::printf("%s\n", saved->path.c_str());
+  return saved->path;
 }
 
 }  // namespace raylane::cli

@@ -16,7 +16,6 @@
 #include "pass_series.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
-#include "raylane/image/write_fallback.h"
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -492,7 +491,7 @@ int render_command(const std::vector<std::string>& args) {
   if (r.path)
     for (std::string& line : path_metadata(r.path_settings))
       wopts.metadata.push_back(std::move(line));
-  int status = series_failed ? kExitFailure : kExitOk;
+  int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
   // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
@@ -507,21 +506,11 @@ int render_command(const std::vector<std::string>& args) {
     files.emplace_back(out, &aov_image);
   WriteOptions exr_wopts = wopts;
   exr_wopts.exr_layers = std::move(exr_layers);
-  for (const auto& [out, file_image] : files) {
-    auto saved = write_image_or_fallback(out, *file_image, is_exr(out) ? exr_wopts : wopts);
-    if (!saved) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
-      status = kExitFailure;
-      continue;
-    }
-    if (saved->is_fallback) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
-                   saved->first_error.c_str(), saved->path.c_str());
-      status = kExitFailure;
-    }
-    std::printf("%s\n", saved->path.c_str());
-    written.push_back(saved->path);
-  }
+  bool failed = series_failed;
+  for (const auto& [out, file_image] : files)
+    if (auto path = write_render_output(out, *file_image, is_exr(out) ? exr_wopts : wopts, failed))
+      written.push_back(*path);
+  if (failed) status = kExitFailure;
   if (!r.quiet) {
     std::fprintf(stderr,
                  "rendered %ux%u (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "

@@ -11,6 +11,7 @@
 #include "raylane/core/enum_names.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
+#include "raylane/image/write_image.h"
 #include "raylane/render/aov.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -81,6 +82,13 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
 // An error naming the bytes the film and the images of this render need, unless this process
 // can have them (render_memory.cpp); checked before anything is rendered.
 Status render_fits_in_memory(const RenderRequest& r, const Scene& scene, bool distributed);
+
+// Writes one output of a render, or (the folder removed, the disk full) a rescue file instead
+// (image/write_fallback.h); prints the path written on stdout and any failure on stderr.
+// Returns the path written, or nothing; `failed` becomes true unless `out` itself was written
+// (pass_series.cpp).
+std::optional<std::string> write_render_output(const std::string& out, const Image& image,
+                                               const WriteOptions& options, bool& failed);
 
 // --stats under mpirun: how long the processes waited for the slowest after each pass, and
 // the tiles moved to even them out.
