@@ -16,13 +16,13 @@ foreach(line IN LISTS lines)
     set(target "${CMAKE_MATCH_1}")
     set(walled FALSE)
     if((target MATCHES "/src/(scene|render|image)/[^/]+\\.o$" AND
-        NOT target MATCHES "/src/render/shade_lanes_(sse42|avx2|avx512)\\.cpp\\.o$") OR
+        NOT target MATCHES "/src/render/render_lanes_(sse42|avx2|avx512)\\.cpp\\.o$") OR
        target MATCHES "raylane\\.dir/tools/raylane/[^/]+\\.o$")
       set(walled TRUE)
       math(EXPR walled_objects "${walled_objects} + 1")
     endif()
     set(isa_object FALSE)
-    if(target MATCHES "/src/(trace/simd_tracer|render/shade_lanes)_(sse42|avx2|avx512)\\.cpp\\.o$" OR
+    if(target MATCHES "/src/(trace/simd_tracer|render/render_lanes)_(sse42|avx2|avx512)\\.cpp\\.o$" OR
      target MATCHES "/src/bvh/bin_lanes_(sse42|avx2|avx512)\\.cpp\\.o$")
       set(isa_object TRUE)
       set(counted FALSE)

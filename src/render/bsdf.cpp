@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "raylane/render/microfacet.h"
 #include "raylane/render/sampling.h"
 
 namespace raylane {
@@ -26,7 +27,8 @@ double g1(double cos_v, double cos_vm, double alpha) {
 }  // namespace
 
 Bsdf::Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo)
-    : kd_(m.kd), ks_(m.ks), alpha_(m.alpha), wo_(wo) {
+    : kd_(m.kd), ks_(m.ks), alpha_(m.alpha), dist_(m.microfacet), wo_(wo) {
+  if (dist_ != Microfacet::kPhong) alpha_g_ = microfacet_alpha_g(alpha_);
   double c = dot(ns, wo);
   if (c == 0 || !std::isfinite(c)) return;  // sum_ = 0: black
   bool entering = c > 0;
@@ -48,7 +50,39 @@ Vec3d Bsdf::schlick(double cos_om) const {
 }
 
 double Bsdf::smith_g(const Vec3d& wi, const Vec3d& m) const {
-  return g1(dot(wi, n_), dot(wi, m), alpha_) * g1(cos_o_, dot(wo_, m), alpha_);
+  double ci = dot(wi, n_), im = dot(wi, m), om = dot(wo_, m);
+  switch (dist_) {
+    case Microfacet::kGgx:
+      return ggx_g1(ci, im, alpha_g_) * ggx_g1(cos_o_, om, alpha_g_);
+    case Microfacet::kBeckman:
+      return beckman_g1(ci, im, alpha_g_) * beckman_g1(cos_o_, om, alpha_g_);
+    case Microfacet::kPhong:
+      break;
+  }
+  return g1(ci, im, alpha_) * g1(cos_o_, om, alpha_);
+}
+
+void Bsdf::normal_density(const Vec3d& m, double& d, double& pm) const {
+  if (dist_ == Microfacet::kPhong) {
+    double cp = cos_power(m);
+    d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
+    return;
+  }
+  double c = dot(m, n_);
+  d = dist_ == Microfacet::kGgx ? ggx_d(c, alpha_g_) : beckman_d(c, alpha_g_);
+  pm = c > 0 ? d * c : 0.0;  // Walter eq. 24: p(m) = D(m)·|m·n|
+}
+
+Vec3d Bsdf::sample_normal(double u1, double u2) const {
+  switch (dist_) {
+    case Microfacet::kGgx:
+      return sample_ggx_normal(u1, u2, alpha_g_);
+    case Microfacet::kBeckman:
+      return sample_beckman_normal(u1, u2, alpha_g_);
+    case Microfacet::kPhong:
+      break;
+  }
+  return sample_phong_normal(u1, u2, alpha_);
 }
 
 // At η = 1 a refracted ray leaves along −wo through every microfacet: the transmission lobe
@@ -66,10 +100,13 @@ bool Bsdf::index_matched() const {
 // regular estimator eval/pdf as η → 1 (its 1/den² factors cancel): (1 − F)·G·(wo·m)/cos θo ·
 // D/p(m) / p_t, with D/p(m) = (α+2)/(α+1) for the course's warp. Its expectation over m is the
 // transmitted fraction: at normal incidence with F = 0 exactly 1 (E[cos θm] = (α+1)/(α+2)).
+// GGX's and Beckman's warps have p(m) = D(m)·cos θm, so D/p(m) = 1/cos θm there.
 BsdfSample Bsdf::sample_index_matched(const Vec3d& m, double om) const {
   BsdfSample s;
   s.wi = -wo_;
-  double weight = smith_g(s.wi, m) * om / cos_o_ * (alpha_ + 2) / (alpha_ + 1) / pt_;
+  double weight = smith_g(s.wi, m) * om / cos_o_;
+  weight = dist_ == Microfacet::kPhong ? weight * (alpha_ + 2) / (alpha_ + 1) / pt_
+                                       : weight / dot(m, n_) / pt_;
   s.value = (Vec3d(1, 1, 1) - schlick(om)) * weight;
   s.pdf = 1;
   s.specular = true;
@@ -116,8 +153,8 @@ BsdfEval Bsdf::evaluate(const Vec3d& wi) const {
   if (!(om > 0 && im < 0) || !refracts(om)) return out;
   double den = eta_o_ * om + eta_i_ * im;
   if (den == 0) return out;
-  double cp = cos_power(m);
-  double d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
+  double d, pm;
+  normal_density(m, d, pm);
   if (d > 0) {
     double s = d * smith_g(wi, m) * std::abs(im) * om * eta_o_ * eta_o_ / (cos_o_ * den * den);
     out.f = (Vec3d(1, 1, 1) - schlick(om)) * s;
@@ -132,8 +169,8 @@ BsdfEval Bsdf::evaluate_reflection(const Vec3d& wi, double cos_i) const {
   out.pdf = pd_ * cos_i / kPi;
   if (pr_ == 0 && pt_ == 0) return out;
   Vec3d m = normalize(wi + wo_);
-  double cp = cos_power(m);
-  double d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
+  double d, pm;
+  normal_density(m, d, pm);
   bool reflects_transmission = pt_ > 0 && !refracts(dot(wo_, m));  // total internal reflection
   if (pr_ > 0) out.f += reflection(m, wi, d, 1);
   if (reflects_transmission) out.f += reflection(m, wi, d, -1);
@@ -151,7 +188,7 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
   if (u0 < pd_) {
     s.wi = frame.to_world(sample_cosine_hemisphere(u1, u2));
   } else {
-    Vec3d m = frame.to_world(sample_phong_normal(u1, u2, alpha_));
+    Vec3d m = frame.to_world(sample_normal(u1, u2));
     double om = dot(wo_, m);
     if (!(om > 0)) return s;
     s.wi = reflect(wo_, m);

@@ -203,6 +203,7 @@ void hash_scene(Hasher& h, const Scene& scene) {
     h.value(m.kd), h.value(m.ks), h.value(m.kt), h.value(m.alpha), h.value(m.ior);
     h.value(m.emission), h.value(m.is_light);
     if (m.texture >= 0) h.value(m.texture);  // only when textured: older films still fit
+    if (m.microfacet != Microfacet::kPhong) h.value(m.microfacet);  // likewise
   }
   if (const auto& env = scene.environment) {
     h.value(env->scale), h.value(env->rotation), h.value(env->image.width);

@@ -38,6 +38,9 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     d_scale.push_back(float((a + 2) / (2 * kPi)));
     pm_scale.push_back(float((a + 1) / (2 * kPi)));
     g1_scale.push_back(float(std::sqrt(0.5 * a + 1)));
+    microfacet.push_back(float(int(m.microfacet)));
+    alpha_g2.push_back(float(2 / (a + 2)));
+    if (m.microfacet != Microfacet::kPhong) all_phong = false;
     // Textured Kd varies per hit: the double Bsdf shades it (issue 15 left lanes for later).
     in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
     if (in_lanes.back() && (pr.back() > 0 || pt.back() > 0)) lobe_unread = false;

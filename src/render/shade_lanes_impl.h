@@ -7,6 +7,7 @@
 
 #include "raylane/render/shade_lanes.h"
 #include "raylane/simd/lane_math.h"
+#include "render/microfacet_lanes_impl.h"
 
 namespace raylane::detail {
 
@@ -86,6 +87,9 @@ struct LaneBsdf {
   F<A> kd[3], ks[3], pd, pr, pt, alpha, d_scale, pm_scale, g1_scale;
   V3<A> n, wo;
   F<A> cos_o, eta_o, eta_i;
+  // GGX and Beckman lanes (render/microfacet.h), gathered only where the scene has them.
+  F<A> microfacet, alpha_g2;
+  bool phong_only_ = true;
   M<A> live;  // dot(ns, wo) is finite and not 0 (the scalar Bsdf's black() otherwise)
   bool diffuse_only_, all_diffuse_;
 
@@ -108,6 +112,8 @@ struct LaneBsdf {
         ks[k] = gather(m.ks[k]);
       alpha = gather(m.alpha), d_scale = gather(m.d_scale), pm_scale = gather(m.pm_scale);
       g1_scale = gather(m.g1_scale), ior = gather(m.ior);
+      phong_only_ = m.all_phong;
+      if (!phong_only_) microfacet = gather(m.microfacet), alpha_g2 = gather(m.alpha_g2);
     }
     V3<A> ns = load3<A>(b.n, i);
     wo = load3<A>(b.wo, i);
@@ -129,6 +135,18 @@ struct LaneBsdf {
     F<A> c = dot(m, n);
     return simd::select(c > F<A>(0.0f), simd::pow_unit<A>(xsimd::max(c, F<A>(0.0f)), alpha),
                         F<A>(0.0f));
+  }
+
+  // GGX's and Beckman's D, p(m) and G in their lanes, the Phong values kept in the others.
+  void other_microfacets(const V3<A>& m, const F<A>& cos_i, const F<A>& om, const F<A>& im, F<A>& d,
+                         F<A>& pm, F<A>& g) const {
+    const M<A> phong = microfacet == F<A>(0.0f), ggx = microfacet == F<A>(1.0f);
+    F<A> dm, pmm;
+    microfacet_lanes::density<A>(ggx, dot(m, n), alpha_g2, dm, pmm);
+    d = simd::select(phong, d, dm), pm = simd::select(phong, pm, pmm);
+    F<A> g_ggx = microfacet_lanes::ggx_g1<A>(cos_i, im, alpha_g2) *
+                 microfacet_lanes::ggx_g1<A>(cos_o, om, alpha_g2);
+    g = simd::select(ggx, g_ggx, g);
   }
 
   LaneEval<A> evaluate(const V3<A>& wi) const;
@@ -162,6 +180,7 @@ LaneEval<A> LaneBsdf<A>::evaluate(const V3<A>& wi) const {
   F<A> d = d_scale * cp, pm = pm_scale * cp;
   F<A> om = dot(wo, m), im = dot(wi, m);
   F<A> g = g1<A>(cos_i, im, g1_scale) * g1<A>(cos_o, om, g1_scale);
+  if (!phong_only_) other_microfacets(m, cos_i, om, im, d, pm, g);
   F<A> x = one - xsimd::min(one, xsimd::abs(om)), x2 = x * x, c5 = x2 * x2 * x;  // Schlick
   M<A> refr = refracts(om);
   // Reflection (Bsdf::evaluate_reflection): diffuse, the reflection lobe with F, and what
@@ -226,6 +245,9 @@ V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& 
   simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
   M<A> diffuse = u0 < pd;
   F<A> cos_m = simd::pow_unit<A>(u1, one / (alpha + one));
+  if (!phong_only_)
+    cos_m = simd::select(microfacet == F<A>(0.0f), cos_m,
+                         microfacet_lanes::sample_cos<A>(microfacet == F<A>(1.0f), u1, alpha_g2));
   F<A> sin_t =
       simd::select(diffuse, xsimd::sqrt(u1), xsimd::sqrt(xsimd::max(zero, one - cos_m * cos_m)));
   F<A> cos_t = simd::select(diffuse, xsimd::sqrt(xsimd::max(zero, one - u1)), cos_m);

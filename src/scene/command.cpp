@@ -132,7 +132,7 @@ bool brdf_command(Scene& s, const Line& line, ParseState& state) {
     m.kt = vec3f(*v, 7);
     m.ior = float((*v)[10]);
   }
-  add_material(s, m, state);
+  state.brdf_material = add_material(s, m, state);
   return true;
 }
 
@@ -188,6 +188,7 @@ bool primitive(Scene& s, const Line& line, ParseState& state) {
 bool mesh_command(Scene& s, const Line& line, ParseState& state);
 bool texture_command(Scene& s, const Line& line, ParseState& state);
 bool environment_command(Scene& s, const Line& line, ParseState& state);
+bool microfacet_command(Scene& s, const Line& line, ParseState& state);
 
 bool Scene::command(const Line& line, ParseState& state) {
   std::string_view word = line.tokens[0].text;
@@ -200,6 +201,7 @@ bool Scene::command(const Line& line, ParseState& state) {
   if (word == "mesh") return mesh_command(*this, line, state);
   if (word == "texture") return texture_command(*this, line, state);
   if (word == "environment") return environment_command(*this, line, state);
+  if (word == "microfacet") return microfacet_command(*this, line, state);
   bool handled = false, accepted = false;
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);

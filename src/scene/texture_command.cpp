@@ -171,9 +171,12 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
 }
 
 void Scene::resolve_textures() {
-  for (Material& m : materials)
+  for (Material& m : materials) {
     if (m.mesh_copy_of >= 0 && materials[m.mesh_copy_of].texture >= 0)
       m.texture = materials[m.mesh_copy_of].texture;
+    // A `microfacet` line after the mesh line applies to its copies too.
+    if (m.mesh_copy_of >= 0) m.microfacet = materials[m.mesh_copy_of].microfacet;
+  }
   TriangleTable& tri = table<Triangle>();
   if (!tri.has_uv()) return;
   for (uint32_t mat : tri.material)

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `mpirun -np R raylane render` end to end (docs/cluster.md): the same file, byte for byte, as a
 # plain run for R = 1..4 and 1 or 2 threads; --time and a stop request end every process after
-# the same pass; tiles dealt again by cost keep the image; a checkpoint written at R = 3
-# resumes at R = 2 to the uninterrupted image; a --region is shared and resumed likewise;
+# the same pass; tiles dealt again by cost keep the image; --save-at writes the plain images; a
+# checkpoint written at R = 3 resumes at R = 2 to the uninterrupted image; a --region is shared
+# and resumed likewise;
 # a scene error is printed once and the job exits 2; a killed process ends the job without a
 # hang; Ctrl-C writes the image once. Usage: mpi_e2e.sh RAYLANE SCENE WORKDIR MPIEXEC [PREFLAGS...]
 set -uo pipefail
@@ -59,6 +60,17 @@ mpi 3 "$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 3 --threads 
 mpi 2 "$raylane" render "$scene" "${small[@]}" "${region[@]}" --spp 6 --threads 1 -q \
   --resume region.film -o region-resumed.pfm > /dev/null 2>&1 || fail "region resume: exit $?"
 cmp -s region.pfm region-resumed.pfm || fail "region resumed at R = 2: not the uninterrupted image"
+
+# --save-at: each pass of the series is assembled from every process (tiles dealt again after
+# passes 2 and 4) and written once, by rank 0, as the plain run stopped at that pass writes it.
+mpi 3 "$raylane" render "$scene" "${small[@]}" --spp 6 --threads 1 --balance always -q \
+  --save-at 1,3,6 -o series.pfm > series.out 2>&1 || fail "--save-at: exit $?"
+for n in 1 3; do
+  "$raylane" render "$scene" "${small[@]}" --spp "$n" -q -o "plain$n.pfm" > /dev/null
+  cmp -s "plain$n.pfm" "series.$n.pfm" || fail "--save-at: series.$n.pfm is not the plain image"
+done
+cmp -s plain.pfm series.6.pfm || fail "--save-at: series.6.pfm is not the plain image"
+[ "$(grep -c 'series.3.pfm' series.out)" = 1 ] || fail "--save-at: series.3.pfm not named once"
 
 # --time: rank 0's clock decides for everyone, so the image is a plain run's at that spp.
 mpi 3 "$raylane" render "$scene" "${small[@]}" --time 1 --threads 1 -o timed.pfm \

@@ -7,7 +7,7 @@
 #
 # What a test cannot run as written runs smaller, and the log says how: renders at 48×36 (a
 # --region line at the scene's size, which its rectangle needs) and 2 spp (3 when resuming)
-# with --time 1; the benchmarks and the convergence report (minutes
+# with --time 1 and --save-at 1,2; the benchmarks and the convergence report (minutes
 # each) show their --help or list their benchmarks. Lines that need a display or mpirun are
 # left to View.EndToEndUnderXvfb and Mpi.EndToEnd, and `bash tools/dev` is the quick start this
 # test runs after. HOME is a folder of the test's, so the install block installs there.
@@ -42,7 +42,7 @@ smaller() {
       local spp=2 screen=" --set 'screen 48 36'"
       [[ $line == *--resume* ]] && spp=3
       [[ $line == *--region* ]] && screen=""  # its rectangle is in the scene's own screen
-      echo "$line$screen" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/" ;;
+      echo "$line$screen" | sed -E "s/--spp [0-9]+/--spp $spp/; s/--time [0-9]+/--time 1/; s/--save-at [0-9,]+/--save-at 1,2/" ;;
     *) echo "$line" ;;
   esac
 }

@@ -17,6 +17,10 @@ void check(const raylane::ParsedScene& parsed) {
   if (!s.camera || s.width == 0 || s.height == 0 ||
       uint64_t(s.width) * s.height > raylane::kMaxImagePixels)
     std::abort();
+  for (const raylane::Material& m : s.materials)  // a distribution the renderer knows; lights none
+    if (m.microfacet > raylane::Microfacet::kBeckman ||
+        (m.is_light && m.microfacet != raylane::Microfacet::kPhong))
+      std::abort();
 }
 
 }  // namespace

@@ -64,6 +64,22 @@ TEST(MeshTextures, TheDuckShowsItsOwnTexture) {
   EXPECT_LE(mean.x, 1.0);           // Kd 1 times texels in [0, 1]
 }
 
+// A mesh's own texture makes a copy of the mesh line's material; a `microfacet` line after the
+// mesh line still reaches that copy (docs/scene-language.md, "microfacet": the material's shapes
+// before and after the line).
+TEST(MeshTextures, TheTexturedCopyTakesAMicrofacetLineAfterTheMesh) {
+  if (!fs::exists(kDuck)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  auto p = testing::parse(std::string(testing::kCameraLine) + "screen 8 8\nbrdf 1 1 1 0 0 0 0\n" +
+                          "mesh \"" + kDuck + "\" 0 0 0 1\nmicrofacet ggx\n");
+  ASSERT_TRUE(p.ok());
+  int copies = 0;
+  for (const Material& m : p.scene.materials) {
+    EXPECT_EQ(m.microfacet, Microfacet::kGgx);
+    copies += m.mesh_copy_of >= 0;
+  }
+  EXPECT_GT(copies, 0);
+}
+
 TEST(MeshTextures, AMissingTextureWarnsNamingTheMeshLineAndRendersUntextured) {
   if (!fs::exists(kDuck)) GTEST_SKIP() << "assimp-testmodels is not installed";
   std::string dir = testing::temp_dir();

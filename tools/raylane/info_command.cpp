@@ -58,6 +58,8 @@ void print_materials(const Scene& s) {
                   m.kd.x, m.kd.y, m.kd.z, m.ks.x, m.ks.y, m.ks.z, m.alpha, m.kt.x, m.kt.y, m.kt.z,
                   m.ior);
     }
+    if (m.microfacet != Microfacet::kPhong)
+      std::printf(", microfacet %s", microfacet_name(m.microfacet));
     if (m.texture >= 0) std::printf(", texture %d", m.texture);
     if (m.mesh_copy_of >= 0) std::printf(" (material %d with its mesh's texture)", m.mesh_copy_of);
     std::printf("\n");

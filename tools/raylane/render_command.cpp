@@ -13,9 +13,9 @@
 #include "cluster.h"
 #include "commands.h"
 #include "file_roles.h"
+#include "pass_series.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
-#include "raylane/image/write_fallback.h"
 #include "raylane/image/write_image.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -27,12 +27,10 @@ namespace raylane::cli {
 
 namespace {
 
-constexpr int kMaxSpp = 1 << 24;
-
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
     "spp",        "integrator", "sampler",          "shading", "seed", "max-depth", "time",
-    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance"};
+    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance",   "save-at"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -189,6 +187,11 @@ const std::vector<RenderOption>& render_options() {
          r.checkpoints.resume = v;
          return ok_status();
        }},
+      {{"save-at", 0, "LIST", false,
+        "path: also write the image after each listed pass (e.g. 1,4,16,64),\n"
+        "as STEM.N.EXT beside each output: the file --spp N writes, bit for bit",
+        "none"},
+       set_save_at},
       {{"aov", 0, "LIST", false,
         cat("path: also sum ", kAovNames.list(),
             " of the first surface\n"
@@ -320,6 +323,7 @@ Result<RenderRequest> read_request(const std::vector<std::string>& args) {
   }
   // A time budget without --spp: render until it is spent.
   if (r.path_settings.time_limit > 0 && !r.spp_given) r.path_settings.spp = kMaxSpp;
+  if (Status s = check_save_at(r); !s) return Error{s.error()};
   if (!r.path)
     for (std::string_view name : kPathOnlyOptions)
       if (parsed->has(std::string(name)))
@@ -361,6 +365,8 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
     outputs.push_back({out, "the output"});
   for (const auto& [out, aov] : r.aov_outputs)
     outputs.push_back({out, "an --aov output"});
+  for (const std::string& out : series_outputs(r))
+    outputs.push_back({out, "a --save-at output"});
   if (c.checkpoint) outputs.push_back({*c.checkpoint, "the --checkpoint film"});
   if (r.stats_json) outputs.push_back({*r.stats_json, "the --stats-json file"});
   return check_outputs_apart(inputs, outputs);
@@ -387,6 +393,8 @@ bool outputs_writable(const RenderRequest& r) {
   for (const auto& [out, aov] : r.aov_outputs)
     all.push_back(out);
   if (r.stats_json) all.push_back(*r.stats_json);
+  for (const std::string& out : series_outputs(r))
+    all.push_back(out);
   for (const auto& out : all) {
     if (Status s = check_writable(out); !s) {
       std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), s.error().c_str());
@@ -451,7 +459,7 @@ int render_command(const std::vector<std::string>& args) {
   int spp = 1;
   PathStats path_stats;
   PathOutcome balance;  // the MPI job's wait and tile moves (--stats)
-  bool interrupted_run = false;
+  bool interrupted_run = false, series_failed = false;
   if (r.path) {
     PathOutcome run = run_path(r, tracer, cluster);
     if (run.status != kExitOk) return run.status;
@@ -463,6 +471,7 @@ int render_command(const std::vector<std::string>& args) {
     balance.wait_seconds = run.wait_seconds, balance.busy_seconds = run.busy_seconds;
     balance.tiles_moved = run.tiles_moved, balance.balances = run.balances;
     interrupted_run = run.interrupted;
+    series_failed = run.series_failed;
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",
@@ -505,21 +514,11 @@ int render_command(const std::vector<std::string>& args) {
     files.emplace_back(out, &aov_image);
   WriteOptions exr_wopts = wopts;
   exr_wopts.exr_layers = std::move(exr_layers);
-  for (const auto& [out, file_image] : files) {
-    auto saved = write_image_or_fallback(out, *file_image, is_exr(out) ? exr_wopts : wopts);
-    if (!saved) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
-      status = kExitFailure;
-      continue;
-    }
-    if (saved->is_fallback) {
-      std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
-                   saved->first_error.c_str(), saved->path.c_str());
-      status = kExitFailure;
-    }
-    std::printf("%s\n", saved->path.c_str());
-    written.push_back(saved->path);
-  }
+  bool failed = series_failed;
+  for (const auto& [out, file_image] : files)
+    if (auto path = write_render_output(out, *file_image, is_exr(out) ? exr_wopts : wopts, failed))
+      written.push_back(*path);
+  if (failed) status = kExitFailure;
   if (!r.quiet) {
     std::fprintf(stderr,
                  "rendered %ux%u%s (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "

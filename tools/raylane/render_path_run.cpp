@@ -8,6 +8,7 @@
 
 #include "aov_outputs.h"
 #include "commands.h"
+#include "pass_series.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
 #include "raylane/render/tile_share.h"
@@ -91,7 +92,8 @@ class PassLoop {
         cluster_(cluster),
         film_(film),
         progress_(r.path_settings.spp, r.path_settings.time_limit, r.quiet || !cluster.root()),
-        checkpointer_(r.checkpoints) {}
+        checkpointer_(r.checkpoints),
+        series_(r, cluster) {}
 
   void after_pass(int done) {
     PassControl mine;
@@ -110,16 +112,23 @@ class PassLoop {
     if (all.checkpoint) save_checkpoint();
     interrupted_ |= all.interrupted;
     if (all.interrupted || all.out_of_time) stop_ = true;
+    series_.after_pass(done, film_);
   }
+
+  // --save-at: a resumed film may already hold a listed pass count.
+  void start() { series_.start(film_); }
+  bool series_failed() const { return series_.failed(); }
 
   bool interrupted_run() const { return interrupted_; }
   double wait_seconds() const { return wait_; }
   double busy_seconds() const { return busy_; }
 
   void finish() {
+    int passes = film_.passes;
     cluster_.assemble(film_);
     if (cluster_.root()) checkpointer_.save(film_);
     progress_.finish();
+    series_.finish(passes);
   }
 
   const std::atomic<bool>* stop_flag() const { return &stop_; }
@@ -141,6 +150,7 @@ class PassLoop {
   Film& film_;
   Progress progress_;
   Checkpointer checkpointer_;
+  PassSeries series_;
   std::atomic<bool> stop_{false};
   bool interrupted_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
@@ -178,8 +188,10 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
   if (cluster.distributed() && r.balance != TileBalance::kOff)
     settings.reshare = [&](const std::vector<double>& s) { return balancer.after_pass(s); };
   install_interrupt_handler(cluster.distributed());
+  loop.start();
   render_path(tracer, settings, &out.stats, &*film);
   loop.finish();
+  out.series_failed = loop.series_failed();
   cluster.sum(out.stats);
   double balance[2] = {loop.wait_seconds(), loop.busy_seconds()};
   cluster.sum_on_root(balance, 2);

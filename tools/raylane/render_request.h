@@ -11,6 +11,7 @@
 #include "raylane/core/enum_names.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
+#include "raylane/image/write_image.h"
 #include "raylane/render/aov.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -41,6 +42,7 @@ struct RenderRequest {
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;
+  std::vector<int> save_at;  // --save-at: passes after which the image is written too, sorted
   TileBalance balance = TileBalance::kAuto;  // --balance
   bool print_phases = false;                 // --stats
   std::optional<std::string> stats_json;     // --stats-json FILE
@@ -55,6 +57,7 @@ inline std::vector<std::string> path_metadata(const PathSettings& p) {
 }
 
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+constexpr int kMaxSpp = 1 << 24;
 
 // A path render's results on rank 0 (other ranks hold their own share's only).
 struct PathOutcome {
@@ -65,10 +68,11 @@ struct PathOutcome {
   int status = 0;            // kExitUsage when the film to resume cannot be used
   bool interrupted = false;  // Ctrl-C on any process stopped it
   // An MPI job's balance, summed over its processes (printed by --stats).
-  double wait_seconds = 0;  // waiting in the agreement after each pass for the slowest process
-  double busy_seconds = 0;  // rendering passes
-  int tiles_moved = 0;      // tiles dealt to another process, over all the times
-  int balances = 0;         // times the tiles were dealt again (--balance)
+  double wait_seconds = 0;     // waiting in the agreement after each pass for the slowest process
+  double busy_seconds = 0;     // rendering passes
+  int tiles_moved = 0;         // tiles dealt to another process, over all the times
+  int balances = 0;            // times the tiles were dealt again (--balance)
+  bool series_failed = false;  // a --save-at image went to a rescue file or nowhere
 };
 
 // Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles
@@ -78,6 +82,13 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
 // An error naming the bytes the film and the images of this render need, unless this process
 // can have them (render_memory.cpp); checked before anything is rendered.
 Status render_fits_in_memory(const RenderRequest& r, const Scene& scene, bool distributed);
+
+// Writes one output of a render, or (the folder removed, the disk full) a rescue file instead
+// (image/write_fallback.h); prints the path written on stdout and any failure on stderr.
+// Returns the path written, or nothing; `failed` becomes true unless `out` itself was written
+// (pass_series.cpp).
+std::optional<std::string> write_render_output(const std::string& out, const Image& image,
+                                               const WriteOptions& options, bool& failed);
 
 // --stats under mpirun: how long the processes waited for the slowest after each pass, and
 // the tiles moved to even them out.

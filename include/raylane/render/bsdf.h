@@ -1,6 +1,7 @@
 // The course's reflection model at one surface point (docs/design.md, "The course's rendering
 // model"): a mixture of a Lambertian lobe, a Phong-distribution microfacet reflection lobe and
-// a microfacet transmission lobe, chosen by the lengths of Kd, Ks and Kt. Directions point
+// a microfacet transmission lobe, chosen by the lengths of Kd, Ks and Kt; the microfacet
+// distribution is the material's (Phong, GGX or Beckman: render/microfacet.h). Directions point
 // away from the surface; wo is towards the viewer. eval() returns f(wo, wi)·|cos θi| and pdf()
 // the density of sample() in solid angle, so value/pdf is a sample's weight; the three agree
 // by construction (sample() returns eval() and pdf() of the direction it drew).
@@ -45,6 +46,9 @@ class Bsdf {
   BsdfEval evaluate_reflection(const Vec3d& wi, double cos_i) const;  // wi on wo's side
   Vec3d reflection(const Vec3d& m, const Vec3d& wi, double d, double fresnel_scale) const;
   double cos_power(const Vec3d& m) const;
+  // D(m) and the density with which sample() draws m (Phong's warp is not D·cos θm).
+  void normal_density(const Vec3d& m, double& d, double& pm) const;
+  Vec3d sample_normal(double u1, double u2) const;  // around +z
   Vec3d schlick(double cos_om) const;
   double smith_g(const Vec3d& wi, const Vec3d& m) const;
   bool refracts(double cos_om) const;  // no total internal reflection through m
@@ -53,8 +57,10 @@ class Bsdf {
 
   Vec3d kd_, ks_;
   double alpha_ = 0;
-  Vec3d n_;   // shading normal turned to wo's side
-  Vec3d wo_;  // unit
+  Microfacet dist_ = Microfacet::kPhong;
+  double alpha_g_ = 1;  // GGX's and Beckman's roughness (microfacet_alpha_g)
+  Vec3d n_;             // shading normal turned to wo's side
+  Vec3d wo_;            // unit
   double cos_o_ = 0;
   double eta_o_ = 1, eta_i_ = 1;  // indices on wo's side and on the other side
   double pd_ = 0, pr_ = 0, pt_ = 0, sum_ = 0;

@@ -31,6 +31,10 @@ struct LaneMaterials {
   std::vector<float> d_scale;   // (α+2)/(2π): D(m) = d_scale·cos^α θm
   std::vector<float> pm_scale;  // (α+1)/(2π): the warp's density of m
   std::vector<float> g1_scale;  // √(α/2 + 1): the Smith G1 approximation's a = g1_scale·cot θv
+  // The microfacet distribution (0 Phong, 1 GGX, 2 Beckman) and GGX's and Beckman's α_g² =
+  // 2/(α + 2); read only when some material is not Phong (all_phong false).
+  std::vector<float> microfacet, alpha_g2;
+  bool all_phong = true;
   std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission,
                                   // a textured Kd)
   // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):

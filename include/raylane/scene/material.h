@@ -4,10 +4,20 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 #include "raylane/core/vec3.h"
 
 namespace raylane {
+
+// The distribution of a material's microfacet normals, for its reflection and transmission
+// lobes (the `microfacet` command): the course's Phong distribution, or GGX or Beckman at the
+// course's equivalent roughness α_g = √(2/(α + 2)) (render/microfacet.h).
+enum class Microfacet : uint8_t { kPhong = 0, kGgx = 1, kBeckman = 2 };
+// The command's names: "phong", "ggx", "beckman".
+std::optional<Microfacet> microfacet_named(std::string_view name);
+const char* microfacet_name(Microfacet m);
 
 struct Material {
   Vec3f kd{0.5f, 0.5f, 0.5f};
@@ -17,6 +27,7 @@ struct Material {
   float ior = 1.0f;
   Vec3f emission{0.0f, 0.0f, 0.0f};
   bool is_light = false;
+  Microfacet microfacet = Microfacet::kPhong;
   int32_t texture = -1;  // index into Scene::textures, or none
   // A mesh file's own texture makes a copy of the `mesh` line's material for its triangles;
   // the copy keeps the index of that material (-1 for a material of the scene file), and

@@ -44,6 +44,9 @@ struct ParseState {
   std::vector<std::string> input_files;  // every file read so far: meshes and what they name
   std::vector<MeshSummary> meshes;       // one per `mesh` line that imported
   std::optional<uint32_t> current_material;
+  std::optional<uint32_t> brdf_material;        // the material of the latest brdf line
+  std::optional<uint32_t> microfacet_material;  // the material of the latest microfacet line
+  FileLoc microfacet_at;                        // and where that line is
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
   uint64_t image_memory_used = 0;  // by the textures and the environment read so far
   // Where each command that may be given once was first seen; line 0: not yet.

@@ -1,0 +1,100 @@
+// `raylane render --save-at LIST` (the report's pass series): each STEM.N.EXT is the file a
+// render stopped at N passes writes, byte for byte, for both samplers, with --png and --aov
+// siblings, and when the render resumes a checkpoint; bad lists and clashing names exit 2
+// before anything is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "support/cli_run.h"
+#include "support/paths.h"
+
+namespace raylane {
+namespace {
+
+using testing::read_file;
+using testing::source_path;
+using testing::temp_dir;
+
+namespace fs = std::filesystem;
+
+// The exit status of `raylane ARGS`, run in the working directory.
+int run_status(const std::string& args) {
+  return testing::run_cli(args, ".").status;
+}
+
+// Byte for byte, without printing images on a failure.
+::testing::AssertionResult same_bytes(const std::string& a, const std::string& b) {
+  std::string x = read_file(a), y = read_file(b);
+  if (!x.empty() && x == y) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << a << " (" << x.size() << " bytes) and " << b << " (" << y.size() << " bytes) differ";
+}
+
+// The glass scene (glossy, transmission, the lanes' general path), small.
+std::string scene_args() {
+  return source_path("scenes/testscene-glass.scn") + " --set 'screen 40 30' --quiet";
+}
+
+TEST(CliSaveAt, EachImageIsTheRenderStoppedAtThatPass) {
+  for (std::string sampler : {"sobol", "mt19937"}) {
+    SCOPED_TRACE(sampler);
+    std::string dir = temp_dir(), common = scene_args() + " --sampler " + sampler;
+    ASSERT_EQ(run_status("render " + common + " --spp 5 --save-at 4,1,2 --png --aov albedo -o " +
+                         dir + "/room.hdr"),
+              0);
+    for (int n : {1, 2, 4}) {
+      std::string ref = dir + "/ref" + std::to_string(n);
+      fs::create_directory(ref);
+      ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) +
+                           " --png --aov albedo -o " + ref + "/room.hdr"),
+                0);
+      std::string stem = "/room." + std::to_string(n);
+      std::string hdr = read_file(dir + stem + ".hdr");
+      EXPECT_NE(hdr.find("RAYLANE_SPP=" + std::to_string(n)), std::string::npos) << n;
+      EXPECT_TRUE(same_bytes(dir + stem + ".hdr", ref + "/room.hdr"));
+      EXPECT_TRUE(same_bytes(dir + stem + ".png", ref + "/room.png"));
+      EXPECT_TRUE(same_bytes(dir + stem + ".albedo.pfm", ref + "/room.albedo.pfm"));
+    }
+    EXPECT_FALSE(fs::exists(dir + "/room.3.hdr"));
+    EXPECT_FALSE(fs::exists(dir + "/room.5.hdr"));  // the end of the render is room.hdr
+    EXPECT_TRUE(fs::exists(dir + "/room.hdr"));
+  }
+}
+
+// A resumed film continues the series: a count it already passed is not written (a warning
+// says so), the count it holds is written at once, the later ones as the render reaches them.
+TEST(CliSaveAt, ResumingWritesTheUninterruptedRendersFiles) {
+  std::string dir = temp_dir(), common = scene_args();
+  ASSERT_EQ(run_status("render " + common + " --spp 2 --checkpoint " + dir + "/run.film -o " + dir +
+                       "/first.hdr"),
+            0);
+  ASSERT_EQ(run_status("render " + common + " --spp 4 --resume " + dir +
+                       "/run.film --save-at 1,2,3 -o " + dir + "/rest.hdr"),
+            0);
+  EXPECT_FALSE(fs::exists(dir + "/rest.1.hdr"));
+  for (int n : {2, 3}) {
+    std::string ref = dir + "/ref" + std::to_string(n) + ".hdr";
+    ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) + " -o " + ref), 0);
+    EXPECT_TRUE(same_bytes(dir + "/rest." + std::to_string(n) + ".hdr", ref));
+  }
+}
+
+TEST(CliSaveAt, BadListsAndClashingNamesExitTwoAndWriteNothing) {
+  std::string dir = temp_dir(), common = scene_args() + " --spp 4 -o " + dir + "/a.hdr";
+  for (std::string list : {"0", "-1", "1,,4", "1,", ",1", "x", "2.5", "1;4", "99999999999"})
+    EXPECT_EQ(run_status("render " + common + " --save-at '" + list + "'"), 2) << list;
+  EXPECT_EQ(run_status("render " + common + " --save-at 2,8"), 2);  // beyond --spp
+  // Another output, or another output's series, by the same name.
+  EXPECT_EQ(run_status("render " + common + " --save-at 2 -o " + dir + "/a.2.hdr"), 2);
+  EXPECT_EQ(run_status("render " + common + " --save-at 2 -o " + dir + "/a.hdr.png"), 0);
+  EXPECT_TRUE(fs::remove(dir + "/a.hdr") && fs::remove(dir + "/a.hdr.png"));
+  EXPECT_TRUE(fs::remove(dir + "/a.2.hdr") && fs::remove(dir + "/a.hdr.2.png"));
+  EXPECT_TRUE(fs::is_empty(dir));
+  // --save-at in a ray-casting view does nothing (a warning), and writes no series.
+  EXPECT_EQ(run_status("render " + common + " --mode normal --save-at 2"), 0);
+  EXPECT_FALSE(fs::exists(dir + "/a.2.hdr"));
+}
+
+}  // namespace
+}  // namespace raylane

@@ -1,0 +1,157 @@
+#include "pass_series.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "aov_outputs.h"
+#include "args.h"
+#include "raylane/core/strings.h"
+#include "raylane/image/write_fallback.h"
+#include "render_request.h"
+
+namespace raylane::cli {
+
+Result<std::vector<int>> parse_save_at(const std::string& list, int max_spp) {
+  std::vector<int> at;
+  std::size_t begin = 0;
+  while (true) {
+    std::size_t end = list.find(',', begin);
+    std::string item = list.substr(begin, end == std::string::npos ? end : end - begin);
+    if (item.empty())
+      return Error{
+          cat("--save-at takes pass counts separated by commas (1,4,16), found ", in_quotes(list))};
+    auto n = parse_int_option("save-at", item, 1, max_spp);
+    if (!n) return Error{n.error()};
+    at.push_back(int(*n));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end()), at.end());
+  return at;
+}
+
+Status set_save_at(RenderRequest& r, const std::string& list) {
+  auto at = parse_save_at(list, kMaxSpp);
+  if (!at) return Error{at.error()};
+  r.save_at = std::move(*at);
+  return ok_status();
+}
+
+Status check_save_at(const RenderRequest& r) {
+  if (r.save_at.empty() || !r.path || r.save_at.back() <= r.path_settings.spp) return ok_status();
+  return Error{cat("--save-at ", r.save_at.back(), " is beyond --spp ", r.path_settings.spp,
+                   ": the render stops before that pass")};
+}
+
+std::string series_path(const std::string& output, int passes) {
+  std::filesystem::path p(output);
+  std::string name = cat(p.stem().string(), ".", passes, p.extension().string());
+  return (p.parent_path() / name).string();
+}
+
+namespace {
+
+std::string comma_list(const std::vector<int>& v) {
+  std::string out;
+  for (int n : v)
+    out += (out.empty() ? "" : ",") + std::to_string(n);
+  return out;
+}
+
+std::vector<std::string> outputs_at(const RenderRequest& r, int passes) {
+  std::vector<std::string> out;
+  for (const std::string& o : r.outputs)
+    out.push_back(series_path(o, passes));
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> series_outputs(const RenderRequest& r) {
+  std::vector<std::string> all;
+  for (int n : r.save_at) {
+    std::vector<std::string> colour = outputs_at(r, n);
+    for (const auto& [path, aov] : aov_siblings(colour, r.path_settings.aovs))
+      colour.push_back(path);
+    all.insert(all.end(), colour.begin(), colour.end());
+  }
+  return all;
+}
+
+void PassSeries::start(const Film& film) {
+  if (r_.save_at.empty() || film.passes == 0) return;
+  std::vector<int> past;
+  for (int n : r_.save_at)
+    if (n < film.passes) past.push_back(n);
+  if (!past.empty() && cluster_.root() && !r_.quiet)
+    std::fprintf(stderr,
+                 "raylane: warning: --save-at %s: the --resume film already holds %d passes; "
+                 "those images are not written\n",
+                 comma_list(past).c_str(), film.passes);
+  if (std::binary_search(r_.save_at.begin(), r_.save_at.end(), film.passes))
+    after_pass(film.passes, film);
+}
+
+void PassSeries::after_pass(int done, const Film& film) {
+  if (!std::binary_search(r_.save_at.begin(), r_.save_at.end(), done)) return;
+  if (!cluster_.distributed()) return write(film, done);
+  Film whole = film;  // this process's share; rank 0's copy receives the others'
+  cluster_.assemble(whole);
+  if (cluster_.root()) write(whole, done);
+}
+
+void PassSeries::finish(int passes_done) const {
+  std::vector<int> missed;
+  for (int n : r_.save_at)
+    if (n > passes_done) missed.push_back(n);
+  if (!missed.empty() && cluster_.root() && !r_.quiet)
+    std::fprintf(stderr, "raylane: warning: --save-at %s: the render stopped after %d passes\n",
+                 comma_list(missed).c_str(), passes_done);
+}
+
+// The files `raylane render --spp N` writes: the same options, RAYLANE_SPP=N.
+void PassSeries::write(const Film& film, int passes) {
+  WriteOptions wopts;
+  wopts.exposure = r_.exposure;
+  wopts.exr_half = r_.exr_half;
+  wopts.metadata.push_back("RAYLANE_MODE=path");
+  wopts.metadata.push_back(cat("RAYLANE_SPP=", passes));
+  for (std::string& line : path_metadata(r_.path_settings))
+    wopts.metadata.push_back(std::move(line));
+  WriteOptions exr_wopts = wopts;
+  exr_wopts.exr_layers = exr_layers_of(film);
+  const Image image = film.image();
+  std::vector<std::pair<std::string, Image>> files;
+  std::vector<std::string> colour = outputs_at(r_, passes);
+  for (const std::string& out : colour)
+    files.emplace_back(out, Image());
+  for (const auto& [out, aov] : aov_siblings(colour, r_.path_settings.aovs))
+    files.emplace_back(out, film.aov_image(aov));
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const std::string& out = files[i].first;
+    const Image& file_image = i < colour.size() ? image : files[i].second;
+    write_render_output(out, file_image, is_exr(out) ? exr_wopts : wopts, failed_);
+  }
+  std::fflush(stdout);
+}
+
+std::optional<std::string> write_render_output(const std::string& out, const Image& image,
+                                               const WriteOptions& options, bool& failed) {
+  auto saved = write_image_or_fallback(out, image, options);
+  if (!saved) {
+    std::fprintf(stderr, "raylane: cannot write %s: %s\n", out.c_str(), saved.error().c_str());
+    failed = true;
+    return std::nullopt;
+  }
+  if (saved->is_fallback) {
+    std::fprintf(stderr, "raylane: cannot write %s: %s; the image is saved as %s\n", out.c_str(),
+                 saved->first_error.c_str(), saved->path.c_str());
+    failed = true;
+  }
+  std::printf("%s\n", saved->path.c_str());
+  return saved->path;
+}
+
+}  // namespace raylane::cli

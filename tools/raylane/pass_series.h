@@ -1,0 +1,56 @@
+// `raylane render --save-at LIST`: the report's pass series (the course framework wrote
+// Image_Pass_N.hdr). During one path render the image is written after each listed pass, as
+// STEM.N.EXT beside each output (room.hdr → room.16.hdr), each file the one `raylane render
+// --spp N -o STEM.N.EXT` writes, bit for bit: the film after N passes is the film of a render
+// stopped at N, and the header says RAYLANE_SPP=N.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cluster.h"
+#include "raylane/core/error.h"
+#include "raylane/render/film.h"
+
+namespace raylane::cli {
+
+struct RenderRequest;
+
+// "1,4,16": pass counts in [1, max_spp], separated by commas; sorted, repeats dropped.
+Result<std::vector<int>> parse_save_at(const std::string& list, int max_spp);
+
+// --save-at: sets r.save_at (render_command.cpp's option table).
+Status set_save_at(RenderRequest& r, const std::string& list);
+// After every option is read: a listed count beyond --spp is never reached.
+Status check_save_at(const RenderRequest& r);
+
+// STEM.N.EXT in the folder of `output`.
+std::string series_path(const std::string& output, int passes);
+
+// Every file the series writes (colour outputs and their --aov siblings), for the checks made
+// before rendering (outputs apart from inputs, folders writable).
+std::vector<std::string> series_outputs(const RenderRequest& r);
+
+// Writes the series as the render goes. after_pass() is called by every process of an MPI job
+// after the same passes (it assembles the film, a collective step); rank 0 writes.
+class PassSeries {
+ public:
+  PassSeries(const RenderRequest& r, const Cluster& cluster) : r_(r), cluster_(cluster) {}
+
+  // A --resume film already holds `passes`: a listed count equal to it is written now, the
+  // smaller ones cannot be any more (a warning names them).
+  void start(const Film& film);
+  void after_pass(int done, const Film& film);
+  // After the render: the listed counts it stopped before (--time, Ctrl-C), in a warning.
+  void finish(int passes_done) const;
+  bool failed() const { return failed_; }
+
+ private:
+  void write(const Film& film, int passes);
+
+  const RenderRequest& r_;
+  const Cluster& cluster_;
+  bool failed_ = false;
+};
+
+}  // namespace raylane::cli
