@@ -13,19 +13,16 @@ namespace raylane::detail {
 template <class A>
 using Doubles = xsimd::batch<double, A>;
 
-template <class A>
-struct Vec3Lanes {
-  Doubles<A> x, y, z;
-};
+using simd::DoubleVec3;
 
 template <class A>
-Vec3Lanes<A> load3(const std::array<std::vector<double>, 3>& c, std::size_t i) {
+DoubleVec3<A> load3(const std::array<std::vector<double>, 3>& c, std::size_t i) {
   return {Doubles<A>::load_unaligned(c[0].data() + i), Doubles<A>::load_unaligned(c[1].data() + i),
           Doubles<A>::load_unaligned(c[2].data() + i)};
 }
 
 template <class A>
-void store3(std::array<std::vector<double>, 3>& c, std::size_t i, const Vec3Lanes<A>& v) {
+void store3(std::array<std::vector<double>, 3>& c, std::size_t i, const DoubleVec3<A>& v) {
   v.x.store_unaligned(c[0].data() + i);
   v.y.store_unaligned(c[1].data() + i);
   v.z.store_unaligned(c[2].data() + i);
@@ -46,28 +43,15 @@ void sincos_2pi_lanes(const Doubles<A>& u, Doubles<A>& sin_out, Doubles<A>& cos_
   cos_out = xsimd::select(q1, -s, xsimd::select(q2, -c, xsimd::select(q3, s, c)));
 }
 
-// Duff et al. 2017's basis around unit n (Frame's constructor), applied to a local direction.
-template <class A>
-Vec3Lanes<A> frame_to_world(const Vec3Lanes<A>& n, const Vec3Lanes<A>& v) {
-  using D = Doubles<A>;
-  D sign = xsimd::copysign(D(1.0), n.z);
-  D a = D(-1.0) / (sign + n.z);
-  D b = n.x * n.y * a;
-  Vec3Lanes<A> s{D(1.0) + sign * n.x * n.x * a, sign * b, -sign * n.x};
-  Vec3Lanes<A> t{b, sign + n.y * n.y * a, -n.y};
-  return {s.x * v.x + t.x * v.y + n.x * v.z, s.y * v.x + t.y * v.y + n.y * v.z,
-          s.z * v.x + t.z * v.y + n.z * v.z};
-}
-
 template <class A>
 void sample_cones_range(ConeBatch& b) {
   using D = Doubles<A>;
   constexpr std::size_t W = D::size;
   const D zero(0.0), one(1.0);
   for (std::size_t i = 0; i < b.size(); i += W) {
-    Vec3Lanes<A> ref = load3<A>(b.ref, i), c = load3<A>(b.center, i);
+    DoubleVec3<A> ref = load3<A>(b.ref, i), c = load3<A>(b.center, i);
     D r = D::load_unaligned(b.radius.data() + i);
-    Vec3Lanes<A> w{c.x - ref.x, c.y - ref.y, c.z - ref.z};
+    DoubleVec3<A> w{c.x - ref.x, c.y - ref.y, c.z - ref.z};
     D r2 = r * r, d2 = w.x * w.x + w.y * w.y + w.z * w.z;
     auto outside = d2 > r2;
     D d = xsimd::sqrt(d2);
@@ -80,12 +64,12 @@ void sample_cones_range(ConeBatch& b) {
     D sin_t = xsimd::sqrt(xsimd::max(zero, omc * (D(2.0) - omc)));
     D sin_phi, cos_phi;
     sincos_2pi_lanes<A>(D::load_unaligned(b.u2.data() + i), sin_phi, cos_phi);
-    Vec3Lanes<A> local{sin_t * cos_phi, sin_t * sin_phi, cos_t};
+    DoubleVec3<A> local{sin_t * cos_phi, sin_t * sin_phi, cos_t};
     // The nearer root of the ray from ref along the sampled direction.
     D sin2 = local.x * local.x + local.y * local.y;
     D t_hit = d * local.z - xsimd::sqrt(xsimd::max(zero, r2 - d2 * sin2));
-    Vec3Lanes<A> axis{w.x / d, w.y / d, w.z / d};
-    store3<A>(b.wi, i, frame_to_world<A>(axis, local));
+    DoubleVec3<A> axis{w.x / d, w.y / d, w.z / d};
+    store3<A>(b.wi, i, simd::to_world(axis, local));
     t_hit.store_unaligned(b.dist.data() + i);
     constexpr double kTwoPi = 6.283185307179586476925;
     D solid_angle = xsimd::select(outside, D(kTwoPi) * omc_max, zero);

@@ -16,29 +16,14 @@ using F = simd::Floats<A>;
 template <class A>
 using M = simd::Mask<A>;
 
-template <class A>
-struct V3 {
-  F<A> x, y, z;
-};
+using simd::FloatVec3;
 
 template <class A>
-V3<A> operator+(const V3<A>& a, const V3<A>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class A>
-V3<A> operator-(const V3<A>& a, const V3<A>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class A>
-V3<A> operator*(const V3<A>& a, const F<A>& s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-template <class A>
-F<A> dot(const V3<A>& a, const V3<A>& b) {
+F<A> dot(const FloatVec3<A>& a, const FloatVec3<A>& b) {
   return simd::fma(a.x, b.x, simd::fma(a.y, b.y, a.z * b.z));
 }
 template <class A>
-V3<A> select(const M<A>& m, const V3<A>& a, const V3<A>& b) {
+FloatVec3<A> select(const M<A>& m, const FloatVec3<A>& a, const FloatVec3<A>& b) {
   return {simd::select(m, a.x, b.x), simd::select(m, a.y, b.y), simd::select(m, a.z, b.z)};
 }
 template <class A>
@@ -47,12 +32,12 @@ M<A> finite(const F<A>& v) {
 }
 
 template <class A>
-V3<A> load3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
+FloatVec3<A> load3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
   return {simd::load<A>(c[0].data() + i), simd::load<A>(c[1].data() + i),
           simd::load<A>(c[2].data() + i)};
 }
 template <class A>
-void store3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const V3<A>& v) {
+void store3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const FloatVec3<A>& v) {
   simd::store<A>(c[0].data() + i, v.x);
   simd::store<A>(c[1].data() + i, v.y);
   simd::store<A>(c[2].data() + i, v.z);
@@ -85,7 +70,7 @@ F<A> g1(const F<A>& cos_v, const F<A>& cos_vm, const F<A>& g1_scale) {
 template <class A>
 struct LaneBsdf {
   F<A> kd[3], ks[3], pd, pr, pt, alpha, d_scale, pm_scale, g1_scale;
-  V3<A> n, wo;
+  FloatVec3<A> n, wo;
   F<A> cos_o, eta_o, eta_i;
   // GGX and Beckman lanes (render/microfacet.h), gathered only where the scene has them.
   F<A> microfacet, alpha_g2;
@@ -115,11 +100,11 @@ struct LaneBsdf {
       phong_only_ = m.all_phong;
       if (!phong_only_) microfacet = gather(m.microfacet), alpha_g2 = gather(m.alpha_g2);
     }
-    V3<A> ns = load3<A>(b.n, i);
+    FloatVec3<A> ns = load3<A>(b.n, i);
     wo = load3<A>(b.wo, i);
     F<A> c = dot(ns, wo);
     M<A> entering = c > F<A>(0.0f);
-    n = select(entering, ns, V3<A>{-ns.x, -ns.y, -ns.z});
+    n = select(entering, ns, FloatVec3<A>{-ns.x, -ns.y, -ns.z});
     cos_o = xsimd::abs(c);
     eta_o = simd::select(entering, F<A>(1.0f), ior);
     eta_i = simd::select(entering, ior, F<A>(1.0f));
@@ -131,14 +116,14 @@ struct LaneBsdf {
     return F<A>(1.0f) - eta * eta * (F<A>(1.0f) - cos_om * cos_om) >= F<A>(0.0f);
   }
 
-  F<A> cos_power(const V3<A>& m) const {
+  F<A> cos_power(const FloatVec3<A>& m) const {
     F<A> c = dot(m, n);
     return simd::select(c > F<A>(0.0f), simd::pow_unit<A>(xsimd::max(c, F<A>(0.0f)), alpha),
                         F<A>(0.0f));
   }
 
   // GGX's and Beckman's D, p(m) and G in their lanes, the Phong values kept in the others.
-  void other_microfacets(const V3<A>& m, const F<A>& cos_i, const F<A>& om, const F<A>& im, F<A>& d,
+  void other_microfacets(const FloatVec3<A>& m, const F<A>& cos_i, const F<A>& om, const F<A>& im, F<A>& d,
                          F<A>& pm, F<A>& g) const {
     const M<A> phong = microfacet == F<A>(0.0f), ggx = microfacet == F<A>(1.0f);
     F<A> dm, pmm;
@@ -149,8 +134,8 @@ struct LaneBsdf {
     g = simd::select(ggx, g_ggx, g);
   }
 
-  LaneEval<A> evaluate(const V3<A>& wi) const;
-  V3<A> sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const;
+  LaneEval<A> evaluate(const FloatVec3<A>& wi) const;
+  FloatVec3<A> sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const;
 
   // No lane has a glossy or a transmission lobe (pr = pt = 0; the course scene's materials are
   // all diffuse): evaluate_diffuse then gives evaluate()'s answers bit for bit, and where every
@@ -159,20 +144,20 @@ struct LaneBsdf {
   // divisions.
   bool diffuse_only() const { return diffuse_only_; }
   bool all_diffuse() const { return all_diffuse_; }
-  LaneEval<A> evaluate_diffuse(const V3<A>& wi) const;
-  V3<A> sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const;
+  LaneEval<A> evaluate_diffuse(const FloatVec3<A>& wi) const;
+  FloatVec3<A> sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const;
 };
 
 template <class A>
-LaneEval<A> LaneBsdf<A>::evaluate(const V3<A>& wi) const {
+LaneEval<A> LaneBsdf<A>::evaluate(const FloatVec3<A>& wi) const {
   const F<A> zero(0.0f), one(1.0f), inv_pi(0.318309886183790671538f);
   F<A> cos_i = dot(wi, n);
   M<A> reflect_side = cos_i > zero;
   // The microfacet normal: the half vector on wo's side, the generalised one (Walter eq. 16)
   // for transmission, turned to n's side.
-  V3<A> h = wi + wo;
-  V3<A> ht = (wo * eta_o + wi * eta_i) * F<A>(-1.0f);
-  V3<A> m = select(reflect_side, h, ht);
+  FloatVec3<A> h = wi + wo;
+  FloatVec3<A> ht = (wo * eta_o + wi * eta_i) * F<A>(-1.0f);
+  FloatVec3<A> m = select(reflect_side, h, ht);
   F<A> len = xsimd::sqrt(dot(m, m));
   m = m * (one / len);
   m = select(dot(m, n) < zero, m * F<A>(-1.0f), m);
@@ -213,7 +198,7 @@ LaneEval<A> LaneBsdf<A>::evaluate(const V3<A>& wi) const {
 // the diffuse one plus (pr + 0)·lobe = +0 (the lobe is finite: a positive density over a
 // positive cosine, or 0). The zeros are added as evaluate() adds them (−0 + 0 is +0).
 template <class A>
-LaneEval<A> LaneBsdf<A>::evaluate_diffuse(const V3<A>& wi) const {
+LaneEval<A> LaneBsdf<A>::evaluate_diffuse(const FloatVec3<A>& wi) const {
   const F<A> zero(0.0f), inv_pi(0.318309886183790671538f);
   F<A> cos_i = dot(wi, n);
   M<A> reflected = live & (cos_i > zero);
@@ -224,23 +209,10 @@ LaneEval<A> LaneBsdf<A>::evaluate_diffuse(const V3<A>& wi) const {
   return out;
 }
 
-// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (as core/warps.cpp's Frame):
-// local (x, y, z) around n to world.
-template <class A>
-V3<A> to_world(const V3<A>& n, const V3<A>& v) {
-  const F<A> one(1.0f);
-  F<A> sign = xsimd::copysign(one, n.z);
-  F<A> a = F<A>(-1.0f) / (sign + n.z);
-  F<A> b = n.x * n.y * a;
-  V3<A> s{one + sign * n.x * n.x * a, sign * b, -sign * n.x};
-  V3<A> t{b, sign + n.y * n.y * a, -n.y};
-  return s * v.x + t * v.y + n * v.z;
-}
-
 // Bsdf::sample: u0 picks the lobe; (u1, u2) warp a cosine-weighted direction (Malley) or a
 // microfacet normal by the course's cos θm = u1^(1/(α+1)) (sampling.h), reflected or refracted.
 template <class A>
-V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const {
+FloatVec3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const {
   const F<A> zero(0.0f), one(1.0f);
   simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
   M<A> diffuse = u0 < pd;
@@ -251,17 +223,17 @@ V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& 
   F<A> sin_t =
       simd::select(diffuse, xsimd::sqrt(u1), xsimd::sqrt(xsimd::max(zero, one - cos_m * cos_m)));
   F<A> cos_t = simd::select(diffuse, xsimd::sqrt(xsimd::max(zero, one - u1)), cos_m);
-  V3<A> dir = to_world<A>(n, V3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
+  FloatVec3<A> dir = simd::to_world(n, FloatVec3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
   // The glossy lobes: dir is the microfacet normal m.
   F<A> om = dot(wo, dir);
-  V3<A> reflected = dir * (F<A>(2.0f) * om) - wo;
+  FloatVec3<A> reflected = dir * (F<A>(2.0f) * om) - wo;
   F<A> eta = eta_o / eta_i;
   F<A> k = one - eta * eta * (one - om * om);
   M<A> refract = (u0 >= pd + pr) & refracts(om);
-  V3<A> refracted = dir * (eta * om - xsimd::sqrt(xsimd::max(k, zero))) - wo * eta;
+  FloatVec3<A> refracted = dir * (eta * om - xsimd::sqrt(xsimd::max(k, zero))) - wo * eta;
   M<A> glossy_ok = (om > zero) & ((refract & (dot(refracted, n) < zero)) |
                                   ((!refract) & (dot(reflected, n) > zero)));
-  V3<A> wi = select(diffuse, dir, select(refract, refracted, reflected));
+  FloatVec3<A> wi = select(diffuse, dir, select(refract, refracted, reflected));
   F<A> len = xsimd::sqrt(dot(wi, wi));
   valid = live & (diffuse | glossy_ok) & (len > zero) & finite<A>(len);
   return wi * (one / len);
@@ -269,11 +241,11 @@ V3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& 
 
 // sample() where every lane's u0 < pd: the diffuse side of each of its selects.
 template <class A>
-V3<A> LaneBsdf<A>::sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const {
+FloatVec3<A> LaneBsdf<A>::sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& valid) const {
   const F<A> zero(0.0f), one(1.0f);
   simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
   F<A> sin_t = xsimd::sqrt(u1), cos_t = xsimd::sqrt(xsimd::max(zero, one - u1));
-  V3<A> wi = to_world<A>(n, V3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
+  FloatVec3<A> wi = simd::to_world(n, FloatVec3<A>{sin_t * phi.cos, sin_t * phi.sin, cos_t});
   F<A> len = xsimd::sqrt(dot(wi, wi));
   valid = live & (len > zero) & finite<A>(len);
   return wi * (one / len);
@@ -288,9 +260,9 @@ void shade_lanes_range(const LaneMaterials& materials, ShadeBatch& b) {
                u2 = simd::load<A>(b.u2.data() + i);
     LaneBsdf<A> bsdf(materials, b, i, u0);
     const bool diffuse = bsdf.diffuse_only();
-    V3<A> wi =
+    FloatVec3<A> wi =
         bsdf.all_diffuse() ? bsdf.sample_diffuse(u1, u2, valid) : bsdf.sample(u0, u1, u2, valid);
-    auto evaluate = [&](const V3<A>& w) {
+    auto evaluate = [&](const FloatVec3<A>& w) {
       return diffuse ? bsdf.evaluate_diffuse(w) : bsdf.evaluate(w);
     };
     LaneEval<A> e = evaluate(wi);

@@ -19,13 +19,13 @@ using DMask = xsimd::batch_bool<double, A>;
 
 // Finite in every component (|x| ≤ DBL_MAX is false for NaN and ±inf).
 template <class A>
-DMask<A> all_finite(const Vec3Lanes<A>& v) {
+DMask<A> all_finite(const DoubleVec3<A>& v) {
   const Doubles<A> big(std::numeric_limits<double>::max());
   return (xsimd::abs(v.x) <= big) & (xsimd::abs(v.y) <= big) & (xsimd::abs(v.z) <= big);
 }
 
 template <class A>
-DMask<A> all_zero(const Vec3Lanes<A>& v) {
+DMask<A> all_zero(const DoubleVec3<A>& v) {
   const Doubles<A> zero(0.0);
   return (v.x == zero) & (v.y == zero) & (v.z == zero);
 }
@@ -48,9 +48,9 @@ Doubles<A> next_double_lanes(const Doubles<A>& v, bool up) {
 
 // hit_point_error and offset_ray_origin (core/ray_offset.cpp).
 template <class A>
-Vec3Lanes<A> offset_origin_lanes(const Vec3Lanes<A>& p, const Vec3Lanes<A>& o,
-                                 const Vec3Lanes<A>& d, const Doubles<A>& t, const Vec3Lanes<A>& ng,
-                                 const Vec3Lanes<A>& toward) {
+DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& o,
+                                 const DoubleVec3<A>& d, const Doubles<A>& t, const DoubleVec3<A>& ng,
+                                 const DoubleVec3<A>& toward) {
   using D = Doubles<A>;
   const D bound(32 * kFloatUnitRoundoff);
   auto err = [&](const D& ok, const D& dk) {
@@ -79,13 +79,13 @@ Doubles<A> load_widened(const std::vector<float>& c, std::size_t i) {
   return simd::load_widened<A>(c.data() + i);
 }
 template <class A>
-Vec3Lanes<A> load3_widened(const std::array<std::vector<float>, 3>& c, std::size_t i) {
+DoubleVec3<A> load3_widened(const std::array<std::vector<float>, 3>& c, std::size_t i) {
   return {load_widened<A>(c[0], i), load_widened<A>(c[1], i), load_widened<A>(c[2], i)};
 }
 
 // Double lanes rounded to float into float columns [i, i + W).
 template <class A>
-void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const Vec3Lanes<A>& v) {
+void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const DoubleVec3<A>& v) {
   simd::store_narrowed<A>(c[0].data() + i, v.x);
   simd::store_narrowed<A>(c[1].data() + i, v.y);
   simd::store_narrowed<A>(c[2].data() + i, v.z);
@@ -95,11 +95,11 @@ void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const 
 // origin, for the rows of lanes [i, i + W).
 template <class A>
 void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQueries& lights,
-                  VertexBatch& b, std::size_t i, const Vec3Lanes<A>& beta, const Vec3Lanes<A>& p,
-                  const Vec3Lanes<A>& ng, const Vec3Lanes<A>& o, const Vec3Lanes<A>& d,
+                  VertexBatch& b, std::size_t i, const DoubleVec3<A>& beta, const DoubleVec3<A>& p,
+                  const DoubleVec3<A>& ng, const DoubleVec3<A>& o, const DoubleVec3<A>& d,
                   const Doubles<A>& t) {
   using D = Doubles<A>;
-  const Vec3Lanes<A> wi = load3<A>(lights.cones.wi, i), le = load3<A>(lights.le, i),
+  const DoubleVec3<A> wi = load3<A>(lights.cones.wi, i), le = load3<A>(lights.le, i),
                      f = load3_widened<A>(bsdf.light_f, i);
   const D pdf = D::load_unaligned(lights.cones.pdf.data() + i);
   const D bsdf_pdf = load_widened<A>(bsdf.light_pdf, i);
@@ -109,10 +109,10 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
     w = xsimd::select(a > D(0.0), a / (a + c), D(0.0));
   }
   const D scale = w / pdf;
-  const Vec3Lanes<A> c{beta.x * f.x * le.x * scale, beta.y * f.y * le.y * scale,
+  const DoubleVec3<A> c{beta.x * f.x * le.x * scale, beta.y * f.y * le.y * scale,
                        beta.z * f.z * le.z * scale};
   store3<A>(b.shadow_c, i, c);
-  const Vec3Lanes<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
+  const DoubleVec3<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
   store3_narrowed<A>(b.shadow_o, i, from);
   // shadow_ray_tmax: the light point projected on the ray, in dot's order; inf stays inf.
   const D dist = D::load_unaligned(lights.cones.dist.data() + i);
@@ -127,12 +127,12 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
 // continue_path's throughput (beta·value / pdf, then roulette) and origin.
 template <class A>
 void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatch& b, std::size_t i,
-                    const Vec3Lanes<A>& beta, const Vec3Lanes<A>& p, const Vec3Lanes<A>& ng,
-                    const Vec3Lanes<A>& o, const Vec3Lanes<A>& d, const Doubles<A>& t) {
+                    const DoubleVec3<A>& beta, const DoubleVec3<A>& p, const DoubleVec3<A>& ng,
+                    const DoubleVec3<A>& o, const DoubleVec3<A>& d, const Doubles<A>& t) {
   using D = Doubles<A>;
-  const Vec3Lanes<A> wi = load3_widened<A>(bsdf.wi, i), value = load3_widened<A>(bsdf.value, i);
+  const DoubleVec3<A> wi = load3_widened<A>(bsdf.wi, i), value = load3_widened<A>(bsdf.value, i);
   const D pdf = load_widened<A>(bsdf.pdf, i);
-  Vec3Lanes<A> nb{beta.x * value.x / pdf, beta.y * value.y / pdf, beta.z * value.z / pdf};
+  DoubleVec3<A> nb{beta.x * value.x / pdf, beta.y * value.y / pdf, beta.z * value.z / pdf};
   DMask<A> alive = pdf > D(0.0);
   if (rules.roulette) {
     const D u = D::load_unaligned(b.u_roulette.data() + i), s(rules.survival);
@@ -150,8 +150,8 @@ void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
                            const LightQueries* lights, VertexBatch& b) {
   constexpr std::size_t W = Doubles<A>::size;
   for (std::size_t i = 0; i < b.size(); i += W) {
-    const Vec3Lanes<A> beta = load3<A>(b.beta, i), p = load3<A>(b.p, i), ng = load3<A>(b.ng, i);
-    const Vec3Lanes<A> o = load3<A>(b.ray_o, i), d = load3<A>(b.ray_d, i);
+    const DoubleVec3<A> beta = load3<A>(b.beta, i), p = load3<A>(b.p, i), ng = load3<A>(b.ng, i);
+    const DoubleVec3<A> o = load3<A>(b.ray_o, i), d = load3<A>(b.ray_d, i);
     const Doubles<A> t = Doubles<A>::load_unaligned(b.t.data() + i);
     if (lights)
       shadow_lanes<A>(rules, bsdf, *lights, b, i, beta, p, ng, o, d, t);

@@ -38,8 +38,8 @@ template <class A, class Rows>
 template <class A>
 SurfaceLanes<A> surface_lanes(const BoxTable& b, const uint32_t* rows, const HitRayLanes<A>& r) {
   using D = simd::Doubles<A>;
-  const simd::Vec3Doubles<A> lo = load_rows3<A>(b.lox, b.loy, b.loz, rows);
-  const simd::Vec3Doubles<A> hi = load_rows3<A>(b.hix, b.hiy, b.hiz, rows);
+  const simd::DoubleVec3<A> lo = load_rows3<A>(b.lox, b.loy, b.loz, rows);
+  const simd::DoubleVec3<A> hi = load_rows3<A>(b.hix, b.hiy, b.hiz, rows);
   const D* los[3] = {&lo.x, &lo.y, &lo.z};
   const D* his[3] = {&hi.x, &hi.y, &hi.z};
   const D* os[3] = {&r.o.x, &r.o.y, &r.o.z};

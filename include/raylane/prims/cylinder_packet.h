@@ -55,16 +55,16 @@ SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
   using D = simd::Doubles<A>;
   // The axis u·h (exact in double, cylinder.h), its length and direction as the reference takes
   // them.
-  const simd::Vec3Doubles<A> uf = load_rows3<A>(c.ux, c.uy, c.uz, rows);
+  const simd::DoubleVec3<A> uf = load_rows3<A>(c.ux, c.uy, c.uz, rows);
   const D hf = simd::load_rows<A>(c.h, rows);
-  const simd::Vec3Doubles<A> a{uf.x * hf, uf.y * hf, uf.z * hf};
-  const simd::Vec3Doubles<A> base = load_rows3<A>(c.bx, c.by, c.bz, rows);
+  const simd::DoubleVec3<A> a{uf.x * hf, uf.y * hf, uf.z * hf};
+  const simd::DoubleVec3<A> base = load_rows3<A>(c.bx, c.by, c.bz, rows);
   const D h = simd::sqrt<A>(dot_lanes<A>(a, a)), radius = simd::load_rows<A>(c.r, rows);
-  const simd::Vec3Doubles<A> u{a.x / h, a.y / h, a.z / h};
-  const simd::Vec3Doubles<A> p = r.at();
-  const simd::Vec3Doubles<A> q{p.x - base.x, p.y - base.y, p.z - base.z};
+  const simd::DoubleVec3<A> u{a.x / h, a.y / h, a.z / h};
+  const simd::DoubleVec3<A> p = r.at();
+  const simd::DoubleVec3<A> q{p.x - base.x, p.y - base.y, p.z - base.z};
   const D z = dot_lanes<A>(q, u);
-  const simd::Vec3Doubles<A> radial{q.x - u.x * z, q.y - u.y * z, q.z - u.z * z};
+  const simd::DoubleVec3<A> radial{q.x - u.x * z, q.y - u.y * z, q.z - u.z * z};
   const D rlen = simd::sqrt<A>(dot_lanes<A>(radial, radial));
   const D below = xsimd::abs(z), above = xsimd::abs(z - h);
   const D cap_dist = xsimd::select(above < below, above, below);  // std::min's choice

@@ -39,10 +39,10 @@ template <class A, class Rows>
 template <class A>
 SurfaceLanes<A> surface_lanes(const SphereTable& s, const uint32_t* rows, const HitRayLanes<A>& r) {
   using D = simd::Doubles<A>;
-  simd::Vec3Doubles<A> c = load_rows3<A>(s.cx, s.cy, s.cz, rows), p = r.at();
-  simd::Vec3Doubles<A> v{p.x - c.x, p.y - c.y, p.z - c.z};
+  simd::DoubleVec3<A> c = load_rows3<A>(s.cx, s.cy, s.cz, rows), p = r.at();
+  simd::DoubleVec3<A> v{p.x - c.x, p.y - c.y, p.z - c.z};
   D len = simd::sqrt<A>(dot_lanes<A>(v, v)), radius = simd::load_rows<A>(s.r, rows);
-  simd::Vec3Doubles<A> n{v.x / len, v.y / len, v.z / len};
+  simd::DoubleVec3<A> n{v.x / len, v.y / len, v.z / len};
   return {{c.x + n.x * radius, c.y + n.y * radius, c.z + n.z * radius}, n};
 }
 

@@ -196,11 +196,44 @@ using Doubles = xsimd::batch<double, A>;
 template <class A>
 inline constexpr int kDoubleWidth = int(Doubles<A>::size);
 
-// Three double lanes: a point or a direction per lane.
-template <class A>
-struct Vec3Doubles {
-  Doubles<A> x, y, z;
+// Three lanes of one number type, B a batch of floats or of doubles: a point or a direction
+// per lane. The code base's one lane vector (FloatVec3 in the BSDF's float lanes, DoubleVec3 in
+// the surfaces, lights and the steps after the BSDF); the scalar Vec3 is core/vec3.h's.
+template <class B>
+struct LaneVec3 {
+  B x, y, z;
 };
+template <class A>
+using FloatVec3 = LaneVec3<Floats<A>>;
+template <class A>
+using DoubleVec3 = LaneVec3<Doubles<A>>;
+
+template <class B>
+LaneVec3<B> operator+(const LaneVec3<B>& a, const LaneVec3<B>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class B>
+LaneVec3<B> operator-(const LaneVec3<B>& a, const LaneVec3<B>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class B>
+LaneVec3<B> operator*(const LaneVec3<B>& a, const B& s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (core/warps.h's Frame, in its
+// order): the local direction v = (x, y, z) around the unit normal n, to world.
+template <class B>
+LaneVec3<B> to_world(const LaneVec3<B>& n, const LaneVec3<B>& v) {
+  using T = typename B::value_type;
+  const B one(T(1));
+  const B sign = xsimd::copysign(one, n.z);
+  const B a = B(T(-1)) / (sign + n.z);
+  const B b = n.x * n.y * a;
+  const LaneVec3<B> s{one + sign * n.x * n.x * a, sign * b, -sign * n.x};
+  const LaneVec3<B> t{b, sign + n.y * n.y * a, -n.y};
+  return s * v.x + t * v.y + n * v.z;
+}
 
 // col[rows[0]], …, col[rows[W − 1]] widened to double (exactly): a table column read at one
 // row per lane, for code that runs once per hit rather than per node.

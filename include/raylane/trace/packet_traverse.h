@@ -137,11 +137,9 @@ inline bool left_child_nearer(const BvhNode& n, const RayPacket<A>& r, const sim
 // for Occlusion Rays"). Shadow rays start on a surface: every box around their origin is
 // entered, and its rows tested, yet the surface they leave almost never blocks them, while a
 // blocker anywhere along the segment is found just as well from the light's end (triangles
-// are two-sided, and a closed solid is hit where the ray leaves it). Measured (bench_trace,
-// shadow rays, AVX-512 packets, 1 thread, medians of 3 interleaved rounds): bunny 1.72x, the
-// 1.31M-triangle mesh 1.68x, engine 1.18x, lattice 1.10x, sphereflake 1.12x; the course scene
-// 0.92x, as its shadow rays end on a light sphere, the farthest box along every segment
-// (bench/README.md, issue 17's third sitting).
+// are two-sided, and a closed solid is hit where the ray leaves it). It pays on every mesh and
+// costs a little where shadow rays end on a light sphere, the farthest box along every segment
+// (the figures: bench/README.md, "Issue 17, third sitting").
 template <class A, bool kAnyHit, bool kSameSides>
 inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd::Mask<A>& lanes,
                              const ChildOverlap<A>& left, const ChildOverlap<A>& right) {

@@ -12,27 +12,27 @@ namespace raylane {
 // One hit per lane: the ray as the packet kernels traced it (widened to double) and its t.
 template <class A>
 struct HitRayLanes {
-  simd::Vec3Doubles<A> o, d;
+  simd::DoubleVec3<A> o, d;
   simd::Doubles<A> t;
   // o + d·t, as Ray::at.
-  simd::Vec3Doubles<A> at() const { return {o.x + d.x * t, o.y + d.y * t, o.z + d.z * t}; }
+  simd::DoubleVec3<A> at() const { return {o.x + d.x * t, o.y + d.y * t, o.z + d.z * t}; }
 };
 
 // The point and the unit normal (geometric = shading for the quadrics and boxes).
 template <class A>
 struct SurfaceLanes {
-  simd::Vec3Doubles<A> p, n;
+  simd::DoubleVec3<A> p, n;
 };
 
 // a·b in Vec3's order ((x + y) + z).
 template <class A>
-inline simd::Doubles<A> dot_lanes(const simd::Vec3Doubles<A>& a, const simd::Vec3Doubles<A>& b) {
+inline simd::Doubles<A> dot_lanes(const simd::DoubleVec3<A>& a, const simd::DoubleVec3<A>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 // The table columns x, y, z read at one row per lane.
 template <class A>
-inline simd::Vec3Doubles<A> load_rows3(const std::vector<float>& x, const std::vector<float>& y,
+inline simd::DoubleVec3<A> load_rows3(const std::vector<float>& x, const std::vector<float>& y,
                                        const std::vector<float>& z, const uint32_t* rows) {
   return {simd::load_rows<A>(x, rows), simd::load_rows<A>(y, rows), simd::load_rows<A>(z, rows)};
 }

@@ -84,11 +84,9 @@ inline int entered_children(const WideNode& n, const RayPacket<A>& r, const simd
 // A packet whose lanes have spread out keeps few of them busy at each node, while one ray over
 // the 8-wide tree tests eight boxes per step. So, as in Embree's hybrid (Benthin et al. 2012),
 // once at most this many lanes enter a wide node, each of them finishes that subtree alone
-// (trace/ray_traverse.h). Measured against W/4 (bench/README.md, issue 39's first sitting):
-// with AVX-512, 1 and 3 lanes did as well as 2, 4 worse; with AVX2, 1 and 2 alike. Not for
-// coherent packets (primary rays lost up to 12 % on the lattice and sphereflake with the binary
-// walk's hybrid) nor for occlusion (shadow rays 0.86-0.93x at every threshold tried; issue 17's
-// first sitting).
+// (trace/ray_traverse.h). The threshold is the best one measured per instruction set; coherent
+// packets and occlusion do not hand over, as every threshold tried lost there (the figures:
+// bench/README.md, "Issue 39, first sitting" and "Issue 17, first sitting").
 template <class A>
 inline constexpr int kSingleRayLanes = simd::kWidth<A> >= 16 ? simd::kWidth<A> / 8 : 1;
 
