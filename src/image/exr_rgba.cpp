@@ -5,6 +5,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfRgbaFile.h>
 
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <vector>
@@ -47,8 +48,14 @@ Result<Image> decode_rgba_interface(std::string_view bytes) {
     const std::size_t h = std::size_t(dw.max.y - dw.min.y + 1);
     std::vector<Imf::Rgba> rows(w * h);
     // The frame buffer is addressed by absolute pixel coordinates: shift it by the window's
-    // corner (OpenEXR's documented idiom, "Reading an RGBA Image File").
-    Imf::Rgba* origin = rows.data() - std::ptrdiff_t(dw.min.x) - std::ptrdiff_t(dw.min.y) * w;
+    // corner (OpenEXR's documented idiom, "Reading an RGBA Image File"). The shifted address
+    // lies outside the rows wherever the corner is not (0, 0): computed as an integer, since
+    // pointer arithmetic past an array is undefined (UBSan found a window at negative
+    // coordinates); OpenEXR adds the offsets back before it writes.
+    const std::ptrdiff_t shift =
+        std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * std::ptrdiff_t(w);
+    auto* origin = reinterpret_cast<Imf::Rgba*>(reinterpret_cast<std::uintptr_t>(rows.data()) -
+                                                std::uintptr_t(shift) * sizeof(Imf::Rgba));
     file.setFrameBuffer(origin, 1, w);
     file.readPixels(dw.min.y, dw.max.y);
     Image img;

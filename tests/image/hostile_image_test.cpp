@@ -129,6 +129,15 @@ TEST(ExrLuminanceChroma, ReadsAsItsColourNotZeros) {
     for (uint32_t x = 0; x < 10; ++x)
       for (int k = 0; k < 3; ++k)
         ASSERT_NEAR(coloured->at(x, y)[k], colour(0, 0)[k], 0.01 * colour(0, 0)[k]);
+  // A data window that does not start at (0, 0), here at negative x and y: the same pixels (UBSan
+  // found the frame buffer's shifted address computed by pointer arithmetic past the rows).
+  auto shifted = decode_exr(testing::exr_luminance_chroma(10, 4, colour, -8, -4));
+  ASSERT_TRUE(shifted) << shifted.error();
+  ASSERT_EQ(shifted->width, 10u);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 10; ++x)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_NEAR(shifted->at(x, y)[k], colour(0, 0)[k], 0.01 * colour(0, 0)[k]);
   // A layer of such a file is refused by name, never read as zeros.
   auto layer = decode_exr_layer(bytes, "");
   ASSERT_FALSE(layer);

@@ -4,6 +4,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfRgbaFile.h>
 
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -114,7 +115,8 @@ std::string ply_with_long_header(std::size_t comment_bytes) {
   return s;
 }
 
-std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, int)>& colour) {
+std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, int)>& colour, int x0,
+                                 int y0) {
   std::vector<Imf::Rgba> pixels(std::size_t(w) * h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -123,11 +125,18 @@ std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, in
     }
   StringStream out;
   {
-    Imf::Header header(w, h);
+    const Imath::Box2i window({x0, y0}, {x0 + w - 1, y0 + h - 1});
+    Imf::Header header(window, window);
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::RgbaOutputFile file(out, header, Imf::WRITE_YC);
     file.setYCRounding(10, 10);  // keep half's 10 fraction bits (the default rounds Y to 7)
-    file.setFrameBuffer(pixels.data(), 1, std::size_t(w));
+    // OpenEXR's frame buffer is addressed by absolute coordinates; the shift as an integer (see
+    // src/image/exr_rgba.cpp).
+    const std::ptrdiff_t shift = std::ptrdiff_t(x0) + std::ptrdiff_t(y0) * w;
+    file.setFrameBuffer(
+        reinterpret_cast<Imf::Rgba*>(reinterpret_cast<std::uintptr_t>(pixels.data()) -
+                                     std::uintptr_t(shift) * sizeof(Imf::Rgba)),
+        1, std::size_t(w));
     file.writePixels(h);
   }
   return out.bytes;
