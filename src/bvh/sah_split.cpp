@@ -34,15 +34,7 @@ Split best_split(const BinSet& bins, const BinGrid& grid, const Bounds3f& box,
 }
 
 const BuildLanes& build_lanes(Isa isa) {
-  switch (isa) {
-    case Isa::kAvx512:
-      return kBuildLanesAvx512;
-    case Isa::kAvx2:
-      return kBuildLanesAvx2;
-    case Isa::kSse42:
-      break;
-  }
-  return kBuildLanesSse42;
+  return for_isa(isa, kBuildLanesSse42, kBuildLanesAvx2, kBuildLanesAvx512);
 }
 
 double binned_cost(const BinSet& bins, int bin_count) {

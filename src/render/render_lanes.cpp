@@ -3,15 +3,7 @@
 namespace raylane::detail {
 
 const RenderLanes& render_lanes(Isa isa) {
-  switch (isa) {
-    case Isa::kAvx512:
-      return kRenderLanesAvx512;
-    case Isa::kAvx2:
-      return kRenderLanesAvx2;
-    case Isa::kSse42:
-      break;
-  }
-  return kRenderLanesSse42;
+  return for_isa(isa, kRenderLanesSse42, kRenderLanesAvx2, kRenderLanesAvx512);
 }
 
 }  // namespace raylane::detail

@@ -64,15 +64,7 @@ void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kin
 namespace detail {
 
 const TracerLanes& tracer_lanes(Isa isa) {
-  switch (isa) {
-    case Isa::kAvx512:
-      return kTracerLanesAvx512;
-    case Isa::kAvx2:
-      return kTracerLanesAvx2;
-    case Isa::kSse42:
-      break;
-  }
-  return kTracerLanesSse42;
+  return for_isa(isa, kTracerLanesSse42, kTracerLanesAvx2, kTracerLanesAvx512);
 }
 
 }  // namespace detail

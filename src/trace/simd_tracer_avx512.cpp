@@ -1,30 +1,12 @@
 // The packet tracer (trace/tracer_lanes.h) compiled for one instruction set (flags set in
 // CMakeLists.txt).
-#include "trace/simd_tracer_impl.h"
-#include "trace/tracer_lanes.h"
+#include "trace/tracer_lanes_impl.h"
 
 static_assert(XSIMD_WITH_AVX512BW,
               "this file must be compiled with the flags of its instruction set");
 
 namespace raylane::detail {
 
-namespace {
-
-using A = xsimd::avx512bw;
-
-void surfaces_into_hits(const Scene& scene, const RayStream& rays, PrimTag kind,
-                        std::span<const uint32_t> rows, Hit* hits) {
-  surfaces_of_kind<A>(scene, rays, kind, rows, HitSink<A>{hits});
-}
-
-void surfaces_into_columns(const Scene& scene, const RayStream& rays, PrimTag kind,
-                           std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
-                           const SurfaceColumns& out) {
-  surfaces_of_kind<A>(scene, rays, kind, rows, ColumnSink<A>{ray, hits, out});
-}
-
-}  // namespace
-
-const TracerLanes kTracerLanesAvx512 = {trace_range<A>, surfaces_into_hits, surfaces_into_columns};
+const TracerLanes kTracerLanesAvx512 = tracer_lanes_for<xsimd::avx512bw>();
 
 }  // namespace raylane::detail

@@ -25,4 +25,18 @@ bool isa_supported(Isa isa);        // by this CPU (cpuid)
 Isa best_isa();                     // the widest supported
 std::vector<Isa> supported_isas();  // narrowest first
 
+// The one of three per-ISA things (a table of kernels) that belongs to `isa`.
+template <class T>
+const T& for_isa(Isa isa, const T& sse42, const T& avx2, const T& avx512) {
+  switch (isa) {
+    case Isa::kAvx512:
+      return avx512;
+    case Isa::kAvx2:
+      return avx2;
+    case Isa::kSse42:
+      break;
+  }
+  return sse42;
+}
+
 }  // namespace raylane
