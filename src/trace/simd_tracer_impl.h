@@ -37,7 +37,7 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   constexpr int W = simd::kWidth<A>;
   // A whole packet straight from the columns; the stream's last, partial one by masked loads
   // (nothing past the columns' ends is read).
-  auto col = [&](const std::vector<float>& c) {
+  auto col = [&](const Column<float>& c) {
     return n == W ? F::load_unaligned(c.data() + i) : simd::load_first<A>(c.data() + i, n);
   };
   RayPacket<A> r;

@@ -256,7 +256,7 @@ TEST_P(SimdTracerTest, AimedOcclusionMatchesReference) {
     ++kinds[kind];
   }
   RayStream stream = RayStream::from(rays);
-  stream.aim = aims;
+  stream.aim.assign(aims.begin(), aims.end());
   HitStream hits;
   tracer().occluded(s, bvh, stream, hits);
   for (std::size_t i = 0; i < rays.size(); ++i)

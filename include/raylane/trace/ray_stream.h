@@ -7,18 +7,20 @@
 #include <cstdint>
 #include <vector>
 
+#include "raylane/core/column.h"
 #include "raylane/core/ray.h"
 #include "raylane/prims/prim_ref.h"
 
 namespace raylane {
 
 struct RayStream {
-  std::vector<float> ox, oy, oz, dx, dy, dz, tmin, tmax;
+  // Columns (core/column.h): resize() leaves new rows for the caller to write.
+  Column<float> ox, oy, oz, dx, dy, dz, tmin, tmax;
   // Occlusion only, optional (empty, or one entry per ray): aim[i] is the PrimRef bits of the
   // primitive ray i is aimed at, a light for a shadow ray (PrimRef::kInvalidBits: none). Its
   // surface ends the ray's segment instead of blocking it (SimdTracer::occluded). resize() and
   // set() leave it alone.
-  std::vector<uint32_t> aim;
+  Column<uint32_t> aim;
 
   std::size_t size() const { return ox.size(); }
   void resize(std::size_t n) {
@@ -77,8 +79,8 @@ class RayAppender {
 };
 
 struct HitStream {
-  std::vector<float> t;        // +inf for a miss
-  std::vector<uint32_t> prim;  // PrimRef bits; PrimRef::kInvalidBits for a miss
+  Column<float> t;        // +inf for a miss
+  Column<uint32_t> prim;  // PrimRef bits; PrimRef::kInvalidBits for a miss
 
   void resize(std::size_t n) {
     t.resize(n);

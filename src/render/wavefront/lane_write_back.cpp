@@ -83,7 +83,7 @@ void write_lane_next_rays(TileContext& ctx) {
     path.prev_specular = false;
   }
   RayStream& s = w.next_rays.rays;
-  std::vector<uint32_t>& next_paths = w.next_rays.path;
+  Column<uint32_t>& next_paths = w.next_rays.path;
   const std::size_t at = grow_stream(s, n, false), listed = next_paths.size();
   next_paths.resize(listed + n);
   RowFilter f;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raylane/core/column.h"
 #include "raylane/core/vec3.h"
 #include "raylane/render/lights.h"
 #include "raylane/render/shade_lanes.h"
@@ -31,7 +32,7 @@ struct PathState {
 
 // Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
 struct RayQueue {
-  std::vector<uint32_t> path;  // index into the wavefront's paths
+  Column<uint32_t> path;  // index into the wavefront's paths
   RayStream rays;
 
   std::size_t size() const { return path.size(); }
@@ -44,8 +45,8 @@ struct RayQueue {
 // path if the light is the first thing it meets: contribution[.][q] to path[q]'s radiance.
 struct ShadowQueue {
   RayStream rays;
-  std::vector<uint32_t> path;
-  std::array<std::vector<double>, 3> contribution;
+  Column<uint32_t> path;
+  std::array<Column<double>, 3> contribution;
 
   std::size_t size() const { return path.size(); }
   bool empty() const { return path.empty(); }
