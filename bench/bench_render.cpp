@@ -90,7 +90,7 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
               : ""))
             .c_str());
   omp_set_num_threads(threads);
-  Tracer tracer(s->parsed.scene, s->bvh, TracerKind::kPacket);
+  Tracer tracer(s->parsed.scene, s->bvh, TracerBackend::kPacket);
   PathSettings settings;
   settings.integrator = integrator;
   settings.spp = 1;

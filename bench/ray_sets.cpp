@@ -39,7 +39,7 @@ PrimaryHits primary_hits(const BenchScene& b) {
   PrimaryHits p;
   for (const Rayd& r : primary_rays(b.scene))
     p.rays.push_back(ray_cast<double>(ray_cast<float>(r)));
-  Tracer tracer(b.scene, b.bvh, TracerKind::kPacket);
+  Tracer tracer(b.scene, b.bvh, TracerBackend::kPacket);
   tracer.closest(p.rays, p.hits);
   return p;
 }

@@ -62,14 +62,14 @@ std::vector<std::size_t> interior_pixels(const Image& fine_id) {
 // float: within one float ulp (2^-23 relatively) of the ray-cast view's float.
 TEST(Aov, AlbedoEqualsTheRayCastAlbedoWhereAPixelSeesOneSurface) {
   Loaded l = course_scene();
-  Tracer tracer(l.scene, l.bvh, TracerKind::kPacket);
+  Tracer tracer(l.scene, l.bvh, TracerBackend::kPacket);
   Film film;
   render_path(tracer, with_aovs(4, "albedo,depth"), nullptr, &film);
   const Image albedo = film.aov_image(Aov::kAlbedo);
   const Image reference = render_raycast(tracer, RaycastMode::kAlbedo);
   Loaded fine = course_scene(4);
   const auto interior = interior_pixels(
-      render_raycast(Tracer(fine.scene, fine.bvh, TracerKind::kPacket), RaycastMode::kId));
+      render_raycast(Tracer(fine.scene, fine.bvh, TracerBackend::kPacket), RaycastMode::kId));
   ASSERT_GT(interior.size(), std::size_t(80 * 60 / 2));
   for (std::size_t p : interior)
     for (int k = 0; k < 3; ++k) {
@@ -91,7 +91,7 @@ TEST(Aov, AlbedoEqualsTheRayCastAlbedoWhereAPixelSeesOneSurface) {
 
 TEST(Aov, ResumedFilmCarriesItsAovsBitForBit) {
   Loaded l = course_scene();
-  Tracer tracer(l.scene, l.bvh, TracerKind::kPacket);
+  Tracer tracer(l.scene, l.bvh, TracerBackend::kPacket);
   const PathSettings four = with_aovs(4, "albedo,normal,depth,position");
   Film whole;
   render_path(tracer, four, nullptr, &whole);
@@ -110,7 +110,7 @@ TEST(Aov, ResumedFilmCarriesItsAovsBitForBit) {
 
 TEST(Aov, SumsDoNotDependOnTheThreadCount) {
   Loaded l = course_scene();
-  Tracer tracer(l.scene, l.bvh, TracerKind::kPacket);
+  Tracer tracer(l.scene, l.bvh, TracerBackend::kPacket);
   const int threads = omp_get_max_threads();
   Film one, many;
   omp_set_num_threads(1);
@@ -127,7 +127,7 @@ TEST(Aov, SumsDoNotDependOnTheThreadCount) {
 
 TEST(Aov, DamagedAovPartOfAFilmIsAnError) {
   Loaded l = course_scene();
-  Tracer tracer(l.scene, l.bvh, TracerKind::kPacket);
+  Tracer tracer(l.scene, l.bvh, TracerBackend::kPacket);
   Film film;
   render_path(tracer, with_aovs(1, "depth"), nullptr, &film);
   std::string path = testing::temp_dir() + "/short.film";

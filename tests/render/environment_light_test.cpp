@@ -51,7 +51,7 @@ ParsedScene parse_ok(const std::string& text) {
 
 testing::Estimate render_pixels(ParsedScene& p, Integrator integrator, Shading shading, int spp) {
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   PathSettings s;
   s.integrator = integrator;
   s.shading = shading;

@@ -56,7 +56,7 @@ TEST(Film, IdentifyingAFilmGivesTheFingerprintAndOriginOfItsSettings) {
 // over the scene is paid only by --checkpoint and --resume.
 TEST(Film, RenderingDoesNotIdentifyTheFilm) {
   Rendered r = load("sphere.scn");
-  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Tracer tracer(r.scene, r.bvh, TracerBackend::kPacket);
   Film film;
   render_path(tracer, settings(1), nullptr, &film);
   EXPECT_EQ(film.fingerprint, 0u);
@@ -65,7 +65,7 @@ TEST(Film, RenderingDoesNotIdentifyTheFilm) {
 
 TEST(Film, ResumedRenderIsTheUninterruptedRender) {
   Rendered r = load("sphere.scn");
-  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Tracer tracer(r.scene, r.bvh, TracerBackend::kPacket);
   Image whole = render_path(tracer, settings(5));
 
   Film film;

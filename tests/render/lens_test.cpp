@@ -26,7 +26,7 @@ Image render_sphere(double z, double rho, double lens_r, double focus, int spp) 
   auto p = parse_scene(text, "lens.scn");
   EXPECT_TRUE(p.ok());
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   PathSettings s;
   s.spp = spp;
   return render_path(tracer, s);

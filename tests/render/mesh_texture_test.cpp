@@ -37,7 +37,7 @@ std::vector<Vec3f> albedo_colours(const std::string& mesh_path, std::vector<std:
   EXPECT_TRUE(p.ok());
   if (warns) *warns = warnings(p);
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   Image out = render_raycast(tracer, RaycastMode::kAlbedo);
   std::vector<Vec3f> hit;
   for (uint32_t y = 0; y < out.height; ++y)

@@ -37,7 +37,7 @@ PixelStats pixel_stats(const Image& img) {
 
 Image render(Scene& scene, const PathSettings& settings, PathStats* stats = nullptr) {
   Bvh bvh = build_bvh_and_reorder(scene);
-  Tracer tracer(scene, bvh, TracerKind::kPacket);
+  Tracer tracer(scene, bvh, TracerBackend::kPacket);
   return render_path(tracer, settings, stats);
 }
 
@@ -368,7 +368,7 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
   ASSERT_TRUE(p.ok());
   p.scene.width = 32, p.scene.height = 24;
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   constexpr int kSeeds = 16;
   Vec3d mean[2], se[2];
   for (Shading shading : kShadings) {

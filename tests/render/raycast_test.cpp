@@ -15,7 +15,7 @@ struct Rendered {
   RaycastStats stats;
 };
 
-Rendered render(const std::string& scene_name, RaycastMode mode, TracerKind kind, Isa isa) {
+Rendered render(const std::string& scene_name, RaycastMode mode, TracerBackend kind, Isa isa) {
   auto p = load_scene_file(testing::source_path("scenes/" + scene_name));
   EXPECT_TRUE(p.ok());
   Bvh bvh = build_bvh_and_reorder(p.scene);
@@ -49,21 +49,21 @@ int visibly_differing_pixels(const Image& a, const Image& b) {
 // coplanar triangles overlap (letter X's two quads cross in one plane: either is right,
 // and float and double t break the tie differently). Bound: 1 pixel in 10^4.
 TEST(Raycast, IdImageIsTheSameForEveryTracerAndIsa) {
-  Image ref = render("testscene.scn", RaycastMode::kId, TracerKind::kScalar, Isa::kSse42).image;
+  Image ref = render("testscene.scn", RaycastMode::kId, TracerBackend::kScalar, Isa::kSse42).image;
   EXPECT_EQ(
       differing_pixels(
-          ref, render("testscene.scn", RaycastMode::kId, TracerKind::kBvh, Isa::kSse42).image),
+          ref, render("testscene.scn", RaycastMode::kId, TracerBackend::kBvh, Isa::kSse42).image),
       0);
   for (Isa isa : supported_isas()) {
-    Image img = render("testscene.scn", RaycastMode::kId, TracerKind::kPacket, isa).image;
+    Image img = render("testscene.scn", RaycastMode::kId, TracerBackend::kPacket, isa).image;
     EXPECT_LE(differing_pixels(ref, img), 12) << isa_name(isa);
   }
 }
 
 // The lit view traces shadow rays through the same tracer; packet and scalar agree.
 TEST(Raycast, LitImageAgreesAcrossTracers) {
-  Rendered scalar = render("testscene.scn", RaycastMode::kLit, TracerKind::kScalar, Isa::kSse42);
-  Rendered packet = render("testscene.scn", RaycastMode::kLit, TracerKind::kPacket, best_isa());
+  Rendered scalar = render("testscene.scn", RaycastMode::kLit, TracerBackend::kScalar, Isa::kSse42);
+  Rendered packet = render("testscene.scn", RaycastMode::kLit, TracerBackend::kPacket, best_isa());
   EXPECT_GT(scalar.stats.shadow_rays, 100000u);
   EXPECT_EQ(scalar.stats.shadow_rays, packet.stats.shadow_rays);
   auto d = compare(packet.image, scalar.image);
@@ -82,9 +82,9 @@ TEST(Raycast, ImageIsTheSameForAnyThreadCount) {
   const int threads = omp_get_max_threads();
   for (RaycastMode mode : {RaycastMode::kLit, RaycastMode::kNormal}) {
     omp_set_num_threads(1);
-    Rendered one = render("testscene.scn", mode, TracerKind::kPacket, best_isa());
+    Rendered one = render("testscene.scn", mode, TracerBackend::kPacket, best_isa());
     omp_set_num_threads(3);
-    Rendered three = render("testscene.scn", mode, TracerKind::kPacket, best_isa());
+    Rendered three = render("testscene.scn", mode, TracerBackend::kPacket, best_isa());
     EXPECT_EQ(one.image.rgb, three.image.rgb) << raycast_mode_name(mode);
     EXPECT_EQ(one.stats.shadow_rays, three.stats.shadow_rays);
     EXPECT_GT(one.stats.camera_rays, 0u);
@@ -117,7 +117,8 @@ TEST(Raycast, DepthAndIdAreMappedForViewing) {
 TEST(Raycast, ImageIsUpright) {
   // The test scene's floor fills the bottom rows, the walls the top rows: in the normal view
   // the floor's +z normal is (0.5, 0.5, 1).
-  Image img = render("testscene.scn", RaycastMode::kNormal, TracerKind::kPacket, best_isa()).image;
+  Image img =
+      render("testscene.scn", RaycastMode::kNormal, TracerBackend::kPacket, best_isa()).image;
   Vec3f bottom = img.at(10, img.height - 2);
   EXPECT_NEAR(bottom.z, 1.0f, 1e-3f);
   EXPECT_NEAR(bottom.x, 0.5f, 1e-3f);
@@ -126,7 +127,7 @@ TEST(Raycast, ImageIsUpright) {
 }
 
 TEST(Raycast, DepthIsTheHitDistance) {
-  Image img = render("sphere.scn", RaycastMode::kDepth, TracerKind::kPacket, best_isa()).image;
+  Image img = render("sphere.scn", RaycastMode::kDepth, TracerBackend::kPacket, best_isa()).image;
   // The centre pixel looks along +y at the unit sphere at the origin from (0, −6, 0).
   Vec3f c = img.at(img.width / 2, img.height / 2);
   EXPECT_NEAR(c.x, 5.0f, 1e-3f);

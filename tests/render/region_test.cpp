@@ -79,7 +79,7 @@ void expect_same_region(const std::vector<double>& whole, const std::vector<doub
 
 TEST(Region, PathPixelsAreTheWholeRendersBitForBitForEverySampler) {
   World w = course_scene();
-  Tracer tracer(w.scene, w.bvh, TracerKind::kPacket);
+  Tracer tracer(w.scene, w.bvh, TracerBackend::kPacket);
   for (Sampler sampler : {Sampler::kMt19937, Sampler::kSobol}) {
     PathSettings s;
     s.spp = 3, s.seed = 5, s.sampler = sampler;
@@ -107,7 +107,7 @@ TEST(Region, PathPixelsAreTheWholeRendersBitForBitForEverySampler) {
 
 TEST(Region, RayCastPixelsAreTheWholeViewsBitForBit) {
   World w = course_scene();
-  Tracer tracer(w.scene, w.bvh, TracerKind::kPacket);
+  Tracer tracer(w.scene, w.bvh, TracerBackend::kPacket);
   for (std::size_t m = 0; m < kRaycastModeNames.names.size(); ++m) {
     const RaycastMode mode = RaycastMode(m);
     Image whole = render_raycast(tracer, mode);

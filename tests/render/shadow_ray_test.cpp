@@ -76,15 +76,15 @@ void expect_every_tracer_says(const Scene& scene, const Bvh& bvh, const std::vec
                               const std::vector<PrimRef>& aims, uint8_t answer) {
   std::vector<Tracer> tracers;
   for (Isa isa : supported_isas())
-    tracers.emplace_back(scene, bvh, TracerKind::kPacket, isa);
-  tracers.emplace_back(scene, bvh, TracerKind::kBvh);
+    tracers.emplace_back(scene, bvh, TracerBackend::kPacket, isa);
+  tracers.emplace_back(scene, bvh, TracerBackend::kBvh);
   for (const Tracer& tracer : tracers) {
     std::vector<uint8_t> blocked;
     TraceScratch scratch;
     tracer.occluded(rays, aims, blocked, scratch);
     for (std::size_t i = 0; i < rays.size(); ++i)
-      ASSERT_EQ(blocked[i], answer)
-          << "ray " << i << " tracer " << int(tracer.kind()) << " isa " << isa_name(tracer.isa());
+      ASSERT_EQ(blocked[i], answer) << "ray " << i << " tracer " << int(tracer.backend()) << " isa "
+                                    << isa_name(tracer.isa());
   }
 }
 

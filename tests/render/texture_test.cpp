@@ -72,7 +72,7 @@ Image albedo_of_face(const std::string& texture_line, uint32_t n) {
   auto p = parse_scene(scene, testing::temp_dir() + "/face.scn");
   EXPECT_TRUE(p.ok()) << ::testing::PrintToString(errors(p));
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   return render_raycast(tracer, RaycastMode::kAlbedo);
 }
 
@@ -115,7 +115,7 @@ TEST(TextureAlbedo, MeshUvsInterpolateAndRepeat) {
   ASSERT_TRUE(p.ok()) << ::testing::PrintToString(errors(p));
   EXPECT_TRUE(p.scene.table<Triangle>().has_uv());
   Bvh bvh = build_bvh_and_reorder(p.scene);
-  Tracer tracer(p.scene, bvh, TracerKind::kPacket);
+  Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   // ry = 0.05 at distance 10 frames y in [0, 1] and (aspect 2) x in [−0.5, 1.5]: the quad
   // covers pixels 2..5 of each row.
   Image out = render_raycast(tracer, RaycastMode::kAlbedo);

@@ -58,7 +58,7 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 
 TEST(TileShare, AFilmKeepsExactlyItsShareOfTheRender) {
   Loaded r = load_sphere();
-  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Tracer tracer(r.scene, r.bvh, TracerBackend::kPacket);
   Film whole;
   render_path(tracer, settings(2), nullptr, &whole);
   for (uint32_t index = 0; index < 3; ++index) {
@@ -74,7 +74,7 @@ TEST(TileShare, AFilmKeepsExactlyItsShareOfTheRender) {
 
 TEST(TileShare, TilesChangingHandsBetweenPassesKeepTheImage) {
   Loaded r = load_sphere();
-  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Tracer tracer(r.scene, r.bvh, TracerBackend::kPacket);
   Film whole;
   render_path(tracer, settings(5), nullptr, &whole);
 
@@ -101,7 +101,7 @@ TEST(TileShare, TilesChangingHandsBetweenPassesKeepTheImage) {
 
 TEST(TileShare, ReshareIsCalledBetweenPassesWithTheTilesCosts) {
   Loaded r = load_sphere();
-  Tracer tracer(r.scene, r.bvh, TracerKind::kPacket);
+  Tracer tracer(r.scene, r.bvh, TracerBackend::kPacket);
   Film one_pass;
   render_path(tracer, settings(1), nullptr, &one_pass);
 

@@ -50,7 +50,7 @@ bool same_bits(const Vec3d& a, const Vec3d& b) {
 // surfaces in double lanes of that width (SimdTracer::surfaces), one-by-one complete() in scalar
 // double (surface_ref).
 void expect_batch_answers_are_one_by_one(const Scene& scene, const Bvh& bvh, Isa isa) {
-  Tracer tracer(scene, bvh, TracerKind::kPacket, isa);
+  Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
   std::vector<Rayd> rays = random_rays(scene, bvh, 20000);
   std::vector<Hit> hits;
   tracer.closest(rays, hits);
@@ -185,11 +185,11 @@ void with_every_tracer(
   std::vector<Rayd> rays = random_rays(scene, bvh, count);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
-    check(Tracer(scene, bvh, TracerKind::kPacket, isa), rays);
+    check(Tracer(scene, bvh, TracerBackend::kPacket, isa), rays);
   }
   rays.resize(reference_count);
-  check(Tracer(scene, bvh, TracerKind::kBvh), rays);
-  check(Tracer(scene, bvh, TracerKind::kScalar), rays);
+  check(Tracer(scene, bvh, TracerBackend::kBvh), rays);
+  check(Tracer(scene, bvh, TracerBackend::kScalar), rays);
 }
 
 TEST(Tracer, OccludedAnswersWithAndWithoutAims) {
@@ -257,7 +257,7 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   std::vector<uint32_t> request;
   for (std::size_t i = hits.size(); i-- > 0;) {
     if (!hits[i].hit() || i % 3 == 0) continue;
-    if (tracer.kind() == TracerKind::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
+    if (tracer.backend() == TracerBackend::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
     request.insert(request.end(), 2, uint32_t(i));
   }
   const std::size_t n = request.size();

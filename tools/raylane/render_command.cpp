@@ -88,9 +88,9 @@ Status set_checkpoint_every(RenderRequest& r, const std::string& v) {
 }
 
 Status set_tracer(RenderRequest& r, const std::string& v) {
-  auto kind = tracer_kind_from_name(v);
+  auto kind = tracer_backend_from_name(v);
   if (!kind)
-    return Error{cat("unknown --tracer ", in_quotes(v), " (", kTracerKindNames.list(), ")")};
+    return Error{cat("unknown --tracer ", in_quotes(v), " (", kTracerBackendNames.list(), ")")};
   r.tracer = *kind;
   return ok_status();
 }
@@ -222,7 +222,7 @@ const std::vector<RenderOption>& render_options() {
       {{"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
        [](R& r, V v) { return read_int_option("threads", v, 0, 4096, r.threads); }},
       {{"tracer", 0, "T", false,
-        cat(kTracerKindNames.list(),
+        cat(kTracerBackendNames.list(),
             ": SIMD packets through the BVH; single rays\n"
             "through the BVH with the double kernels; brute force with the double kernels"),
         "packet"},
@@ -528,7 +528,7 @@ int render_command(const std::vector<std::string>& args) {
                      ? ""
                      : cat(" of ", scene->width, "x", scene->height).c_str(),
                  what.c_str(), seconds, counted(rays, "ray").c_str(), rays / seconds * 1e-6,
-                 std::string(tracer_kind_name(r.tracer)).c_str(),
+                 std::string(tracer_backend_name(r.tracer)).c_str(),
                  std::string(isa_name(r.isa)).c_str(),
                  counted(omp_get_max_threads(), "thread").c_str(),
                  counted(bvh.nodes.size(), "node").c_str(), bvh.stats.build_seconds);

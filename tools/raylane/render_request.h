@@ -32,7 +32,7 @@ struct RenderRequest {
   RaycastMode mode = RaycastMode::kLit;
   PathSettings path_settings;
   CheckpointOptions checkpoints;
-  TracerKind tracer = TracerKind::kPacket;
+  TracerBackend tracer = TracerBackend::kPacket;
   Isa isa = best_isa();
   double exposure = 0;
   int threads = 0;

@@ -141,7 +141,7 @@ RenderSummary render_summary(const RenderRequest& r, const Scene& scene, const B
   s.seconds = seconds;
   s.stats = stats;
   s.phases_timed = r.path && r.path_settings.time_phases;
-  s.tracer = tracer_kind_name(r.tracer);
+  s.tracer = tracer_backend_name(r.tracer);
   s.isa = isa_name(r.isa);
   s.threads = omp_get_max_threads();
   s.processes = processes;

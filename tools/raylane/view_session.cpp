@@ -40,7 +40,7 @@ std::unique_ptr<ViewWorld> make_world(ParsedScene parsed, uint32_t width, uint32
   scene.height = height;
   world->bvh = build_bvh_and_reorder(scene, render_bvh_config(scene));
   // The packet tracer at the widest ISA, like `raylane render`'s defaults.
-  world->tracer = std::make_unique<Tracer>(scene, world->bvh, TracerKind::kPacket, best_isa());
+  world->tracer = std::make_unique<Tracer>(scene, world->bvh, TracerBackend::kPacket, best_isa());
   return world;
 }
 

@@ -1,60 +1,49 @@
-// The tracer a renderer calls, behind one batch interface: the SIMD tracer (default), single
-// rays through the BVH with the double kernels, or the brute-force oracle. All three see the
-// same scene (its tables permuted by the BVH build), so their answers — including primitive
-// ids — can be compared pixel for pixel. Every call runs on the calling thread: the renderer's
-// tile loop owns the threads (core/parallel.h).
+// The tracer a renderer calls, behind one batch interface, with one of three backends
+// (trace/trace_backend.h): the SIMD tracer (packet, the default), single rays through the BVH
+// with the double kernels (bvh), or the brute-force oracle (scalar). All three see the same
+// scene (its tables permuted by the BVH build), so their answers — including primitive ids —
+// can be compared pixel for pixel. Every call runs on the calling thread: the renderer's tile
+// loop owns the threads (core/parallel.h).
 #pragma once
 
-#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/enum_names.h"
-#include "raylane/prims/prim_list.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/hit.h"
-#include "raylane/trace/simd_tracer.h"
+#include "raylane/trace/trace_backend.h"
 
 namespace raylane {
 
-enum class TracerKind { kPacket, kBvh, kScalar };  // kPacket: the SimdTracer
+enum class TracerBackend { kPacket, kBvh, kScalar };  // kPacket: the SimdTracer
 
-inline constexpr EnumNames<TracerKind, 3> kTracerKindNames{{"packet", "bvh", "scalar"}};
-inline std::optional<TracerKind> tracer_kind_from_name(std::string_view name) {
-  return kTracerKindNames.from_name(name);
+inline constexpr EnumNames<TracerBackend, 3> kTracerBackendNames{{"packet", "bvh", "scalar"}};
+inline std::optional<TracerBackend> tracer_backend_from_name(std::string_view name) {
+  return kTracerBackendNames.from_name(name);
 }
-inline std::string_view tracer_kind_name(TracerKind kind) {
-  return kTracerKindNames.name(kind);
+inline std::string_view tracer_backend_name(TracerBackend backend) {
+  return kTracerBackendNames.name(backend);
 }
-
-// Buffers a caller keeps between batches so that tracing allocates nothing once they have
-// grown (one per thread: the render loop keeps one per tile context).
-struct TraceScratch {
-  RayStream rays;
-  HitStream hits;
-  std::array<std::vector<uint32_t>, kPrimKindCount> by_kind;  // hits awaiting their surface
-};
 
 class Tracer {
  public:
-  Tracer(const Scene& scene, const Bvh& bvh, TracerKind kind, Isa isa = best_isa())
-      : scene_(scene), bvh_(bvh), kind_(kind), simd_(isa) {}
+  // Contract: isa_supported(isa) (only the packet backend reads it).
+  Tracer(const Scene& scene, const Bvh& bvh, TracerBackend backend, Isa isa = best_isa());
 
   // The closest hit of every ray, with its surface (computed by the double reference from
   // the ray as traced). SIMD rays are traced in float: origins and directions are rounded
   // first, and the surface is computed for the rounded ray, so t and the point agree.
   void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits) const;
-  // The same, with the caller's scratch, and surfaces only for rays[0, with_surface): the
-  // rest (shadow rays, say) get prim and t alone (their surface and facing are unspecified);
-  // complete() fills in one of them later.
-  void closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits, std::size_t with_surface,
-               TraceScratch& scratch) const;
-  // closest() for rays already in float columns (the render's wavefronts): the packet tracer
-  // reads them as they are, without a conversion pass; the references trace each ray widened
-  // to double (exactly). `rays` may be scratch.rays.
+  // closest() for rays already in float columns (the render's wavefronts), with the caller's
+  // scratch, and surfaces only for rays[0, with_surface): the rest (shadow rays, say) get prim
+  // and t alone (their surface and facing are unspecified); complete() fills in one of them
+  // later. The packet tracer reads the rays as they are, without a conversion pass; the
+  // references trace each ray widened to double (exactly). `rays` may be scratch.rays.
   void closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t with_surface,
                TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
@@ -76,21 +65,14 @@ class Tracer {
   void occluded(const RayStream& rays, std::vector<uint8_t>& blocked, TraceScratch& scratch) const;
 
   const Scene& scene() const { return scene_; }
-  TracerKind kind() const { return kind_; }
-  Isa isa() const { return simd_.isa(); }
+  TracerBackend backend() const { return backend_; }
+  Isa isa() const { return isa_; }
 
  private:
-  // complete() for hits[0, n) of a packet trace of the float `rays`, kind by kind (one branch
-  // on the kind per batch, not per hit).
-  void complete_by_kind(const RayStream& rays, std::vector<Hit>& hits, std::size_t n,
-                        TraceScratch& scratch) const;
-  // occluded() for one ray with the double references.
-  bool occluded_ref(const Rayd& ray, PrimRef aim) const;
-
   const Scene& scene_;
-  const Bvh& bvh_;
-  TracerKind kind_;
-  SimdTracer simd_;
+  TracerBackend backend_;
+  Isa isa_;
+  std::unique_ptr<const TraceBackend> impl_;
 };
 
 }  // namespace raylane
