@@ -1,6 +1,6 @@
 #include "raylane/render/vertex_lanes.h"
 
-#include "raylane/render/sampling.h"
+#include "raylane/render/vertex_steps.h"
 #include "render/render_lanes.h"
 
 namespace raylane {
@@ -37,18 +37,17 @@ std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
 bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
                          const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c) {
   if (!(light_pdf > 0) || f == Vec3d(0, 0, 0)) return false;
-  double w = rules.mis ? power_heuristic(light_pdf, bsdf_pdf) : 1.0;
-  c = beta * f * le * (w / light_pdf);
+  c = shadow_ray_contribution(rules.mis, beta, f, le, light_pdf, bsdf_pdf);
   return is_finite(c);
 }
 
 bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
                      double u_roulette, Vec3d& next) {
   if (!(pdf > 0)) return false;
-  next = beta * value / pdf;
+  next = sampled_throughput(beta, value, pdf);
   if (rules.roulette) {
     if (u_roulette >= rules.survival) return false;
-    next = next / rules.survival;
+    next = survivor_throughput(next, rules.survival);
   }
   return is_finite(next) && next != Vec3d(0, 0, 0);
 }

@@ -10,6 +10,7 @@
 
 #include "raylane/core/float_util.h"
 #include "raylane/render/vertex_lanes.h"
+#include "raylane/render/vertex_steps.h"
 #include "render/light_lanes_impl.h"
 
 namespace raylane::detail {
@@ -49,8 +50,8 @@ Doubles<A> next_double_lanes(const Doubles<A>& v, bool up) {
 // hit_point_error and offset_ray_origin (core/ray_offset.cpp).
 template <class A>
 DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& o,
-                                 const DoubleVec3<A>& d, const Doubles<A>& t, const DoubleVec3<A>& ng,
-                                 const DoubleVec3<A>& toward) {
+                                  const DoubleVec3<A>& d, const Doubles<A>& t,
+                                  const DoubleVec3<A>& ng, const DoubleVec3<A>& toward) {
   using D = Doubles<A>;
   const D bound(32 * kFloatUnitRoundoff);
   auto err = [&](const D& ok, const D& dk) {
@@ -91,7 +92,7 @@ void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const 
   simd::store_narrowed<A>(c[2].data() + i, v.z);
 }
 
-// queue_shadow_ray's contribution (beta·f·Le·(w / pdf), w the power heuristic under MIS) and
+// queue_shadow_ray's contribution (render/vertex_steps.h, the scalar steps' own text) and
 // origin, for the rows of lanes [i, i + W).
 template <class A>
 void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQueries& lights,
@@ -100,17 +101,10 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
                   const Doubles<A>& t) {
   using D = Doubles<A>;
   const DoubleVec3<A> wi = load3<A>(lights.cones.wi, i), le = load3<A>(lights.le, i),
-                     f = load3_widened<A>(bsdf.light_f, i);
+                      f = load3_widened<A>(bsdf.light_f, i);
   const D pdf = D::load_unaligned(lights.cones.pdf.data() + i);
   const D bsdf_pdf = load_widened<A>(bsdf.light_pdf, i);
-  D w(1.0);
-  if (rules.mis) {
-    const D a = pdf * pdf, c = bsdf_pdf * bsdf_pdf;
-    w = xsimd::select(a > D(0.0), a / (a + c), D(0.0));
-  }
-  const D scale = w / pdf;
-  const DoubleVec3<A> c{beta.x * f.x * le.x * scale, beta.y * f.y * le.y * scale,
-                       beta.z * f.z * le.z * scale};
+  const DoubleVec3<A> c = shadow_ray_contribution(rules.mis, beta, f, le, pdf, bsdf_pdf);
   store3<A>(b.shadow_c, i, c);
   const DoubleVec3<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
   store3_narrowed<A>(b.shadow_o, i, from);
@@ -124,7 +118,8 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
       .store_unaligned(b.shadow_ok.data() + i);
 }
 
-// continue_path's throughput (beta·value / pdf, then roulette) and origin.
+// continue_path's throughput (render/vertex_steps.h: beta·value / pdf, then roulette) and
+// origin.
 template <class A>
 void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatch& b, std::size_t i,
                     const DoubleVec3<A>& beta, const DoubleVec3<A>& p, const DoubleVec3<A>& ng,
@@ -132,12 +127,12 @@ void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatc
   using D = Doubles<A>;
   const DoubleVec3<A> wi = load3_widened<A>(bsdf.wi, i), value = load3_widened<A>(bsdf.value, i);
   const D pdf = load_widened<A>(bsdf.pdf, i);
-  DoubleVec3<A> nb{beta.x * value.x / pdf, beta.y * value.y / pdf, beta.z * value.z / pdf};
+  DoubleVec3<A> nb = sampled_throughput(beta, value, pdf);
   DMask<A> alive = pdf > D(0.0);
   if (rules.roulette) {
     const D u = D::load_unaligned(b.u_roulette.data() + i), s(rules.survival);
     alive = alive & !(u >= s);
-    nb = {nb.x / s, nb.y / s, nb.z / s};
+    nb = survivor_throughput(nb, s);
   }
   alive = alive & all_finite<A>(nb) & !all_zero<A>(nb);
   store3<A>(b.next_beta, i, nb);

@@ -1,4 +1,5 @@
-// The path tracer's own warps (the course's Phong microfacet lobe) and the MIS weight; the
+// The path tracer's own warps (the course's Phong microfacet lobe; the MIS weight is in
+// render/vertex_steps.h); the
 // general warps are in core/warps.h. Every warp is total: u in [0, 1]² never gives NaN
 // (docs/hard-cases.md N6).
 #pragma once
@@ -21,12 +22,6 @@ Vec3d sample_phong_normal(double u1, double u2, double alpha);
 double phong_normal_pdf(double cos_theta_m, double alpha);
 inline double phong_normal_pdf_scale(double alpha) {
   return (alpha + 1) / (2 * kPi);
-}
-
-// Veach's power heuristic with β = 2 (Veach 1997, thesis §9.2.4) for one sample of each.
-inline double power_heuristic(double pdf_this, double pdf_other) {
-  double a = pdf_this * pdf_this, b = pdf_other * pdf_other;
-  return a > 0 ? a / (a + b) : 0.0;
 }
 
 }  // namespace raylane

@@ -1,7 +1,7 @@
 // The stage after tracing: the shadow rays' answers, and where each ray arrived — the
 // environment for an escaped ray, the emission of an emitter it hit (both finish the path
 // here), or a queue of vertices to shade.
-#include "raylane/render/sampling.h"
+#include "raylane/render/vertex_steps.h"
 #include "render/wavefront/stages.h"
 
 namespace raylane::path_detail {
