@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "raylane/core/bounds3.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 
 namespace raylane::bvh_build {
 

@@ -71,7 +71,7 @@ struct AllOf {
 
 // ---- What the kernels share ----
 
-// Which t the kernel commits (commit_solid_hit in trace/packet.h): the near end tn if it lies
+// Which t the kernel commits (commit_solid_hit in simd/packet.h): the near end tn if it lies
 // in (tmin, tmax), else the far end tf if that does; tf ≥ tn. `line` is the verdict on
 // whether the ray's line meets the solid; a triangle passes tn = tf = its t.
 PrimVerdict commit_range(RayClass line, Interval tn, Interval tf, const Rayd& ray,

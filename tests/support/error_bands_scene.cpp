@@ -52,7 +52,7 @@ PrimVerdict classify(const Scene& scene, PrimRef prim, const Rayd& ray) {
 }
 
 // The kernel commits, in whatever order the traversal meets them, a hit that is nearer than
-// the nearest so far (trace/packet.h). So the nearest clear hit wins for sure when every
+// the nearest so far (simd/packet.h). So the nearest clear hit wins for sure when every
 // other primitive that might be hit has all its possible t beyond all of the winner's.
 RayVerdict classify_closest(const Scene& scene, const Rayd& ray, bool skip_far_bounds) {
   RayVerdict out;

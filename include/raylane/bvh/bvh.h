@@ -10,7 +10,7 @@
 
 #include "raylane/bvh/wide_bvh.h"
 #include "raylane/core/bounds3.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 
 namespace raylane {
 

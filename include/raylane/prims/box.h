@@ -12,7 +12,7 @@
 
 #include "raylane/core/bounds3.h"
 #include "raylane/core/ray.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"

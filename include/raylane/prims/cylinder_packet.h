@@ -3,8 +3,8 @@
 #pragma once
 
 #include "raylane/prims/prim_list.h"
-#include "raylane/trace/packet.h"
-#include "raylane/trace/surface_lanes.h"
+#include "raylane/simd/packet.h"
+#include "raylane/simd/surface_lanes.h"
 
 namespace raylane {
 

@@ -25,7 +25,7 @@
 
 #include "raylane/prims/box.h"
 #include "raylane/prims/cylinder.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/prims/sphere.h"
 #include "raylane/prims/triangle.h"
 

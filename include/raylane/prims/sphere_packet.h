@@ -3,12 +3,12 @@
 #pragma once
 
 #include "raylane/prims/prim_list.h"
-#include "raylane/trace/packet.h"
-#include "raylane/trace/surface_lanes.h"
+#include "raylane/simd/packet.h"
+#include "raylane/simd/surface_lanes.h"
 
 namespace raylane {
 
-// The packet kernel, in float, with rays or rows in the lanes (`Rows`, trace/packet.h).
+// The packet kernel, in float, with rays or rows in the lanes (`Rows`, simd/packet.h).
 // Discriminant in the Hearn–Baker form r² − |f − (f·d/d·d)·d|² and roots by the Press form, as in
 // the reference (Haines et al. 2019, Ray Tracing Gems ch. 7). Updates h where a lane finds a nearer
 // hit.

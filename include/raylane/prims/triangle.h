@@ -14,7 +14,7 @@
 #include "raylane/core/bounds3.h"
 #include "raylane/core/float_util.h"
 #include "raylane/core/ray.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 

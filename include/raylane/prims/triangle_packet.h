@@ -3,7 +3,7 @@
 #pragma once
 
 #include "raylane/prims/prim_list.h"
-#include "raylane/trace/packet.h"
+#include "raylane/simd/packet.h"
 
 namespace raylane {
 

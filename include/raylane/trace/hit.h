@@ -3,7 +3,7 @@
 
 #include <limits>
 
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/prims/surface.h"
 
 namespace raylane {

@@ -7,7 +7,7 @@
 #include "raylane/core/float_util.h"
 #include "raylane/prims/prim_packets.h"
 #include "raylane/scene/scene.h"
-#include "raylane/trace/packet.h"
+#include "raylane/simd/packet.h"
 #include "raylane/trace/traversal_counters.h"
 
 namespace raylane {

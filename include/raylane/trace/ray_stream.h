@@ -9,7 +9,7 @@
 
 #include "raylane/core/column.h"
 #include "raylane/core/ray.h"
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 
 namespace raylane {
 

@@ -1,6 +1,6 @@
 // Single-ray traversal of the 8-wide BVH: one ray against the eight child boxes of a node in
 // one SIMD step, the children it overlaps visited nearest first, and a leaf's rows tested
-// several at a time (rows in lanes, trace/packet.h). For incoherent rays, where packets
+// several at a time (rows in lanes, simd/packet.h). For incoherent rays, where packets
 // keep few lanes busy (bench/README.md: 21 % on diffuse rays), one ray per traversal wastes
 // less (Wald et al. 2008, "Getting Rid of Packets"; Fuetterling et al. 2017). Included only
 // by the per-ISA translation units.
@@ -14,7 +14,7 @@
 #include "raylane/core/float_util.h"
 #include "raylane/prims/prim_packets.h"
 #include "raylane/scene/scene.h"
-#include "raylane/trace/packet.h"
+#include "raylane/simd/packet.h"
 #include "raylane/trace/traversal_counters.h"
 
 namespace raylane {

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <utility>
 
-#include "raylane/trace/packet.h"
+#include "raylane/simd/packet.h"
 
 namespace raylane {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "raylane/prims/prim_ref.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane {
