@@ -54,6 +54,7 @@ void Tracer::occluded(const std::vector<Rayd>& rays, const std::vector<PrimRef>&
   }
   RayStream& stream = scratch.rays;
   stream.resize(n);
+  stream.time.resize(scene_.moves() ? n : 0);  // the rays' times, where something moves
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   stream.aim.resize(aims.empty() ? 0 : n);
@@ -158,6 +159,7 @@ void Tracer::closest(const std::vector<Rayd>& rays, std::vector<Hit>& hits,
   RayStream& stream = scratch.rays;
   stream.resize(n);
   stream.aim.clear();  // left by occluded()
+  stream.time.resize(scene_.moves() ? n : 0);
   for (std::size_t i = 0; i < n; ++i)
     stream.set(i, ray_cast<float>(rays[i]));
   closest(stream, hits, with_surface, scratch);
