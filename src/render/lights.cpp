@@ -78,6 +78,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     total += env_power;
   }
   for (PrimRef l : scene.lights) {
+    // A moving light's points depend on the path's time, which light sampling does not take
+    // (yet): it is left to BSDF sampling, which finds it where it is at the path's time
+    // (arrival.cpp counts all of what a path meets of it).
+    if (l.tag() == tag_of<MovingSphere>) continue;
     const Material& m = scene.materials[scene.material_of(l)];
     Vec3d le(m.emission);
     Vec3d mean_le = m.texture >= 0 ? le * scene.textures[m.texture].mean : le;

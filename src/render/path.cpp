@@ -35,6 +35,7 @@ void render_tile(TileContext& ctx, Film& f) {
     const bool all_surfaces = ctx.settings.shading == Shading::kDouble ||
                               (depth == 0 && !f.aovs.empty()) ||
                               ctx.tracer.backend() != TracerBackend::kPacket;
+    stamp_times(ctx);
     ctx.tracer.closest(w.rays.rays, w.hits, all_surfaces ? w.rays.size() : 0, w.scratch);
     w.hits_have_surfaces = all_surfaces;
     // Shadow rays, aimed at their light: it is seen when nothing else lies before it.

@@ -43,10 +43,12 @@ class PacketBackend final : public TraceBackend {
                 const SurfaceColumns& out, TraceScratch& scratch) const override;
 
  private:
-  // The double rays rounded to float into the scratch stream.
-  static RayStream& to_stream(const std::vector<Rayd>& rays, TraceScratch& scratch) {
+  // The double rays rounded to float into the scratch stream, with their times where something
+  // moves.
+  RayStream& to_stream(const std::vector<Rayd>& rays, TraceScratch& scratch) const {
     RayStream& stream = scratch.rays;
     stream.resize(rays.size());
+    stream.time.resize(scene_.moves() ? rays.size() : 0);
     for (std::size_t i = 0; i < rays.size(); ++i)
       stream.set(i, ray_cast<float>(rays[i]));
     return stream;

@@ -45,6 +45,7 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
   r.dx = col(s.dx), r.dy = col(s.dy), r.dz = col(s.dz);
   r.tmin = col(s.tmin);
   tmax = col(s.tmax);
+  r.time = s.time.empty() ? F(0.5f) : col(s.time);  // a scene without motion has no column
   // Whole packets load the aims straight too; a partial one's spare lanes are inactive.
   const auto none = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
   if (s.aim.empty()) {
@@ -63,7 +64,12 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
 
 // Ray i of the stream as scalars, with its reciprocal direction.
 inline RayScalars ray_scalars(const RayStream& s, std::size_t i) {
-  RayScalars r{{s.ox[i], s.oy[i], s.oz[i]}, {s.dx[i], s.dy[i], s.dz[i]}, {}, s.tmin[i], s.tmax[i]};
+  RayScalars r{{s.ox[i], s.oy[i], s.oz[i]},
+               {s.dx[i], s.dy[i], s.dz[i]},
+               {},
+               s.tmin[i],
+               s.tmax[i],
+               s.time_of(i)};
   for (int k = 0; k < 3; ++k)
     r.inv[k] = 1.0f / r.d[k];
   return r;

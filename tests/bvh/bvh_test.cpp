@@ -160,15 +160,20 @@ TEST(Bvh, InvariantsOnAMixedScene) {
 TEST(Bvh, PermutationKeepsEveryRowAndRemapsLights) {
   Scene s = random_scene(2, 300);
   std::multiset<float> radii(s.table<Sphere>().r.begin(), s.table<Sphere>().r.end());
+  // A light's radius, whichever kind of sphere it is.
+  auto radius = [&](PrimRef l) {
+    return l.tag() == tag_of<Sphere> ? s.table<Sphere>().r[l.row()]
+                                     : s.table<MovingSphere>().r[l.row()];
+  };
   std::multiset<float> light_radii;
   for (PrimRef l : s.lights)
-    light_radii.insert(s.table<Sphere>().r[l.row()]);
+    light_radii.insert(radius(l));
   build_bvh_and_reorder(s);
   EXPECT_EQ(radii, std::multiset<float>(s.table<Sphere>().r.begin(), s.table<Sphere>().r.end()));
   std::multiset<float> after;
   for (PrimRef l : s.lights) {
     EXPECT_TRUE(s.materials[s.material_of(l)].is_light);
-    after.insert(s.table<Sphere>().r[l.row()]);
+    after.insert(radius(l));
   }
   EXPECT_EQ(light_radii, after);
 }

@@ -21,6 +21,12 @@ void check(const raylane::ParsedScene& parsed) {
     if (m.microfacet > raylane::Microfacet::kBeckman ||
         (m.is_light && m.microfacet != raylane::Microfacet::kPhong))
       std::abort();
+  // Moving spheres: a radius > 0 and a swept box of finite floats at every time in [0, 1].
+  const raylane::MovingSphereTable& mb = s.table<raylane::MovingSphere>();
+  for (uint32_t i = 0; i < mb.size(); ++i) {
+    const raylane::Bounds3f b = mb.bounds(i);
+    if (!(mb.r[i] > 0) || !raylane::is_finite(b.lo) || !raylane::is_finite(b.hi)) std::abort();
+  }
 }
 
 }  // namespace

@@ -243,24 +243,44 @@ double Criterion::ratio() const {
   return margin == 0 ? 0.0 : kInf;
 }
 
-// Sphere kernel (sphere.h): f̂ = fl(o − c) (|δf| ≤ u|f| — the only input error, the
-// direction is exact), then the Hearn–Baker distance (kernel_line_distance with p = f,
-// q = d, Ep = u|f|, Eq = 0), disc = fl(r²) − fl(|l̂|²); roots from a = fl(d·d) (γ3),
-// b = fl(f̂·d) (|b̂ − f·d| ≤ u|f||d| + γ3|f̂||d|), c = fl(fl(|f̂|²) − fl(r²)).
+// Sphere kernel (sphere.h): f̂ = fl(o − ĉ), where the kernel's centre ĉ is within Ec of the
+// reference's c (0 for a static sphere) — the only input error, the direction is exact: |f̂ − f|
+// ≤ Ef = u|f| + (1 + u)·Ec. Then the Hearn–Baker distance (kernel_line_distance with p = f,
+// q = d, Ep = Ef, Eq = 0), disc = fl(r²) − fl(|l̂|²); roots from a = fl(d·d) (γ3),
+// b = fl(f̂·d) (|b̂ − f·d| ≤ Ef|d| + γ3|f̂||d|), c = fl(fl(|f̂|²) − fl(r²)).
 // The decision is disc ≥ 0; its margin is the reference's r² − |l|² (docs/hard-cases.md S1).
-PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
-  Vec3d f = ray.o - Vec3d(s.center(row));
+namespace {
+PrimVerdict classify_sphere(const Vec3d& centre, double Ec, double r, const Rayd& ray,
+                            double t_ref) {
+  Vec3d f = ray.o - centre;
   const Vec3d& d = ray.d;
-  double r = s.r[row], F = length(f), D = length(d), b = dot(f, d), dd = dot(d, d);
+  double F = length(f), D = length(d), b = dot(f, d), dd = dot(d, d);
+  double Ef = u * F + (1 + u) * Ec;
   double L = length(f - (b / dd) * d);
-  Interval disc = kernel_discriminant(r, kernel_line_distance(L, F, D, {u * F, 0}, {}));
+  Interval disc = kernel_discriminant(r, kernel_line_distance(L, F, D, {Ef, 0}, {}));
   Criterion side = criterion(r * r - L * L, disc);
   Interval a = widen(Interval::point(dd), gamma(3));
-  Interval b_hat = Interval::around(b, (u * F * D + gamma(3) * F * (1 + u) * D) * kRefSlack);
-  Interval ff = {sq(F * (1 - u)) * (1 - gamma(3)), sq(F * (1 + u)) * (1 + gamma(3))};
+  Interval b_hat = Interval::around(b, (Ef * D + gamma(3) * (F + Ef) * D) * kRefSlack);
+  Interval ff = {sq(std::max(0.0, F - Ef)) * (1 - gamma(3)), sq(F + Ef) * (1 + gamma(3))};
   Interval c = rounded(ff - rounded(Interval::point(r * r)));
   Roots t = kernel_roots(a, b_hat, c, disc);
-  return commit_range(side.verdict(), t.near, t.far, ray, side, intersect_ref(s, row, ray));
+  return commit_range(side.verdict(), t.near, t.far, ray, side, t_ref);
+}
+}  // namespace
+
+PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
+  return classify_sphere(Vec3d(s.center(row)), 0.0, s.r[row], ray, intersect_ref(s, row, ray));
+}
+
+// Moving sphere kernel (moving_sphere_packet.h): the centre at the ray's time t is
+// ĉ_i = fl(c0_i + fl(t·m_i)), within u|t·m_i| + u|c_i| + u²|t·m_i| of c0_i + t·m_i per
+// component; the reference's c (double, moving_sphere.h) is within 2^-53|c| of that, as t·m
+// is exact in double. Then the sphere's kernel.
+PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray) {
+  Vec3d c = s.center_at(row, ray.time);
+  double tm = length(Vec3d(s.motion(row)) * ray.time), cc = length(c);
+  double Ec = (u * cc + u * (1 + u) * tm + 0x1p-52 * cc) * kRefSlack;
+  return classify_sphere(c, Ec, s.r[row], ray, intersect_ref(s, row, ray));
 }
 
 // Box kernel (box.h): per axis t = fl(fl(bound − o)·fl(1/d)), three roundings: γ3|t| (pbrt-v4

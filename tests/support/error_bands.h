@@ -50,6 +50,7 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const BoxTable& b, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const CylinderTable& c, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const TriangleTable& t, uint32_t row, const Rayd& ray);
+PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const Scene& scene, PrimRef prim, const Rayd& ray);
 
 // The verdict for a closest-hit query on a whole scene. kClearHit: every primitive is a clear

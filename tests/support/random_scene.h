@@ -10,8 +10,9 @@
 
 namespace raylane::testing {
 
-// `n` primitives of every kind, scattered in a cube of half-size `extent` around `offset`,
-// with sizes around `size`. Materials: 0 grey, 1 a light (a few of the spheres use it).
+// `n` primitives of every kind (moving spheres included), scattered in a cube of half-size `extent`
+// around `offset`, with sizes around `size`. Materials: 0 grey, 1 a light (a few of the spheres use
+// it).
 Scene random_scene(uint32_t seed, int n, double extent = 10, double size = 0.6,
                    Vec3d offset = {0, 0, 0});
 
@@ -21,7 +22,7 @@ void add_closed_uv_sphere(Scene& scene, uint32_t seed, int rings, int segments,
                           Vec3d offset = {0, 0, 0});
 
 // Rays from points in the cube of half-size `extent` around `offset` towards random points
-// (unit directions, tmin 0, tmax inf).
+// (unit directions, tmin 0, tmax inf), at times in the shutter interval [0, 1).
 std::vector<Rayd> random_rays(uint32_t seed, int n, double extent, Vec3d offset = {0, 0, 0});
 
 // Float rays are what the packet tracer takes: round each ray's origin and direction.

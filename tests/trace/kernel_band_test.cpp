@@ -3,7 +3,8 @@
 // support/error_bands (no tolerance is guessed). Typed over the primitive kinds; seeded random
 // rays and rays aimed at silhouettes, edges and rims so that the band is populated; world
 // offsets 0 … 1e5 and object scales 1e-3 … 1e3; streams whose last packet is partly filled
-// and invalid rays mixed in, so packets run with inactive lanes.
+// and invalid rays mixed in, so packets run with inactive lanes. Moving spheres: every ray has
+// its own time (the shutter's ends, its middle, random), so the kernels take times per lane.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
@@ -116,6 +118,38 @@ struct Shapes<Sphere> {
     return c_hat * std::sqrt(1 - sin_a * sin_a) + orthogonal_unit(g, c_hat) * sin_a;
   }
 };
+
+// A moving sphere: the motion is 0 one time in four (the ends equal: the static sphere at every
+// time), else up to 4 radii; each ray has its own time (times per lane), and the aimed rays are
+// tangent to the sphere where it is at that time, so the band is populated at every time.
+template <>
+struct Shapes<MovingSphere> {
+  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
+    double r = scale * uniform(g, 0.3, 1);
+    Vec3d m = g() % 4 == 0 ? Vec3d(0, 0, 0) : unit_vector(g) * (r * uniform(g, 0, 4));
+    std::array<double, 7> p{c.x, c.y, c.z, c.x + m.x, c.y + m.y, c.z + m.z, r};
+    return !s.table<MovingSphere>().append(p, 0).has_value();
+  }
+  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
+  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g, double time) {
+    const auto& t = s.table<MovingSphere>();
+    Vec3d to_c = t.center_at(row, time) - o;
+    double dist = length(to_c), sin_a = t.r[row] * (1 + band_jitter(g)) / dist;
+    if (!(sin_a < 1)) return to_c;
+    Vec3d c_hat = to_c / dist;
+    return c_hat * std::sqrt(1 - sin_a * sin_a) + orthogonal_unit(g, c_hat) * sin_a;
+  }
+};
+
+// Whether a kind's rays carry times: a moving kind's do.
+template <class Kind>
+constexpr bool kMoves = std::is_same_v<Kind, MovingSphere>;
+
+// A ray's time: the shutter's ends and middle, and random times in between.
+float ray_time(Rng& g, int i) {
+  constexpr float kTimes[] = {0.0f, 0.5f, 0x1.fffffep-1f};
+  return i % 4 < 3 ? kTimes[i % 4] : float(uniform(g, 0, 1));
+}
 
 template <>
 struct Shapes<Box> {
@@ -227,6 +261,7 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
   std::vector<Rayd> rays;
   for (int i = 0; i < n; ++i) {
     uint32_t row = uint32_t(g() % table.size());
+    const float time = kMoves<Kind> ? ray_time(g, i / 5) : 0.5f;
     Bounds3f b = table.bounds(row);
     Vec3d c = centre_of(b);
     double size = radius_of(b);
@@ -237,13 +272,17 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
       r = grazing_ray(around, Shapes<Kind>::plane_normal(s, row, g), dist, g);
     else if (i % 10 == 7)
       r = {Vec3d(Vec3f(c + unit_vector(g) * (0.3 * size))), unit_vector(g)};  // from inside
-    else if (i % 5 >= 2)
-      r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g))};
-    else
+    else if (i % 5 >= 2) {
+      if constexpr (kMoves<Kind>)
+        r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g, time))};
+      else
+        r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g))};
+    } else
       r = {o, normalize(c + unit_vector(g) * (1.2 * size * std::cbrt(uniform(g, 0, 1))) - o)};
     o = r.o;
     if (i % 5 == 1) r.tmax = length(c - o) * uniform(g, 0.8, 1.2);
     if (i % 10 == 3) r.tmin = length(c - o) * uniform(g, 0.8, 1.2);
+    r.time = time;
     rays.push_back(round_to_float(r));
   }
   const double nan = std::nan("");
@@ -365,7 +404,7 @@ std::vector<Placement> placements() {
 template <class Kind>
 class KernelBandTest : public ::testing::Test {};
 
-using Kinds = ::testing::Types<Sphere, Box, Cylinder, Triangle>;
+using Kinds = ::testing::Types<Sphere, Box, Cylinder, Triangle, MovingSphere>;
 struct KindNames {
   template <class Kind>
   static std::string GetName(int) {

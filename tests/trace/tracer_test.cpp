@@ -39,7 +39,22 @@ std::vector<Rayd> random_rays(const Scene& scene, const Bvh& bvh, int count) {
     }
     rays.push_back({o, d});
   }
+  // Times of a generator of their own (the rays are what they were), for the moving spheres.
+  Rng times(6);
+  for (Rayd& r : rays)
+    r.time = std::min(times.uniform(), 0x1.fffffffffffffp-1);
   return rays;
+}
+
+// Moving spheres in the course scene's room (one standing still), so that every tracer's
+// answers cover them at the rays' times.
+void add_moving_spheres(Scene& scene) {
+  MovingSphereTable& t = scene.table<MovingSphere>();
+  for (int i = 0; i < 12; ++i) {
+    double x = 1 + i % 4 * 3.0, y = 1 + i / 4 * 4.0, z = 1 + i % 3 * 2.5;
+    double dx = i % 6 == 0 ? 0 : 2.5, dz = i % 2 ? 1.5 : -1.0;
+    t.append(std::array<double, 7>{x, y, z, x + dx, y, z + dz, 0.4 + 0.1 * (i % 3)}, 0);
+  }
 }
 
 bool same_bits(const Vec3d& a, const Vec3d& b) {
@@ -77,6 +92,7 @@ void expect_batch_answers_are_one_by_one(const Scene& scene, const Bvh& bvh, Isa
 TEST(Tracer, BatchSurfacesAndFacingAreTheOneByOneAnswers) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
+  add_moving_spheres(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
@@ -173,12 +189,13 @@ void expect_occluded_answers(const Tracer& tracer, const std::vector<Rayd>& rays
 
 // `check` on the course scene's random rays with every tracer: the packet tracer at every
 // instruction set on `count` rays, the double references on `reference_count` of them (slow).
-// `change` may alter the scene first.
+// With moving spheres added (add_moving_spheres); `change` may alter the scene further.
 template <class Check, class Change = void (*)(Scene&)>
 void with_every_tracer(
     int count, std::size_t reference_count, Check check, Change change = [](Scene&) {}) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
+  add_moving_spheres(parsed.scene);
   change(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   const Scene& scene = parsed.scene;
@@ -213,6 +230,7 @@ void expect_streams_answer_as_rays(const Tracer& tracer, const std::vector<Rayd>
     stream.resize(stream.size() + 1);
     stream.set(stream.size() - 1, ray_cast<float>(c.ray));
     stream.aim.push_back(c.aim.bits());
+    stream.time.push_back(float(c.ray.time));
   }
   TraceScratch scratch;
   std::vector<uint8_t> want, got;

@@ -1,5 +1,8 @@
 // A ray o + t·d, valid for t in the open interval (tmin, tmax). Directions need not be
-// normalised for the kernels, but the camera and the renderer produce unit directions.
+// normalised for the kernels, but the camera and the renderer produce unit directions. `time`
+// is the instant in the shutter interval [0, 1) the ray is traced at; only moving primitives
+// read it (motion blur, docs/motion-blur.md), and a ray nobody gave a time sees the middle of
+// the shutter, as the ray-casting views render.
 #pragma once
 
 #include <limits>
@@ -14,6 +17,7 @@ struct Ray {
   Vec3<T> d;
   T tmin = T(0);
   T tmax = std::numeric_limits<T>::infinity();
+  T time = T(0.5);
 
   constexpr Vec3<T> at(T t) const { return o + d * t; }
 };
@@ -23,7 +27,7 @@ using Rayd = Ray<double>;
 
 template <class To, class From>
 constexpr Ray<To> ray_cast(const Ray<From>& r) {
-  return {Vec3<To>(r.o), Vec3<To>(r.d), To(r.tmin), To(r.tmax)};
+  return {Vec3<To>(r.o), Vec3<To>(r.d), To(r.tmin), To(r.tmax), To(r.time)};
 }
 
 }  // namespace raylane

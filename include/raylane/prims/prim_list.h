@@ -23,9 +23,10 @@
 #include <type_traits>
 #include <utility>
 
+#include "raylane/core/prim_ref.h"
 #include "raylane/prims/box.h"
 #include "raylane/prims/cylinder.h"
-#include "raylane/core/prim_ref.h"
+#include "raylane/prims/moving_sphere.h"
 #include "raylane/prims/sphere.h"
 #include "raylane/prims/triangle.h"
 
@@ -52,7 +53,8 @@ struct KindList {
   }
 };
 
-using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle>;
+// New kinds go last: a kind's tag is its position, and the tags of the others stay as they were.
+using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle, MovingSphere>;
 using PrimTables = PrimKinds::Tables;
 inline constexpr std::size_t kPrimKindCount = PrimKinds::size;
 static_assert(kPrimKindCount <= (std::size_t(1) << PrimRef::kTagBits),

@@ -4,5 +4,6 @@
 
 #include "raylane/prims/box_packet.h"
 #include "raylane/prims/cylinder_packet.h"
+#include "raylane/prims/moving_sphere_packet.h"
 #include "raylane/prims/sphere_packet.h"
 #include "raylane/prims/triangle_packet.h"

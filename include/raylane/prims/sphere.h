@@ -80,13 +80,11 @@ struct Sphere {
   static Vec3d point_light(const Table& t, uint32_t i) { return Vec3d(t.center(i)); }
 };
 
-// The reference kernel, in double on the table's floats. The discriminant is the squared
-// distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a far,
-// small sphere does not cancel to nothing (docs/hard-cases.md S1).
-inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
+// The reference kernel of a sphere of centre c and radius r, in double. The discriminant is the
+// squared distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a
+// far, small sphere does not cancel to nothing (docs/hard-cases.md S1).
+inline double intersect_sphere_ref(const Vec3d& c, double r, const Rayd& ray) {
   constexpr double kMiss = std::numeric_limits<double>::infinity();
-  Vec3d c(s.center(i));
-  double r = s.r[i];
   Vec3d f = ray.o - c;
   double a = dot(ray.d, ray.d), b = dot(f, ray.d);
   Vec3d l = f - (b / a) * ray.d;
@@ -97,6 +95,11 @@ inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
   return first_in_range(t0, t1, ray);
 }
 
+// The reference kernel, in double on the table's floats.
+inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
+  return intersect_sphere_ref(Vec3d(s.center(i)), s.r[i], ray);
+}
+
 // The hit point is projected back onto the sphere (pbrt-v4 Sphere::Intersect), so its error
 // is a few ulps of the radius, not of the distance travelled.
 inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, double t) {
@@ -105,15 +108,19 @@ inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, do
   return {c + n * double(s.r[i]), n, n};
 }
 
-// u = φ/2π with φ = atan2(y, x) in [0, 2π), v = 1 − θ/π with θ from +Z, of the point relative
-// to the centre in world axes (the point alone: light sampling has no normal for it).
-inline TexCoord texcoord_ref(const SphereTable& t, uint32_t i, const Surface& s) {
-  Vec3d d = normalize(s.p - Vec3d(t.center(i)));
+// u = φ/2π with φ = atan2(y, x) in [0, 2π), v = 1 − θ/π with θ from +Z, of a unit direction d
+// from the centre in world axes.
+inline TexCoord sphere_texcoord(const Vec3d& d) {
   double phi = std::atan2(d.y, d.x);
   if (phi < 0) phi += 2 * kPi;
   double u = phi / (2 * kPi);
   double theta = std::acos(std::clamp(d.z, -1.0, 1.0));
   return {u < 1 ? u : 0.0, 1 - theta / kPi};
+}
+
+// The point's direction from the centre (the point alone: light sampling has no normal for it).
+inline TexCoord texcoord_ref(const SphereTable& t, uint32_t i, const Surface& s) {
+  return sphere_texcoord(normalize(s.p - Vec3d(t.center(i))));
 }
 
 }  // namespace raylane

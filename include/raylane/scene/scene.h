@@ -81,6 +81,9 @@ struct Scene {
     return std::get<kind_index<Kind>()>(tables);
   }
   std::size_t primitive_count() const;
+  // Whether anything moves during the shutter (an `mbsphere`): only then do the paths draw a
+  // time and the rays carry one (docs/motion-blur.md).
+  bool moves() const { return table<MovingSphere>().size() > 0; }
   Bounds3f bounds() const;  // of every primitive (empty for none)
   uint32_t material_of(PrimRef ref) const;
 

@@ -99,6 +99,7 @@ struct RayPacket {
   F dx, dy, dz;
   F inv_dx, inv_dy, inv_dz;  // 1/d: ±inf for a ±0 component, signed like d (docs/hard-cases.md B3)
   F tmin;
+  F time;  // each lane's instant in the shutter interval (core/ray.h); read by moving kinds only
   // Occlusion: the primitive each lane is aimed at, whose hit shortens the segment instead of
   // blocking it (RayStream::aim); PrimRef::kInvalidBits for none. Unread by closest hit.
   simd::Ints<A> aim;

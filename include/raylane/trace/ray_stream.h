@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "raylane/core/column.h"
-#include "raylane/core/ray.h"
 #include "raylane/core/prim_ref.h"
+#include "raylane/core/ray.h"
 
 namespace raylane {
 
@@ -21,6 +21,11 @@ struct RayStream {
   // surface ends the ray's segment instead of blocking it (SimdTracer::occluded). resize() and
   // set() leave it alone.
   Column<uint32_t> aim;
+  // Motion blur only, optional (empty, or one entry per ray): time[i] is ray i's instant in the
+  // shutter interval [0, 1). A scene without moving primitives never fills it (its rays are
+  // traced as they always were); an empty column means the middle of the shutter, as for a
+  // Ray without a time. resize() leaves it alone; set() writes it when it is there.
+  Column<float> time;
 
   std::size_t size() const { return ox.size(); }
   void resize(std::size_t n) {
@@ -31,22 +36,31 @@ struct RayStream {
     ox[i] = r.o.x, oy[i] = r.o.y, oz[i] = r.o.z;
     dx[i] = r.d.x, dy[i] = r.d.y, dz[i] = r.d.z;
     tmin[i] = r.tmin, tmax[i] = r.tmax;
+    if (i < time.size()) time[i] = r.time;
   }
-  // The stream of `rays`, each rounded to float (what the packet tracer is given).
+  // The stream of `rays`, each rounded to float (what the packet tracer is given), with a time
+  // column when a ray's time is not the middle of the shutter.
   static RayStream from(const std::vector<Rayd>& rays) {
     RayStream s;
     s.resize(rays.size());
+    for (const Rayd& r : rays)
+      if (r.time != 0.5) {
+        s.time.resize(rays.size());
+        break;
+      }
     for (std::size_t i = 0; i < rays.size(); ++i)
       s.set(i, ray_cast<float>(rays[i]));
     return s;
   }
   Rayf get(std::size_t i) const {
-    return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
+    return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i], time_of(i)};
   }
-  // No rays, no aims (the columns keep their capacity).
+  float time_of(std::size_t i) const { return time.empty() ? 0.5f : time[i]; }
+  // No rays, no aims, no times (the columns keep their capacity).
   void clear() {
     resize(0);
     aim.clear();
+    time.clear();
   }
 };
 

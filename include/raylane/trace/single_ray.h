@@ -19,6 +19,7 @@ namespace raylane {
 struct RayScalars {
   float o[3], d[3], inv[3];
   float tmin, tmax;
+  float time = 0.5f;  // in the shutter interval (core/ray.h)
 };
 
 // Whether a ray is traced at all: finite origin and direction, a non-zero direction and
@@ -75,6 +76,7 @@ inline RayPacket<L> broadcast_ray(const RayScalars& r, const ShearScalars* frame
   p.dx = F(r.d[0]), p.dy = F(r.d[1]), p.dz = F(r.d[2]);
   p.inv_dx = F(r.inv[0]), p.inv_dy = F(r.inv[1]), p.inv_dz = F(r.inv[2]);
   p.tmin = F(r.tmin);
+  p.time = F(r.time);
   p.aim = simd::Ints<L>(int32_t(PrimRef::kInvalidBits));  // single rays go through closest hit
   p.active = simd::Mask<L>(true);
   broadcast_shear<L>(frame ? *frame : scalar_shear<L>(r), p.shear);

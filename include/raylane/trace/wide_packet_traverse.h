@@ -100,10 +100,10 @@ inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wi
   using FL = simd::Floats<L>;
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
-  alignas(64) float col[10][W];
-  const F* src[10] = {&r.ox, &r.oy,     &r.oz,     &r.dx,     &r.dy,
-                      &r.dz, &r.inv_dx, &r.inv_dy, &r.inv_dz, &r.tmin};
-  for (int k = 0; k < 10; ++k)
+  alignas(64) float col[11][W];
+  const F* src[11] = {&r.ox,     &r.oy,     &r.oz,     &r.dx,   &r.dy,  &r.dz,
+                      &r.inv_dx, &r.inv_dy, &r.inv_dz, &r.tmin, &r.time};
+  for (int k = 0; k < 11; ++k)
     simd::store<A>(col[k], *src[k]);
   alignas(64) float t[W];
   alignas(64) int32_t prim[W];
@@ -126,7 +126,8 @@ inline void lanes_as_single_rays(const Scene& scene, const Bvh& bvh, uint32_t wi
                    {col[3][k], col[4][k], col[5][k]},
                    {col[6][k], col[7][k], col[8][k]},
                    col[9][k],
-                   t[k]};
+                   t[k],
+                   col[10][k]};
     const int kz = axis(z_is, k), kx = axis(x_is, k);
     const ShearScalars frame{shear[0][k], shear[1][k], shear[2][k], kx, 3 - kx - kz, kz};
     RayPacket<L> ray = broadcast_ray<L>(one, &frame);

@@ -24,7 +24,11 @@ double emission_weight(const TileContext& ctx, const PathState& p, int depth, Li
 void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit, int depth) {
   Vec3d le = ctx.lights.emitted(hit);
   if (le == Vec3d(0, 0, 0)) return;
-  double w = emission_weight(ctx, p, depth, [&] { return ctx.lights.pdf(p.prev_p, ray.d, hit); });
+  // A moving light is not sampled (LightSampler): what BSDF sampling finds of it is all of it.
+  const bool sampled = hit.prim.tag() != tag_of<MovingSphere>;
+  double w = !sampled ? 1.0 : emission_weight(ctx, p, depth, [&] {
+    return ctx.lights.pdf(p.prev_p, ray.d, hit);
+  });
   p.radiance += p.beta * le * w;
 }
 

@@ -46,7 +46,38 @@ void pinhole_sobol_rays(TileContext& ctx, const Camera& cam) {
       w.rays.rays);
 }
 
+// A scene that moves: each path's time, one more number of its camera sample (Sobol's group of
+// its own, Dims::time; MT19937's next number after the tile's camera numbers). A scene that
+// does not move draws nothing and keeps no times.
+void draw_path_times(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  w.path_time.clear();
+  if (!ctx.tracer.scene().moves()) return;
+  w.path_time.resize(w.paths.size());
+  const bool sobol = ctx.settings.sampler == Sampler::kSobol;
+  for (std::size_t i = 0; i < w.paths.size(); ++i) {
+    const double u =
+        sobol ? sobol_group(w.paths[i].pixel_seed, ctx.pass, Dims::time)[0] : ctx.rng.uniform();
+    w.path_time[i] = unit_float(u);  // in [0, 1): never rounded up to the shutter's closing
+  }
+}
+
+// The time column of a queue's rays: ray k gets path[k]'s time.
+void stamp_stream(RayStream& rays, const Column<uint32_t>& path,
+                  const std::vector<float>& path_time) {
+  rays.time.resize(rays.size());
+  for (std::size_t k = 0; k < rays.size(); ++k)
+    rays.time[k] = path_time[path[k]];
+}
+
 }  // namespace
+
+void stamp_times(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  if (w.path_time.empty()) return;
+  stamp_stream(w.rays.rays, w.rays.path, w.path_time);
+  stamp_stream(w.shadows.rays, w.shadows.path, w.path_time);
+}
 
 // Jittered camera rays for a tile's paths (ray i for path i). Sobol's camera groups come from
 // the lanes for the whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
@@ -66,7 +97,10 @@ void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
     s.resize(paths.size());
     for (std::size_t i = 0; i < paths.size(); ++i)
       s.seed[i] = paths[i].pixel_seed;
-    if (!cam.has_lens()) return pinhole_sobol_rays(ctx, cam);
+    if (!cam.has_lens()) {
+      pinhole_sobol_rays(ctx, cam);
+      return draw_path_times(ctx);
+    }
     sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
   }
   const CameraPoints& points = w.camera;
@@ -82,6 +116,7 @@ void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
     rays.set(i, ray_cast<float>(
                     cam.ray_through_lens(points.x[i] + u[0], points.y[i] + u[1], u[2], u[3])));
   }
+  draw_path_times(ctx);
 }
 
 // The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there

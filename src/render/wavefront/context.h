@@ -78,6 +78,10 @@ struct Dims {
   static uint32_t light_group(int depth) { return 1 + 2 * uint32_t(depth); }
   // The Sobol group of the BSDF sample at a depth: (u1, u2, lobe, roulette).
   static uint32_t bsdf_group(int depth) { return 2 + 2 * uint32_t(depth); }
+  // The Sobol group of a path's time, component 0 (motion blur only): one group of its own,
+  // beyond every depth's, so that a scene that moves draws the other groups as one that does
+  // not.
+  static constexpr uint32_t time = ~0u;
 };
 
 // The order in which MT19937 draws a group's components (the order the course's code drew

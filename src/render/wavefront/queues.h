@@ -119,6 +119,9 @@ struct LaneVertexQueue {
 // headers another thread would otherwise read its columns' pointers next to.
 struct alignas(128) Wavefront {
   std::vector<PathState> paths;
+  // Motion blur only: path i's instant in the shutter interval, drawn with its camera sample
+  // and carried by every ray of the path (stamp_times). Empty for a scene that does not move.
+  std::vector<float> path_time;
   CameraPoints camera;
   RayQueue rays, next_rays;
   ShadowQueue shadows, next_shadows;

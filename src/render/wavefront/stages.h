@@ -12,6 +12,10 @@ namespace raylane::path_detail {
 // camera_rays.cpp: the tile's paths (pixel by pixel in 4×4 blocks) and their jittered camera
 // rays into `rays`.
 void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0);
+// camera_rays.cpp: a scene that moves: every ray of `rays` and `shadows` gets its path's time
+// (Wavefront::path_time) in its stream's time column, before they are traced. A scene that
+// does not move: nothing (its streams have no time column).
+void stamp_times(TileContext& ctx);
 // camera_rays.cpp: the AOVs of the camera hits (the first wavefront's, ray k is path k's).
 void add_camera_aovs(const TileContext& ctx, Film& film);
 
