@@ -34,23 +34,23 @@ std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
   return detail::render_lanes(isa).filter_rows(filter, rows);
 }
 
-bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
-                         const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c) {
-  if (!(light_pdf > 0) || f == Vec3d(0, 0, 0)) return false;
+bool shadow_contribution(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& f,
+                         const glm::dvec3& le, double light_pdf, double bsdf_pdf, glm::dvec3& c) {
+  if (!(light_pdf > 0) || f == glm::dvec3(0, 0, 0)) return false;
   double w = rules.mis ? power_heuristic(light_pdf, bsdf_pdf) : 1.0;
   c = beta * f * le * (w / light_pdf);
   return is_finite(c);
 }
 
-bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
-                     double u_roulette, Vec3d& next) {
+bool next_throughput(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& value,
+                     double pdf, double u_roulette, glm::dvec3& next) {
   if (!(pdf > 0)) return false;
   next = beta * value / pdf;
   if (rules.roulette) {
     if (u_roulette >= rules.survival) return false;
     next = next / rules.survival;
   }
-  return is_finite(next) && next != Vec3d(0, 0, 0);
+  return is_finite(next) && next != glm::dvec3(0, 0, 0);
 }
 
 }  // namespace raylane

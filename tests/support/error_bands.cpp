@@ -167,8 +167,8 @@ struct Shear {
   int kx, ky, kz;
   double sx, sy, sz;
 };
-Shear kernel_shear(const Vec3d& d) {
-  Vec3d a = abs(d);
+Shear kernel_shear(const glm::dvec3& d) {
+  glm::dvec3 a = abs(d);
   int kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
   int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
   if (d[kz] < 0) std::swap(kx, ky);
@@ -178,8 +178,8 @@ Shear kernel_shear(const Vec3d& d) {
 // (two), x̂ = fl(â_kx − ŝx·â_kz): one rounding with FMA, two without, so
 //   |x̂ − x| ≤ γ2|a_kx| + γ5|Sx·a_kz|,  and ẑ = fl(fl(1/d_kz)·â_kz): |ẑ − z| ≤ γ3|z|.
 // (pbrt-v4 Triangle::Intersect bounds the same quantities, δx = γ5(max|x| + max|z|).)
-ShearedVertex shear_vertex(const Vec3f& p, const Rayd& ray, const Shear& s) {
-  Vec3d a = Vec3d(p) - ray.o;
+ShearedVertex shear_vertex(const glm::vec3& p, const Rayd& ray, const Shear& s) {
+  glm::dvec3 a = glm::dvec3(p) - ray.o;
   double zx = s.sx * a[s.kz], zy = s.sy * a[s.kz];
   ShearedVertex v;
   v.x = a[s.kx] - zx;
@@ -249,8 +249,8 @@ double Criterion::ratio() const {
 // b = fl(f̂·d) (|b̂ − f·d| ≤ u|f||d| + γ3|f̂||d|), c = fl(fl(|f̂|²) − fl(r²)).
 // The decision is disc ≥ 0; its margin is the reference's r² − |l|² (docs/hard-cases.md S1).
 PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
-  Vec3d f = ray.o - Vec3d(s.center(row));
-  const Vec3d& d = ray.d;
+  glm::dvec3 f = ray.o - glm::dvec3(s.center(row));
+  const glm::dvec3& d = ray.d;
   double r = s.r[row], F = length(f), D = length(d), b = dot(f, d), dd = dot(d, d);
   double L = length(f - (b / dd) * d);
   Interval disc = kernel_discriminant(r, kernel_line_distance(L, F, D, {u * F, 0}, {}));
@@ -273,7 +273,7 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
 // independent intervals would also count an axis against itself. The t of a clear hit is one
 // of the slab values, so its error stays γ3|t| — no conditioning issue near an edge.
 PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
-  Vec3d lo(bt.lo(row)), hi(bt.hi(row));
+  glm::dvec3 lo(bt.lo(row)), hi(bt.hi(row));
   double tn[3], tf[3];
   Interval near[3], far[3];
   Interval t0 = Interval::point(-kInf), t1 = Interval::point(kInf);
@@ -311,7 +311,8 @@ PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
 // test, C5: the margin is r² − dist(ray line, axis line)²) and the interval roots of the side;
 // the axial slab is t = fl(fl(h − fa)·fl(1/da)) with fa, da within their bounds. Hit: side ok
 // and max(side near, slab near) ≤ min(side far, slab far) — the second criterion (caps, rims).
-InputErrors projected_errors(double F, double fa, double df, double P, Vec3d delta, Vec3d u_d) {
+InputErrors projected_errors(double F, double fa, double df, double P, glm::dvec3 delta,
+                             glm::dvec3 u_d) {
   double d_par = std::abs(dot(delta, u_d)), d_perp = length(delta - dot(delta, u_d) * u_d);
   double dU = length(delta), s = 1 + dU, F1 = F * (1 + u), fa1 = std::abs(fa) + df;
   double e1 = gamma(3) * F1 * s;
@@ -331,14 +332,14 @@ Interval norm2_interval(double X, InputErrors e) {
 }
 
 PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
-  Vec3d axis(cyl.axis(row)), uf(cyl.unit_axis(row));
+  glm::dvec3 axis(cyl.axis(row)), uf(cyl.unit_axis(row));
   double h = length(axis), hf = cyl.h[row], r = cyl.r[row];
-  Vec3d ud = axis / h;
+  glm::dvec3 ud = axis / h;
   double dU = length(uf - ud), s = 1 + dU;
-  Vec3d f = ray.o - Vec3d(cyl.base(row));
-  const Vec3d& d = ray.d;
+  glm::dvec3 f = ray.o - glm::dvec3(cyl.base(row));
+  const glm::dvec3& d = ray.d;
   double fa = dot(f, ud), da = dot(d, ud);
-  Vec3d p = f - fa * ud, q = d - da * ud;
+  glm::dvec3 p = f - fa * ud, q = d - da * ud;
   double F = length(f), D = length(d), P = length(p), Q = length(q), b = dot(p, q), a = dot(q, q);
   double L = a > 0 ? length(p - (b / a) * q) : P;
 
