@@ -162,7 +162,7 @@ glm::dvec3 EnvironmentMap::texel(uint32_t x, uint32_t y) const {
 }
 
 glm::dvec3 EnvironmentMap::to_image(const glm::dvec3& d) const {
-  return {dot(rotation_.col(0), d), dot(rotation_.col(1), d), dot(rotation_.col(2), d)};
+  return glm::transpose(rotation_) * d;
 }
 
 EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const glm::dvec3& d) {

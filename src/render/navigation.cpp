@@ -89,7 +89,8 @@ glm::dvec3 turn_direction(const glm::dvec3& dir, double yaw, double pitch,
   double elevation = std::asin(std::clamp(dot(dir, world_up), -1.0, 1.0));
   glm::dvec3 heading = perpendicular(dir, world_up);
   // Straight up or down, the image's up (or down) is where the view would tip toward.
-  if (length(heading) < 1e-9) heading = perpendicular(hint, world_up) * (elevation < 0 ? 1 : -1);
+  if (length(heading) < 1e-9)
+    heading = perpendicular(hint, world_up) * (elevation < 0 ? 1.0 : -1.0);
   heading = normalize(heading);
   // Rodrigues about world up; heading is perpendicular to it, so two terms remain.
   double a = yaw * kDegrees;

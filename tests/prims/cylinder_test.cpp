@@ -68,7 +68,7 @@ TEST(CylinderRef, GenericAxisFarAway) {
     glm::dvec3 e1 = normalize(cross(ua, glm::dvec3(1, 0, 0))), e2 = cross(ua, e1);
     for (int i = 0; i < 2000; ++i) {
       glm::dvec3 target = b + a * s(rng) + (e1 * u(rng) + e2 * u(rng)) * (0.35 * 0.5);
-      glm::dvec3 o = target + glm::dvec3(u(rng), u(rng), u(rng)) * 10;
+      glm::dvec3 o = target + glm::dvec3(u(rng), u(rng), u(rng)) * 10.0;
       Rayd r = ray(o, normalize(target - o));
       double t = intersect_ref(c, 0, r);
       ASSERT_NE(t, kInf) << off << " " << i;

@@ -50,7 +50,7 @@ TEST(TriangleRef, FanVertexIsWatertight) {
   std::normal_distribution<double> g;
   glm::dvec3 v(glm::vec3(t.p0(0)));
   for (int i = 0; i < 20000; ++i) {
-    glm::dvec3 o = v + glm::dvec3(g(rng), g(rng), std::abs(g(rng)) + 0.5) * 3;
+    glm::dvec3 o = v + glm::dvec3(g(rng), g(rng), std::abs(g(rng)) + 0.5) * 3.0;
     Rayd r = ray(o, v - o);
     bool hit = false;
     for (uint32_t k = 0; k < t.size(); ++k)

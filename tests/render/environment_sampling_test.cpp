@@ -28,7 +28,7 @@ const double kLevel = testing::sidak_level(0.01, kChi2Runs);
 
 // Rᵀ·w: a world direction back in the image's frame.
 glm::dvec3 to_image(const glm::dmat3& r, const glm::dvec3& w) {
-  return {dot(r.col(0), w), dot(r.col(1), w), dot(r.col(2), w)};
+  return glm::transpose(r) * w;
 }
 
 glm::dmat3 tilted() {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_access.hpp>
 #include <random>
 
 #include "raylane/scene/parser.h"
@@ -36,8 +37,8 @@ double max_difference(const glm::dmat3& a, const glm::dmat3& b) {
 void expect_rotation(const glm::dmat3& r, double tol) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      EXPECT_NEAR(dot(r.row(i), r.row(j)), i == j ? 1.0 : 0.0, tol);
-  EXPECT_NEAR(dot(cross(r.col(0), r.col(1)), r.col(2)), 1.0, tol);
+      EXPECT_NEAR(dot(glm::row(r, i), glm::row(r, j)), i == j ? 1.0 : 0.0, tol);
+  EXPECT_NEAR(dot(cross(r[0], r[1]), r[2]), 1.0, tol);
 }
 
 glm::dquat random_unit_quaternion(std::mt19937_64& rng) {

@@ -388,7 +388,7 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
       m = m / double(img.rgb.size() / 3);
       s1 += m, s2 += m * m;
     }
-    mean[which] = s1 / kSeeds;
+    mean[which] = s1 / double(kSeeds);
     for (int k = 0; k < 3; ++k)
       se[which][k] = std::sqrt((s2[k] / kSeeds - mean[which][k] * mean[which][k]) / (kSeeds - 1));
   }

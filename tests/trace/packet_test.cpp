@@ -175,7 +175,8 @@ TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
         target = t.p0(row);  // a vertex
       } else if (i % 3 == 1) {
         float a = float(w(rng));  // a float point on an edge
-        target = glm::vec3(glm::dvec3(t.p0(row)) * (1 - a) + glm::dvec3(t.p1(row)) * a);
+        target =
+            glm::vec3(glm::dvec3(t.p0(row)) * double(1 - a) + glm::dvec3(t.p1(row)) * double(a));
       } else {
         target = glm::vec3(glm::dvec3(o) + glm::dvec3(u(rng), u(rng), u(rng)));
       }

@@ -17,7 +17,7 @@ namespace raylane {
 
 // The unit quaternion of a rotation matrix, with w ≥ 0 (Shoemake 1985, "Animating rotation with
 // quaternion curves": from the trace when it is positive, else from the largest diagonal
-// element, so the division is never by a small number). glm::mat3_cast(glm::dquat()) inverts it.
+// element, so the division is never by a small number). glm::mat3_cast inverts it.
 glm::dquat quaternion_from_rotation(const glm::dmat3& r);
 
 glm::dvec3 camera_right(const CameraSpec& c);    // R·x
