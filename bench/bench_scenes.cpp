@@ -25,8 +25,8 @@ Bounds3d scene_bounds(const Scene& s) {
     const auto& t = s.table<decltype(kind)>();
     for (uint32_t i = 0; i < t.size(); ++i) {
       Bounds3f f = t.bounds(i);
-      b.extend(Vec3d(f.lo));
-      b.extend(Vec3d(f.hi));
+      b.extend(glm::dvec3(f.lo));
+      b.extend(glm::dvec3(f.hi));
     }
   });
   return b;
@@ -34,14 +34,14 @@ Bounds3d scene_bounds(const Scene& s) {
 
 // Frames the whole scene from the direction `view` (pointing from the scene to the eye) and
 // puts the shadow-ray light above and to the side.
-void frame(BenchScene& b, Vec3d view) {
+void frame(BenchScene& b, glm::dvec3 view) {
   Bounds3d box = scene_bounds(b.scene);
-  Vec3d c = (box.lo + box.hi) * 0.5;
+  glm::dvec3 c = (box.lo + box.hi) * 0.5;
   double radius = length(box.hi - box.lo) * 0.5;
   b.scene.width = kWidth, b.scene.height = kHeight;
   // Close enough that the model fills most of the frame (the bounding sphere overfills it).
   b.scene.camera = look_at(c + normalize(view) * (radius * 1.45), c, 0.5);
-  b.light = c + Vec3d(0.4, -0.3, 1.5) * radius;
+  b.light = c + glm::dvec3(0.4, -0.3, 1.5) * radius;
 }
 
 ParsedScene parse_text(const std::string& text, const std::string& name) {
@@ -50,15 +50,15 @@ ParsedScene parse_text(const std::string& text, const std::string& name) {
 
 // Haines's sphereflake (1987, "A Proposal for Standard Graphics Environments"): nine children
 // of a third of the radius around each sphere, six on its equator and three above.
-void sphereflake(std::ostringstream& out, Vec3d c, double r, Vec3d up, int depth) {
+void sphereflake(std::ostringstream& out, glm::dvec3 c, double r, glm::dvec3 up, int depth) {
   out << "sphere " << c.x << ' ' << c.y << ' ' << c.z << ' ' << r << '\n';
   if (depth == 0) return;
-  Vec3d a = std::abs(up.x) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-  Vec3d u = normalize(cross(up, a)), v = cross(up, u);
+  glm::dvec3 a = std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  glm::dvec3 u = normalize(cross(up, a)), v = cross(up, u);
   for (int k = 0; k < 9; ++k) {
     double phi = (k < 6 ? k / 6.0 : (k - 6) / 3.0 + 1 / 12.0) * 2 * M_PI;
     double lat = k < 6 ? 0.0 : M_PI / 4;
-    Vec3d dir =
+    glm::dvec3 dir =
         normalize((u * std::cos(phi) + v * std::sin(phi)) * std::cos(lat) + up * std::sin(lat));
     sphereflake(out, c + dir * (r * 4 / 3), r / 3, dir, depth - 1);
   }
@@ -136,7 +136,7 @@ std::optional<BenchScene> make_testscene() {
   // Shadow rays aim at the first light sphere's centre and stop at its surface.
   for (PrimRef l : b.scene.lights)
     if (l.tag() == tag_of<Sphere>) {
-      b.light = Vec3d(b.scene.table<Sphere>().center(l.row()));
+      b.light = glm::dvec3(b.scene.table<Sphere>().center(l.row()));
       b.light_gap = b.scene.table<Sphere>().r[l.row()] * 1.01;
       break;
     }
@@ -172,18 +172,18 @@ std::vector<std::string> bench_scene_names() {
   return {"testscene", "bunny", "engine", "icosphere", "sphereflake", "lattice"};
 }
 
-CameraSpec look_at(const Vec3d& eye, const Vec3d& target, double ry) {
-  Vec3d forward = normalize(target - eye);
-  Vec3d right = normalize(cross(forward, Vec3d(0, 0, 1)));
-  Vec3d up = cross(right, forward);
+CameraSpec look_at(const glm::dvec3& eye, const glm::dvec3& target, double ry) {
+  glm::dvec3 forward = normalize(target - eye);
+  glm::dvec3 right = normalize(cross(forward, glm::dvec3(0, 0, 1)));
+  glm::dvec3 up = cross(right, forward);
   CameraSpec c;
   c.eye = eye;
   c.ry = ry;
   // Columns: R·x = right, R·y = up, R·(−z) = forward.
   for (int i = 0; i < 3; ++i) {
-    c.rotation.m[i][0] = right[i];
-    c.rotation.m[i][1] = up[i];
-    c.rotation.m[i][2] = -forward[i];
+    c.rotation[0][i] = right[i];
+    c.rotation[1][i] = up[i];
+    c.rotation[2][i] = -forward[i];
   }
   return c;
 }

@@ -16,7 +16,7 @@ struct BenchScene {
   std::string name;
   Scene scene;
   Bvh bvh;               // always with the 8-wide nodes, for the single-ray and hybrid tracers
-  Vec3d light;           // the point shadow rays aim at
+  glm::dvec3 light{};    // the point shadow rays aim at
   double light_gap = 0;  // shadow rays stop this far short of it (a light sphere's radius)
   // The BVH `raylane render` traces this scene with (render_bvh_config): `bvh` itself when
   // that has wide nodes, else the same binary tree without them (packets alone).
@@ -40,6 +40,6 @@ void set_bunny_path(std::string path);
 const BenchScene* bench_scene(const std::string& name, std::string* why = nullptr);
 
 // A camera at `eye` looking at `target`, z up, vertical half-angle tangent `ry`.
-CameraSpec look_at(const Vec3d& eye, const Vec3d& target, double ry);
+CameraSpec look_at(const glm::dvec3& eye, const glm::dvec3& target, double ry);
 
 }  // namespace raylane::bench

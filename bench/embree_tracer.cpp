@@ -44,7 +44,7 @@ void add_triangles(RTCScene s, const TriangleTable& t) {
   auto* idx = static_cast<uint32_t*>(
       rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, t.size()));
   for (uint32_t i = 0; i < t.size(); ++i) {
-    Vec3f p[3] = {t.p0(i), t.p1(i), t.p2(i)};
+    glm::vec3 p[3] = {t.p0(i), t.p1(i), t.p2(i)};
     for (int k = 0; k < 3; ++k) {
       v[(3 * i + k) * 3 + 0] = p[k].x, v[(3 * i + k) * 3 + 1] = p[k].y;
       v[(3 * i + k) * 3 + 2] = p[k].z;

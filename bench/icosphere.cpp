@@ -13,7 +13,7 @@ namespace {
 using Tri = std::array<uint32_t, 3>;
 
 struct Mesh {
-  std::vector<Vec3d> v;
+  std::vector<glm::dvec3> v;
   std::vector<Tri> f;
 };
 
@@ -22,9 +22,9 @@ Mesh icosahedron() {
   Mesh m;
   for (double a : {-1.0, 1.0})
     for (double b : {-g, g}) {
-      m.v.push_back(normalize(Vec3d(0, a, b)));
-      m.v.push_back(normalize(Vec3d(a, b, 0)));
-      m.v.push_back(normalize(Vec3d(b, 0, a)));
+      m.v.push_back(normalize(glm::dvec3(0, a, b)));
+      m.v.push_back(normalize(glm::dvec3(a, b, 0)));
+      m.v.push_back(normalize(glm::dvec3(b, 0, a)));
     }
   // Faces: every triple of mutually nearest neighbours, wound outward.
   double e0 = 1e9;
@@ -65,7 +65,7 @@ void subdivide(Mesh& m) {
 }
 
 // Smooth bumps of a few wavelengths: enough relief that rays graze and shadow each other.
-double displacement(const Vec3d& p) {
+double displacement(const glm::dvec3& p) {
   return 1 + 0.06 * std::sin(9 * p.x) * std::sin(7 * p.y) * std::sin(8 * p.z) +
          0.02 * std::sin(31 * p.x + 17 * p.z) * std::cos(23 * p.y);
 }
@@ -74,14 +74,14 @@ double displacement(const Vec3d& p) {
 // weights ((k − i − j), i, j)/k toward (a, b, c). The corners are summed in the order of their
 // vertex indices, so a point on an edge comes out the same from both faces that share it (a
 // crack would let rays through the closed mesh).
-std::vector<Vec3d> face_grid(const Mesh& m, const Tri& f, int k) {
-  std::vector<Vec3d> grid;
+std::vector<glm::dvec3> face_grid(const Mesh& m, const Tri& f, int k) {
+  std::vector<glm::dvec3> grid;
   grid.reserve(std::size_t(k + 1) * (k + 2) / 2);
   for (int i = 0; i <= k; ++i)
     for (int j = 0; j <= k - i; ++j) {
       std::array<std::pair<uint32_t, int>, 3> w = {{{f[0], k - i - j}, {f[1], i}, {f[2], j}}};
       std::sort(w.begin(), w.end());
-      Vec3d p(0, 0, 0);
+      glm::dvec3 p(0, 0, 0);
       for (auto [v, weight] : w)
         p = p + m.v[v] * (double(weight) / k);
       grid.push_back(normalize(p));
@@ -89,10 +89,11 @@ std::vector<Vec3d> face_grid(const Mesh& m, const Tri& f, int k) {
   return grid;
 }
 
-void append_displaced(TriangleTable& table, const std::array<Vec3d, 3>& dir, uint32_t material) {
-  std::array<Vec3f, 3> p, n;
+void append_displaced(TriangleTable& table, const std::array<glm::dvec3, 3>& dir,
+                      uint32_t material) {
+  std::array<glm::vec3, 3> p{}, n{};
   for (int k = 0; k < 3; ++k)
-    p[k] = Vec3f(dir[k] * displacement(dir[k])), n[k] = Vec3f(dir[k]);
+    p[k] = glm::vec3(dir[k] * displacement(dir[k])), n[k] = glm::vec3(dir[k]);
   table.append(p, n, material);
 }
 
@@ -103,7 +104,7 @@ void add_displaced_geodesic_sphere(TriangleTable& table, int frequency, uint32_t
   const int k = std::max(frequency, 1);
   table_reserve(table, table.size() + std::size_t(20) * k * k);
   for (const Tri& f : m.f) {
-    std::vector<Vec3d> grid = face_grid(m, f, k);
+    std::vector<glm::dvec3> grid = face_grid(m, f, k);
     // Row i starts at i·(k + 1) − i(i − 1)/2 (row i holds k + 1 − i points).
     auto at = [&](int i, int j) { return grid[std::size_t(i * (k + 1) - i * (i - 1) / 2 + j)]; };
     for (int i = 0; i < k; ++i)
@@ -120,10 +121,10 @@ void add_displaced_icosphere(TriangleTable& table, int levels, uint32_t material
   Mesh m = icosahedron();
   for (int l = 0; l < levels; ++l)
     subdivide(m);
-  std::vector<Vec3f> p(m.v.size()), n(m.v.size());
+  std::vector<glm::vec3> p(m.v.size()), n(m.v.size());
   for (std::size_t i = 0; i < m.v.size(); ++i) {
-    p[i] = Vec3f(m.v[i] * displacement(m.v[i]));
-    n[i] = Vec3f(m.v[i]);
+    p[i] = glm::vec3(m.v[i] * displacement(m.v[i]));
+    n[i] = glm::vec3(m.v[i]);
   }
   table_reserve(table, table.size() + m.f.size());
   for (const Tri& t : m.f)

@@ -35,7 +35,7 @@ using Rng = std::mt19937_64;
 double uniform(Rng& g, double a, double b) {
   return std::uniform_real_distribution<double>(a, b)(g);
 }
-Vec3d unit(Rng& g) {
+glm::dvec3 unit(Rng& g) {
   double z = uniform(g, -1, 1), phi = uniform(g, 0, 2 * M_PI), s = std::sqrt(1 - z * z);
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
@@ -44,7 +44,7 @@ Vec3d unit(Rng& g) {
 // s ∈ [−0.55, 0.55], moved up to `jitter` in a random direction: about half hit, some graze)
 // and the distance from which they start.
 struct Target {
-  Vec3d c, axis;
+  glm::dvec3 c{}, axis{};
   double jitter, distance;
 };
 struct InputSet {
@@ -54,8 +54,8 @@ struct InputSet {
 };
 
 // Places primitive i of a set on a coarse grid, so rays aimed at one rarely meet another.
-Vec3d slot(int i, double spacing, double offset) {
-  return Vec3d(i % 4, (i / 4) % 4, i / 16) * spacing + Vec3d(offset, offset, offset);
+glm::dvec3 slot(int i, double spacing, double offset) {
+  return glm::dvec3(i % 4, (i / 4) % 4, i / 16) * spacing + glm::dvec3(offset, offset, offset);
 }
 
 InputSet spheres(const std::string& name, bool far, double offset) {
@@ -64,7 +64,7 @@ InputSet spheres(const std::string& name, bool far, double offset) {
   Rng g(1);
   for (int i = 0; i < kPrims; ++i) {
     double r = far ? std::pow(10.0, uniform(g, -2, 2)) : uniform(g, 0.5, 2);
-    Vec3d c = slot(i, far ? 400 : 8, offset);
+    glm::dvec3 c = slot(i, far ? 400 : 8, offset);
     double p[4] = {c.x, c.y, c.z, r};
     s.scene.table<Sphere>().append(std::span<const double, 4>(p), 0);
     // S1: distance/r in decades 1e1 … 1e5 for the far set.
@@ -79,10 +79,10 @@ InputSet boxes(const std::string& name, double offset) {
   s.scene.materials.push_back(Material::default_grey());
   Rng g(2);
   for (int i = 0; i < kPrims; ++i) {
-    Vec3d c = slot(i, 8, offset);
+    glm::dvec3 c = slot(i, 8, offset);
     double p[6] = {c.x, c.y, c.z, uniform(g, -2, 2), uniform(g, 0.1, 2), uniform(g, -2, -0.1)};
     s.scene.table<Box>().append(std::span<const double, 6>(p), 0);
-    s.targets.push_back({c + Vec3d(p[3], p[4], p[5]) * 0.5, {}, 1.5, uniform(g, 3, 20)});
+    s.targets.push_back({c + glm::dvec3(p[3], p[4], p[5]) * 0.5, {}, 1.5, uniform(g, 3, 20)});
   }
   return s;
 }
@@ -92,7 +92,7 @@ InputSet cylinders(const std::string& name, bool thin_far, double offset) {
   s.scene.materials.push_back(Material::default_grey());
   Rng g(3);
   for (int i = 0; i < kPrims; ++i) {
-    Vec3d b = slot(i, thin_far ? 40 : 8, offset), a = unit(g) * (thin_far ? 10.0 : 2.0);
+    glm::dvec3 b = slot(i, thin_far ? 40 : 8, offset), a = unit(g) * (thin_far ? 10.0 : 2.0);
     double r = thin_far ? 1e-3 : uniform(g, 0.3, 1.0);
     double p[7] = {b.x, b.y, b.z, a.x, a.y, a.z, r};
     s.scene.table<Cylinder>().append(std::span<const double, 7>(p), 0);
@@ -107,12 +107,12 @@ InputSet triangles(const std::string& name, double size, double offset) {
   s.scene.materials.push_back(Material::default_grey());
   Rng g(4);
   for (int i = 0; i < kPrims; ++i) {
-    Vec3d c = slot(i, 8 * std::max(size, 1.0), offset);
-    Vec3f p[3], n = Vec3f(0, 0, 1);
+    glm::dvec3 c = slot(i, 8 * std::max(size, 1.0), offset);
+    glm::vec3 p[3], n = glm::vec3(0, 0, 1);
     for (auto& v : p)
-      v = Vec3f(c + unit(g) * size);
+      v = glm::vec3(c + unit(g) * size);
     s.scene.table<Triangle>().append({p[0], p[1], p[2]}, {n, n, n}, 0);
-    Vec3d centroid = (Vec3d(p[0]) + Vec3d(p[1]) + Vec3d(p[2])) / 3.0;
+    glm::dvec3 centroid = (glm::dvec3(p[0]) + glm::dvec3(p[1]) + glm::dvec3(p[2])) / 3.0;
     s.targets.push_back({centroid, {}, size, uniform(g, 3, 20) * size});
   }
   return s;
@@ -124,9 +124,9 @@ std::vector<Rayd> make_rays(const InputSet& s, int count) {
   std::vector<Rayd> rays;
   for (int i = 0; i < count; ++i) {
     const Target& t = s.targets[std::size_t(i % kPrims)];
-    Vec3d aim =
+    glm::dvec3 aim =
         t.c + t.axis * uniform(g, -0.55, 0.55) + unit(g) * (t.jitter * std::cbrt(uniform(g, 0, 1)));
-    Vec3d o = t.c + unit(g) * t.distance;
+    glm::dvec3 o = t.c + unit(g) * t.distance;
     rays.push_back(ray_cast<double>(ray_cast<float>(Rayd{o, normalize(aim - o)})));
   }
   return rays;

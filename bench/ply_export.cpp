@@ -26,7 +26,7 @@ Status write_ply_soup(const std::string& path, const TriangleTable& t) {
                         t.size(), "\nproperty list uchar int vertex_indices\nend_header\n");
   out.reserve(out.size() + t.size() * (36 + 13));
   for (uint32_t i = 0; i < t.size(); ++i)
-    for (const Vec3f& p : {t.p0(i), t.p1(i), t.p2(i)})
+    for (const glm::vec3& p : {t.p0(i), t.p1(i), t.p2(i)})
       append_le(out, p.x), append_le(out, p.y), append_le(out, p.z);
   for (uint32_t i = 0; i < t.size(); ++i) {
     append_le(out, uint8_t(3));

@@ -45,13 +45,13 @@ PrimaryHits primary_hits(const BenchScene& b) {
 }
 
 // The surface side a new ray leaves from: the geometric normal turned toward the viewer.
-Vec3d facing_normal(const Hit& h, const Rayd& ray) {
+glm::dvec3 facing_normal(const Hit& h, const Rayd& ray) {
   return dot(h.surface.ng, ray.d) < 0 ? h.surface.ng : -h.surface.ng;
 }
 
-Vec3d cosine_direction(const Vec3d& n, double u1, double u2) {
-  Vec3d a = std::abs(n.x) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-  Vec3d t = normalize(cross(n, a)), s = cross(n, t);
+glm::dvec3 cosine_direction(const glm::dvec3& n, double u1, double u2) {
+  glm::dvec3 a = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  glm::dvec3 t = normalize(cross(n, a)), s = cross(n, t);
   double r = std::sqrt(u1), phi = 2 * M_PI * u2;
   return normalize(t * (r * std::cos(phi)) + s * (r * std::sin(phi)) +
                    n * std::sqrt(std::max(0.0, 1 - u1)));
@@ -71,10 +71,11 @@ RaySet make_set(const BenchScene& b, RayKind kind) {
   for (std::size_t i = 0; i < p.rays.size(); ++i) {
     const Hit& h = p.hits[i];
     if (!h.hit()) continue;
-    Vec3d n = facing_normal(h, p.rays[i]);
-    Vec3d dir = kind == RayKind::kShadow ? normalize(b.light - h.surface.p)
-                                         : cosine_direction(n, u(rng), u(rng));
-    Vec3d o = offset_ray_origin(h.surface.p, hit_point_error(p.rays[i], h.t), h.surface.ng, dir);
+    glm::dvec3 n = facing_normal(h, p.rays[i]);
+    glm::dvec3 dir = kind == RayKind::kShadow ? normalize(b.light - h.surface.p)
+                                              : cosine_direction(n, u(rng), u(rng));
+    glm::dvec3 o =
+        offset_ray_origin(h.surface.p, hit_point_error(p.rays[i], h.t), h.surface.ng, dir);
     double tmax = kind == RayKind::kShadow ? length(b.light - o) - b.light_gap
                                            : std::numeric_limits<double>::infinity();
     rays.push_back({o, dir, 0.0, tmax});

@@ -9,7 +9,7 @@ namespace raylane::bvh_build {
 
 double half_area(const Bounds3f& b) {
   if (b.empty()) return 0;
-  Vec3d d = Vec3d(b.hi) - Vec3d(b.lo);
+  glm::dvec3 d = glm::dvec3(b.hi) - glm::dvec3(b.lo);
   double a = d.x * d.y + d.y * d.z + d.z * d.x;
   return std::isfinite(a) ? a : std::numeric_limits<double>::max();
 }

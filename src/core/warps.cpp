@@ -7,7 +7,7 @@
 
 namespace raylane {
 
-Frame::Frame(const Vec3d& normal) : n(normal) {
+Frame::Frame(const glm::dvec3& normal) : n(normal) {
   double sign = std::copysign(1.0, n.z);
   double a = -1.0 / (sign + n.z);
   double b = n.x * n.y * a;
@@ -15,14 +15,14 @@ Frame::Frame(const Vec3d& normal) : n(normal) {
   t = {b, sign + n.y * n.y * a, -n.y};
 }
 
-Vec3d sample_cosine_hemisphere(double u1, double u2) {
+glm::dvec3 sample_cosine_hemisphere(double u1, double u2) {
   double r = std::sqrt(u1);
   double z = std::sqrt(std::max(0.0, 1 - u1));
   SinCos phi = sincos_2pi(u2);
   return {r * phi.cos, r * phi.sin, z};
 }
 
-Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
+glm::dvec3 sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
   // 1 − cos θ = u1·(1 − cos θmax) and sin²θ = (1 − cos θ)(1 + cos θ): no cancellation.
   double one_minus_cos = u1 * one_minus_cos_max;
   double cos_t = 1 - one_minus_cos;
@@ -31,7 +31,7 @@ Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
   return {sin_t * phi.cos, sin_t * phi.sin, cos_t};
 }
 
-Vec3d sample_concentric_disc(double u1, double u2) {
+glm::dvec3 sample_concentric_disc(double u1, double u2) {
   double a = 2 * u1 - 1, b = 2 * u2 - 1;
   if (a == 0 && b == 0) return {0, 0, 0};
   // The larger of |a|, |b| is the radius; the other gives the angle within its eighth of the
@@ -45,7 +45,7 @@ Vec3d sample_concentric_disc(double u1, double u2) {
   return {r * std::cos(phi), r * std::sin(phi), 0};
 }
 
-Vec3d sample_uniform_sphere(double u1, double u2) {
+glm::dvec3 sample_uniform_sphere(double u1, double u2) {
   double z = 1 - 2 * u1;
   double r = std::sqrt(std::max(0.0, 1 - z * z));
   SinCos phi = sincos_2pi(u2);

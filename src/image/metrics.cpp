@@ -52,11 +52,11 @@ Image relative_error_map(const Image& a, const Image& ref) {
   return out;
 }
 
-Vec3d mean(const Image& image) {
-  Vec3d sum;
+glm::dvec3 mean(const Image& image) {
+  glm::dvec3 sum{};
   std::size_t pixels = std::size_t(image.width) * image.height;
   for (std::size_t i = 0; i < pixels; ++i)
-    sum += Vec3d(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]);
+    sum += glm::dvec3(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]);
   return pixels ? sum / double(pixels) : sum;
 }
 

@@ -52,7 +52,7 @@ void append_scanline(std::string& out, const Image& image, uint32_t y) {
   uint32_t w = image.width;
   std::vector<uint8_t> channels(std::size_t(w) * 4);
   for (uint32_t x = 0; x < w; ++x) {
-    Vec3f c = image.at(x, y);
+    glm::vec3 c = image.at(x, y);
     auto e = float_to_rgbe(c.x, c.y, c.z);
     for (int k = 0; k < 4; ++k)
       channels[std::size_t(k) * w + x] = e[k];
@@ -168,7 +168,7 @@ std::array<uint8_t, 4> float_to_rgbe(float r, float g, float b) {
   return {byte(r), byte(g), byte(b), uint8_t(e + 128)};
 }
 
-Vec3f rgbe_to_float(const std::array<uint8_t, 4>& e) {
+glm::vec3 rgbe_to_float(const std::array<uint8_t, 4>& e) {
   if (e[3] == 0) return {0, 0, 0};
   float f = std::ldexp(1.0f, int(e[3]) - (128 + 8));
   return {e[0] * f, e[1] * f, e[2] * f};
@@ -212,7 +212,7 @@ Result<RgbeFile> decode_rgbe(std::string_view bytes) {
   for (uint32_t y = 0; y < h; ++y) {
     if (Status s = read_scanline(r, w, ch); !s) return Error{cat(s.error(), " (row ", y, ")")};
     for (uint32_t x = 0; x < w; ++x) {
-      Vec3f c =
+      glm::vec3 c =
           rgbe_to_float({ch[x], ch[w + x], ch[2 * std::size_t(w) + x], ch[3 * std::size_t(w) + x]});
       f.image.rgb.insert(f.image.rgb.end(), {c.x, c.y, c.z});
     }

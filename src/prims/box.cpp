@@ -4,12 +4,12 @@
 namespace raylane {
 
 double Box::area(const Table& t, uint32_t i) {
-  Vec3d d = Vec3d(t.hi(i)) - Vec3d(t.lo(i));
+  glm::dvec3 d = glm::dvec3(t.hi(i)) - glm::dvec3(t.lo(i));
   return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
 AreaSample Box::sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2) {
-  Vec3d lo(t.lo(i)), hi(t.hi(i)), d = hi - lo;
+  glm::dvec3 lo(t.lo(i)), hi(t.hi(i)), d = hi - lo;
   double face[3] = {d.y * d.z, d.z * d.x, d.x * d.y};  // faces normal to x, y, z (each ×2)
   double pick = u_part * 2 * (face[0] + face[1] + face[2]);
   int axis = 0;
@@ -17,7 +17,7 @@ AreaSample Box::sample_area(const Table& t, uint32_t i, double u_part, double u1
     pick -= 2 * face[axis++];
   bool high = pick >= face[axis];
   int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-  Vec3d p, n(0, 0, 0);
+  glm::dvec3 p, n(0, 0, 0);
   p[axis] = high ? hi[axis] : lo[axis];
   p[a1] = lo[a1] + u1 * d[a1];
   p[a2] = lo[a2] + u2 * d[a2];

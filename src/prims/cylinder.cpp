@@ -9,20 +9,21 @@ namespace raylane {
 
 double Cylinder::area(const Table& t, uint32_t i) {
   double r = t.r[i];
-  return 2 * kPi * r * length(Vec3d(t.axis(i))) + 2 * kPi * r * r;
+  return 2 * kPi * r * length(glm::dvec3(t.axis(i))) + 2 * kPi * r * r;
 }
 
 AreaSample Cylinder::sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2) {
-  Vec3d axis(t.axis(i)), base(t.base(i));
+  glm::dvec3 axis(t.axis(i)), base(t.base(i));
   double h = length(axis), r = t.r[i];
   Frame f(axis / h);
   double side = 2 * kPi * r * h, cap = kPi * r * r;
   double pick = u_part * (side + 2 * cap);
   SinCos phi = sincos_2pi(u2);
-  Vec3d radial = f.s * phi.cos + f.t * phi.sin;
+  glm::dvec3 radial = f.s * phi.cos + f.t * phi.sin;
   if (pick < side) return {base + f.n * (u1 * h) + radial * r, radial};
   bool top = pick >= side + cap;
-  return {base + (top ? axis : Vec3d(0, 0, 0)) + radial * (r * std::sqrt(u1)), top ? f.n : -f.n};
+  return {base + (top ? axis : glm::dvec3(0, 0, 0)) + radial * (r * std::sqrt(u1)),
+          top ? f.n : -f.n};
 }
 
 }  // namespace raylane

@@ -21,25 +21,27 @@ double Sphere::area(const Table& t, uint32_t i) {
 }
 
 AreaSample Sphere::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
-  Vec3d n = sample_uniform_sphere(u1, u2);
-  return {Vec3d(t.center(i)) + n * double(t.r[i]), n};
+  glm::dvec3 n = sample_uniform_sphere(u1, u2);
+  return {glm::dvec3(t.center(i)) + n * double(t.r[i]), n};
 }
 
 std::optional<SubtendedSample> Sphere::sample_subtended(const Table& t, uint32_t i,
-                                                        const Vec3d& ref, double u1, double u2) {
-  Vec3d c(t.center(i));
+                                                        const glm::dvec3& ref, double u1,
+                                                        double u2) {
+  glm::dvec3 c(t.center(i));
   double r = t.r[i], d2 = length_squared(c - ref);
   if (!(d2 > r * r)) return std::nullopt;
   double d = std::sqrt(d2), omc = cone_one_minus_cos(r * r, d2);
-  Vec3d local = sample_uniform_cone(u1, u2, omc);
+  glm::dvec3 local = sample_uniform_cone(u1, u2, omc);
   double sin2 = local.x * local.x + local.y * local.y;
   // The nearer root of the ray from ref along the sampled direction.
   double t_hit = d * local.z - std::sqrt(std::max(0.0, r * r - d2 * sin2));
   return SubtendedSample{Frame((c - ref) / d).to_world(local), t_hit, 2 * kPi * omc};
 }
 
-std::optional<double> Sphere::subtended_solid_angle(const Table& t, uint32_t i, const Vec3d& ref) {
-  double r = t.r[i], d2 = length_squared(Vec3d(t.center(i)) - ref);
+std::optional<double> Sphere::subtended_solid_angle(const Table& t, uint32_t i,
+                                                    const glm::dvec3& ref) {
+  double r = t.r[i], d2 = length_squared(glm::dvec3(t.center(i)) - ref);
   if (!(d2 > r * r)) return std::nullopt;
   return 2 * kPi * cone_one_minus_cos(r * r, d2);
 }

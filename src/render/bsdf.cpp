@@ -9,7 +9,7 @@ namespace raylane {
 
 namespace {
 
-Vec3d reflect(const Vec3d& wo, const Vec3d& m) {
+glm::dvec3 reflect(const glm::dvec3& wo, const glm::dvec3& m) {
   return 2 * dot(wo, m) * m - wo;
 }
 
@@ -26,7 +26,7 @@ double g1(double cos_v, double cos_vm, double alpha) {
 
 }  // namespace
 
-Bsdf::Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo)
+Bsdf::Bsdf(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo)
     : kd_(m.kd), ks_(m.ks), alpha_(m.alpha), dist_(m.microfacet), wo_(wo) {
   if (dist_ != Microfacet::kPhong) alpha_g_ = microfacet_alpha_g(alpha_);
   double c = dot(ns, wo);
@@ -36,20 +36,20 @@ Bsdf::Bsdf(const Material& m, const Vec3d& ns, const Vec3d& wo)
   cos_o_ = std::abs(c);
   eta_o_ = entering ? 1.0 : double(m.ior);
   eta_i_ = entering ? double(m.ior) : 1.0;
-  pd_ = length(Vec3d(m.kd));
-  pr_ = length(Vec3d(m.ks));
-  pt_ = length(Vec3d(m.kt));
+  pd_ = length(glm::dvec3(m.kd));
+  pr_ = length(glm::dvec3(m.ks));
+  pt_ = length(glm::dvec3(m.kt));
   sum_ = pd_ + pr_ + pt_;
   if (sum_ > 0) pd_ /= sum_, pr_ /= sum_, pt_ /= sum_;
 }
 
-Vec3d Bsdf::schlick(double cos_om) const {
+glm::dvec3 Bsdf::schlick(double cos_om) const {
   double x = 1 - std::min(1.0, std::abs(cos_om)), x2 = x * x;
   double c = x2 * x2 * x;  // (1 − cos)^5 by multiplication: std::pow does not inline it
-  return ks_ + (Vec3d(1, 1, 1) - ks_) * c;
+  return ks_ + (glm::dvec3(1, 1, 1) - ks_) * c;
 }
 
-double Bsdf::smith_g(const Vec3d& wi, const Vec3d& m) const {
+double Bsdf::smith_g(const glm::dvec3& wi, const glm::dvec3& m) const {
   double ci = dot(wi, n_), im = dot(wi, m), om = dot(wo_, m);
   switch (dist_) {
     case Microfacet::kGgx:
@@ -62,7 +62,7 @@ double Bsdf::smith_g(const Vec3d& wi, const Vec3d& m) const {
   return g1(ci, im, alpha_) * g1(cos_o_, om, alpha_);
 }
 
-void Bsdf::normal_density(const Vec3d& m, double& d, double& pm) const {
+void Bsdf::normal_density(const glm::dvec3& m, double& d, double& pm) const {
   if (dist_ == Microfacet::kPhong) {
     double cp = cos_power(m);
     d = phong_d_scale(alpha_) * cp, pm = phong_normal_pdf_scale(alpha_) * cp;
@@ -73,7 +73,7 @@ void Bsdf::normal_density(const Vec3d& m, double& d, double& pm) const {
   pm = c > 0 ? d * c : 0.0;  // Walter eq. 24: p(m) = D(m)·|m·n|
 }
 
-Vec3d Bsdf::sample_normal(double u1, double u2) const {
+glm::dvec3 Bsdf::sample_normal(double u1, double u2) const {
   switch (dist_) {
     case Microfacet::kGgx:
       return sample_ggx_normal(u1, u2, alpha_g_);
@@ -101,13 +101,13 @@ bool Bsdf::index_matched() const {
 // D/p(m) / p_t, with D/p(m) = (α+2)/(α+1) for the course's warp. Its expectation over m is the
 // transmitted fraction: at normal incidence with F = 0 exactly 1 (E[cos θm] = (α+1)/(α+2)).
 // GGX's and Beckman's warps have p(m) = D(m)·cos θm, so D/p(m) = 1/cos θm there.
-BsdfSample Bsdf::sample_index_matched(const Vec3d& m, double om) const {
+BsdfSample Bsdf::sample_index_matched(const glm::dvec3& m, double om) const {
   BsdfSample s;
   s.wi = -wo_;
   double weight = smith_g(s.wi, m) * om / cos_o_;
   weight = dist_ == Microfacet::kPhong ? weight * (alpha_ + 2) / (alpha_ + 1) / pt_
                                        : weight / dot(m, n_) / pt_;
-  s.value = (Vec3d(1, 1, 1) - schlick(om)) * weight;
+  s.value = (glm::dvec3(1, 1, 1) - schlick(om)) * weight;
   s.pdf = 1;
   s.specular = true;
   if (!is_finite(s.value)) s.pdf = 0;
@@ -123,20 +123,21 @@ bool Bsdf::refracts(double cos_om) const {
 // fresnel_scale's choice: +1 gives F (the reflection lobe), −1 gives 1 − F (light the
 // transmission lobe would have refracted, reflected instead by total internal reflection, so
 // the two lobes sum to one).
-Vec3d Bsdf::reflection(const Vec3d& m, const Vec3d& wi, double d, double fresnel_scale) const {
+glm::dvec3 Bsdf::reflection(const glm::dvec3& m, const glm::dvec3& wi, double d,
+                            double fresnel_scale) const {
   if (d == 0) return {0, 0, 0};
-  Vec3d f = schlick(dot(wo_, m));
-  if (fresnel_scale < 0) f = Vec3d(1, 1, 1) - f;
+  glm::dvec3 f = schlick(dot(wo_, m));
+  if (fresnel_scale < 0) f = glm::dvec3(1, 1, 1) - f;
   return f * (d * smith_g(wi, m) / (4 * cos_o_));
 }
 
 // cos^α θm, shared by D(m) and the warp's density of m (sampling.h): one pow per evaluation.
-double Bsdf::cos_power(const Vec3d& m) const {
+double Bsdf::cos_power(const glm::dvec3& m) const {
   double c = dot(m, n_);
   return c > 0 ? std::pow(c, alpha_) : 0.0;
 }
 
-BsdfEval Bsdf::evaluate(const Vec3d& wi) const {
+BsdfEval Bsdf::evaluate(const glm::dvec3& wi) const {
   BsdfEval out;
   if (sum_ == 0) return out;
   double cos_i = dot(wi, n_);
@@ -144,7 +145,7 @@ BsdfEval Bsdf::evaluate(const Vec3d& wi) const {
   if (!(cos_i < 0) || pt_ == 0 || index_matched()) return out;
   // Walter et al. 2007, eqs. 16 and 21: the generalised half vector and the BTDF, radiance
   // scaled by η_o² (the viewer's side).
-  Vec3d m = -(wo_ * eta_o_ + wi * eta_i_);
+  glm::dvec3 m = -(wo_ * eta_o_ + wi * eta_i_);
   double len = length(m);
   if (!(len > 0)) return out;
   m = m / len;
@@ -157,18 +158,18 @@ BsdfEval Bsdf::evaluate(const Vec3d& wi) const {
   normal_density(m, d, pm);
   if (d > 0) {
     double s = d * smith_g(wi, m) * std::abs(im) * om * eta_o_ * eta_o_ / (cos_o_ * den * den);
-    out.f = (Vec3d(1, 1, 1) - schlick(om)) * s;
+    out.f = (glm::dvec3(1, 1, 1) - schlick(om)) * s;
   }
   out.pdf = pt_ * pm * eta_i_ * eta_i_ * std::abs(im) / (den * den);  // Walter eq. 17
   return out;
 }
 
-BsdfEval Bsdf::evaluate_reflection(const Vec3d& wi, double cos_i) const {
+BsdfEval Bsdf::evaluate_reflection(const glm::dvec3& wi, double cos_i) const {
   BsdfEval out;
   if (pd_ > 0) out.f = kd_ * (cos_i / kPi);
   out.pdf = pd_ * cos_i / kPi;
   if (pr_ == 0 && pt_ == 0) return out;
-  Vec3d m = normalize(wi + wo_);
+  glm::dvec3 m = normalize(wi + wo_);
   double d, pm;
   normal_density(m, d, pm);
   bool reflects_transmission = pt_ > 0 && !refracts(dot(wo_, m));  // total internal reflection
@@ -188,7 +189,7 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
   if (u0 < pd_) {
     s.wi = frame.to_world(sample_cosine_hemisphere(u1, u2));
   } else {
-    Vec3d m = frame.to_world(sample_normal(u1, u2));
+    glm::dvec3 m = frame.to_world(sample_normal(u1, u2));
     double om = dot(wo_, m);
     if (!(om > 0)) return s;
     s.wi = reflect(wo_, m);
@@ -213,10 +214,10 @@ BsdfSample Bsdf::sample(double u0, double u1, double u2) const {
   return s;
 }
 
-Vec3d beer_transmittance(const Material& m, bool front_face, double t) {
-  Vec3d kt(m.kt);
-  if (front_face || kt == Vec3d(0, 0, 0)) return {1, 1, 1};
-  Vec3d a;
+glm::dvec3 beer_transmittance(const Material& m, bool front_face, double t) {
+  glm::dvec3 kt(m.kt);
+  if (front_face || kt == glm::dvec3(0, 0, 0)) return {1, 1, 1};
+  glm::dvec3 a{};
   for (int k = 0; k < 3; ++k)
     a[k] = kt[k] > 0 ? std::exp(t * std::log(kt[k])) : 0.0;
   return a;

@@ -8,9 +8,9 @@ Camera Camera::from_scene(const Scene& scene) {
   Camera c;
   const CameraSpec& spec = *scene.camera;
   c.eye = spec.eye;
-  c.right = spec.rotation * Vec3d(1, 0, 0);
-  c.up = spec.rotation * Vec3d(0, 1, 0);
-  c.forward = spec.rotation * Vec3d(0, 0, -1);
+  c.right = spec.rotation * glm::dvec3(1, 0, 0);
+  c.up = spec.rotation * glm::dvec3(0, 1, 0);
+  c.forward = spec.rotation * glm::dvec3(0, 0, -1);
   c.width = scene.width;
   c.height = scene.height;
   c.ry = spec.ry;
@@ -23,9 +23,9 @@ Camera Camera::from_scene(const Scene& scene) {
 Rayd Camera::ray_through_lens(double x, double y, double u1, double u2) const {
   if (!has_lens()) return ray_through(x, y);
   double dx = 2 * x / width - 1, dy = 2 * y / height - 1;
-  Vec3d in_focus = eye + (right * (dx * rx) + up * (dy * ry) + forward) * focus;
-  Vec3d disc = sample_concentric_disc(u1, u2) * lens_radius;
-  Vec3d o = eye + right * disc.x + up * disc.y;
+  glm::dvec3 in_focus = eye + (right * (dx * rx) + up * (dy * ry) + forward) * focus;
+  glm::dvec3 disc = sample_concentric_disc(u1, u2) * lens_radius;
+  glm::dvec3 o = eye + right * disc.x + up * disc.y;
   return {o, normalize(in_focus - o)};
 }
 

@@ -150,22 +150,22 @@ std::size_t PiecewiseConstant2D::bytes() const {
 
 // --- EnvironmentMap ---
 
-EnvironmentMap::EnvironmentMap(Image image, double scale, const Mat3d& rotation)
+EnvironmentMap::EnvironmentMap(Image image, double scale, const glm::dmat3& rotation)
     : image_(sanitized(std::move(image))),
       scale_(scale > 0 && std::isfinite(scale) ? scale : 0.0),
       rotation_(rotation) {
   build_distribution();
 }
 
-Vec3d EnvironmentMap::texel(uint32_t x, uint32_t y) const {
-  return Vec3d(image_.at(x, y));
+glm::dvec3 EnvironmentMap::texel(uint32_t x, uint32_t y) const {
+  return glm::dvec3(image_.at(x, y));
 }
 
-Vec3d EnvironmentMap::to_image(const Vec3d& d) const {
-  return {dot(rotation_.col(0), d), dot(rotation_.col(1), d), dot(rotation_.col(2), d)};
+glm::dvec3 EnvironmentMap::to_image(const glm::dvec3& d) const {
+  return glm::transpose(rotation_) * d;
 }
 
-EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const Vec3d& d) {
+EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const glm::dvec3& d) {
   if (!is_finite(d)) return {0, 0, 0};
   double rxy = std::hypot(d.x, d.y), len = std::hypot(rxy, d.z);
   if (!(len > 0)) return {0, 0, 0};
@@ -177,7 +177,7 @@ EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const Vec3d& d) {
   return {u, v, rxy / len};
 }
 
-Vec3d EnvironmentMap::radiance_uv(double u, double v) const {
+glm::dvec3 EnvironmentMap::radiance_uv(double u, double v) const {
   if (!(std::isfinite(u) && std::isfinite(v))) return {0, 0, 0};
   const uint32_t w = image_.width, h = image_.height;
   // Texel centres sit at (i + 0.5)/w: interpolate between the two around x (and y).
@@ -185,32 +185,32 @@ Vec3d EnvironmentMap::radiance_uv(double u, double v) const {
   double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
   uint32_t xa = wrap(int64_t(x0), w), xb = wrap(int64_t(x0) + 1, w);
   uint32_t ya = clamp_index(int64_t(y0), h), yb = clamp_index(int64_t(y0) + 1, h);
-  Vec3d top = texel(xa, ya) * (1 - fx) + texel(xb, ya) * fx;
-  Vec3d bottom = texel(xa, yb) * (1 - fx) + texel(xb, yb) * fx;
+  glm::dvec3 top = texel(xa, ya) * (1 - fx) + texel(xb, ya) * fx;
+  glm::dvec3 bottom = texel(xa, yb) * (1 - fx) + texel(xb, yb) * fx;
   return (top * (1 - fy) + bottom * fy) * scale_;
 }
 
-Vec3d EnvironmentMap::radiance(const Vec3d& dir_world) const {
+glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& dir_world) const {
   ImagePoint p = to_image_point(to_image(dir_world));
   return radiance_uv(p.u, p.v);
 }
 
 EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
   EnvironmentSample s;
-  s.wi = rotation_ * Vec3d(0, 0, 1);
+  s.wi = rotation_ * glm::dvec3(0, 0, 1);
   PiecewiseConstant2D::Sample uv = distribution_.sample(u1, u2);
   if (!(uv.pdf > 0)) return s;
   double phi = 2 * kPi * uv.u, theta = kPi * uv.v;
   double sin_theta = std::sin(theta);
   if (!(sin_theta > 0)) return s;  // exactly on the top pole: no density in solid angle
-  Vec3d d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta));
+  glm::dvec3 d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta));
   s.wi = rotation_ * d;
   s.le = radiance_uv(uv.u, uv.v);
   s.pdf = uv.pdf / (2 * kPi * kPi * sin_theta);
   return s;
 }
 
-double EnvironmentMap::pdf(const Vec3d& dir_world) const {
+double EnvironmentMap::pdf(const glm::dvec3& dir_world) const {
   if (!can_sample()) return 0;
   ImagePoint p = to_image_point(to_image(dir_world));
   if (!(p.sin_theta > 0)) return 0;

@@ -20,7 +20,7 @@ double area_of(const Scene& scene, PrimRef l) {
 // A point on light l as seen from ref: by the solid angle it subtends where the kind can, by
 // area otherwise (converted to solid angle). `s` arrives with the light and Le filled in.
 template <class Kind>
-LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const Vec3d& ref,
+LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref,
                         double choice, double u_part, double u1, double u2, LightSample s) {
   if constexpr (requires { Kind::sample_subtended(t, row, ref, u1, u2); }) {
     if (auto d = Kind::sample_subtended(t, row, ref, u1, u2)) {
@@ -32,7 +32,7 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const Vec3d
     }
   }
   AreaSample a = Kind::sample_area(t, row, u_part, u1, u2);
-  Vec3d to = a.p - ref;
+  glm::dvec3 to = a.p - ref;
   double d2 = length_squared(to);
   if (!(d2 > 0)) return s;
   s.dist = std::sqrt(d2);
@@ -50,8 +50,8 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const Vec3d
 // The density sample_kind would have had for direction wi from ref, hitting `hit` on light
 // row `row`.
 template <class Kind>
-double pdf_kind(const typename Kind::Table& t, uint32_t row, const Vec3d& ref, const Vec3d& wi,
-                const Hit& hit, double choice) {
+double pdf_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref,
+                const glm::dvec3& wi, const Hit& hit, double choice) {
   if constexpr (requires { Kind::subtended_solid_angle(t, row, ref); }) {
     if (auto omega = Kind::subtended_solid_angle(t, row, ref)) return choice / *omega;
   }
@@ -72,7 +72,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     const EnvironmentSpec& e = *scene.environment;
     env_.emplace(e.image, e.scale, e.rotation);
     Bounds3f b = scene.bounds();
-    double radius = b.empty() ? 1.0 : 0.5 * length(Vec3d(b.hi) - Vec3d(b.lo));
+    double radius = b.empty() ? 1.0 : 0.5 * length(glm::dvec3(b.hi) - glm::dvec3(b.lo));
     env_power = env_->can_sample() ? env_->power_estimate(std::max(radius, 1e-3)) : 0.0;
     if (!std::isfinite(env_power)) env_power = 0;
     total += env_power;
@@ -83,8 +83,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     // (arrival.cpp counts all of what a path meets of it).
     if (l.tag() == tag_of<MovingSphere>) continue;
     const Material& m = scene.materials[scene.material_of(l)];
-    Vec3d le(m.emission);
-    Vec3d mean_le = m.texture >= 0 ? le * scene.textures[m.texture].mean : le;
+    glm::dvec3 le(m.emission);
+    glm::dvec3 mean_le = m.texture >= 0 ? le * scene.textures[m.texture].mean : le;
     double w = (mean_le.x + mean_le.y + mean_le.z) / 3 * area_of(scene, l);
     if (!(w > 0) || !std::isfinite(w)) continue;
     lights_.push_back(l);
@@ -136,7 +136,7 @@ LightSample LightSampler::sample_environment(double u1, double u2) const {
   return s;
 }
 
-LightSample LightSampler::sample(const Vec3d& ref, double u_light, double u_part, double u1,
+LightSample LightSampler::sample(const glm::dvec3& ref, double u_light, double u_part, double u1,
                                  double u2) const {
   LightSample s;
   if (empty()) return s;
@@ -189,7 +189,7 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   const std::size_t n = q.size();
   const SphereTable& spheres = scene_.table<Sphere>();
   const uint32_t row = lights_[0].row();
-  const Vec3d center(spheres.center(row));
+  const glm::dvec3 center(spheres.center(row));
   for (int c = 0; c < 3; ++c)
     std::fill_n(cb.center[std::size_t(c)].begin(), n, center[c]);
   std::fill_n(cb.radius.begin(), n, double(spheres.r[row]));
@@ -216,7 +216,8 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
     bool cone = k < lights_.size() && lights_[k].tag() == tag_of<Sphere>;
     q.cone_light[r] = cone ? uint32_t(k) : LightQueries::kNoCone;
-    Vec3d center = cone ? Vec3d(spheres.center(lights_[k].row())) : q.ref(r) + Vec3d(0, 0, 2);
+    glm::dvec3 center =
+        cone ? glm::dvec3(spheres.center(lights_[k].row())) : q.ref(r) + glm::dvec3(0, 0, 2);
     for (int c = 0; c < 3; ++c)
       cb.center[c][r] = center[c];
     cb.radius[r] = cone ? double(spheres.r[lights_[k].row()]) : 1.0;
@@ -256,7 +257,7 @@ LightSample LightSampler::finish_sphere_row(const LightQueries& q, std::size_t r
   return s;
 }
 
-double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const {
+double LightSampler::pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit) const {
   std::optional<double> choice = choice_of(hit.prim);
   if (!choice) return 0;
   PrimRef l = hit.prim;
@@ -266,11 +267,11 @@ double LightSampler::pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) cons
   });
 }
 
-Vec3d LightSampler::emitted(const Hit& hit) const {
+glm::dvec3 LightSampler::emitted(const Hit& hit) const {
   const Material& m = scene_.materials[scene_.material_of(hit.prim)];
   if (!m.is_light) return {0, 0, 0};
   if (!kind_two_sided(hit.prim.tag()) && !hit.front_face) return {0, 0, 0};
-  return Vec3d(m.emission) * texture_factor(scene_, m, hit.prim, hit.surface);
+  return glm::dvec3(m.emission) * texture_factor(scene_, m, hit.prim, hit.surface);
 }
 
 }  // namespace raylane

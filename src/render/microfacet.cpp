@@ -26,7 +26,7 @@ double rational_g1(double a) {
   return (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
 }
 
-Vec3d around_z(double cos_t, double u2) {
+glm::dvec3 around_z(double cos_t, double u2) {
   double sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
   SinCos phi = sincos_2pi(u2);
   return {sin_t * phi.cos, sin_t * phi.sin, cos_t};
@@ -66,14 +66,14 @@ double beckman_g1(double cos_v, double cos_vm, double alpha_g) {
 
 // tan²θm = α_g²·u1/(1 − u1), written as cos²θm = (1 − u1)/(1 − u1 + α_g² u1): no infinity
 // at u1 = 1 (m in the plane, density 0).
-Vec3d sample_ggx_normal(double u1, double u2, double alpha_g) {
+glm::dvec3 sample_ggx_normal(double u1, double u2, double alpha_g) {
   double a2 = alpha_g * alpha_g, rest = 1 - u1;
   double c2 = rest / (rest + a2 * u1);
   return around_z(std::sqrt(std::max(0.0, c2)), u2);
 }
 
 // tan²θm = −α_g² ln(1 − u1): cos θm = 1/√(1 + tan²θm), 0 at u1 = 1.
-Vec3d sample_beckman_normal(double u1, double u2, double alpha_g) {
+glm::dvec3 sample_beckman_normal(double u1, double u2, double alpha_g) {
   double t2 = -alpha_g * alpha_g * std::log1p(-std::min(u1, 1.0));
   return around_z(1 / std::sqrt(1 + t2), u2);
 }

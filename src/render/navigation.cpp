@@ -12,7 +12,7 @@ namespace {
 constexpr double kDegrees = std::numbers::pi / 180.0;
 
 // The part of v perpendicular to the unit n.
-Vec3d perpendicular(const Vec3d& v, const Vec3d& n) {
+glm::dvec3 perpendicular(const glm::dvec3& v, const glm::dvec3& n) {
   return v - n * dot(v, n);
 }
 
@@ -28,10 +28,10 @@ std::string format_numbers(const char* word, std::initializer_list<double> value
 
 }  // namespace
 
-Quatd quaternion_from_rotation(const Mat3d& r) {
-  const auto& m = r.m;
+glm::dquat quaternion_from_rotation(const glm::dmat3& r) {
+  const glm::dmat3 m = glm::transpose(r);  // [row][column]
   double trace = m[0][0] + m[1][1] + m[2][2];
-  Quatd q;
+  glm::dquat q{1, 0, 0, 0};
   if (trace > 0) {
     double s = 2 * std::sqrt(trace + 1);  // 4w
     q = {s / 4, (m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s};
@@ -52,44 +52,45 @@ Quatd quaternion_from_rotation(const Mat3d& r) {
   return {q.w * n, q.x * n, q.y * n, q.z * n};
 }
 
-Vec3d camera_right(const CameraSpec& c) {
-  return c.rotation * Vec3d(1, 0, 0);
+glm::dvec3 camera_right(const CameraSpec& c) {
+  return c.rotation * glm::dvec3(1, 0, 0);
 }
-Vec3d camera_up(const CameraSpec& c) {
-  return c.rotation * Vec3d(0, 1, 0);
+glm::dvec3 camera_up(const CameraSpec& c) {
+  return c.rotation * glm::dvec3(0, 1, 0);
 }
-Vec3d camera_forward(const CameraSpec& c) {
-  return c.rotation * Vec3d(0, 0, -1);
+glm::dvec3 camera_forward(const CameraSpec& c) {
+  return c.rotation * glm::dvec3(0, 0, -1);
 }
 
-Vec3d world_up_for(const CameraSpec& c) {
-  Vec3d up = camera_up(c);
+glm::dvec3 world_up_for(const CameraSpec& c) {
+  glm::dvec3 up = camera_up(c);
   int axis = 0;
   for (int i = 1; i < 3; ++i)
     if (std::abs(up[i]) > std::abs(up[axis])) axis = i;
-  Vec3d out(0, 0, 0);
+  glm::dvec3 out(0, 0, 0);
   out[axis] = up[axis] < 0 ? -1.0 : 1.0;
   return out;
 }
 
-Mat3d level_rotation(const Vec3d& forward, const Vec3d& world_up) {
-  Vec3d right = normalize(cross(forward, world_up));
-  Vec3d up = cross(right, forward);
-  Mat3d r;
+glm::dmat3 level_rotation(const glm::dvec3& forward, const glm::dvec3& world_up) {
+  glm::dvec3 right = normalize(cross(forward, world_up));
+  glm::dvec3 up = cross(right, forward);
+  glm::dmat3 r{1.0};
   for (int i = 0; i < 3; ++i) {  // columns: R·x = right, R·y = up, R·(−z) = forward
-    r.m[i][0] = right[i];
-    r.m[i][1] = up[i];
-    r.m[i][2] = -forward[i];
+    r[0][i] = right[i];
+    r[1][i] = up[i];
+    r[2][i] = -forward[i];
   }
   return r;
 }
 
-Vec3d turn_direction(const Vec3d& dir, double yaw, double pitch, const Vec3d& world_up,
-                     const Vec3d& hint) {
+glm::dvec3 turn_direction(const glm::dvec3& dir, double yaw, double pitch,
+                          const glm::dvec3& world_up, const glm::dvec3& hint) {
   double elevation = std::asin(std::clamp(dot(dir, world_up), -1.0, 1.0));
-  Vec3d heading = perpendicular(dir, world_up);
+  glm::dvec3 heading = perpendicular(dir, world_up);
   // Straight up or down, the image's up (or down) is where the view would tip toward.
-  if (length(heading) < 1e-9) heading = perpendicular(hint, world_up) * (elevation < 0 ? 1 : -1);
+  if (length(heading) < 1e-9)
+    heading = perpendicular(hint, world_up) * (elevation < 0 ? 1.0 : -1.0);
   heading = normalize(heading);
   // Rodrigues about world up; heading is perpendicular to it, so two terms remain.
   double a = yaw * kDegrees;
@@ -99,25 +100,25 @@ Vec3d turn_direction(const Vec3d& dir, double yaw, double pitch, const Vec3d& wo
   return normalize(heading * std::cos(elevation) + world_up * std::sin(elevation));
 }
 
-CameraSpec fly_move(const CameraSpec& c, const Vec3d& step, const Vec3d& world_up) {
+CameraSpec fly_move(const CameraSpec& c, const glm::dvec3& step, const glm::dvec3& world_up) {
   CameraSpec out = c;
   out.eye = c.eye + camera_right(c) * step.x + world_up * step.y + camera_forward(c) * step.z;
   return out;
 }
 
-CameraSpec fly_look(const CameraSpec& c, double yaw, double pitch, const Vec3d& world_up) {
+CameraSpec fly_look(const CameraSpec& c, double yaw, double pitch, const glm::dvec3& world_up) {
   CameraSpec out = c;
-  Vec3d forward = turn_direction(camera_forward(c), yaw, pitch, world_up, camera_up(c));
+  glm::dvec3 forward = turn_direction(camera_forward(c), yaw, pitch, world_up, camera_up(c));
   out.rotation = level_rotation(forward, world_up);
   return out;
 }
 
-CameraSpec orbit(const CameraSpec& c, const Vec3d& pivot, double yaw, double pitch,
-                 const Vec3d& world_up) {
-  Vec3d to_pivot = pivot - c.eye;
+CameraSpec orbit(const CameraSpec& c, const glm::dvec3& pivot, double yaw, double pitch,
+                 const glm::dvec3& world_up) {
+  glm::dvec3 to_pivot = pivot - c.eye;
   double distance = length(to_pivot);
   if (!(distance > 0)) return fly_look(c, yaw, pitch, world_up);
-  Vec3d look = turn_direction(to_pivot / distance, yaw, pitch, world_up, camera_up(c));
+  glm::dvec3 look = turn_direction(to_pivot / distance, yaw, pitch, world_up, camera_up(c));
   CameraSpec out = c;
   out.eye = pivot - look * distance;
   out.rotation = level_rotation(look, world_up);
@@ -138,7 +139,7 @@ std::string screen_line(uint32_t width, uint32_t height) {
 }
 
 std::string camera_line(const CameraSpec& c) {
-  Quatd q = quaternion_from_rotation(c.rotation);
+  glm::dquat q = quaternion_from_rotation(c.rotation);
   return format_numbers("camera", {c.eye.x, c.eye.y, c.eye.z, c.ry}) +
          format_numbers(" q", {q.w, q.x, q.y, q.z});
 }

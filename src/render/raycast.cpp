@@ -15,29 +15,29 @@ constexpr uint32_t kTile = 4;   // camera rays go out in 4×4 tiles: one AVX-512
 constexpr uint32_t kBand = 16;  // rows per band: the unit of work of one thread
 static_assert(kBand % kTile == 0, "bands of whole 4×4 tiles keep the packets of one pass");
 
-Vec3d to_d(const Vec3f& v) {
-  return Vec3d(v);
+glm::dvec3 to_d(const glm::vec3& v) {
+  return glm::dvec3(v);
 }
 
 const Material& material_of(const Scene& scene, const Hit& hit) {
   return scene.materials[scene.material_of(hit.prim)];
 }
 
-Vec3d albedo(const Scene& scene, const Hit& hit) {
+glm::dvec3 albedo(const Scene& scene, const Hit& hit) {
   return albedo_at(scene, hit.prim, hit.surface);
 }
 
 // A light's radiance at the hit, times its texture there.
-Vec3d radiance(const Scene& scene, const Hit& hit) {
+glm::dvec3 radiance(const Scene& scene, const Hit& hit) {
   const Material& m = material_of(scene, hit);
   return to_d(m.emission) * texture_factor(scene, m, hit.prim, hit.surface);
 }
 
-Vec3d shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
+glm::dvec3 shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
   if (!hit.hit()) return {0, 0, 0};
   switch (mode) {
     case RaycastMode::kNormal:
-      return (hit.surface.ns + Vec3d(1, 1, 1)) * 0.5;
+      return (hit.surface.ns + glm::dvec3(1, 1, 1)) * 0.5;
     case RaycastMode::kDepth:
       return {hit.t, hit.t, hit.t};
     case RaycastMode::kAlbedo:
@@ -57,8 +57,8 @@ Vec3d shade_simple(const Scene& scene, RaycastMode mode, const Hit& hit) {
 }
 
 // Where the lit view places a light: the point its kind names (a sphere's centre), if any.
-std::optional<Vec3d> point_light(const Scene& scene, PrimRef light) {
-  return dispatch(light.tag(), [&](auto kind) -> std::optional<Vec3d> {
+std::optional<glm::dvec3> point_light(const Scene& scene, PrimRef light) {
+  return dispatch(light.tag(), [&](auto kind) -> std::optional<glm::dvec3> {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
     if constexpr (requires { Kind::point_light(table, light.row()); })
@@ -71,32 +71,33 @@ std::optional<Vec3d> point_light(const Scene& scene, PrimRef light) {
 struct ShadowQuery {
   std::size_t pixel;
   PrimRef light;
-  Vec3d contribution;  // what the pixel gains if the light's centre is visible
+  glm::dvec3 contribution{};  // what the pixel gains if the light's centre is visible
 };
 
 // The course's first shading: ambient·Kd, plus for each emitting sphere whose centre is
 // visible, Le·(Kd·max(0, N·L) + Ks·max(0, R·V)^α), R = L mirrored about N (Phong 1975).
 // Returns the ambient (or emitted) part and appends the shadow queries of the rest.
-Vec3d shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::size_t pixel,
-                      std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
+glm::dvec3 shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::size_t pixel,
+                           std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
   if (!hit.hit()) return {0, 0, 0};
   const Material& m = material_of(scene, hit);
   if (m.is_light) return radiance(scene, hit);
-  const Vec3d kd = albedo(scene, hit);
-  Vec3d n = hit.front_face ? hit.surface.ns : -hit.surface.ns;
-  Vec3d v = -normalize(ray.d);
-  Vec3d origin = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, v);
+  const glm::dvec3 kd = albedo(scene, hit);
+  glm::dvec3 n = hit.front_face ? hit.surface.ns : -hit.surface.ns;
+  glm::dvec3 v = -normalize(ray.d);
+  glm::dvec3 origin =
+      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, v);
   for (PrimRef light : scene.lights) {
-    std::optional<Vec3d> at = point_light(scene, light);
+    std::optional<glm::dvec3> at = point_light(scene, light);
     if (!at) continue;
-    Vec3d to_light = *at - origin;
+    glm::dvec3 to_light = *at - origin;
     double dist = length(to_light);
-    Vec3d l = to_light / dist;
+    glm::dvec3 l = to_light / dist;
     double nl = dot(n, l);
     if (!(nl > 0)) continue;
-    Vec3d r = 2 * nl * n - l;
+    glm::dvec3 r = 2 * nl * n - l;
     double spec = std::pow(std::max(0.0, dot(r, v)), double(m.alpha));
-    Vec3d le = to_d(scene.materials[scene.material_of(light)].emission);
+    glm::dvec3 le = to_d(scene.materials[scene.material_of(light)].emission);
     shadow_rays.push_back({origin, l, 0.0, dist});
     queries.push_back({pixel, light, le * (kd * nl + to_d(m.ks) * spec)});
   }
@@ -129,9 +130,9 @@ void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, u
   tracer.closest(rays, hits);
   st.camera_rays += rays.size();
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    Vec3d c = mode == RaycastMode::kLit
-                  ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
-                  : shade_simple(scene, mode, hits[i]);
+    glm::dvec3 c = mode == RaycastMode::kLit
+                       ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
+                       : shade_simple(scene, mode, hits[i]);
     for (int k = 0; k < 3; ++k)
       image.rgb[pixel[i] * 3 + k] = float(c[k]);
   }

@@ -12,7 +12,7 @@ double phong_d(double cos_theta_m, double alpha) {
   return phong_d_scale(alpha) * std::pow(cos_theta_m, alpha);
 }
 
-Vec3d sample_phong_normal(double u1, double u2, double alpha) {
+glm::dvec3 sample_phong_normal(double u1, double u2, double alpha) {
   double cos_t = std::pow(u1, 1.0 / (alpha + 1));
   double sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
   SinCos phi = sincos_2pi(u2);

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/core/warps.h"
 #include "render/render_lanes.h"
 
@@ -15,7 +15,7 @@ constexpr std::size_t kMaxWidth = 16;  // AVX-512's float lanes: every batch is 
 // Bsdf's own test (bsdf.cpp, kIndexMatchedContrast): transmission at η_o/η_i within 1e-5 of 1
 // is a Dirac lobe, which the double Bsdf samples.
 bool index_matched_transmission(const Material& m) {
-  bool transmits = length(Vec3d(m.kt)) > 0;
+  bool transmits = length(glm::dvec3(m.kt)) > 0;
   return transmits && std::abs(1 / double(m.ior) - 1) <= 1e-5;
 }
 
@@ -27,7 +27,7 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
   for (const Material& m : rows) {
     for (int k = 0; k < 3; ++k)
       kd[k].push_back(m.kd[k]), ks[k].push_back(m.ks[k]);
-    double d = length(Vec3d(m.kd)), r = length(Vec3d(m.ks)), t = length(Vec3d(m.kt));
+    double d = length(glm::dvec3(m.kd)), r = length(glm::dvec3(m.ks)), t = length(glm::dvec3(m.kt));
     double sum = d + r + t;
     pd.push_back(sum > 0 ? float(d / sum) : 0.0f);
     pr.push_back(sum > 0 ? float(r / sum) : 0.0f);

@@ -9,15 +9,16 @@ TexCoord texcoord_of(const Scene& scene, PrimRef prim, const Surface& surface) {
   });
 }
 
-Vec3d texture_factor(const Scene& scene, const Material& m, PrimRef prim, const Surface& surface) {
+glm::dvec3 texture_factor(const Scene& scene, const Material& m, PrimRef prim,
+                          const Surface& surface) {
   if (m.texture < 0) return {1, 1, 1};
   TexCoord t = texcoord_of(scene, prim, surface);
   return texture_lookup(scene.textures[m.texture].image, t.u, t.v);
 }
 
-Vec3d albedo_at(const Scene& scene, PrimRef prim, const Surface& surface) {
+glm::dvec3 albedo_at(const Scene& scene, PrimRef prim, const Surface& surface) {
   const Material& m = scene.materials[scene.material_of(prim)];
-  return Vec3d(m.kd) * texture_factor(scene, m, prim, surface);
+  return glm::dvec3(m.kd) * texture_factor(scene, m, prim, surface);
 }
 
 }  // namespace raylane

@@ -34,22 +34,22 @@ std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
   return detail::render_lanes(isa).filter_rows(filter, rows);
 }
 
-bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
-                         const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c) {
-  if (!(light_pdf > 0) || f == Vec3d(0, 0, 0)) return false;
+bool shadow_contribution(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& f,
+                         const glm::dvec3& le, double light_pdf, double bsdf_pdf, glm::dvec3& c) {
+  if (!(light_pdf > 0) || f == glm::dvec3(0, 0, 0)) return false;
   c = shadow_ray_contribution(rules.mis, beta, f, le, light_pdf, bsdf_pdf);
   return is_finite(c);
 }
 
-bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
-                     double u_roulette, Vec3d& next) {
+bool next_throughput(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& value,
+                     double pdf, double u_roulette, glm::dvec3& next) {
   if (!(pdf > 0)) return false;
   next = sampled_throughput(beta, value, pdf);
   if (rules.roulette) {
     if (u_roulette >= rules.survival) return false;
     next = survivor_throughput(next, rules.survival);
   }
-  return is_finite(next) && next != Vec3d(0, 0, 0);
+  return is_finite(next) && next != glm::dvec3(0, 0, 0);
 }
 
 }  // namespace raylane

@@ -19,7 +19,7 @@ bool all_non_negative(const std::vector<double>& v, std::size_t first, std::size
   return true;
 }
 
-Vec3f vec3f(const std::vector<double>& v, std::size_t i) {
+glm::vec3 vec3f(const std::vector<double>& v, std::size_t i) {
   return {float(v[i]), float(v[i + 1]), float(v[i + 2])};
 }
 

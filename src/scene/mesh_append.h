@@ -13,15 +13,15 @@ namespace raylane {
 // One triangle in the file's frame, placed by p → t + s·R·p and n → R·n (renormalised; a
 // normal that is zero or not finite becomes the face normal). A triangle of zero area after
 // placement, in float, is counted in stats.degenerate_dropped and not appended.
-void append_placed(const std::array<Vec3d, 3>& p, const std::array<Vec3d, 3>& n,
+void append_placed(const std::array<glm::dvec3, 3>& p, const std::array<glm::dvec3, 3>& n,
                    const std::array<TexCoord, 3>& uv, const MeshPlacement& placement,
                    uint32_t material, TriangleTable& table, MeshImportStats& stats);
 
 // Where a file's vertex lands, in float as the table stores it: t + s·R·p.
-Vec3f placed_position(const MeshPlacement& placement, const Vec3d& p);
+glm::vec3 placed_position(const MeshPlacement& placement, const glm::dvec3& p);
 // An error naming the vertex (its index in the file, `index`) if its placed position is not
 // finite in float; the mesh line's translation, scale or orientation took it beyond float.
-Status check_placed(const MeshPlacement& placement, const Vec3d& p, uint64_t index,
+Status check_placed(const MeshPlacement& placement, const glm::dvec3& p, uint64_t index,
                     const std::string& mesh_name);
 
 // A texture file named inside a mesh file, resolved next to it; "*N" (embedded) and "" stay.

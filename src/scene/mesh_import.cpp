@@ -151,7 +151,7 @@ Result<const aiScene*> read_within_budget(Assimp::Importer& importer, const std:
   return scene;
 }
 
-Vec3d to_vec(const aiVector3D& v) {
+glm::dvec3 to_vec(const aiVector3D& v) {
   return {double(v.x), double(v.y), double(v.z)};
 }
 
@@ -229,7 +229,7 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
     if (face.mNumIndices != 3) continue;
-    std::array<Vec3d, 3> p, n;
+    std::array<glm::dvec3, 3> p{}, n{};
     std::array<TexCoord, 3> t{};
     bool bad_index = false;
     for (int k = 0; k < 3; ++k) {
@@ -239,7 +239,7 @@ void append_mesh(const aiMesh& mesh, const MeshPlacement& pl, uint32_t material,
         break;
       }
       p[k] = to_vec(mesh.mVertices[i]);
-      n[k] = mesh.mNormals ? to_vec(mesh.mNormals[i]) : Vec3d();
+      n[k] = mesh.mNormals ? to_vec(mesh.mNormals[i]) : glm::dvec3();
       if (uv) {
         const aiVector3D& c = mesh.mTextureCoords[0][i];
         t[k] = {std::isfinite(c.x) ? c.x : 0.0, std::isfinite(c.y) ? c.y : 0.0};
@@ -264,7 +264,7 @@ Result<MeshImportStats> convert(const aiScene* scene, const std::string& name,
     const aiMesh& mesh = *scene->mMeshes[m];
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
-      if (Status s = check_placed(placement, Vec3d(p.x, p.y, p.z), v, name); !s)
+      if (Status s = check_placed(placement, glm::dvec3(p.x, p.y, p.z), v, name); !s)
         return Error{m == 0 ? s.error() : cat(s.error(), " (in its mesh ", m, ")")};
     }
   }
@@ -371,48 +371,48 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
 
 namespace raylane {
 
-Vec3f placed_position(const MeshPlacement& pl, const Vec3d& p) {
-  return Vec3f(pl.translation + pl.scale * (pl.rotation * p));
+glm::vec3 placed_position(const MeshPlacement& pl, const glm::dvec3& p) {
+  return glm::vec3(pl.translation + pl.scale * (pl.rotation * p));
 }
 
 namespace {
 // "(x y z)" with 9 significant digits, for messages.
-std::string point_text(const Vec3d& p) {
+std::string point_text(const glm::dvec3& p) {
   char text[96];
   std::snprintf(text, sizeof text, "(%.9g %.9g %.9g)", p.x, p.y, p.z);
   return text;
 }
 }  // namespace
 
-Status check_placed(const MeshPlacement& pl, const Vec3d& p, uint64_t index,
+Status check_placed(const MeshPlacement& pl, const glm::dvec3& p, uint64_t index,
                     const std::string& mesh_name) {
-  Vec3f q = placed_position(pl, p);
+  glm::vec3 q = placed_position(pl, p);
   if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) return ok_status();
-  Vec3d exact = pl.translation + pl.scale * (pl.rotation * p);
+  glm::dvec3 exact = pl.translation + pl.scale * (pl.rotation * p);
   return Error{cat("mesh ", quote_path(mesh_name), ": vertex ", index, " ", point_text(p),
                    " is placed at ", point_text(exact),
                    ", beyond float (the largest is about 3.4e38); expected a translation and "
                    "scale that keep the mesh within float")};
 }
 
-void append_placed(const std::array<Vec3d, 3>& p_file, const std::array<Vec3d, 3>& n_file,
+void append_placed(const std::array<glm::dvec3, 3>& p_file, const std::array<glm::dvec3, 3>& n_file,
                    const std::array<TexCoord, 3>& uv, const MeshPlacement& pl, uint32_t material,
                    TriangleTable& table, MeshImportStats& stats) {
-  std::array<Vec3f, 3> p, n;
+  std::array<glm::vec3, 3> p{}, n{};
   for (int k = 0; k < 3; ++k) {
     p[k] = placed_position(pl, p_file[k]);
-    Vec3d nk = pl.rotation * n_file[k];
+    glm::dvec3 nk = pl.rotation * n_file[k];
     double len = length(nk);
-    n[k] = len > 0 && std::isfinite(len) ? Vec3f(nk / len) : Vec3f();
+    n[k] = len > 0 && std::isfinite(len) ? glm::vec3(nk / len) : glm::vec3();
   }
-  Vec3d ng = cross(Vec3d(p[1]) - Vec3d(p[0]), Vec3d(p[2]) - Vec3d(p[0]));
+  glm::dvec3 ng = cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
   if (length_squared(ng) == 0.0) {
     ++stats.degenerate_dropped;
     return;
   }
   // A vertex without a usable normal takes the face normal.
   for (auto& nk : n)
-    if (nk == Vec3f()) nk = Vec3f(normalize(ng));
+    if (nk == glm::vec3()) nk = glm::vec3(normalize(ng));
   table.append(p, n, material, &uv);
   ++stats.triangles;
 }

@@ -18,13 +18,13 @@ int arity(std::string_view form) {
   return -1;
 }
 
-std::optional<Mat3d> one_rotation(std::string_view form, const std::vector<double>& v,
-                                  const FileLoc& loc, ParseState& state) {
+std::optional<glm::dmat3> one_rotation(std::string_view form, const std::vector<double>& v,
+                                       const FileLoc& loc, ParseState& state) {
   if (form == "x") return rotation_axis_angle({1, 0, 0}, v[0]);
   if (form == "y") return rotation_axis_angle({0, 1, 0}, v[0]);
   if (form == "z") return rotation_axis_angle({0, 0, 1}, v[0]);
   if (form == "a") {
-    Vec3d axis(v[1], v[2], v[3]);
+    glm::dvec3 axis(v[1], v[2], v[3]);
     // Scaled by its largest component first, so a tiny axis (1e-200 …) does not square to 0.
     double big = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
     if (big > 0) axis = axis / big;
@@ -40,7 +40,7 @@ std::optional<Mat3d> one_rotation(std::string_view form, const std::vector<doubl
     state.problem(loc, "quaternion must be non-zero");
     return std::nullopt;
   }
-  return rotation_quaternion(v[0] / norm, v[1] / norm, v[2] / norm, v[3] / norm);
+  return glm::mat3_cast(glm::dquat(v[0] / norm, v[1] / norm, v[2] / norm, v[3] / norm));
 }
 
 // "x90" for "x 90": a rotation's letter and its first number written as one token. The hint
@@ -57,8 +57,9 @@ std::string run_together_hint(std::string_view form) {
 
 }  // namespace
 
-std::optional<Mat3d> parse_orientation(const Line& line, std::size_t first, ParseState& state) {
-  Mat3d r = Mat3d::identity();
+std::optional<glm::dmat3> parse_orientation(const Line& line, std::size_t first,
+                                            ParseState& state) {
+  glm::dmat3 r = glm::dmat3(1.0);
   std::size_t i = first;
   while (i < line.tokens.size()) {
     std::string_view form = line.tokens[i].text;

@@ -59,10 +59,10 @@ struct VertexSlots {
 // triangles face the same way (the other diagonal of a concave quad lies outside it); a polygon
 // of more corners as a fan from its first corner, right for the convex polygons exporters
 // write.
-void triangulate(const std::vector<uint32_t>& c, const std::vector<Vec3f>& p,
+void triangulate(const std::vector<uint32_t>& c, const std::vector<glm::vec3>& p,
                  std::vector<std::array<uint32_t, 3>>& out) {
   if (c.size() == 4) {
-    Vec3d a(p[c[0]]), b(p[c[1]]), d(p[c[2]]), e(p[c[3]]);
+    glm::dvec3 a(p[c[0]]), b(p[c[1]]), d(p[c[2]]), e(p[c[3]]);
     if (dot(cross(b - a, d - a), cross(d - a, e - a)) < 0) {
       out.push_back({c[0], c[1], c[3]});
       out.push_back({c[1], c[2], c[3]});
@@ -111,15 +111,15 @@ class BodyReader {
       if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
         return Error{cat(in_.where(), ": expected finite coordinates for vertex ", i, ", found (",
                          number_text(v[0]), " ", number_text(v[1]), " ", number_text(v[2]), ")")};
-      mesh_.positions[i] = Vec3f(float(v[0]), float(v[1]), float(v[2]));
+      mesh_.positions[i] = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
       // What is stored must be finite too: a double property's 1e300, or a float property's
       // 1e39 in an ASCII file, becomes an infinite float.
-      const Vec3f& stored = mesh_.positions[i];
+      const glm::vec3& stored = mesh_.positions[i];
       if (!std::isfinite(stored.x) || !std::isfinite(stored.y) || !std::isfinite(stored.z))
         return Error{cat(in_.where(), ": expected coordinates that fit in a float for vertex ", i,
                          ", found (", number_text(v[0]), " ", number_text(v[1]), " ",
                          number_text(v[2]), ")")};
-      if (slots.normals) mesh_.normals[i] = Vec3f(float(v[3]), float(v[4]), float(v[5]));
+      if (slots.normals) mesh_.normals[i] = glm::vec3(float(v[3]), float(v[4]), float(v[5]));
       if (slots.uvs) mesh_.uvs[i] = {v[6], v[7]};
     }
     return true;

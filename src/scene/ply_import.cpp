@@ -21,7 +21,7 @@ struct Welded {
   uint32_t positions = 0;    // distinct positions
 };
 
-Welded weld_positions(const std::vector<Vec3f>& p) {
+Welded weld_positions(const std::vector<glm::vec3>& p) {
   auto key = [&](uint32_t i) {
     return std::array<float, 3>{p[i].x + 0.0f, p[i].y + 0.0f, p[i].z + 0.0f};
   };
@@ -54,26 +54,28 @@ Welded weld_positions(const std::vector<Vec3f>& p) {
 // JGT 3(1), 1998), so the result does not depend on how a polygon was cut into triangles.
 // Vertices at the same position share their normal: the result is one normal per position
 // id of `welded`.
-std::vector<Vec3f> angle_weighted_normals(const PlyMesh& mesh, const Welded& welded) {
+std::vector<glm::vec3> angle_weighted_normals(const PlyMesh& mesh, const Welded& welded) {
   const std::vector<uint32_t>& first = welded.id;
-  std::vector<Vec3d> sum(welded.positions);
+  std::vector<glm::dvec3> sum(welded.positions);
   for (const auto& t : mesh.triangles) {
-    std::array<Vec3d, 3> p = {Vec3d(mesh.positions[t[0]]), Vec3d(mesh.positions[t[1]]),
-                              Vec3d(mesh.positions[t[2]])};
-    Vec3d n = cross(p[1] - p[0], p[2] - p[0]);
+    std::array<glm::dvec3, 3> p = {glm::dvec3(mesh.positions[t[0]]),
+                                   glm::dvec3(mesh.positions[t[1]]),
+                                   glm::dvec3(mesh.positions[t[2]])};
+    glm::dvec3 n = cross(p[1] - p[0], p[2] - p[0]);
     double len = length(n);
     if (!(len > 0)) continue;
     n = n / len;
     for (int k = 0; k < 3; ++k) {
-      Vec3d a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+      glm::dvec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
       double angle = std::atan2(length(cross(a, b)), dot(a, b));
       sum[first[t[k]]] = sum[first[t[k]]] + angle * n;
     }
   }
-  std::vector<Vec3f> out(sum.size());
+  std::vector<glm::vec3> out(sum.size());
   for (std::size_t i = 0; i < sum.size(); ++i) {
     double len = length(sum[i]);
-    out[i] = len > 0 ? Vec3f(sum[i] / len) : Vec3f();  // zero: append_placed uses the face's
+    out[i] =
+        len > 0 ? glm::vec3(sum[i] / len) : glm::vec3();  // zero: append_placed uses the face's
   }
   return out;
 }
@@ -90,22 +92,22 @@ Result<MeshImportStats> append_ply(const PlyMesh& mesh, const std::string& name,
   // Made normals are per position id; a file's own, per vertex.
   const bool make = mesh.normals.empty();
   Welded welded = make ? weld_positions(mesh.positions) : Welded{};
-  const std::vector<Vec3f> made =
-      make ? angle_weighted_normals(mesh, welded) : std::vector<Vec3f>();
+  const std::vector<glm::vec3> made =
+      make ? angle_weighted_normals(mesh, welded) : std::vector<glm::vec3>();
   auto normal = [&](uint32_t v) { return make ? made[welded.id[v]] : mesh.normals[v]; };
   MeshImportStats stats;
   stats.has_uv = !mesh.uvs.empty();
   table_reserve(table, table.size() + mesh.triangles.size());
   if (stats.has_uv && !table.has_uv()) table.add_uv_columns();
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    if (Status s = check_placed(placement, Vec3d(mesh.positions[i]), i, name); !s)
+    if (Status s = check_placed(placement, glm::dvec3(mesh.positions[i]), i, name); !s)
       return Error{s.error()};
   for (const auto& t : mesh.triangles) {
-    std::array<Vec3d, 3> p, n;
+    std::array<glm::dvec3, 3> p{}, n{};
     std::array<TexCoord, 3> uv{};
     for (int k = 0; k < 3; ++k) {
-      p[k] = Vec3d(mesh.positions[t[k]]);
-      n[k] = Vec3d(normal(t[k]));
+      p[k] = glm::dvec3(mesh.positions[t[k]]);
+      n[k] = glm::dvec3(normal(t[k]));
       if (stats.has_uv) uv[k] = mesh.uvs[t[k]];
     }
     append_placed(p, n, uv, placement, material, table, stats);

@@ -5,12 +5,12 @@
 namespace raylane {
 
 Texture make_texture(std::string file, Image image) {
-  Vec3d sum(0, 0, 0);
+  glm::dvec3 sum(0, 0, 0);
   for (uint32_t y = 0; y < image.height; ++y)
     for (uint32_t x = 0; x < image.width; ++x)
-      sum += Vec3d(image.at(x, y));
+      sum += glm::dvec3(image.at(x, y));
   double n = double(image.width) * image.height;
-  Vec3d mean = n > 0 ? sum / n : Vec3d(0, 0, 0);
+  glm::dvec3 mean = n > 0 ? sum / n : glm::dvec3(0, 0, 0);
   return {std::move(file), std::move(image), mean};
 }
 
@@ -34,7 +34,7 @@ Span span(double c, uint32_t size) {
 
 }  // namespace
 
-Vec3d texture_lookup(const Image& image, double u, double v) {
+glm::dvec3 texture_lookup(const Image& image, double u, double v) {
   if (image.width == 0 || image.height == 0 || !std::isfinite(u) || !std::isfinite(v))
     return {0, 0, 0};
   u -= std::floor(u);
@@ -43,10 +43,10 @@ Vec3d texture_lookup(const Image& image, double u, double v) {
   // Rows from the bottom: v = 0 is the file's last row.
   Span sy = span(v * image.height, image.height);
   auto texel = [&](uint32_t x, uint32_t y_up) {
-    return Vec3d(image.at(x, image.height - 1 - y_up));
+    return glm::dvec3(image.at(x, image.height - 1 - y_up));
   };
-  Vec3d bottom = texel(sx.a, sy.a) * (1 - sx.w) + texel(sx.b, sy.a) * sx.w;
-  Vec3d top = texel(sx.a, sy.b) * (1 - sx.w) + texel(sx.b, sy.b) * sx.w;
+  glm::dvec3 bottom = texel(sx.a, sy.a) * (1 - sx.w) + texel(sx.b, sy.a) * sx.w;
+  glm::dvec3 top = texel(sx.a, sy.b) * (1 - sx.w) + texel(sx.b, sy.b) * sx.w;
   return bottom * (1 - sy.w) + top * sy.w;
 }
 

@@ -78,7 +78,7 @@ Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& pat
   auto image = read_scene_image(state, path);
   if (!image) return Error{image.error()};
   s.textures.push_back(state.options.image_headers_only
-                           ? Texture{path, std::move(*image), Vec3d(0, 0, 0)}
+                           ? Texture{path, std::move(*image), glm::dvec3(0, 0, 0)}
                            : make_texture(path, std::move(*image)));
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(path, row);

@@ -9,7 +9,7 @@ namespace raylane {
 
 namespace {
 
-Vec3d inverse(const Vec3d& d) {
+glm::dvec3 inverse(const glm::dvec3& d) {
   return {1.0 / d.x, 1.0 / d.y, 1.0 / d.z};
 }
 
@@ -34,7 +34,7 @@ bool visit_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& leaf, const R
 template <class OnHit>
 bool traverse(const Scene& scene, const Bvh& bvh, Rayd& ray, OnHit&& on_hit) {
   if (bvh.empty() || !ray_is_valid(ray)) return false;
-  Vec3d inv_d = inverse(ray.d);
+  glm::dvec3 inv_d = inverse(ray.d);
   uint32_t stack[kBvhStackSize];
   int top = 0;
   stack[top++] = 0;
@@ -55,7 +55,8 @@ bool traverse(const Scene& scene, const Bvh& bvh, Rayd& ray, OnHit&& on_hit) {
 
 }  // namespace
 
-bool ray_overlaps_box_ref(const Rayd& ray, const Vec3d& inv_d, const Bounds3f& box, double tmax) {
+bool ray_overlaps_box_ref(const Rayd& ray, const glm::dvec3& inv_d, const Bounds3f& box,
+                          double tmax) {
   double t0 = ray.tmin, t1 = tmax;
   for (int k = 0; k < 3; ++k) {
     // The near plane follows the sign bit of d, so +0 and −0 agree (docs/hard-cases.md B3).

@@ -133,10 +133,10 @@ Result<uint32_t> read_triangle_soup(const std::string& path, uint32_t material,
     for (float x : v)
       if (!std::isfinite(x))
         return Error{cat(path, ": triangle ", i, ": expected finite coordinates, found ", x)};
-    Vec3f p0(v[0], v[1], v[2]), p1(v[3], v[4], v[5]), p2(v[6], v[7], v[8]);
-    Vec3d n = cross(Vec3d(p1) - Vec3d(p0), Vec3d(p2) - Vec3d(p0));
+    glm::vec3 p0(v[0], v[1], v[2]), p1(v[3], v[4], v[5]), p2(v[6], v[7], v[8]);
+    glm::dvec3 n = cross(glm::dvec3(p1) - glm::dvec3(p0), glm::dvec3(p2) - glm::dvec3(p0));
     double len = length(n);
-    Vec3f nf = len > 0 && std::isfinite(len) ? Vec3f(n / len) : Vec3f(0, 0, 1);
+    glm::vec3 nf = len > 0 && std::isfinite(len) ? glm::vec3(n / len) : glm::vec3(0, 0, 1);
     soup.append({p0, p1, p2}, {nf, nf, nf}, material);
   }
   std::apply(
@@ -151,7 +151,7 @@ Result<uint32_t> read_triangle_soup(const std::string& path, uint32_t material,
 Status write_triangle_soup(const std::string& path, const TriangleTable& table) {
   std::string out = header(kTrisMagic, {uint32_t(table.size())}, kTrisHeader);
   for (uint32_t i = 0; i < table.size(); ++i)
-    for (Vec3f p : {table.p0(i), table.p1(i), table.p2(i)})
+    for (glm::vec3 p : {table.p0(i), table.p1(i), table.p2(i)})
       put(out, &p.x, 4), put(out, &p.y, 4), put(out, &p.z, 4);
   return write_file_atomically(path, out);
 }

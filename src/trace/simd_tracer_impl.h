@@ -182,7 +182,7 @@ struct HitSink {
   Hit* hits;
   uint32_t ray_of(uint32_t r) const { return r; }
   const Hit& hit_of(uint32_t r) const { return hits[r]; }
-  void store(uint32_t r, const Vec3d& p, const Vec3d& n, double cos_d) const {
+  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d) const {
     Hit& h = hits[r];
     h.surface = {p, n, n};
     h.front_face = cos_d < 0;
@@ -197,7 +197,7 @@ struct ColumnSink {
   SurfaceColumns out;
   uint32_t ray_of(uint32_t r) const { return ray[r]; }
   const Hit& hit_of(uint32_t r) const { return hits[ray[r]]; }
-  void store(uint32_t r, const Vec3d& p, const Vec3d& n, double cos_d) const {
+  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d) const {
     out.px[r] = p.x, out.py[r] = p.y, out.pz[r] = p.z;
     out.ngx[r] = n.x, out.ngy[r] = n.y, out.ngz[r] = n.z;
     out.nsx[r] = float(n.x), out.nsy[r] = float(n.y), out.nsz[r] = float(n.z);

@@ -62,7 +62,8 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   h.front_face = dot(traced.d, h.surface.ng) < 0;
 }
 
-void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Vec3d& d) {
+void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s,
+                   const glm::dvec3& d) {
   out.px[r] = s.p.x, out.py[r] = s.p.y, out.pz[r] = s.p.z;
   out.ngx[r] = s.ng.x, out.ngy[r] = s.ng.y, out.ngz[r] = s.ng.z;
   out.nsx[r] = float(s.ns.x), out.nsy[r] = float(s.ns.y), out.nsz[r] = float(s.ns.z);

@@ -190,8 +190,8 @@ TEST(Bvh, EmptySceneGivesEmptyBvh) {
 TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
   Scene s;
   s.materials.push_back(Material{});
-  std::array<Vec3f, 3> p = {Vec3f(1, 1, 1), Vec3f(1.5f, 1, 1), Vec3f(1, 1.5f, 1)};
-  std::array<Vec3f, 3> n = {Vec3f(0, 0, 1), Vec3f(0, 0, 1), Vec3f(0, 0, 1)};
+  std::array<glm::vec3, 3> p = {glm::vec3(1, 1, 1), glm::vec3(1.5f, 1, 1), glm::vec3(1, 1.5f, 1)};
+  std::array<glm::vec3, 3> n = {glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
   for (int i = 0; i < 20000; ++i)
     s.table<Triangle>().append(p, n, 0);
   for (int i = 0; i < 200; ++i)
@@ -250,7 +250,7 @@ TEST(BvhTraversal, EqualsBruteForceOnEveryShippedScene) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-2, 2);
     for (int i = 0; i < 20000; ++i) {
-      Vec3d target(u(rng), u(rng), u(rng));
+      glm::dvec3 target(u(rng), u(rng), u(rng));
       rays.push_back({p.scene.camera->eye, normalize(target - p.scene.camera->eye)});
     }
     expect_bvh_equals_brute_force(p.scene, bvh, rays);
@@ -262,11 +262,11 @@ TEST(BvhTraversal, EqualsBruteForceOnEveryShippedScene) {
 TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
   Scene s;
   s.materials.push_back(Material{});
-  Vec3f n(0, 1, 0);
+  glm::vec3 n(0, 1, 0);
   for (int i = -10; i < 10; ++i)
     for (int j = -10; j < 10; ++j) {
-      Vec3f a(float(i), 0, float(j)), b(float(i + 1), 0, float(j)), c(float(i), 0, float(j + 1)),
-          d(float(i + 1), 0, float(j + 1));
+      glm::vec3 a(float(i), 0, float(j)), b(float(i + 1), 0, float(j)),
+          c(float(i), 0, float(j + 1)), d(float(i + 1), 0, float(j + 1));
       s.table<Triangle>().append({a, c, b}, {n, n, n}, 0);
       s.table<Triangle>().append({b, c, d}, {n, n, n}, 0);
     }

@@ -22,7 +22,7 @@ TriangleTable random_triangles(uint32_t rows, std::mt19937& rng) {
   TriangleTable t;
   t.add_uv_columns();
   for (uint32_t i = 0; i < rows; ++i) {
-    auto v = [&] { return Vec3f(u(rng), u(rng), u(rng)); };
+    auto v = [&] { return glm::vec3(u(rng), u(rng), u(rng)); };
     std::array<TexCoord, 3> uv{TexCoord{u(rng), u(rng)}, TexCoord{u(rng), u(rng)},
                                TexCoord{u(rng), u(rng)}};
     t.append({v(), v(), v()}, {v(), v(), v()}, i, &uv);

@@ -21,7 +21,7 @@ using testing::write_file;
 TEST(CliDiff, ReportsTheDifferenceAndExitsByTolerance) {
   std::string dir = temp_dir();
   Image a(4, 2), b(4, 2), small(2, 2);
-  b.set(1, 1, Vec3f(0.6f, 0, 0));  // one channel of 24 differs by 0.6: RMSE = sqrt(0.36 / 24)
+  b.set(1, 1, glm::vec3(0.6f, 0, 0));  // one channel of 24 differs by 0.6: RMSE = sqrt(0.36 / 24)
   ASSERT_TRUE(write_image(dir + "/a.pfm", a).ok());
   ASSERT_TRUE(write_image(dir + "/b.pfm", b).ok());
   ASSERT_TRUE(write_image(dir + "/small.pfm", small).ok());
@@ -48,7 +48,7 @@ TEST(CliDiff, ReportsTheDifferenceAndExitsByTolerance) {
 TEST(CliDiff, NonFinitePixelsDifferBeyondAnyTolerance) {
   std::string dir = temp_dir();
   Image a(2, 2), nan(2, 2);
-  nan.set(1, 0, Vec3f(std::nanf(""), 0, 0));
+  nan.set(1, 0, glm::vec3(std::nanf(""), 0, 0));
   ASSERT_TRUE(write_image(dir + "/a.pfm", a).ok());
   ASSERT_TRUE(write_image(dir + "/nan.pfm", nan).ok());
   for (std::string args :
@@ -63,8 +63,8 @@ TEST(CliDiff, NonFinitePixelsDifferBeyondAnyTolerance) {
 TEST(CliDiff, ReportsThePixelOfTheLargestDifference) {
   std::string dir = temp_dir();
   Image a(4, 3), b(4, 3);
-  b.set(3, 0, Vec3f(0, 0.2f, 0));
-  b.set(2, 1, Vec3f(0, 0, -0.5f));  // value 3·(1·4 + 2) + 2 = 20 of the 36
+  b.set(3, 0, glm::vec3(0, 0.2f, 0));
+  b.set(2, 1, glm::vec3(0, 0, -0.5f));  // value 3·(1·4 + 2) + 2 = 20 of the 36
   ASSERT_TRUE(write_image(dir + "/a.pfm", a).ok());
   ASSERT_TRUE(write_image(dir + "/b.pfm", b).ok());
   auto r = run_cli("diff b.pfm a.pfm", dir);
@@ -76,10 +76,10 @@ TEST(CliDiff, ReportsThePixelOfTheLargestDifference) {
 TEST(CliDiff, HeatmapIsThePerPixelRelativeError) {
   std::string dir = temp_dir();
   Image ref(3, 2), b(3, 2);
-  ref.set(0, 0, Vec3f(1, 1, 1));
-  b.set(0, 0, Vec3f(1, 1, 1));
-  b.set(2, 1, Vec3f(0.6f, 0, 0));  // sqrt(0.36 / 0.01 / 3) = sqrt(12)
-  b.set(1, 0, Vec3f(0, 0.2f, 0));  // sqrt(0.04 / 0.01 / 3) = sqrt(4 / 3)
+  ref.set(0, 0, glm::vec3(1, 1, 1));
+  b.set(0, 0, glm::vec3(1, 1, 1));
+  b.set(2, 1, glm::vec3(0.6f, 0, 0));  // sqrt(0.36 / 0.01 / 3) = sqrt(12)
+  b.set(1, 0, glm::vec3(0, 0.2f, 0));  // sqrt(0.04 / 0.01 / 3) = sqrt(4 / 3)
   ASSERT_TRUE(write_image(dir + "/ref.pfm", ref).ok());
   ASSERT_TRUE(write_image(dir + "/b.pfm", b).ok());
   auto r = run_cli("diff b.pfm ref.pfm --heatmap h.pfm", dir);
@@ -136,8 +136,8 @@ std::string tga_bytes(const std::vector<std::array<uint8_t, 3>>& rgb, int w, int
 TEST(CliDiff, ConvertAndDiffReadPngJpegTgaAndBmp) {
   std::string dir = temp_dir();
   Image img(2, 2);
-  img.set(0, 0, Vec3f(1, 0, 0)), img.set(1, 0, Vec3f(0, 1, 0));
-  img.set(0, 1, Vec3f(0, 0, 1)), img.set(1, 1, Vec3f(1, 1, 1));
+  img.set(0, 0, glm::vec3(1, 0, 0)), img.set(1, 0, glm::vec3(0, 1, 0));
+  img.set(0, 1, glm::vec3(0, 0, 1)), img.set(1, 1, glm::vec3(1, 1, 1));
   ASSERT_TRUE(write_image(dir + "/img.png", img).ok());
   std::vector<std::array<uint8_t, 3>> bytes = {
       {255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}};

@@ -19,10 +19,11 @@ using testing::temp_dir;
 // reorders them and each ray's answer names exactly one.
 void write_inputs(const std::string& dir, bool occlusion) {
   TriangleTable soup;
-  Vec3f n(0, 0, 1);
+  glm::vec3 n(0, 0, 1);
   for (int i = 0; i < 64; ++i) {
     float x = float(i) * 3, z = float(i);
-    soup.append({Vec3f(x - 1, -1, z), Vec3f(x + 1, -1, z), Vec3f(x, 1, z)}, {n, n, n}, 0);
+    soup.append({glm::vec3(x - 1, -1, z), glm::vec3(x + 1, -1, z), glm::vec3(x, 1, z)}, {n, n, n},
+                0);
   }
   ASSERT_TRUE(write_triangle_soup(dir + "/row.tris", soup).ok());
   RaySetFile set;

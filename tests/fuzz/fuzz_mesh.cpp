@@ -13,7 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   const char* name = (data[0] & 1) ? "fuzz.obj" : "fuzz.ply";
   std::string bytes(reinterpret_cast<const char*>(data + 1), size - 1);
   raylane::TriangleTable table;
-  raylane::MeshPlacement placement{{0, 0, 0}, 1.0, raylane::Mat3d::identity()};
+  raylane::MeshPlacement placement{{0, 0, 0}, 1.0, glm::dmat3(1.0)};
   auto stats = raylane::import_mesh_memory(bytes, name, placement, 0, table);
   // Nothing is appended on failure; on success, exactly the triangles reported.
   if (!stats ? table.size() != 0 : table.size() != stats->triangles) std::abort();

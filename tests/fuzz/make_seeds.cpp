@@ -134,7 +134,7 @@ void image_seeds(const fs::path& dir) {
   put(dir / "bomb.png", std::string(1, '\0') + raylane::testing::png_zero_bomb(4096, 4096));
   put(dir / "yc.exr",
       std::string(1, '\0') + raylane::testing::exr_luminance_chroma(8, 6, [](int x, int y) {
-        return raylane::Vec3f(x * 0.1f, y * 0.2f, 0.3f);
+        return glm::vec3(x * 0.1f, y * 0.2f, 0.3f);
       }));
   // Small JPEGs of each coding raylane reads (the models' photos are large and baseline).
   using raylane::testing::JpegKind;

@@ -66,7 +66,7 @@ std::string exr_bytes(const Image& img, const std::vector<ExrLayer>& layers = {}
 
 TEST(Exr, FloatRoundTripIsExact) {
   Image img = ramp(37, 21);  // 21 rows: two ZIP blocks of 16 lines, the second partial
-  img.set(3, 4, Vec3f(1e-30f, 3.4e38f, 0.1f));
+  img.set(3, 4, glm::vec3(1e-30f, 3.4e38f, 0.1f));
   auto back = decode_exr(exr_bytes(img));
   ASSERT_TRUE(back.ok()) << back.error();
   EXPECT_EQ(back->width, 37u);
@@ -254,14 +254,14 @@ TEST(Exr, TexturesReadExrAndRefuseBadValues) {
   EXPECT_EQ(tex->rgb, img.rgb);
   for (float bad : {-1.0f, std::nanf(""), INFINITY}) {
     Image b = img;
-    b.set(2, 1, Vec3f(0.5f, bad, 0.5f));
+    b.set(2, 1, glm::vec3(0.5f, bad, 0.5f));
     auto r = decode_input_image(exr_bytes(b), "t.exr");
     ASSERT_FALSE(r.ok()) << bad;
     EXPECT_NE(r.error().find("pixel (2, 1)"), std::string::npos) << r.error();
   }
   // read_image (diff, convert) keeps them, as it does for PFM: diff counts them.
   Image n = img;
-  n.set(0, 0, Vec3f(-2, 0, 0));
+  n.set(0, 0, glm::vec3(-2, 0, 0));
   auto raw = decode_exr(exr_bytes(n));
   ASSERT_TRUE(raw.ok());
   EXPECT_EQ(raw->rgb[0], -2.0f);
@@ -289,7 +289,7 @@ TEST(Exr, GreyFilesBecomeRgb) {
   auto img = decode_exr(write_with_imf("y.exr", h, fb, 2));
   ASSERT_TRUE(img.ok()) << img.error();
   for (uint32_t i = 0; i < 6; ++i)
-    EXPECT_EQ(img->at(i % 3, i / 3), Vec3f(y[i], y[i], y[i])) << i;
+    EXPECT_EQ(img->at(i % 3, i / 3), glm::vec3(y[i], y[i], y[i])) << i;
 }
 
 TEST(Exr, AnOffsetDataWindowIsReadFromItsTopRow) {

@@ -107,7 +107,7 @@ TEST(ImageMemory, InfoReadsOnlyTheHeader) {
 TEST(ExrLuminanceChroma, ReadsAsItsColourNotZeros) {
   auto grey = [](int x, int y) {
     float v = 0.05f + 0.01f * float(x + 3 * y);
-    return Vec3f(v, v, v);
+    return glm::vec3(v, v, v);
   };
   auto bytes = testing::exr_luminance_chroma(16, 6, grey);
   auto info = probe_exr(bytes);
@@ -118,11 +118,11 @@ TEST(ExrLuminanceChroma, ReadsAsItsColourNotZeros) {
   ASSERT_EQ(img->width, 16u);
   for (int y = 0; y < 6; ++y)
     for (int x = 0; x < 16; ++x) {
-      Vec3f want = grey(x, y), got = img->at(uint32_t(x), uint32_t(y));
+      glm::vec3 want = grey(x, y), got = img->at(uint32_t(x), uint32_t(y));
       for (int k = 0; k < 3; ++k)
         ASSERT_NEAR(got[k], want[k], std::ldexp(want[k], -10)) << x << "," << y;
     }
-  auto colour = [](int, int) { return Vec3f(0.8f, 0.4f, 0.2f); };
+  auto colour = [](int, int) { return glm::vec3(0.8f, 0.4f, 0.2f); };
   auto coloured = decode_exr(testing::exr_luminance_chroma(10, 4, colour));
   ASSERT_TRUE(coloured) << coloured.error();
   for (uint32_t y = 0; y < 4; ++y)

@@ -42,7 +42,7 @@ TEST(Rgbe, KnownEncodings) {
   auto big = float_to_rgbe(INFINITY, 0, 0);
   EXPECT_EQ(big[3], 255);
   EXPECT_TRUE(std::isfinite(rgbe_to_float(big).x));
-  EXPECT_EQ(rgbe_to_float({128, 64, 0, 129}), Vec3f(1.0f, 0.5f, 0.0f));
+  EXPECT_EQ(rgbe_to_float({128, 64, 0, 129}), glm::vec3(1.0f, 0.5f, 0.0f));
 }
 
 // Each channel keeps 8 bits relative to the pixel's largest channel: truncation to the
@@ -86,7 +86,7 @@ TEST(Rgbe, RunLengthEncodingCompresses) {
   EXPECT_LT(bytes.size(), 1000u);  // flat would be 40000 bytes of pixels
   auto back = decode_rgbe(bytes);
   ASSERT_TRUE(back);
-  EXPECT_EQ(back->image.at(999, 9), Vec3f(0.25f, 0.25f, 0.25f));
+  EXPECT_EQ(back->image.at(999, 9), glm::vec3(0.25f, 0.25f, 0.25f));
 }
 
 // A header announcing a wide image over a few bytes used to size its row buffer (a GiB for
@@ -232,7 +232,7 @@ TEST(Metrics, KnownDifferences) {
   EXPECT_DOUBLE_EQ(d->max_abs, 1.0);
   EXPECT_DOUBLE_EQ(d->rel_mse, 0.5 / 1.01);
   EXPECT_FALSE(compare(a, Image(1, 2)));
-  EXPECT_EQ(mean(b), Vec3d(0.5, 0.5, 0.5));
+  EXPECT_EQ(mean(b), glm::dvec3(0.5, 0.5, 0.5));
 }
 
 }  // namespace

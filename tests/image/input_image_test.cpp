@@ -66,7 +66,7 @@ TEST(InputImage, PngIsSrgbDecodedWithTheTopRowFirst) {
   ASSERT_EQ(back->height, 2u);
   for (uint32_t y = 0; y < 2; ++y)
     for (uint32_t x = 0; x < 3; ++x) {
-      Vec3f c = back->at(x, y);
+      glm::vec3 c = back->at(x, y);
       // write_png rounded each channel to 8 bits; decoding must undo exactly that code.
       EXPECT_EQ(c.x, float(srgb_to_linear(srgb_encode_8bit(x / 2.0f) / 255.0)));
       EXPECT_EQ(c.y, float(srgb_to_linear(srgb_encode_8bit(float(y)) / 255.0)));

@@ -32,8 +32,8 @@ TEST(InputVariants, AGreyPfmIsReadAsThreeEqualChannels) {
   ASSERT_TRUE(img) << img.error();
   ASSERT_EQ(img->width, 3u);
   ASSERT_EQ(img->height, 2u);
-  EXPECT_EQ(img->at(0, 1), Vec3f(1, 1, 1));  // the bottom row comes first in the file
-  EXPECT_EQ(img->at(2, 0), Vec3f(6, 6, 6));
+  EXPECT_EQ(img->at(0, 1), glm::vec3(1, 1, 1));  // the bottom row comes first in the file
+  EXPECT_EQ(img->at(2, 0), glm::vec3(6, 6, 6));
   auto truncated = decode_input_image("Pf\n3 2\n-1.0\n" + floats({1, 2, 3}), "g.pfm");
   EXPECT_FALSE(truncated);
 }
@@ -59,10 +59,10 @@ TEST(InputVariants, ATopDownBmpKeepsItsSizeAndRowOrder) {
   EXPECT_EQ(info->height, 2u);
   auto img = decode_input_image(bmp, "t.bmp");
   ASSERT_TRUE(img) << img.error();
-  EXPECT_EQ(img->at(0, 0), Vec3f(1, 0, 0));  // red, top left
-  EXPECT_EQ(img->at(1, 0), Vec3f(0, 1, 0));
-  EXPECT_EQ(img->at(0, 1), Vec3f(0, 0, 1));
-  EXPECT_EQ(img->at(1, 1), Vec3f(1, 1, 1));
+  EXPECT_EQ(img->at(0, 0), glm::vec3(1, 0, 0));  // red, top left
+  EXPECT_EQ(img->at(1, 0), glm::vec3(0, 1, 0));
+  EXPECT_EQ(img->at(0, 1), glm::vec3(0, 0, 1));
+  EXPECT_EQ(img->at(1, 1), glm::vec3(1, 1, 1));
 }
 
 }  // namespace

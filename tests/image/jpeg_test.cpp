@@ -52,7 +52,7 @@ TEST(Jpeg, ColourIsSrgbDecodedWithTheTopRowFirst) {
   for (uint32_t y = 0; y < 16; ++y)
     for (uint32_t x = 0; x < 16; ++x) {
       const auto& want = kQuadrants[quadrant(x, y)];
-      Vec3f got = img->at(x, y);
+      glm::vec3 got = img->at(x, y);
       expect_code(got.x, want[0], "R");
       expect_code(got.y, want[1], "G");
       expect_code(got.z, want[2], "B");
@@ -76,7 +76,7 @@ TEST(Jpeg, GreyBecomesRgbWithEqualChannels) {
   auto img = decode_input_image(jpeg_bytes(grey, 8, 16, 1), "g.jpg");
   ASSERT_TRUE(img) << img.error();
   for (uint32_t y = 0; y < 16; ++y) {
-    Vec3f c = img->at(3, y);
+    glm::vec3 c = img->at(3, y);
     EXPECT_EQ(c.x, c.y);
     EXPECT_EQ(c.y, c.z);
     // Grey is coded as Y alone: only the 8×8 DCT's rounding moves it, by at most one code.

@@ -12,10 +12,10 @@ TEST(BoxRef, AnalyticHitsAndFaces) {
   BoxTable b = one_box({0, 0, 0}, {1, 1, 1});
   Rayd r = ray({0.5, 0.5, -1}, {0, 0, 1});
   EXPECT_EQ(intersect_ref(b, 0, r), 1.0);
-  EXPECT_EQ(surface_ref(b, 0, r, 1.0).ng, Vec3d(0, 0, -1));
+  EXPECT_EQ(surface_ref(b, 0, r, 1.0).ng, glm::dvec3(0, 0, -1));
   Rayd inside = ray({0.5, 0.5, 0.5}, {0, 0, 1});
   EXPECT_EQ(intersect_ref(b, 0, inside), 0.5);  // from inside: the exit face
-  EXPECT_EQ(surface_ref(b, 0, inside, 0.5).ng, Vec3d(0, 0, 1));
+  EXPECT_EQ(surface_ref(b, 0, inside, 0.5).ng, glm::dvec3(0, 0, 1));
   EXPECT_EQ(intersect_ref(b, 0, ray({2, 0.5, -1}, {0, 0, 1})), kInf);
 }
 
@@ -25,7 +25,7 @@ TEST(BoxRef, NegativeDiagonalIsTheSameBox) {
   BoxTable b = one_box({-1, 1, 1}, {2, 3, 0.5});
   EXPECT_EQ(a.lo(0), b.lo(0));
   EXPECT_EQ(a.hi(0), b.hi(0));
-  Rayd r = ray({-3, 2, 1.2}, normalize(Vec3d(1, 0.1, 0.05)));
+  Rayd r = ray({-3, 2, 1.2}, normalize(glm::dvec3(1, 0.1, 0.05)));
   EXPECT_EQ(intersect_ref(a, 0, r), intersect_ref(b, 0, r));
 }
 
@@ -42,7 +42,7 @@ TEST(BoxRef, DegenerateRaysHitTheClosedBox) {
           double t = intersect_ref(b, 0, r);
           ASSERT_EQ(t, 1.0) << x << " " << y << " " << sx << " " << sy;
           Surface sf = surface_ref(b, 0, r, t);
-          EXPECT_EQ(sf.ng, Vec3d(0, 0, -1));
+          EXPECT_EQ(sf.ng, glm::dvec3(0, 0, -1));
           ++cases;
         }
   EXPECT_EQ(cases, 36);
@@ -57,18 +57,18 @@ TEST(BoxRef, CornerHitHasOneAxisNormal) {
   Rayd r = ray({-1, -1, -1}, {1, 1, 1});
   double t = intersect_ref(b, 0, r);
   ASSERT_EQ(t, 1.0);
-  EXPECT_EQ(surface_ref(b, 0, r, t).ng, Vec3d(-1, 0, 0));
+  EXPECT_EQ(surface_ref(b, 0, r, t).ng, glm::dvec3(-1, 0, 0));
 }
 
 // The packet kernels report t in float: the face must follow the nearer end of the
 // interval, not an exact match with the double entry t (a float t once flipped the face).
 TEST(BoxRef, SurfaceFromAnInexactTIsStillTheEntryFace) {
   BoxTable b = one_box({0, 0, 0}, {1, 1, 1});
-  Rayd r = ray({0.3, 0.4, -1}, normalize(Vec3d(0.1, 0.2, 1)));
+  Rayd r = ray({0.3, 0.4, -1}, normalize(glm::dvec3(0.1, 0.2, 1)));
   double t = intersect_ref(b, 0, r);
   for (double tt : {t, double(float(t)), std::nextafter(t, 0.0), std::nextafter(t, 9.0)}) {
     Surface s = surface_ref(b, 0, r, tt);
-    EXPECT_EQ(s.ng, Vec3d(0, 0, -1));
+    EXPECT_EQ(s.ng, glm::dvec3(0, 0, -1));
     EXPECT_EQ(s.p.z, 0.0);
   }
 }

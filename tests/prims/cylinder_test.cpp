@@ -15,10 +15,10 @@ TEST(CylinderRef, SideHitFromOutsideAndInside) {
   CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
   Rayd r = ray({-3, 0, 1}, {1, 0, 0});  // C4: perpendicular to the axis
   EXPECT_EQ(intersect_ref(c, 0, r), 2.0);
-  EXPECT_EQ(surface_ref(c, 0, r, 2.0).ng, Vec3d(-1, 0, 0));
+  EXPECT_EQ(surface_ref(c, 0, r, 2.0).ng, glm::dvec3(-1, 0, 0));
   Rayd in = ray({0, 0, 1}, {0, 1, 0});
   EXPECT_EQ(intersect_ref(c, 0, in), 1.0);
-  EXPECT_EQ(surface_ref(c, 0, in, 1.0).ng, Vec3d(0, 1, 0));
+  EXPECT_EQ(surface_ref(c, 0, in, 1.0).ng, glm::dvec3(0, 1, 0));
 }
 
 // C1: parallel to the axis, inside: the bottom cap at exactly t = 1, normal −axis.
@@ -26,10 +26,10 @@ TEST(CylinderRef, ParallelInsideHitsTheCap) {
   CylinderTable c = one_cylinder({0, 0, 0}, {0, 0, 2}, 1);
   Rayd r = ray({0.3, 0.2, -1}, {0, 0, 1});
   EXPECT_EQ(intersect_ref(c, 0, r), 1.0);
-  EXPECT_EQ(surface_ref(c, 0, r, 1.0).ng, Vec3d(0, 0, -1));
+  EXPECT_EQ(surface_ref(c, 0, r, 1.0).ng, glm::dvec3(0, 0, -1));
   Rayd from_inside = ray({0.3, 0.2, 1}, {0, 0, 1});
   EXPECT_EQ(intersect_ref(c, 0, from_inside), 1.0);
-  EXPECT_EQ(surface_ref(c, 0, from_inside, 1.0).ng, Vec3d(0, 0, 1));
+  EXPECT_EQ(surface_ref(c, 0, from_inside, 1.0).ng, glm::dvec3(0, 0, 1));
 }
 
 // C2: parallel outside misses; parallel exactly on the surface is deterministic (inclusive:
@@ -61,18 +61,18 @@ TEST(CylinderRef, GenericAxisFarAway) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1), s(0.05, 0.95);
   for (double off : {0.0, 1e4, 1e5}) {
-    Vec3d base(off, -off, off), axis = Vec3d(1, 2, 3);
+    glm::dvec3 base(off, -off, off), axis = glm::dvec3(1, 2, 3);
     CylinderTable c = one_cylinder(base, axis, 0.5);
-    Vec3d b(c.base(0)), a(c.axis(0));
-    Vec3d ua = normalize(a);
-    Vec3d e1 = normalize(cross(ua, Vec3d(1, 0, 0))), e2 = cross(ua, e1);
+    glm::dvec3 b(c.base(0)), a(c.axis(0));
+    glm::dvec3 ua = normalize(a);
+    glm::dvec3 e1 = normalize(cross(ua, glm::dvec3(1, 0, 0))), e2 = cross(ua, e1);
     for (int i = 0; i < 2000; ++i) {
-      Vec3d target = b + a * s(rng) + (e1 * u(rng) + e2 * u(rng)) * (0.35 * 0.5);
-      Vec3d o = target + Vec3d(u(rng), u(rng), u(rng)) * 10;
+      glm::dvec3 target = b + a * s(rng) + (e1 * u(rng) + e2 * u(rng)) * (0.35 * 0.5);
+      glm::dvec3 o = target + glm::dvec3(u(rng), u(rng), u(rng)) * 10.0;
       Rayd r = ray(o, normalize(target - o));
       double t = intersect_ref(c, 0, r);
       ASSERT_NE(t, kInf) << off << " " << i;
-      Vec3d p = r.at(t) - b;
+      glm::dvec3 p = r.at(t) - b;
       double z = dot(p, ua);
       double radial = length(p - z * ua);
       double tol = 64 * 0x1p-53 * (length(o) + 10);
@@ -97,13 +97,13 @@ TEST(CylinderRef, ThinFarCylinderIsHit) {
 // height, exact in double, so it points along u and is h long to the last bit of h·|u|.
 TEST(CylinderTable, AxisIsTheStoredUnitAxisTimesTheStoredHeight) {
   CylinderTable c = one_cylinder({1, 2, 3}, {0.3, -1.7, 2.9}, 0.25);
-  Vec3d a = c.axis(0), u(c.unit_axis(0));
+  glm::dvec3 a = c.axis(0), u(c.unit_axis(0));
   double h = c.h[0];
   EXPECT_EQ(a.x, u.x * h);
   EXPECT_EQ(a.y, u.y * h);
   EXPECT_EQ(a.z, u.z * h);
   // Within the rounding of u and h (a few ulps) of the given axis.
-  Vec3d given(0.3f, -1.7f, 2.9f);
+  glm::dvec3 given(0.3f, -1.7f, 2.9f);
   EXPECT_LE(length(a - given), 4 * 0x1p-24 * length(given));
 }
 

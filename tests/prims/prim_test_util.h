@@ -16,22 +16,22 @@ inline SphereTable one_sphere(double x, double y, double z, double r) {
   t.append(std::array<double, 4>{x, y, z, r}, 0);
   return t;
 }
-inline BoxTable one_box(Vec3d b, Vec3d d) {
+inline BoxTable one_box(glm::dvec3 b, glm::dvec3 d) {
   BoxTable t;
   t.append(std::array<double, 6>{b.x, b.y, b.z, d.x, d.y, d.z}, 0);
   return t;
 }
-inline CylinderTable one_cylinder(Vec3d b, Vec3d a, double r) {
+inline CylinderTable one_cylinder(glm::dvec3 b, glm::dvec3 a, double r) {
   CylinderTable t;
   t.append(std::array<double, 7>{b.x, b.y, b.z, a.x, a.y, a.z, r}, 0);
   return t;
 }
-inline void add_triangle(TriangleTable& t, Vec3d a, Vec3d b, Vec3d c) {
-  Vec3f n(normalize(cross(b - a, c - a)));
-  if (!is_finite(n)) n = Vec3f(0, 0, 1);
-  t.append({Vec3f(a), Vec3f(b), Vec3f(c)}, {n, n, n}, 0);
+inline void add_triangle(TriangleTable& t, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  glm::vec3 n(normalize(cross(b - a, c - a)));
+  if (!is_finite(n)) n = glm::vec3(0, 0, 1);
+  t.append({glm::vec3(a), glm::vec3(b), glm::vec3(c)}, {n, n, n}, 0);
 }
-inline Rayd ray(Vec3d o, Vec3d d) {
+inline Rayd ray(glm::dvec3 o, glm::dvec3 d) {
   return {o, d};
 }
 

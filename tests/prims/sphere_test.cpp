@@ -15,8 +15,8 @@ TEST(SphereRef, AnalyticHitAndNormal) {
   Rayd r = ray({0, 0, 0}, {0, 0, 1});
   EXPECT_EQ(intersect_ref(s, 0, r), 4.0);
   Surface sf = surface_ref(s, 0, r, 4.0);
-  EXPECT_EQ(sf.ng, Vec3d(0, 0, -1));
-  EXPECT_EQ(sf.p, Vec3d(0, 0, 4));
+  EXPECT_EQ(sf.ng, glm::dvec3(0, 0, -1));
+  EXPECT_EQ(sf.p, glm::dvec3(0, 0, 4));
   EXPECT_EQ(intersect_ref(s, 0, ray({0, 2, 0}, {0, 0, 1})), kInf);   // passes beside it
   EXPECT_EQ(intersect_ref(s, 0, ray({0, 0, 0}, {0, 0, -1})), kInf);  // behind the origin
 }
@@ -79,13 +79,13 @@ TEST(SphereRef, NormalsAreUnitAndPointsOnTheSurface) {
   std::normal_distribution<double> g;
   SphereTable s = one_sphere(3, -2, 1e4, 7);
   for (int i = 0; i < 10000; ++i) {
-    Vec3d d = normalize(Vec3d(g(rng), g(rng), g(rng)) * 0.001 + Vec3d(3, -2, 1e4));
+    glm::dvec3 d = normalize(glm::dvec3(g(rng), g(rng), g(rng)) * 0.001 + glm::dvec3(3, -2, 1e4));
     Rayd r = ray({0, 0, 0}, d);
     double t = intersect_ref(s, 0, r);
     if (t == kInf) continue;
     Surface sf = surface_ref(s, 0, r, t);
     EXPECT_NEAR(length(sf.ng), 1.0, 4e-16);
-    EXPECT_NEAR(length(sf.p - Vec3d(3, -2, 1e4)), 7.0, 1e-11);
+    EXPECT_NEAR(length(sf.p - glm::dvec3(3, -2, 1e4)), 7.0, 1e-11);
   }
 }
 

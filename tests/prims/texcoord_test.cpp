@@ -26,21 +26,21 @@ void expect_uv(const TexCoord& t, double u, double v, const char* where) {
 
 TEST(TexCoord, SphereLongitudeFromPlusXAndLatitudeUpFromTheSouthPole) {
   auto t = one_row<SphereTable>(std::array<double, 4>{1, 2, 3, 2});
-  Vec3d c(1, 2, 3);
-  auto at = [&](Vec3d d) { return texcoord_ref(t, 0, Surface{c + 2.0 * d, d, d}); };
+  glm::dvec3 c(1, 2, 3);
+  auto at = [&](glm::dvec3 d) { return texcoord_ref(t, 0, Surface{c + 2.0 * d, d, d}); };
   expect_uv(at({1, 0, 0}), 0.0, 0.5, "phi = 0 on the equator");
   expect_uv(at({0, 1, 0}), 0.25, 0.5, "phi = pi/2");
   expect_uv(at({-1, 0, 0}), 0.5, 0.5, "phi = pi");
   expect_uv(at({0, -1, 0}), 0.75, 0.5, "phi = 3pi/2 (atan2 < 0 wraps)");
   EXPECT_NEAR(at({0, 0, 1}).v, 1.0, kTol) << "the top pole";
   EXPECT_NEAR(at({0, 0, -1}).v, 0.0, kTol) << "the bottom pole";
-  Vec3d mid = normalize(Vec3d(1, 0, 1));  // 45 degrees up: theta = pi/4
+  glm::dvec3 mid = normalize(glm::dvec3(1, 0, 1));  // 45 degrees up: theta = pi/4
   expect_uv(at(mid), 0.0, 0.75, "theta = pi/4");
 }
 
 TEST(TexCoord, BoxFacesRunAlongTheOtherAxesInXyzOrder) {
   auto t = one_row<BoxTable>(std::array<double, 6>{0, 0, 0, 2, 4, 8});
-  auto at = [&](Vec3d p, Vec3d n) { return texcoord_ref(t, 0, Surface{p, n, n}); };
+  auto at = [&](glm::dvec3 p, glm::dvec3 n) { return texcoord_ref(t, 0, Surface{p, n, n}); };
   expect_uv(at({2, 1, 6}, {1, 0, 0}), 0.25, 0.75, "face normal to +x: u along y, v along z");
   expect_uv(at({0, 3, 2}, {-1, 0, 0}), 0.75, 0.25, "face normal to -x");
   expect_uv(at({0.5, 0, 2}, {0, -1, 0}), 0.25, 0.25, "face normal to y: u along x, v along z");
@@ -49,7 +49,7 @@ TEST(TexCoord, BoxFacesRunAlongTheOtherAxesInXyzOrder) {
 
 TEST(TexCoord, CylinderSideAroundTheAxisFrameAndCapsCentred) {
   auto t = one_row<CylinderTable>(std::array<double, 7>{0, 0, 0, 0, 0, 4, 1});
-  auto at = [&](Vec3d p, Vec3d n) { return texcoord_ref(t, 0, Surface{p, n, n}); };
+  auto at = [&](glm::dvec3 p, glm::dvec3 n) { return texcoord_ref(t, 0, Surface{p, n, n}); };
   // For the axis +Z the frame is s = +X, t = +Y (docs/scene-language.md, "UV conventions").
   expect_uv(at({1, 0, 1}, {1, 0, 0}), 0.0, 0.25, "side at s");
   expect_uv(at({0, 1, 2}, {0, 1, 0}), 0.25, 0.5, "side at t");
@@ -61,11 +61,11 @@ TEST(TexCoord, CylinderSideAroundTheAxisFrameAndCapsCentred) {
   // rounded height (cylinder.h), within a few ulps of (3, 0, 4): the points are placed on it.
   auto tilted = one_row<CylinderTable>(std::array<double, 7>{1, 1, 1, 3, 0, 4, 2});
   const double height = length(tilted.axis(0));
-  Vec3d a = normalize(tilted.axis(0));
+  glm::dvec3 a = normalize(tilted.axis(0));
   Frame f(a);
-  Vec3d side = Vec3d(1, 1, 1) + (0.5 * height) * a + 2.0 * f.t;
+  glm::dvec3 side = glm::dvec3(1, 1, 1) + (0.5 * height) * a + 2.0 * f.t;
   expect_uv(texcoord_ref(tilted, 0, Surface{side, f.t, f.t}), 0.25, 0.5, "tilted side");
-  Vec3d top = Vec3d(1, 1, 1) + height * a;
+  glm::dvec3 top = glm::dvec3(1, 1, 1) + height * a;
   expect_uv(texcoord_ref(tilted, 0, Surface{top, a, a}), 0.5, 0.5, "tilted cap centre");
 }
 
@@ -73,26 +73,26 @@ TEST(TexCoord, TriangleInterpolatesItsVertexUvs) {
   TriangleTable t;
   t.add_uv_columns();
   std::array<TexCoord, 3> uv{TexCoord{0.2, 0.1}, TexCoord{0.9, 0.3}, TexCoord{0.4, 0.8}};
-  Vec3f n(0, 0, 1);
-  t.append({Vec3f(0, 0, 0), Vec3f(2, 0, 0), Vec3f(0, 2, 0)}, {n, n, n}, 0, &uv);
+  glm::vec3 n(0, 0, 1);
+  t.append({glm::vec3(0, 0, 0), glm::vec3(2, 0, 0), glm::vec3(0, 2, 0)}, {n, n, n}, 0, &uv);
   // p = 0.5·p0 + 0.25·p1 + 0.25·p2.
-  Vec3d p(0.5, 0.5, 0);
+  glm::dvec3 p(0.5, 0.5, 0);
   TexCoord got = texcoord_ref(t, 0, Surface{p, {0, 0, 1}, {0, 0, 1}});
   EXPECT_NEAR(got.u, 0.5 * 0.2 + 0.25 * 0.9 + 0.25 * 0.4, 1e-7);
   EXPECT_NEAR(got.v, 0.5 * 0.1 + 0.25 * 0.3 + 0.25 * 0.8, 1e-7);
   TriangleTable bare;  // no UV columns: (0, 0)
-  bare.append({Vec3f(0, 0, 0), Vec3f(2, 0, 0), Vec3f(0, 2, 0)}, {n, n, n}, 0, &uv);
+  bare.append({glm::vec3(0, 0, 0), glm::vec3(2, 0, 0), glm::vec3(0, 2, 0)}, {n, n, n}, 0, &uv);
   EXPECT_FALSE(bare.has_uv());
   expect_uv(texcoord_ref(bare, 0, Surface{p, {0, 0, 1}, {0, 0, 1}}), 0, 0, "no UVs");
 }
 
 TEST(TexCoord, OptionalColumnsFollowAPermutation) {
   TriangleTable t;
-  Vec3f n(0, 0, 1);
-  t.append({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {n, n, n}, 0);
+  glm::vec3 n(0, 0, 1);
+  t.append({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {n, n, n}, 0);
   t.add_uv_columns();  // the earlier row gets (0, 0)
   std::array<TexCoord, 3> uv{TexCoord{1, 2}, TexCoord{3, 4}, TexCoord{5, 6}};
-  t.append({Vec3f(0, 0, 1), Vec3f(1, 0, 1), Vec3f(0, 1, 1)}, {n, n, n}, 0, &uv);
+  t.append({glm::vec3(0, 0, 1), glm::vec3(1, 0, 1), glm::vec3(0, 1, 1)}, {n, n, n}, 0, &uv);
   ASSERT_EQ(t.t0u.size(), 2u);
   EXPECT_EQ(t.t0u[0], 0.0f);
   std::vector<uint32_t> order{1, 0};

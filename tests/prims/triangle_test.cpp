@@ -12,12 +12,12 @@ using namespace testing;
 
 TEST(TriangleRef, AnalyticHitBarycentricsAndNormals) {
   TriangleTable t;
-  Vec3f n0(0, 0, 1), n1(1, 0, 0), n2(0, 1, 0);
-  t.append({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {n0, n1, n2}, 0);
+  glm::vec3 n0(0, 0, 1), n1(1, 0, 0), n2(0, 1, 0);
+  t.append({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {n0, n1, n2}, 0);
   Rayd r = ray({0.25, 0.25, 2}, {0, 0, -1});
   EXPECT_EQ(intersect_ref(t, 0, r), 2.0);
   Surface s = surface_ref(t, 0, r, 2.0);
-  EXPECT_EQ(s.ng, Vec3d(0, 0, 1));
+  EXPECT_EQ(s.ng, glm::dvec3(0, 0, 1));
   EXPECT_NEAR(s.p.x, 0.25, 1e-16);
   // b = (0.5, 0.25, 0.25): interpolated normal (0.25, 0.25, 0.5), normalised.
   EXPECT_NEAR(s.ns.z, 0.5 / std::sqrt(0.375), 1e-15);
@@ -31,8 +31,8 @@ TEST(TriangleRef, SharedDiagonalIsWatertight) {
   TriangleTable t;
   add_triangle(t, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0});
   add_triangle(t, {-5, -5, 0}, {5, 5, 0}, {-5, 5, 0});
-  Vec3d d(0.30458447, 0.30458447, -0.9024725);
-  Rayd r = ray({0, 0, 10}, Vec3d(Vec3f(d)));
+  glm::dvec3 d(0.30458447, 0.30458447, -0.9024725);
+  Rayd r = ray({0, 0, 10}, glm::dvec3(glm::vec3(d)));
   EXPECT_TRUE(intersect_ref(t, 0, r) < kInf || intersect_ref(t, 1, r) < kInf);
 }
 
@@ -40,17 +40,17 @@ TEST(TriangleRef, SharedDiagonalIsWatertight) {
 // directions hit at least one.
 TEST(TriangleRef, FanVertexIsWatertight) {
   TriangleTable t;
-  Vec3d centre(0.1, 0.2, 0.3);
+  glm::dvec3 centre(0.1, 0.2, 0.3);
   for (int k = 0; k < 8; ++k) {
     double a0 = k * 2 * M_PI / 8, a1 = (k + 1) * 2 * M_PI / 8;
-    add_triangle(t, centre, centre + Vec3d(std::cos(a0), std::sin(a0), 0.1 * std::sin(3 * a0)),
-                 centre + Vec3d(std::cos(a1), std::sin(a1), 0.1 * std::sin(3 * a1)));
+    add_triangle(t, centre, centre + glm::dvec3(std::cos(a0), std::sin(a0), 0.1 * std::sin(3 * a0)),
+                 centre + glm::dvec3(std::cos(a1), std::sin(a1), 0.1 * std::sin(3 * a1)));
   }
   std::mt19937 rng(7);
   std::normal_distribution<double> g;
-  Vec3d v(Vec3f(t.p0(0)));
+  glm::dvec3 v(glm::vec3(t.p0(0)));
   for (int i = 0; i < 20000; ++i) {
-    Vec3d o = v + Vec3d(g(rng), g(rng), std::abs(g(rng)) + 0.5) * 3;
+    glm::dvec3 o = v + glm::dvec3(g(rng), g(rng), std::abs(g(rng)) + 0.5) * 3.0;
     Rayd r = ray(o, v - o);
     bool hit = false;
     for (uint32_t k = 0; k < t.size(); ++k)
@@ -83,8 +83,8 @@ TEST(TriangleRef, TinyTrianglesAreHit) {
     for (double s : {1e-3, 2e-4, 1e-5, 1e-6}) {
       TriangleTable t;
       add_triangle(t, {off, off, 0}, {off + s, off, 0}, {off, off + s, 0});
-      Vec3d p0(t.p0(0)), p1(t.p1(0)), p2(t.p2(0));
-      Vec3d c = (p0 + p1 + p2) / 3.0;
+      glm::dvec3 p0(t.p0(0)), p1(t.p1(0)), p2(t.p2(0));
+      glm::dvec3 c = (p0 + p1 + p2) / 3.0;
       double hit = intersect_ref(t, 0, ray({c.x, c.y, -1}, {0, 0, 1}));
       if (length_squared(cross(p1 - p0, p2 - p0)) == 0) {
         EXPECT_EQ(hit, kInf) << off << " " << s;
@@ -105,8 +105,8 @@ TEST(TriangleRef, HugeQuadHasNoGapsNearTheDiagonal) {
     std::uniform_real_distribution<double> u(-10, 10), e(-1e-3, 1e-3);
     for (int i = 0; i < 20000; ++i) {
       double x = u(rng), z = x + e(rng);
-      Vec3d o(0, 1.7, 0);
-      Rayd r = ray(o, normalize(Vec3d(x, 0, z) - o));
+      glm::dvec3 o(0, 1.7, 0);
+      Rayd r = ray(o, normalize(glm::dvec3(x, 0, z) - o));
       double t0 = intersect_ref(t, 0, r), t1 = intersect_ref(t, 1, r);
       ASSERT_TRUE(t0 < kInf || t1 < kInf) << big << " " << i;
       double th = std::min(t0, t1);

@@ -48,7 +48,7 @@ std::vector<std::size_t> interior_pixels(const Image& fine_id) {
   std::vector<std::size_t> out;
   for (uint32_t y = 1; y + 1 < 60; ++y)
     for (uint32_t x = 1; x + 1 < 80; ++x) {
-      const Vec3f first = fine_id.at(4 * x - 1, 4 * y - 1);
+      const glm::vec3 first = fine_id.at(4 * x - 1, 4 * y - 1);
       bool same = first.x > 0;  // a hit
       for (uint32_t fy = 4 * y - 1; fy <= 4 * y + 4; ++fy)
         for (uint32_t fx = 4 * x - 1; fx <= 4 * x + 4; ++fx)
@@ -122,7 +122,7 @@ TEST(Aov, SumsDoNotDependOnTheThreadCount) {
   // Averages of unit normals: never longer than 1.
   const Image n = one.aov_image(Aov::kNormal);
   for (std::size_t p = 0; p < std::size_t(n.width) * n.height; ++p)
-    EXPECT_LE(length(Vec3d(n.rgb[p * 3], n.rgb[p * 3 + 1], n.rgb[p * 3 + 2])), 1.0 + 1e-6);
+    EXPECT_LE(length(glm::dvec3(n.rgb[p * 3], n.rgb[p * 3 + 1], n.rgb[p * 3 + 2])), 1.0 + 1e-6);
 }
 
 TEST(Aov, DamagedAovPartOfAFilmIsAnError) {

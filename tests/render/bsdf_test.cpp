@@ -12,15 +12,16 @@
 namespace raylane {
 namespace {
 
-Material make_material(Vec3f kd, Vec3f ks, float alpha, Vec3f kt = {0, 0, 0}, float ior = 1) {
+Material make_material(glm::vec3 kd, glm::vec3 ks, float alpha, glm::vec3 kt = {0, 0, 0},
+                       float ior = 1) {
   Material m;
   m.kd = kd, m.ks = ks, m.alpha = alpha, m.kt = kt, m.ior = ior;
   return m;
 }
 
-const Vec3d kN(0, 0, 1);
+const glm::dvec3 kN(0, 0, 1);
 
-Vec3d direction_at(double cos_theta, double phi = 0.7) {
+glm::dvec3 direction_at(double cos_theta, double phi = 0.7) {
   double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
   return {s * std::cos(phi), s * std::sin(phi), cos_theta};
 }
@@ -40,7 +41,7 @@ TEST(Bsdf, SampleEvalAndPdfAgree) {
   };
   Rng rng(7);
   for (const Material& m : materials) {
-    for (Vec3d wo : {direction_at(0.9), direction_at(0.3), direction_at(-0.6)}) {
+    for (glm::dvec3 wo : {direction_at(0.9), direction_at(0.3), direction_at(-0.6)}) {
       Bsdf bsdf(m, kN, wo);
       const int n = 200000;
       int valid = 0;
@@ -51,11 +52,11 @@ TEST(Bsdf, SampleEvalAndPdfAgree) {
         return s.value.x / s.pdf;
       });
       Estimate uni_f = estimate(n, [&] {
-        Vec3d wi = sample_uniform_sphere(rng.uniform(), rng.uniform());
+        glm::dvec3 wi = sample_uniform_sphere(rng.uniform(), rng.uniform());
         return bsdf.eval(wi).x * 4 * kPi;
       });
       Estimate uni_pdf = estimate(n, [&] {
-        Vec3d wi = sample_uniform_sphere(rng.uniform(), rng.uniform());
+        glm::dvec3 wi = sample_uniform_sphere(rng.uniform(), rng.uniform());
         return bsdf.pdf(wi) * 4 * kPi;
       });
       SCOPED_TRACE(::testing::Message()
@@ -75,7 +76,7 @@ TEST(Bsdf, LambertWeightIsExactlyKd) {
   for (int i = 0; i < 10000; ++i) {
     BsdfSample s = bsdf.sample(rng.uniform(), rng.uniform(), rng.uniform());
     if (!s.valid()) continue;
-    Vec3d w = s.value / s.pdf;
+    glm::dvec3 w = s.value / s.pdf;
     EXPECT_NEAR(w.x, 0.5, 1e-12);
     EXPECT_NEAR(w.y, 0.25, 1e-12);
     EXPECT_NEAR(w.z, 1.0, 1e-12);
@@ -88,9 +89,9 @@ TEST(Bsdf, LambertWeightIsExactlyKd) {
 // for the exact Smith G1 of D; the course's G1 is the rational fit for Beckmann, which does
 // not match the Phong lobe, so W exceeds 1 for rough lobes at grazing angles.
 Estimate weak_furnace(double alpha, double cos_o, Rng& rng) {
-  Vec3d o = direction_at(cos_o);
+  glm::dvec3 o = direction_at(cos_o);
   return estimate(65536, [&] {
-    Vec3d h = sample_phong_normal(rng.uniform(), rng.uniform(), alpha);
+    glm::dvec3 h = sample_phong_normal(rng.uniform(), rng.uniform(), alpha);
     double om = dot(o, h), pm = phong_normal_pdf(h.z, alpha);
     if (!(om > 0) || !(pm > 0)) return 0.0;
     // G1(o, h) by the rational approximation, written out independently of bsdf.cpp.

@@ -23,8 +23,8 @@ using testing::same_bits;
 Camera random_camera(Rng& rng) {
   Camera c;
   c.eye = sample_uniform_sphere(rng.uniform(), rng.uniform()) * (1 + 100 * rng.uniform());
-  Vec3d f = sample_uniform_sphere(rng.uniform(), rng.uniform());
-  Vec3d helper = std::abs(f.z) < 0.9 ? Vec3d(0, 0, 1) : Vec3d(1, 0, 0);
+  glm::dvec3 f = sample_uniform_sphere(rng.uniform(), rng.uniform());
+  glm::dvec3 helper = std::abs(f.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
   c.right = normalize(cross(f, helper));
   c.up = cross(c.right, f);
   c.forward = f;

@@ -23,7 +23,7 @@ TEST(Camera, TestSceneLooksAtTheTable) {
   Camera c = test_scene_camera();
   Rayd r = c.ray_through(c.width / 2.0, c.height / 2.0);
   double t = -dot(r.o, r.d);  // closest approach to the origin (|d| = 1)
-  Vec3d p = r.at(t);
+  glm::dvec3 p = r.at(t);
   EXPECT_LT(length(p), 0.36);
   EXPECT_NEAR(p.y, -0.22, 0.02);
   EXPECT_NEAR(p.z, 0.27, 0.02);
@@ -47,12 +47,12 @@ TEST(Camera, ThinLensRaysMeetInThePlaneInFocus) {
     double x = rng.uniform() * c.width, y = rng.uniform() * c.height;
     Rayd pin = c.ray_through(x, y);
     Rayd r = c.ray_through_lens(x, y, rng.uniform(), rng.uniform());
-    Vec3d off = r.o - c.eye;
+    glm::dvec3 off = r.o - c.eye;
     EXPECT_LE(length(off), c.lens_radius * (1 + 1e-12));
     EXPECT_NEAR(dot(off, c.forward), 0, 1e-15);
     widest = std::max(widest, length(off));
     // Where the pinhole ray crosses the plane in focus (forward distance `focus`).
-    Vec3d f = pin.at(c.focus / dot(pin.d, c.forward));
+    glm::dvec3 f = pin.at(c.focus / dot(pin.d, c.forward));
     double t = dot(f - r.o, r.d);
     EXPECT_LT(length(r.at(t) - f), 1e-12 * c.focus);
     EXPECT_NEAR(length(r.d), 1, 1e-15);
@@ -81,7 +81,7 @@ TEST(Camera, PixelGridIsUprightAndNotMirrored) {
   EXPECT_GT(dot(c.ray_through(c.width - 0.5, c.height / 2.0).d, c.right), 0);
   EXPECT_LT(dot(c.ray_through(0.5, c.height / 2.0).d, c.right), 0);
   // Right-handed frame: right × up = −forward... R maps x × y = z, and forward = −z.
-  Vec3d z = cross(c.right, c.up);
+  glm::dvec3 z = cross(c.right, c.up);
   EXPECT_NEAR(dot(z, c.forward), -1.0, 1e-6);
 }
 

@@ -49,7 +49,7 @@ Chi2Result chi2_test(const Chi2Setup& s, const DirectionSampler& sample, const D
       observed[cells + 1] += 1;
       continue;
     }
-    Vec3d l = frame.to_local(*w);
+    glm::dvec3 l = frame.to_local(*w);
     if (l.z < s.z_min) {
       observed[cells] += 1;
       continue;

@@ -11,13 +11,13 @@
 #include <functional>
 #include <optional>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/render/rng.h"
 
 namespace raylane::testing {
 
 struct Chi2Setup {
-  Vec3d axis{0, 0, 1};
+  glm::dvec3 axis{0, 0, 1};
   double z_min = -1;  // the binned cap is z in [z_min, 1]
   int nz = 50, nphi = 100;
   int samples = 1'000'000;
@@ -30,8 +30,8 @@ struct Chi2Result {
   bool zero_cell_hit = false;  // samples where the density is 0
 };
 
-using DirectionSampler = std::function<std::optional<Vec3d>(Rng&)>;  // nullopt = invalid
-using DirectionPdf = std::function<double(const Vec3d&)>;
+using DirectionSampler = std::function<std::optional<glm::dvec3>(Rng&)>;  // nullopt = invalid
+using DirectionPdf = std::function<double(const glm::dvec3&)>;
 
 Chi2Result chi2_test(const Chi2Setup& setup, const DirectionSampler& sample,
                      const DirectionPdf& pdf, uint64_t seed);

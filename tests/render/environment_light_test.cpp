@@ -100,7 +100,8 @@ double plane_radiance(const EnvironmentMap& env, double rho) {
     double theta = (i + 0.5) / nt * kPi / 2;
     for (int j = 0; j < np; ++j) {
       double phi = (j + 0.5) / np * 2 * kPi;
-      Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      glm::dvec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   std::cos(theta));
       sum += env.radiance(d).x * std::cos(theta) * std::sin(theta);
     }
   }
@@ -115,9 +116,9 @@ TEST(EnvironmentLight, UpwardPlaneUnderACapMatchesTheIrradianceIntegral) {
   std::string map = write_pfm("cap.pfm", cap);
   struct Case {
     const char* orientation;
-    Mat3d r;
+    glm::dmat3 r{1.0};
   };
-  const Case cases[] = {{"", Mat3d::identity()},
+  const Case cases[] = {{"", glm::dmat3(1.0)},
                         {"x 90", rotation_axis_angle({1, 0, 0}, 90)},
                         {"x 180", rotation_axis_angle({1, 0, 0}, 180)}};
   for (const Case& c : cases) {

@@ -27,12 +27,12 @@ constexpr int kChi2Runs = 6;
 const double kLevel = testing::sidak_level(0.01, kChi2Runs);
 
 // Rᵀ·w: a world direction back in the image's frame.
-Vec3d to_image(const Mat3d& r, const Vec3d& w) {
-  return {dot(r.col(0), w), dot(r.col(1), w), dot(r.col(2), w)};
+glm::dvec3 to_image(const glm::dmat3& r, const glm::dvec3& w) {
+  return glm::transpose(r) * w;
 }
 
-Mat3d tilted() {
-  return rotation_axis_angle(normalize(Vec3d(1, 2, 3)), 50);
+glm::dmat3 tilted() {
+  return rotation_axis_angle(normalize(glm::dvec3(1, 2, 3)), 50);
 }
 
 // Binned around an axis away from every test rotation's poles: the density grows as 1/sin θ
@@ -43,15 +43,15 @@ Mat3d tilted() {
 // quadrature error at the sun's edges (~20 of chi-square) well inside the noise.
 void expect_fits(const EnvironmentMap& env, uint64_t seed) {
   testing::Chi2Setup setup;
-  setup.axis = normalize(Vec3d(1, -2, 0.5));
+  setup.axis = normalize(glm::dvec3(1, -2, 0.5));
   setup.samples = 200'000;
-  auto sample = [&](Rng& rng) -> std::optional<Vec3d> {
+  auto sample = [&](Rng& rng) -> std::optional<glm::dvec3> {
     double u1 = rng.uniform(), u2 = rng.uniform();
     EnvironmentSample s = env.sample(u1, u2);
     if (!s.valid()) return std::nullopt;
     return s.wi;
   };
-  auto pdf = [&](const Vec3d& w) { return env.pdf(w); };
+  auto pdf = [&](const glm::dvec3& w) { return env.pdf(w); };
   testing::Chi2Result r = testing::chi2_test(setup, sample, pdf, seed);
   EXPECT_FALSE(r.zero_cell_hit);
   EXPECT_GT(r.p_value, kLevel) << "chi2 = " << r.statistic << " with " << r.dof << " dof";
@@ -59,13 +59,13 @@ void expect_fits(const EnvironmentMap& env, uint64_t seed) {
 
 TEST(EnvironmentSampling, SunMapFollowsItsPdf) {
   // A sun 125 times the sky's brightness: ~40 % of the samples land in its 3×3 cells.
-  expect_fits(EnvironmentMap(testing::sun_map(50), 1, Mat3d::identity()), 1);
+  expect_fits(EnvironmentMap(testing::sun_map(50), 1, glm::dmat3(1.0)), 1);
   expect_fits(EnvironmentMap(testing::sun_map(50), 1, tilted()), 2);
   expect_fits(EnvironmentMap(testing::sun_map(50), 1, rotation_axis_angle({0, 1, 0}, 90)), 3);
 }
 
 TEST(EnvironmentSampling, GradientMapFollowsItsPdf) {
-  expect_fits(EnvironmentMap(testing::gradient_map(), 1, Mat3d::identity()), 4);
+  expect_fits(EnvironmentMap(testing::gradient_map(), 1, glm::dmat3(1.0)), 4);
   expect_fits(EnvironmentMap(testing::gradient_map(), 1, tilted()), 5);
   expect_fits(EnvironmentMap(testing::gradient_map(), 1, rotation_axis_angle({1, 0, 0}, 120)), 6);
 }
@@ -78,7 +78,7 @@ bool near_edge(double c, uint32_t n) {
 }
 
 TEST(EnvironmentSampling, PdfOfTheSampleIsTheSamplesPdf) {
-  Mat3d r = tilted();
+  glm::dmat3 r = tilted();
   EnvironmentMap env(testing::sun_map(1000), 2, r);
   Rng rng(11);
   int checked = 0;
@@ -87,13 +87,13 @@ TEST(EnvironmentSampling, PdfOfTheSampleIsTheSamplesPdf) {
     ASSERT_TRUE(s.valid());
     ASSERT_NEAR(length(s.wi), 1, 1e-14);
     // The image point of wi (Rᵀ·wi), to skip the cell edges.
-    Vec3d d = to_image(r, s.wi);
+    glm::dvec3 d = to_image(r, s.wi);
     double phi = std::atan2(d.y, d.x), v = std::acos(std::clamp(d.z, -1.0, 1.0)) / kPi;
     double u = (phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi);
     if (near_edge(u, env.width()) || near_edge(v, env.height())) continue;
     ++checked;
     ASSERT_NEAR(env.pdf(s.wi), s.pdf, 1e-9 * s.pdf) << "u = " << u << ", v = " << v;
-    Vec3d le = env.radiance(s.wi);
+    glm::dvec3 le = env.radiance(s.wi);
     ASSERT_NEAR(le.x, s.le.x, 1e-9 * (1 + le.x));
   }
   EXPECT_GT(checked, 199000);
@@ -102,7 +102,7 @@ TEST(EnvironmentSampling, PdfOfTheSampleIsTheSamplesPdf) {
 TEST(EnvironmentSampling, EdgeNumbersAndPolesGiveNoNaN) {
   // A bright top row, so the pole's cells are sampled: u2 = 0 lands exactly on the pole.
   Image img = testing::make_image(8, 4, [](uint32_t x, uint32_t y) {
-    return y == 0 ? Vec3f(5, 5, 5) : Vec3f(float(x) * 0.1f, 0, 0);
+    return y == 0 ? glm::vec3(5, 5, 5) : glm::vec3(float(x) * 0.1f, 0, 0);
   });
   EnvironmentMap env(img, 1, tilted());
   for (double u1 : {0.0, 1e-300, 0.5, kBelowOne, 1.0})
@@ -111,14 +111,15 @@ TEST(EnvironmentSampling, EdgeNumbersAndPolesGiveNoNaN) {
       ASSERT_TRUE(is_finite(s.wi) && is_finite(s.le) && std::isfinite(s.pdf)) << u1 << " " << u2;
       // Within ~1e-16 of a pole the world direction cannot resolve sin θ (the density's
       // 1/sin θ): agreement is asked for where it can.
-      Vec3d d = to_image(env.rotation(), s.wi);
+      glm::dvec3 d = to_image(env.rotation(), s.wi);
       if (s.valid() && std::hypot(d.x, d.y) > 1e-6) {
         EXPECT_NEAR(env.pdf(s.wi), s.pdf, 1e-9 * s.pdf) << u1 << " " << u2;
       }
     }
   EXPECT_FALSE(env.sample(0.3, 0.0).valid());  // exactly the pole: sin θ = 0
-  for (Vec3d d : {Vec3d(0, 0, 1), Vec3d(0, 0, -1), env.rotation() * Vec3d(0, 0, 1),
-                  env.rotation() * Vec3d(0, 0, -1), Vec3d(0, 0, 0), Vec3d(NAN, 0, 1)}) {
+  for (glm::dvec3 d :
+       {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1), env.rotation() * glm::dvec3(0, 0, 1),
+        env.rotation() * glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 0), glm::dvec3(NAN, 0, 1)}) {
     EXPECT_TRUE(std::isfinite(env.pdf(d)));
     EXPECT_TRUE(is_finite(env.radiance(d)));
   }
@@ -145,7 +146,7 @@ double irradiance_quadrature(const EnvironmentMap& env) {
   for (int j = 0; j < nv; ++j) {
     double v = (j + 0.5) / nv;
     for (int i = 0; i < nu; ++i) {
-      Vec3d w = env.rotation() * testing::direction_of((i + 0.5) / nu, v);
+      glm::dvec3 w = env.rotation() * testing::direction_of((i + 0.5) / nu, v);
       if (w.z > 0) sum += rec709_luminance(env.radiance(w)) * w.z * std::sin(kPi * v);
     }
   }
@@ -171,7 +172,7 @@ TEST(EnvironmentSampling, ImportanceSamplingEstimatesIrradianceWithLessVariance)
     return rec709_luminance(s.le) * s.wi.z / s.pdf;
   });
   Estimate uniform = estimate(n, [&] {
-    Vec3d w = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
     return w.z > 0 ? 4 * kPi * rec709_luminance(env.radiance(w)) * w.z : 0.0;
   });
   EXPECT_NEAR(importance.mean, reference, 4 * importance.sigma);

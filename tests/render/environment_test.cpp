@@ -19,7 +19,7 @@ using testing::make_image;
 
 constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
-void expect_rgb(const Vec3d& got, const Vec3d& want, double tol = 1e-12) {
+void expect_rgb(const glm::dvec3& got, const glm::dvec3& want, double tol = 1e-12) {
   EXPECT_NEAR(got.x, want.x, tol * (1 + std::abs(want.x)));
   EXPECT_NEAR(got.y, want.y, tol * (1 + std::abs(want.y)));
   EXPECT_NEAR(got.z, want.z, tol * (1 + std::abs(want.z)));
@@ -28,43 +28,45 @@ void expect_rgb(const Vec3d& got, const Vec3d& want, double tol = 1e-12) {
 // 4×2, every texel its own colour: texel (x, y) = (x + 1, 10·(y + 1), x + 4y).
 Image four_by_two() {
   return make_image(4, 2, [](uint32_t x, uint32_t y) {
-    return Vec3f(float(x + 1), float(10 * (y + 1)), float(x + 4 * y));
+    return glm::vec3(float(x + 1), float(10 * (y + 1)), float(x + 4 * y));
   });
 }
 
 TEST(EnvironmentMapping, TopRowLooksUpBottomRowLooksDown) {
   Image img = make_image(8, 4, [](uint32_t x, uint32_t y) {
-    if (y == 0) return Vec3f(1, 2, 3);
-    if (y == 3) return Vec3f(4, 5, 6);
-    return Vec3f(float(x), 7, 8);
+    if (y == 0) return glm::vec3(1, 2, 3);
+    if (y == 3) return glm::vec3(4, 5, 6);
+    return glm::vec3(float(x), 7, 8);
   });
-  EnvironmentMap env(img, 2.5, Mat3d::identity());
-  expect_rgb(env.radiance({0, 0, 1}), Vec3d(2.5, 5, 7.5));
-  expect_rgb(env.radiance({0, 0, -1}), Vec3d(10, 12.5, 15));
-  expect_rgb(env.radiance({0, 0, 3}), Vec3d(2.5, 5, 7.5));  // the length does not matter
+  EnvironmentMap env(img, 2.5, glm::dmat3(1.0));
+  expect_rgb(env.radiance({0, 0, 1}), glm::dvec3(2.5, 5, 7.5));
+  expect_rgb(env.radiance({0, 0, -1}), glm::dvec3(10, 12.5, 15));
+  expect_rgb(env.radiance({0, 0, 3}), glm::dvec3(2.5, 5, 7.5));  // the length does not matter
 }
 
 TEST(EnvironmentMapping, TexelCentresReadTheirTexel) {
   Image img = four_by_two();
-  EnvironmentMap env(img, 1, Mat3d::identity());
+  EnvironmentMap env(img, 1, glm::dmat3(1.0));
   for (uint32_t y = 0; y < 2; ++y)
     for (uint32_t x = 0; x < 4; ++x) {
       SCOPED_TRACE(::testing::Message() << "texel " << x << "," << y);
-      expect_rgb(env.radiance(direction_of((x + 0.5) / 4, (y + 0.5) / 2)), Vec3d(img.at(x, y)));
+      expect_rgb(env.radiance(direction_of((x + 0.5) / 4, (y + 0.5) / 2)),
+                 glm::dvec3(img.at(x, y)));
     }
   // φ = π/4, θ = π/4: column 0, top row. (1, 0, 0) is φ = 0, θ = π/2: on the seam between the
   // last and first columns and between the rows, so the mean of those four texels.
-  expect_rgb(env.radiance({1, 1, std::sqrt(2.0)}), Vec3d(1, 10, 0));
-  Vec3d seam =
-      (Vec3d(img.at(3, 0)) + Vec3d(img.at(0, 0)) + Vec3d(img.at(3, 1)) + Vec3d(img.at(0, 1))) / 4.0;
+  expect_rgb(env.radiance({1, 1, std::sqrt(2.0)}), glm::dvec3(1, 10, 0));
+  glm::dvec3 seam = (glm::dvec3(img.at(3, 0)) + glm::dvec3(img.at(0, 0)) +
+                     glm::dvec3(img.at(3, 1)) + glm::dvec3(img.at(0, 1))) /
+                    4.0;
   expect_rgb(env.radiance({1, 0, 0}), seam);
 }
 
 TEST(EnvironmentMapping, UWrapsAcrossTheSeam) {
   Image img = four_by_two();
-  EnvironmentMap env(img, 1, Mat3d::identity());
+  EnvironmentMap env(img, 1, glm::dmat3(1.0));
   const double v = 0.25;  // the top row's centre
-  Vec3d last(img.at(3, 0)), first(img.at(0, 0));
+  glm::dvec3 last(img.at(3, 0)), first(img.at(0, 0));
   // A quarter texel before the seam (φ near 2π): 3/4 of the last column, 1/4 of the first.
   expect_rgb(env.radiance(direction_of(1 - 0.25 / 4, v)), last * 0.75 + first * 0.25);
   // A quarter texel after it (φ near 0): the other way round.
@@ -72,23 +74,23 @@ TEST(EnvironmentMapping, UWrapsAcrossTheSeam) {
   // Just either side of φ = 0 the lookup is continuous.
   expect_rgb(env.radiance(direction_of(kBelowOne, v)), env.radiance(direction_of(0, v)), 1e-9);
   // Clamped in v: above the first row's centre the lookup stays on that row.
-  expect_rgb(env.radiance(direction_of(0.375, 0.1)), Vec3d(img.at(1, 0)));
+  expect_rgb(env.radiance(direction_of(0.375, 0.1)), glm::dvec3(img.at(1, 0)));
 }
 
 TEST(EnvironmentMapping, RotationTurnsTheImageIntoTheWorld) {
   Image img = make_image(8, 4, [](uint32_t x, uint32_t y) {
-    return y == 0 ? Vec3f(9, 9, 9) : Vec3f(float(x), float(y), 1);
+    return y == 0 ? glm::vec3(9, 9, 9) : glm::vec3(float(x), float(y), 1);
   });
-  Mat3d r = rotation_axis_angle({1, 0, 0}, 90);
-  EnvironmentMap turned(img, 1, r), plain(img, 1, Mat3d::identity());
-  Vec3d zenith = r * Vec3d(0, 0, 1);
+  glm::dmat3 r = rotation_axis_angle({1, 0, 0}, 90);
+  EnvironmentMap turned(img, 1, r), plain(img, 1, glm::dmat3(1.0));
+  glm::dvec3 zenith = r * glm::dvec3(0, 0, 1);
   EXPECT_NEAR(zenith.y, -1, 1e-15);  // 90° about +x takes +z to −y
-  expect_rgb(turned.radiance(zenith), Vec3d(9, 9, 9));
+  expect_rgb(turned.radiance(zenith), glm::dvec3(9, 9, 9));
   EXPECT_NE(turned.radiance({0, 0, 1}).x, 9);
   // Everywhere: the rotated map at R·d reads what the plain map reads at d.
   Rng rng(3);
   for (int i = 0; i < 1000; ++i) {
-    Vec3d d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
     expect_rgb(turned.radiance(r * d), plain.radiance(d), 1e-9);
   }
 }
@@ -175,8 +177,8 @@ TEST(PiecewiseConstant2D, SamplesRowThenColumn) {
 // A constant map's density is uniform over the sphere, up to the row-centre sin θ (O(1/h²)):
 // the sin θ factor of the weights is what makes it so.
 TEST(EnvironmentSampling, ConstantMapIsSampledUniformly) {
-  EnvironmentMap env(make_image(32, 16, [](uint32_t, uint32_t) { return Vec3f(1, 1, 1); }), 1,
-                     Mat3d::identity());
+  EnvironmentMap env(make_image(32, 16, [](uint32_t, uint32_t) { return glm::vec3(1, 1, 1); }), 1,
+                     glm::dmat3(1.0));
   for (int y = 0; y < 16; ++y)
     EXPECT_NEAR(env.pdf(direction_of(0.3, (y + 0.5) / 16)) * 4 * kPi, 1, 2e-3) << "row " << y;
 }
@@ -185,13 +187,13 @@ TEST(EnvironmentSampling, ConstantMapIsSampledUniformly) {
 // cells around it through the bilinear lookup.
 TEST(EnvironmentSampling, DensityCoversTheBilinearSpread) {
   Image img = make_image(16, 8, [](uint32_t x, uint32_t y) {
-    return x == 0 && y == 3 ? Vec3f(0, 0, 1) : Vec3f(0, 0, 0);
+    return x == 0 && y == 3 ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, 0);
   });
   EnvironmentMap env(img, 1, rotation_axis_angle({0, 1, 0}, 30));
   int lit = 0;
   for (int i = 0; i < 640; ++i)
     for (int j = 0; j < 320; ++j) {
-      Vec3d d = env.rotation() * direction_of((i + 0.5) / 640, (j + 0.5) / 320);
+      glm::dvec3 d = env.rotation() * direction_of((i + 0.5) / 640, (j + 0.5) / 320);
       if (env.radiance(d).z == 0) continue;
       ++lit;
       ASSERT_GT(env.pdf(d), 0) << "u = " << (i + 0.5) / 640 << ", v = " << (j + 0.5) / 320;
@@ -200,8 +202,8 @@ TEST(EnvironmentSampling, DensityCoversTheBilinearSpread) {
 }
 
 TEST(EnvironmentPower, IsTheBilinearMapsFluxThroughTheSceneDisc) {
-  Image grey = make_image(16, 8, [](uint32_t, uint32_t) { return Vec3f(2, 2, 2); });
-  EnvironmentMap constant(grey, 1.5, Mat3d::identity());
+  Image grey = make_image(16, 8, [](uint32_t, uint32_t) { return glm::vec3(2, 2, 2); });
+  EnvironmentMap constant(grey, 1.5, glm::dmat3(1.0));
   // Φ = π r² · 4π · s · lum, lum(2, 2, 2) = 2.
   EXPECT_NEAR(constant.power_estimate(3), kPi * 9 * 4 * kPi * 1.5 * 2, 1e-10);
   EXPECT_NEAR(constant.average_luminance(), 3, 1e-12);
@@ -230,24 +232,25 @@ TEST(EnvironmentBlack, SamplesNothingAndNeverNaN) {
       EXPECT_EQ(s.pdf, 0);
       EXPECT_TRUE(is_finite(s.wi) && is_finite(s.le));
     }
-  for (Vec3d d : {Vec3d(0, 0, 1), Vec3d(0, 0, -1), Vec3d(1, 0, 0), Vec3d(0, 0, 0)}) {
+  for (glm::dvec3 d :
+       {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 0)}) {
     EXPECT_EQ(env.pdf(d), 0);
-    EXPECT_EQ(env.radiance(d), Vec3d(0, 0, 0));
+    EXPECT_EQ(env.radiance(d), glm::dvec3(0, 0, 0));
   }
 }
 
 TEST(EnvironmentBlack, BrokenInputsBecomeBlackOrZero) {
   Image bad(2, 1);
   bad.rgb = {-1, NAN, INFINITY, 1, 1, 1};
-  EnvironmentMap sanitized(bad, 1, Mat3d::identity());
+  EnvironmentMap sanitized(bad, 1, glm::dmat3(1.0));
   EXPECT_TRUE(is_finite(sanitized.radiance({1, 0, 0})));
   EXPECT_TRUE(sanitized.can_sample());
-  EXPECT_FALSE(EnvironmentMap(Image(), 1, Mat3d::identity()).can_sample());
-  EXPECT_FALSE(EnvironmentMap(Image(4, 2), 1, Mat3d::identity()).can_sample());
-  Image lit = make_image(4, 2, [](uint32_t, uint32_t) { return Vec3f(1, 1, 1); });
-  EXPECT_FALSE(EnvironmentMap(lit, 0, Mat3d::identity()).can_sample());
-  EXPECT_FALSE(EnvironmentMap(lit, NAN, Mat3d::identity()).can_sample());
-  EXPECT_EQ(EnvironmentMap(lit, -1, Mat3d::identity()).power_estimate(1), 0);
+  EXPECT_FALSE(EnvironmentMap(Image(), 1, glm::dmat3(1.0)).can_sample());
+  EXPECT_FALSE(EnvironmentMap(Image(4, 2), 1, glm::dmat3(1.0)).can_sample());
+  Image lit = make_image(4, 2, [](uint32_t, uint32_t) { return glm::vec3(1, 1, 1); });
+  EXPECT_FALSE(EnvironmentMap(lit, 0, glm::dmat3(1.0)).can_sample());
+  EXPECT_FALSE(EnvironmentMap(lit, NAN, glm::dmat3(1.0)).can_sample());
+  EXPECT_EQ(EnvironmentMap(lit, -1, glm::dmat3(1.0)).power_estimate(1), 0);
 }
 
 }  // namespace

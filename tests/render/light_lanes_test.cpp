@@ -21,7 +21,7 @@ namespace {
 using testing::same_bits;
 
 struct Case {
-  Vec3d ref;
+  glm::dvec3 ref{};
   uint32_t sphere;
   double u1, u2;
 };
@@ -38,8 +38,8 @@ std::vector<Case> random_cases(SphereTable& spheres, int count, uint64_t seed) {
     EXPECT_FALSE(spheres.append(std::span<const double, 4>(c, 4), 0).has_value());
     uint32_t row = uint32_t(spheres.size() - 1);
     double gap = i % 10 == 0 ? -rng.uniform() : std::pow(10.0, -9 + 11 * rng.uniform());
-    Vec3d dir = sample_uniform_sphere(rng.uniform(), rng.uniform());
-    Vec3d center(spheres.center(row));
+    glm::dvec3 dir = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 center(spheres.center(row));
     double rr = spheres.r[row];
     double u1 = i % 7 == 0 ? edge[i % 5] : rng.uniform();
     double u2 = i % 3 == 0 ? edge[(i / 3) % 5] : rng.uniform();
@@ -79,7 +79,7 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
         continue;
       }
       ++outside;
-      Vec3d wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
+      glm::dvec3 wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
       bool ok = same_bits(wi, s->wi) && same_bits(b.dist[i], s->dist) &&
                 same_bits(b.solid_angle[i], s->solid_angle) &&
                 same_bits(b.pdf[i], b.choice[i] / s->solid_angle);
@@ -106,9 +106,9 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
   LightQueries q;
   q.resize(4000);
   for (std::size_t i = 0; i < q.size(); ++i) {
-    Vec3d ref = i % 20 == 0
-                    ? Vec3d(0, 3, 0.1 * rng.uniform())
-                    : Vec3d(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
+    glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
+                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
+                                              8 * rng.uniform() - 4);
     for (int k = 0; k < 3; ++k)
       q.cones.ref[k][i] = ref[k];
     q.cones.u1[i] = rng.uniform(), q.cones.u2[i] = rng.uniform();
@@ -125,7 +125,7 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
       ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
       ++kinds_seen[std::size_t(q.light[i].tag())];
       if (!want.valid()) continue;
-      Vec3d le(q.le[0][i], q.le[1][i], q.le[2][i]);
+      glm::dvec3 le(q.le[0][i], q.le[1][i], q.le[2][i]);
       EXPECT_EQ(le, want.le);
       // The point is ref + wi·dist for a cone's sample, so these pin it down too.
       EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf(i), want.pdf) &&
@@ -156,7 +156,7 @@ TEST(LightLanes, NumbersReadAreAllSamplingReads) {
     EXPECT_EQ(read, want[0] - '0');
     Rng rng(11);
     for (int i = 0; i < 2000; ++i) {
-      Vec3d ref(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
+      glm::dvec3 ref(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
       double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
       LightSample a = lights.sample(ref, u[2], u[3], u[0], u[1]);
       for (int c = read; c < 4; ++c)

@@ -38,7 +38,7 @@ Hit hit_light(const Scene& scene, const Rayd& ray) {
   return h;
 }
 
-void check_light(const std::string& shape_line, const Vec3d& ref, const Vec3d& n,
+void check_light(const std::string& shape_line, const glm::dvec3& ref, const glm::dvec3& n,
                  bool seen = true) {
   // Named as if in a folder holding tri.obj (one triangle), so `mesh` finds it.
   static const std::string dir = [] {
@@ -67,13 +67,13 @@ void check_light(const std::string& shape_line, const Vec3d& ref, const Vec3d& n
     return std::abs(dot(s.wi, n)) / s.pdf;
   });
   Estimate uniform_cos = estimate(count, [&] {
-    Vec3d w = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
     Hit h = hit_light(scene, {ref, w});
     bool emits = h.hit() && (h.front_face || kind_two_sided(h.prim.tag()));
     return emits ? 4 * kPi * std::abs(dot(w, n)) : 0.0;
   });
   Estimate uniform_pdf = estimate(count, [&] {
-    Vec3d w = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
     Hit h = hit_light(scene, {ref, w});
     return h.hit() ? 4 * kPi * lights.pdf(ref, w, h) : 0.0;
   });
@@ -90,7 +90,7 @@ void check_light(const std::string& shape_line, const Vec3d& ref, const Vec3d& n
 }
 
 TEST(Lights, EveryKindSamplesItsEmittingSurface) {
-  Vec3d ref(0.1, -0.2, 0.05), n = normalize(Vec3d(0.2, 0.1, 1));
+  glm::dvec3 ref(0.1, -0.2, 0.05), n = normalize(glm::dvec3(0.2, 0.1, 1));
   check_light("sphere 0.3 0.2 2 0.8", ref, n);            // outside: solid angle
   check_light("sphere 0.1 -0.2 0.3 0.5", ref, n, false);  // inside: emits outward only
   check_light("box -0.5 -0.4 1 1.2 0.8 0.6", ref, n);
@@ -101,11 +101,11 @@ TEST(Lights, EveryKindSamplesItsEmittingSurface) {
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2 x 190", ref, n);
   // Close to the surface, where cos/pdf varies strongly over the light: a warp that is not
   // uniform in area shows here.
-  Vec3d up(0, 0, 1);
-  Vec3d cap = Vec3d(0.5, 0.2, 1) - normalize(Vec3d(-0.6, 0.3, 0.9)) * 0.05;
-  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", cap, normalize(Vec3d(-0.6, 0.3, 0.9)));
-  check_light("box -0.5 -0.4 1 1.2 0.8 0.6", Vec3d(0.1, 0.1, 0.95), up);
-  check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", Vec3d(0.1, 0.1, 0.55), up);
+  glm::dvec3 up(0, 0, 1);
+  glm::dvec3 cap = glm::dvec3(0.5, 0.2, 1) - normalize(glm::dvec3(-0.6, 0.3, 0.9)) * 0.05;
+  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", cap, normalize(glm::dvec3(-0.6, 0.3, 0.9)));
+  check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(0.1, 0.1, 0.95), up);
+  check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", glm::dvec3(0.1, 0.1, 0.55), up);
 }
 
 }  // namespace

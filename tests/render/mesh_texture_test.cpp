@@ -25,12 +25,13 @@ const std::string kModels = RAYLANE_ASSIMP_MODELS;
 const std::string kDuck = kModels + "/Collada/duck.dae";
 
 // A mesh in albedo mode, framed from its bounds: the colours of the pixels that hit it.
-std::vector<Vec3f> albedo_colours(const std::string& mesh_path, std::vector<std::string>* warns) {
+std::vector<glm::vec3> albedo_colours(const std::string& mesh_path,
+                                      std::vector<std::string>* warns) {
   std::string head = "screen 64 64\nbrdf 1 1 1 0 0 0 0\nmesh \"" + mesh_path + "\" 0 0 0 1\n";
   auto probe = testing::parse(head + testing::kCameraLine);
   Bounds3f b = probe.meshes.at(0).bounds;
-  Vec3d c = 0.5 * (Vec3d(b.lo) + Vec3d(b.hi));
-  double extent = length(Vec3d(b.hi) - Vec3d(b.lo));
+  glm::dvec3 c = 0.5 * (glm::dvec3(b.lo) + glm::dvec3(b.hi));
+  double extent = length(glm::dvec3(b.hi) - glm::dvec3(b.lo));
   std::string camera = "camera " + std::to_string(c.x) + " " + std::to_string(c.y) + " " +
                        std::to_string(c.z + 3 * extent) + " 0.2\n";
   auto p = testing::parse(head + camera);
@@ -39,10 +40,10 @@ std::vector<Vec3f> albedo_colours(const std::string& mesh_path, std::vector<std:
   Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   Image out = render_raycast(tracer, RaycastMode::kAlbedo);
-  std::vector<Vec3f> hit;
+  std::vector<glm::vec3> hit;
   for (uint32_t y = 0; y < out.height; ++y)
     for (uint32_t x = 0; x < out.width; ++x)
-      if (out.at(x, y) != Vec3f(0, 0, 0)) hit.push_back(out.at(x, y));
+      if (out.at(x, y) != glm::vec3(0, 0, 0)) hit.push_back(out.at(x, y));
   return hit;
 }
 
@@ -53,10 +54,10 @@ TEST(MeshTextures, TheDuckShowsItsOwnTexture) {
   EXPECT_TRUE(warns.empty()) << ::testing::PrintToString(warns);
   ASSERT_GT(colours.size(), 200u);
   std::set<std::tuple<float, float, float>> distinct;
-  Vec3d mean(0, 0, 0);
-  for (Vec3f c : colours) {
+  glm::dvec3 mean(0, 0, 0);
+  for (glm::vec3 c : colours) {
     distinct.insert({c.x, c.y, c.z});
-    mean += Vec3d(c);
+    mean += glm::dvec3(c);
   }
   mean = mean / double(colours.size());
   EXPECT_GT(distinct.size(), 20u);  // a texture, not one colour
@@ -90,8 +91,8 @@ TEST(MeshTextures, AMissingTextureWarnsNamingTheMeshLineAndRendersUntextured) {
   EXPECT_THAT(warns[0], ::testing::HasSubstr("t.scn:3:6: warning: mesh"));
   EXPECT_THAT(warns[0], ::testing::HasSubstr("duckCM.tga"));
   ASSERT_GT(colours.size(), 200u);
-  for (Vec3f c : colours)
-    ASSERT_EQ(c, Vec3f(1, 1, 1));  // Kd alone
+  for (glm::vec3 c : colours)
+    ASSERT_EQ(c, glm::vec3(1, 1, 1));  // Kd alone
 }
 
 TEST(MeshTextures, GltfBaseColourTexture) {
@@ -137,7 +138,7 @@ TEST(MeshTextures, AJpegNamedTheWindowsWayIsFoundBesideTheMesh) {
   auto colours = albedo_colours(jeep, &warns);
   EXPECT_TRUE(warns.empty()) << ::testing::PrintToString(warns);
   std::set<std::tuple<float, float, float>> distinct;
-  for (Vec3f c : colours)
+  for (glm::vec3 c : colours)
     distinct.insert({c.x, c.y, c.z});
   EXPECT_GT(distinct.size(), 50u);  // the photo texture, not Kd alone
 }

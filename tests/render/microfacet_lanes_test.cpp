@@ -20,8 +20,8 @@
 namespace raylane {
 namespace {
 
-Material make_material(Microfacet d, Vec3f kd, Vec3f ks, float alpha, Vec3f kt = {0, 0, 0},
-                       float ior = 1) {
+Material make_material(Microfacet d, glm::vec3 kd, glm::vec3 ks, float alpha,
+                       glm::vec3 kt = {0, 0, 0}, float ior = 1) {
   Material m;
   m.kd = kd, m.ks = ks, m.alpha = alpha, m.kt = kt, m.ior = ior, m.microfacet = d;
   return m;
@@ -38,19 +38,19 @@ std::vector<Material> test_materials() {
   return out;
 }
 
-Vec3d column3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
+glm::dvec3 column3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
   return {c[0][i], c[1][i], c[2][i]};
 }
-void set3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const Vec3d& v) {
+void set3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const glm::dvec3& v) {
   for (int k = 0; k < 3; ++k)
     c[k][i] = float(v[k]);
 }
-Vec3d as_float(const Vec3d& v) {
-  return normalize(Vec3d(Vec3f(v)));
+glm::dvec3 as_float(const glm::dvec3& v) {
+  return normalize(glm::dvec3(glm::vec3(v)));
 }
 
 // Rows of one material with one normal and wo, random light directions and numbers.
-ShadeBatch batch_of(int material, const Vec3d& n, const Vec3d& wo, std::size_t rows,
+ShadeBatch batch_of(int material, const glm::dvec3& n, const glm::dvec3& wo, std::size_t rows,
                     uint64_t seed) {
   Rng rng(seed);
   ShadeBatch b;
@@ -73,11 +73,12 @@ TEST(MicrofacetLanes, AgreeWithTheDoubleBsdfInExpectation) {
   std::vector<Material> materials = test_materials();
   LaneMaterials lane_materials(materials);
   EXPECT_FALSE(lane_materials.all_phong);
-  const Vec3d n = as_float(normalize(Vec3d(0.1, -0.2, 1)));
+  const glm::dvec3 n = as_float(normalize(glm::dvec3(0.1, -0.2, 1)));
   for (Isa isa : supported_isas())
     for (int mat = 0; mat < int(materials.size()); ++mat)
-      for (Vec3d wo0 : {Vec3d(0.3, 0.1, 1), Vec3d(-1, 0.4, 0.35), Vec3d(0.2, 0.3, -1)}) {
-        Vec3d wo = as_float(normalize(wo0));
+      for (glm::dvec3 wo0 :
+           {glm::dvec3(0.3, 0.1, 1), glm::dvec3(-1, 0.4, 0.35), glm::dvec3(0.2, 0.3, -1)}) {
+        glm::dvec3 wo = as_float(normalize(wo0));
         const Material& m = materials[mat];
         SCOPED_TRACE(::testing::Message() << isa_name(isa) << " material " << mat << " "
                                           << microfacet_name(m.microfacet) << " wo.z " << wo.z);
@@ -113,30 +114,30 @@ TEST(MicrofacetLanes, AgreeWithTheDoubleBsdfInExpectation) {
 TEST(MicrofacetLanes, SampledDirectionsFollowTheDoubleDensity) {
   std::vector<Material> materials = test_materials();
   LaneMaterials lane_materials(materials);
-  const Vec3d n(0, 0, 1);
+  const glm::dvec3 n(0, 0, 1);
   struct Case {
     int material;
-    Vec3d wo;
+    glm::dvec3 wo{};
   };
   const Case cases[] = {
-      {0, normalize(Vec3d(0.5, -0.2, 0.7))}, {2, normalize(Vec3d(0.3, 0.1, 1))},
-      {2, normalize(Vec3d(-0.2, 0.3, -1))},  {3, normalize(Vec3d(0.5, -0.2, 0.7))},
-      {5, normalize(Vec3d(0.3, 0.1, 1))},    {5, normalize(Vec3d(-0.2, 0.3, -1))}};
+      {0, normalize(glm::dvec3(0.5, -0.2, 0.7))}, {2, normalize(glm::dvec3(0.3, 0.1, 1))},
+      {2, normalize(glm::dvec3(-0.2, 0.3, -1))},  {3, normalize(glm::dvec3(0.5, -0.2, 0.7))},
+      {5, normalize(glm::dvec3(0.3, 0.1, 1))},    {5, normalize(glm::dvec3(-0.2, 0.3, -1))}};
   const double level = testing::sidak_level(0.01, 6);
   for (const Case& c : cases) {
     testing::Chi2Setup setup;
-    Vec3d wo = as_float(c.wo);
+    glm::dvec3 wo = as_float(c.wo);
     ShadeBatch b = batch_of(c.material, n, wo, std::size_t(setup.samples), 50 + c.material);
     shade_lanes(best_isa(), lane_materials, b);
     std::size_t next = 0;
-    auto sample = [&](Rng&) -> std::optional<Vec3d> {
+    auto sample = [&](Rng&) -> std::optional<glm::dvec3> {
       std::size_t i = next++;
       if (!(b.pdf[i] > 0)) return std::nullopt;
       return column3(b.wi, i);
     };
     Bsdf bsdf(materials[c.material], n, wo);
     testing::Chi2Result r = testing::chi2_test(
-        setup, sample, [&](const Vec3d& w) { return bsdf.pdf(w); }, 7);
+        setup, sample, [&](const glm::dvec3& w) { return bsdf.pdf(w); }, 7);
     EXPECT_FALSE(r.zero_cell_hit);
     EXPECT_GT(r.p_value, level) << "material " << c.material << ": chi2 = " << r.statistic
                                 << " with " << r.dof << " dof";
@@ -167,9 +168,9 @@ TEST(MicrofacetLanes, PhongRowsAreBitIdenticalBesideOtherDistributions) {
     a.resize(rows), m.resize(rows);
     for (std::size_t i = 0; i < rows; ++i) {
       int material = int(rng.uniform() * 2);
-      Vec3d ns = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      Vec3d wo = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      Vec3d light = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      glm::dvec3 ns = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      glm::dvec3 wo = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      glm::dvec3 light = sample_uniform_sphere(rng.uniform(), rng.uniform());
       float u0 = float(rng.uniform()), u1 = float(rng.uniform()), u2 = float(rng.uniform());
       for (ShadeBatch* b : {&a, &m}) {
         b->material[i] = material;

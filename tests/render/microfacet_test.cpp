@@ -23,14 +23,14 @@ using testing::estimate;
 
 constexpr Microfacet kDistributions[] = {Microfacet::kGgx, Microfacet::kBeckman};
 
-Material make_material(Microfacet d, Vec3f kd, Vec3f ks, float alpha, Vec3f kt = {0, 0, 0},
-                       float ior = 1) {
+Material make_material(Microfacet d, glm::vec3 kd, glm::vec3 ks, float alpha,
+                       glm::vec3 kt = {0, 0, 0}, float ior = 1) {
   Material m;
   m.kd = kd, m.ks = ks, m.alpha = alpha, m.kt = kt, m.ior = ior, m.microfacet = d;
   return m;
 }
 
-Vec3d direction_at(double cos_theta, double phi = 0.7) {
+glm::dvec3 direction_at(double cos_theta, double phi = 0.7) {
   double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
   return {s * std::cos(phi), s * std::sin(phi), cos_theta};
 }
@@ -47,7 +47,8 @@ double quadrature_over_normals(double alpha_g, int nt, int nphi, F&& f) {
     double dtheta = alpha_g * 0.5 * kPi * (1 + x * x) / (1 + alpha_g * alpha_g * x * x) / nt;
     for (int j = 0; j < nphi; ++j) {
       double phi = 2 * kPi * (j + 0.5) / nphi;
-      Vec3d m(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      glm::dvec3 m(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   std::cos(theta));
       sum += f(m, std::sin(theta) * dtheta * 2 * kPi / nphi);
     }
   }
@@ -64,7 +65,7 @@ TEST(Microfacet, DistributionsAreNormalised) {
     for (double alpha : {0.0, 1.0, 20.0, 200.0, 2000.0, 1e5}) {
       double ag = microfacet_alpha_g(alpha);
       double area = quadrature_over_normals(
-          ag, 4000, 1, [&](const Vec3d& m, double dw) { return d_of(d, m.z, ag) * m.z * dw; });
+          ag, 4000, 1, [&](const glm::dvec3& m, double dw) { return d_of(d, m.z, ag) * m.z * dw; });
       EXPECT_NEAR(area, 1.0, 1e-5) << microfacet_name(d) << " alpha " << alpha;
     }
   EXPECT_NEAR(microfacet_alpha_g(0), 1.0, 1e-15);
@@ -75,19 +76,19 @@ TEST(Microfacet, DistributionsAreNormalised) {
 constexpr int kChi2Runs = 12;
 const double kLevel = testing::sidak_level(0.01, kChi2Runs);
 
-testing::Chi2Result bsdf_chi2(const Material& m, const Vec3d& wo, const Vec3d& axis, double z_min,
-                              uint64_t seed) {
-  Bsdf bsdf(m, Vec3d(0, 0, 1), wo);
+testing::Chi2Result bsdf_chi2(const Material& m, const glm::dvec3& wo, const glm::dvec3& axis,
+                              double z_min, uint64_t seed) {
+  Bsdf bsdf(m, glm::dvec3(0, 0, 1), wo);
   testing::Chi2Setup setup;
   setup.axis = axis;
   setup.z_min = z_min;
-  auto sample = [&](Rng& rng) -> std::optional<Vec3d> {
+  auto sample = [&](Rng& rng) -> std::optional<glm::dvec3> {
     BsdfSample s = bsdf.sample(rng.uniform(), rng.uniform(), rng.uniform());
     if (!s.valid()) return std::nullopt;
     return s.wi;
   };
   return testing::chi2_test(
-      setup, sample, [&](const Vec3d& w) { return bsdf.pdf(w); }, seed);
+      setup, sample, [&](const glm::dvec3& w) { return bsdf.pdf(w); }, seed);
 }
 
 void expect_fits(const testing::Chi2Result& r) {
@@ -101,25 +102,28 @@ TEST(MicrofacetBsdf, SamplesFollowThePdf) {
   uint64_t seed = 100;
   for (Microfacet d : kDistributions) {
     for (double alpha : {10.0, 1000.0})
-      for (Vec3d wo : {normalize(Vec3d(0.3, 0.1, 1)), normalize(Vec3d(-1, 0.4, 0.5))}) {
+      for (glm::dvec3 wo :
+           {normalize(glm::dvec3(0.3, 0.1, 1)), normalize(glm::dvec3(-1, 0.4, 0.5))}) {
         SCOPED_TRACE(::testing::Message()
                      << microfacet_name(d) << " alpha " << alpha << " wo.z " << wo.z);
         Material m = make_material(d, {0, 0, 0}, {1, 1, 1}, float(alpha));
         double z_min = std::max(-1.0, 1 - 60 / (alpha + 1));
-        expect_fits(bsdf_chi2(m, wo, Vec3d(-wo.x, -wo.y, wo.z), z_min, ++seed));
+        expect_fits(bsdf_chi2(m, wo, glm::dvec3(-wo.x, -wo.y, wo.z), z_min, ++seed));
       }
     SCOPED_TRACE(microfacet_name(d));
     Material glass = make_material(d, {0, 0, 0}, {0.04f, 0.04f, 0.04f}, 20, {1, 1, 1}, 1.5f);
-    expect_fits(bsdf_chi2(glass, normalize(Vec3d(0.6, 0, 0.8)), Vec3d(0.1, 0.2, 1), -1, ++seed));
-    expect_fits(bsdf_chi2(glass, normalize(Vec3d(0.5, 0.1, -0.6)), Vec3d(0.1, 0.2, 1), -1, ++seed));
+    expect_fits(
+        bsdf_chi2(glass, normalize(glm::dvec3(0.6, 0, 0.8)), glm::dvec3(0.1, 0.2, 1), -1, ++seed));
+    expect_fits(bsdf_chi2(glass, normalize(glm::dvec3(0.5, 0.1, -0.6)), glm::dvec3(0.1, 0.2, 1), -1,
+                          ++seed));
   }
 }
 
 // The single-scattering albedo of a white lobe (F = Ks = 1 by Schlick at any angle) by
 // quadrature over m: wi = reflect(wo, m), dωi = 4(wo·m)·dωm, so ∫ f·cos θi dωi =
 // ∫ eval(reflect(wo, m))·4(wo·m) dωm over the m that face wo.
-double quadrature_albedo(const Bsdf& bsdf, const Vec3d& wo, double alpha_g, int n) {
-  return quadrature_over_normals(alpha_g, n, n / 2, [&](const Vec3d& m, double dw) {
+double quadrature_albedo(const Bsdf& bsdf, const glm::dvec3& wo, double alpha_g, int n) {
+  return quadrature_over_normals(alpha_g, n, n / 2, [&](const glm::dvec3& m, double dw) {
     double om = dot(wo, m);
     if (!(om > 0)) return 0.0;
     return bsdf.eval(2 * om * m - wo).x * 4 * om * dw;
@@ -140,8 +144,8 @@ TEST(MicrofacetBsdf, WhiteFurnaceAlbedoIsAtMostOneAndMatchesQuadrature) {
         SCOPED_TRACE(::testing::Message()
                      << microfacet_name(d) << " alpha " << alpha << " cos_o " << c);
         Material m = make_material(d, {0, 0, 0}, {1, 1, 1}, float(alpha));
-        Vec3d wo = direction_at(c);
-        Bsdf bsdf(m, Vec3d(0, 0, 1), wo);
+        glm::dvec3 wo = direction_at(c);
+        Bsdf bsdf(m, glm::dvec3(0, 0, 1), wo);
         Estimate e = estimate(65536, [&] {
           BsdfSample s = bsdf.sample(rng.uniform(), rng.uniform(), rng.uniform());
           return s.valid() ? s.value.x / s.pdf : 0.0;
@@ -163,21 +167,21 @@ TEST(MicrofacetBsdf, WhiteFurnaceAlbedoIsAtMostOneAndMatchesQuadrature) {
 // f(wi, wo)/(η_i²·(1 − F(wi·m))), with η_o the index on wo's side; Schlick's F is taken at the
 // viewer's side each way, so it is divided out.
 TEST(MicrofacetBsdf, IsReciprocal) {
-  const Vec3d n(0, 0, 1);
+  const glm::dvec3 n(0, 0, 1);
   Rng rng(5);
   int transmissions = 0;
   for (Microfacet d : kDistributions) {
     Material m = make_material(d, {0.2f, 0.3f, 0.1f}, {0.3f, 0.2f, 0.5f}, 30, {1, 1, 1}, 1.5f);
     for (int i = 0; i < 2000; ++i) {
-      Vec3d a = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      Vec3d b = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      glm::dvec3 a = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      glm::dvec3 b = sample_uniform_sphere(rng.uniform(), rng.uniform());
       if (std::abs(a.z) < 1e-3 || std::abs(b.z) < 1e-3) continue;
-      Vec3d fab = Bsdf(m, n, a).eval(b) / std::abs(b.z),
-            fba = Bsdf(m, n, b).eval(a) / std::abs(a.z);
+      glm::dvec3 fab = Bsdf(m, n, a).eval(b) / std::abs(b.z),
+                 fba = Bsdf(m, n, b).eval(a) / std::abs(a.z);
       if (a.z * b.z < 0) {
         double eta_a = a.z > 0 ? 1 : 1.5, eta_b = b.z > 0 ? 1 : 1.5;
-        Vec3d h = -(a * eta_a + b * eta_b);
-        Vec3d mf = normalize(h);
+        glm::dvec3 h = -(a * eta_a + b * eta_b);
+        glm::dvec3 mf = normalize(h);
         auto schlick = [&](int k, double c) {
           double ks = m.ks[k], x = 1 - std::abs(c);
           return ks + (1 - ks) * x * x * x * x * x;
@@ -203,7 +207,7 @@ TEST(MicrofacetBsdf, IndexMatchedWeightIsTheLimitOfRefraction) {
   Rng rng(9);
   for (Microfacet d : kDistributions) {
     Material m = make_material(d, {0, 0, 0}, {0, 0, 0}, 50, {1, 1, 1}, 1.0f);
-    Bsdf bsdf(m, Vec3d(0, 0, 1), Vec3d(0, 0, 1));
+    Bsdf bsdf(m, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1));
     Estimate e = estimate(65536, [&] {
       BsdfSample s = bsdf.sample(rng.uniform(), rng.uniform(), rng.uniform());
       EXPECT_TRUE(!s.valid() || s.specular);
@@ -211,7 +215,7 @@ TEST(MicrofacetBsdf, IndexMatchedWeightIsTheLimitOfRefraction) {
     });
     double ag = microfacet_alpha_g(50);
     // G = G1(wo)·G1(−wo) = G1(wo, m)², 1 − F = 1 − (1 − wo·m)^5, wo = n: wo·m = cos θm.
-    double expected = quadrature_over_normals(ag, 4000, 1, [&](const Vec3d& mf, double dw) {
+    double expected = quadrature_over_normals(ag, 4000, 1, [&](const glm::dvec3& mf, double dw) {
       double g1 = d == Microfacet::kGgx ? ggx_g1(1, mf.z, ag) : beckman_g1(1, mf.z, ag);
       return d_of(d, mf.z, ag) * mf.z * (1 - std::pow(1 - mf.z, 5)) * g1 * g1 * dw;
     });

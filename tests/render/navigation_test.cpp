@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_access.hpp>
 #include <random>
 
 #include "raylane/scene/parser.h"
@@ -20,29 +21,29 @@ CameraSpec course_camera() {
   c.ry = 0.2;
   double n = std::sqrt(0.416981 * 0.416981 + 0.279589 * 0.279589 + 0.480987 * 0.480987 +
                        0.718247 * 0.718247);
-  c.rotation = rotation_quaternion(0.416981 / n, 0.279589 / n, 0.480987 / n, 0.718247 / n);
+  c.rotation = glm::mat3_cast(glm::dquat(0.416981 / n, 0.279589 / n, 0.480987 / n, 0.718247 / n));
   return c;
 }
 
-double max_difference(const Mat3d& a, const Mat3d& b) {
+double max_difference(const glm::dmat3& a, const glm::dmat3& b) {
   double d = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      d = std::max(d, std::abs(a.m[i][j] - b.m[i][j]));
+      d = std::max(d, std::abs(a[j][i] - b[j][i]));
   return d;
 }
 
 // R·Rᵀ = I and det R = +1, to within `tol`.
-void expect_rotation(const Mat3d& r, double tol) {
+void expect_rotation(const glm::dmat3& r, double tol) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      EXPECT_NEAR(dot(r.row(i), r.row(j)), i == j ? 1.0 : 0.0, tol);
-  EXPECT_NEAR(dot(cross(r.col(0), r.col(1)), r.col(2)), 1.0, tol);
+      EXPECT_NEAR(dot(glm::row(r, i), glm::row(r, j)), i == j ? 1.0 : 0.0, tol);
+  EXPECT_NEAR(dot(cross(r[0], r[1]), r[2]), 1.0, tol);
 }
 
-Quatd random_unit_quaternion(std::mt19937_64& rng) {
+glm::dquat random_unit_quaternion(std::mt19937_64& rng) {
   std::normal_distribution<double> g;
-  Quatd q{g(rng), g(rng), g(rng), g(rng)};
+  glm::dquat q{g(rng), g(rng), g(rng), g(rng)};
   double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
   return {q.w / n, q.x / n, q.y / n, q.z / n};
 }
@@ -51,11 +52,11 @@ TEST(Navigation, QuaternionFromRotationInvertsTheMatrix) {
   std::mt19937_64 rng(16);
   // Random rotations reach every branch (trace > 0, and each largest diagonal element), and
   // the half-turns about the axes have trace −1 exactly.
-  std::vector<Quatd> qs = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+  std::vector<glm::dquat> qs = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
   for (int i = 0; i < 2000; ++i)
     qs.push_back(random_unit_quaternion(rng));
-  for (const Quatd& q : qs) {
-    Quatd back = quaternion_from_rotation(rotation_quaternion(q.w, q.x, q.y, q.z));
+  for (const glm::dquat& q : qs) {
+    glm::dquat back = quaternion_from_rotation(glm::mat3_cast(glm::dquat(q.w, q.x, q.y, q.z)));
     double s = q.w < 0 ? -1 : 1;  // q and −q are one rotation; the answer has w ≥ 0
     EXPECT_GE(back.w, 0.0);
     EXPECT_NEAR(back.w, s * q.w, 1e-14);
@@ -66,15 +67,15 @@ TEST(Navigation, QuaternionFromRotationInvertsTheMatrix) {
 }
 
 TEST(Navigation, WorldUpIsTheAxisNearestTheCameraUp) {
-  EXPECT_EQ(world_up_for(course_camera()), Vec3d(0, 0, 1));
-  EXPECT_EQ(world_up_for(CameraSpec{}), Vec3d(0, 1, 0));  // identity: +y up
+  EXPECT_EQ(world_up_for(course_camera()), glm::dvec3(0, 0, 1));
+  EXPECT_EQ(world_up_for(CameraSpec{}), glm::dvec3(0, 1, 0));  // identity: +y up
   CameraSpec upside_down;
   upside_down.rotation = rotation_axis_angle({0, 0, 1}, 180);
-  EXPECT_EQ(world_up_for(upside_down), Vec3d(0, -1, 0));
+  EXPECT_EQ(world_up_for(upside_down), glm::dvec3(0, -1, 0));
 }
 
 TEST(Navigation, FlyLookKeepsTheRightVectorHorizontal) {
-  const Vec3d z(0, 0, 1);
+  const glm::dvec3 z(0, 0, 1);
   CameraSpec c = course_camera();
   // Rolled 10° about the view axis (the camera's z); the first look levels it, and no roll
   // comes back.
@@ -93,11 +94,11 @@ TEST(Navigation, FlyLookKeepsTheRightVectorHorizontal) {
 }
 
 TEST(Navigation, YawTurnsLeftAndPitchLooksUp) {
-  const Vec3d z(0, 0, 1);
+  const glm::dvec3 z(0, 0, 1);
   CameraSpec c;
   c.rotation = level_rotation({1, 0, 0}, z);  // looking along +x, Z up
   CameraSpec left = fly_look(c, 90, 0, z);
-  EXPECT_NEAR(length(camera_forward(left) - Vec3d(0, 1, 0)), 0, 1e-15);
+  EXPECT_NEAR(length(camera_forward(left) - glm::dvec3(0, 1, 0)), 0, 1e-15);
   CameraSpec up = fly_look(c, 0, 30, z);
   EXPECT_NEAR(dot(camera_forward(up), z), 0.5, 1e-15);
   CameraSpec top = fly_look(c, 0, 120, z);  // clamped
@@ -105,7 +106,7 @@ TEST(Navigation, YawTurnsLeftAndPitchLooksUp) {
 }
 
 TEST(Navigation, FlyLookFromStraightDownTurnsTowardTheImageTop) {
-  const Vec3d z(0, 0, 1);
+  const glm::dvec3 z(0, 0, 1);
   CameraSpec c;  // identity looks down −z with +y up: straight down in a Z-up world
   CameraSpec tipped = fly_look(c, 0, 10, z);
   // From −90° to −80°, toward +y, the image's top.
@@ -115,7 +116,7 @@ TEST(Navigation, FlyLookFromStraightDownTurnsTowardTheImageTop) {
 }
 
 TEST(Navigation, FlyMoveFollowsTheCameraFrame) {
-  const Vec3d z(0, 0, 1);
+  const glm::dvec3 z(0, 0, 1);
   CameraSpec c = course_camera();
   CameraSpec moved = fly_move(c, {0, 0, 2}, z);
   EXPECT_NEAR(length(moved.eye - (c.eye + camera_forward(c) * 2.0)), 0, 1e-14);
@@ -125,8 +126,8 @@ TEST(Navigation, FlyMoveFollowsTheCameraFrame) {
 }
 
 TEST(Navigation, OrbitKeepsTheDistanceAndLooksAtThePivot) {
-  const Vec3d z(0, 0, 1);
-  const Vec3d pivot(0.3, -0.2, 0.5);
+  const glm::dvec3 z(0, 0, 1);
+  const glm::dvec3 pivot(0.3, -0.2, 0.5);
   CameraSpec c = course_camera();
   double d0 = length(c.eye - pivot);
   std::mt19937_64 rng(3);
@@ -134,7 +135,7 @@ TEST(Navigation, OrbitKeepsTheDistanceAndLooksAtThePivot) {
   for (int i = 0; i < 2000; ++i) {
     c = orbit(c, pivot, angle(rng), angle(rng), z);
     ASSERT_NEAR(length(c.eye - pivot), d0, 1e-12 * d0) << "step " << i;
-    Vec3d to_pivot = normalize(pivot - c.eye);
+    glm::dvec3 to_pivot = normalize(pivot - c.eye);
     ASSERT_NEAR(dot(camera_forward(c), to_pivot), 1.0, 1e-14);
     ASSERT_NEAR(dot(camera_right(c), z), 0.0, 1e-12);
   }
@@ -159,11 +160,11 @@ TEST(Navigation, PrintedCameraLineParsesBackToTheSameCamera) {
   std::uniform_real_distribution<double> coord(-1e3, 1e3);
   std::vector<CameraSpec> cameras = {course_camera(), CameraSpec{}};
   for (int i = 0; i < 300; ++i) {
-    Quatd q = random_unit_quaternion(rng);
+    glm::dquat q = random_unit_quaternion(rng);
     CameraSpec c;
     c.eye = {coord(rng), coord(rng), coord(rng) * 1e-7};
     c.ry = std::exp(coord(rng) * 1e-3);
-    c.rotation = rotation_quaternion(q.w, q.x, q.y, q.z);
+    c.rotation = glm::mat3_cast(glm::dquat(q.w, q.x, q.y, q.z));
     cameras.push_back(c);
     cameras.push_back(fly_look(c, coord(rng), coord(rng), {0, 0, 1}));
   }

@@ -198,7 +198,7 @@ TEST(PathTracer, BlackRowsDroppedFromTheLanesChangeNoOtherRow) {
     scene.textures.push_back(make_texture("white", white));
     int blackened = 0;
     for (Material& m : scene.materials)
-      if (m.kd == Vec3f(0.2f, 0.9f, 0.2f) || m.kd == Vec3f(0.2f, 0.2f, 0.9f)) {
+      if (m.kd == glm::vec3(0.2f, 0.9f, 0.2f) || m.kd == glm::vec3(0.2f, 0.2f, 0.9f)) {
         m.kd = {0, 0, 0};
         if (textured) m.texture = int32_t(scene.textures.size() - 1);
         ++blackened;
@@ -370,10 +370,10 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
   Bvh bvh = build_bvh_and_reorder(p.scene);
   Tracer tracer(p.scene, bvh, TracerBackend::kPacket);
   constexpr int kSeeds = 16;
-  Vec3d mean[2], se[2];
+  glm::dvec3 mean[2]{}, se[2]{};
   for (Shading shading : kShadings) {
     int which = int(shading);
-    Vec3d s1(0, 0, 0), s2(0, 0, 0);
+    glm::dvec3 s1(0, 0, 0), s2(0, 0, 0);
     for (int seed = 0; seed < kSeeds; ++seed) {
       PathSettings s;
       s.spp = 64;
@@ -382,13 +382,13 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
       PathStats stats;
       Image img = render_path(tracer, s, &stats);
       EXPECT_EQ(stats.nonfinite_samples, 0u);
-      Vec3d m(0, 0, 0);
+      glm::dvec3 m(0, 0, 0);
       for (std::size_t i = 0; i < img.rgb.size(); i += 3)
-        m += Vec3d(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
+        m += glm::dvec3(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
       m = m / double(img.rgb.size() / 3);
       s1 += m, s2 += m * m;
     }
-    mean[which] = s1 / kSeeds;
+    mean[which] = s1 / double(kSeeds);
     for (int k = 0; k < 3; ++k)
       se[which][k] = std::sqrt((s2[k] / kSeeds - mean[which][k] * mean[which][k]) / (kSeeds - 1));
   }

@@ -96,20 +96,20 @@ TEST(Raycast, ImageIsTheSameForAnyThreadCount) {
 // 0.1 … 1 over the hits, ids get colours that tell neighbouring rows apart, misses stay black.
 TEST(Raycast, DepthAndIdAreMappedForViewing) {
   Image depth(3, 1);
-  depth.set(0, 0, Vec3f(2, 2, 2));
-  depth.set(1, 0, Vec3f(12, 12, 12));
+  depth.set(0, 0, glm::vec3(2, 2, 2));
+  depth.set(1, 0, glm::vec3(12, 12, 12));
   Image d = viewable(depth, RaycastMode::kDepth);
-  EXPECT_EQ(d.at(0, 0), Vec3f(1, 1, 1));
+  EXPECT_EQ(d.at(0, 0), glm::vec3(1, 1, 1));
   EXPECT_NEAR(d.at(1, 0).x, 0.1f, 1e-6f);
-  EXPECT_EQ(d.at(2, 0), Vec3f(0, 0, 0));
+  EXPECT_EQ(d.at(2, 0), glm::vec3(0, 0, 0));
   Image id(3, 1);
-  id.set(0, 0, Vec3f(4, 7, 0));
-  id.set(1, 0, Vec3f(4, 8, 0));
+  id.set(0, 0, glm::vec3(4, 7, 0));
+  id.set(1, 0, glm::vec3(4, 8, 0));
   Image v = viewable(id, RaycastMode::kId);
   EXPECT_NE(v.at(0, 0), v.at(1, 0));
   for (float c : {v.at(0, 0).x, v.at(0, 0).y, v.at(0, 0).z})
     EXPECT_GE(c, 0.2f);
-  EXPECT_EQ(v.at(2, 0), Vec3f(0, 0, 0));
+  EXPECT_EQ(v.at(2, 0), glm::vec3(0, 0, 0));
   Image normal = viewable(id, RaycastMode::kNormal);
   EXPECT_EQ(normal.rgb, id.rgb);
 }
@@ -119,19 +119,19 @@ TEST(Raycast, ImageIsUpright) {
   // the floor's +z normal is (0.5, 0.5, 1).
   Image img =
       render("testscene.scn", RaycastMode::kNormal, TracerBackend::kPacket, best_isa()).image;
-  Vec3f bottom = img.at(10, img.height - 2);
+  glm::vec3 bottom = img.at(10, img.height - 2);
   EXPECT_NEAR(bottom.z, 1.0f, 1e-3f);
   EXPECT_NEAR(bottom.x, 0.5f, 1e-3f);
-  Vec3f top = img.at(10, 1);
+  glm::vec3 top = img.at(10, 1);
   EXPECT_LT(top.z, 0.9f);  // a wall
 }
 
 TEST(Raycast, DepthIsTheHitDistance) {
   Image img = render("sphere.scn", RaycastMode::kDepth, TracerBackend::kPacket, best_isa()).image;
   // The centre pixel looks along +y at the unit sphere at the origin from (0, −6, 0).
-  Vec3f c = img.at(img.width / 2, img.height / 2);
+  glm::vec3 c = img.at(img.width / 2, img.height / 2);
   EXPECT_NEAR(c.x, 5.0f, 1e-3f);
-  EXPECT_EQ(img.at(0, 0), Vec3f(0, 0, 0));  // a miss
+  EXPECT_EQ(img.at(0, 0), glm::vec3(0, 0, 0));  // a miss
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ namespace {
 
 constexpr double kU = 0x1p-24;
 
-Material make_material(Vec3f kd, Vec3f ks, float alpha, Vec3f kt = {0, 0, 0}, float ior = 1) {
+Material make_material(glm::vec3 kd, glm::vec3 ks, float alpha, glm::vec3 kt = {0, 0, 0},
+                       float ior = 1) {
   Material m;
   m.kd = kd, m.ks = ks, m.alpha = alpha, m.kt = kt, m.ior = ior;
   return m;
@@ -40,15 +41,15 @@ std::vector<Material> test_materials() {
           make_material({0.2f, 0.2f, 0.2f}, {0.1f, 0.1f, 0.1f}, 5, {0.5f, 0.5f, 0.5f}, 2.4f)};
 }
 
-Vec3f random_unit(Rng& rng) {
-  Vec3d d = sample_uniform_sphere(rng.uniform(), rng.uniform());
-  return Vec3f(normalize(Vec3d(Vec3f(d))));
+glm::vec3 random_unit(Rng& rng) {
+  glm::dvec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+  return glm::vec3(normalize(glm::dvec3(glm::vec3(d))));
 }
 
-Vec3d column3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
+glm::dvec3 column3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
   return {c[0][i], c[1][i], c[2][i]};
 }
-void set3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const Vec3f& v) {
+void set3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const glm::vec3& v) {
   for (int k = 0; k < 3; ++k)
     c[k][i] = v[k];
 }
@@ -71,13 +72,14 @@ ShadeBatch random_batch(std::size_t rows, int materials, uint64_t seed) {
 
 // Where the double model has a branch or a singularity within `margin` of this input, float
 // may take the other side: such rows are left out of the comparison (and counted).
-bool near_a_branch(const Material& m, const Vec3d& ns, const Vec3d& wo, const Vec3d& wi) {
+bool near_a_branch(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo,
+                   const glm::dvec3& wi) {
   constexpr double margin = 1e-3;
   double c = dot(ns, wo);
-  Vec3d n = c > 0 ? ns : -ns;
+  glm::dvec3 n = c > 0 ? ns : -ns;
   double eta_o = c > 0 ? 1 : m.ior, eta_i = c > 0 ? m.ior : 1, eta = eta_o / eta_i;
   double cos_i = dot(wi, n), cos_o = std::abs(c);
-  Vec3d h = cos_i > 0 ? wi + wo : -(wo * eta_o + wi * eta_i);
+  glm::dvec3 h = cos_i > 0 ? wi + wo : -(wo * eta_o + wi * eta_i);
   double len = length(h), om = dot(wo, h) / len, im = dot(wi, h) / len;
   double k = 1 - eta * eta * (1 - om * om);
   auto a = [&](double cv) {
@@ -100,18 +102,19 @@ bool near_a_branch(const Material& m, const Vec3d& ns, const Vec3d& wo, const Ve
 // cancels: (1 − |wo·m|)^5 carries 20·2^-24 absolute (five times wo·m's 4), relative to 1 − F.
 // And the cosines θi and θo, dot products with ≤ 4·2^-24 absolute error, are relative to
 // their size (a grazing light direction).
-double evaluation_bound(const Material& m, const Vec3d& ns, const Vec3d& wo, const Vec3d& wi) {
+double evaluation_bound(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo,
+                        const glm::dvec3& wi) {
   double c = dot(ns, wo);
-  Vec3d n = c > 0 ? ns : -ns;
+  glm::dvec3 n = c > 0 ? ns : -ns;
   double eta_o = c > 0 ? 1 : m.ior, eta_i = c > 0 ? m.ior : 1, eta = eta_o / eta_i;
   bool reflect = dot(wi, n) > 0;
-  Vec3d h = reflect ? wi + wo : -(wo * eta_o + wi * eta_i);
+  glm::dvec3 h = reflect ? wi + wo : -(wo * eta_o + wi * eta_i);
   double scale = reflect ? 2 : eta_o + eta_i;
-  Vec3d mf = normalize(h);
+  glm::dvec3 mf = normalize(h);
   double cos_m = std::abs(dot(mf, n)), om = std::abs(dot(wo, mf));
   double cancel = scale / length(h);
   double t = m.alpha * std::abs(std::log2(cos_m));
-  bool tir = length(Vec3d(m.kt)) > 0 && 1 - eta * eta * (1 - om * om) < 0;
+  bool tir = length(glm::dvec3(m.kt)) > 0 && 1 - eta * eta * (1 - om * om) < 0;
   double one_minus_f = 1 - std::pow(1 - om, 5);
   double schlick = !reflect || tir ? 20 / one_minus_f : 0;
   double cosines = 4 / std::abs(dot(wi, n)) + 4 / std::abs(c);
@@ -134,14 +137,14 @@ TEST(ShadeLanes, EvaluationMatchesTheDoubleBsdf) {
     double worst = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
       const Material& m = materials[b.material[i]];
-      Vec3d ns = column3(b.n, i), wo = column3(b.wo, i), wi = column3(b.light_wi, i);
+      glm::dvec3 ns = column3(b.n, i), wo = column3(b.wo, i), wi = column3(b.light_wi, i);
       if (near_a_branch(m, ns, wo, wi)) {
         ++skipped;
         continue;
       }
       ++compared;
       BsdfEval ref = Bsdf(m, ns, wo).evaluate(wi);
-      Vec3d f = column3(b.light_f, i);
+      glm::dvec3 f = column3(b.light_f, i);
       double bound = evaluation_bound(m, ns, wo, wi);
       double scale = std::max({ref.f.x, ref.f.y, ref.f.z});
       for (int k = 0; k < 3; ++k) {
@@ -162,15 +165,16 @@ TEST(ShadeLanes, EvaluationMatchesTheDoubleBsdf) {
 // microfacet's sin θm = √(1 − cos²θm) loses digits where the lobe is narrow, 2·2^-24/sin θm;
 // reflecting through m doubles that, refracting scales it by up to 1 + η, and the refraction's
 // √k (k = 1 − η²(1 − (wo·m)²)) adds 2^-24·η²/√k.
-double direction_bound(const Material& m, const Vec3d& ns, const Vec3d& wo, double u0, double u1,
-                       double u2) {
+double direction_bound(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo, double u0,
+                       double u1, double u2) {
   double c = dot(ns, wo);
-  Vec3d n = c > 0 ? ns : -ns;
+  glm::dvec3 n = c > 0 ? ns : -ns;
   double eta = c > 0 ? 1 / double(m.ior) : double(m.ior);
-  double d = length(Vec3d(m.kd)), total = d + length(Vec3d(m.ks)) + length(Vec3d(m.kt));
+  double d = length(glm::dvec3(m.kd)),
+         total = d + length(glm::dvec3(m.ks)) + length(glm::dvec3(m.kt));
   if (u0 < d / total) return 16 * kU;
-  Vec3d local = sample_phong_normal(u1, u2, m.alpha);
-  Vec3d mf = Frame(n).to_world(local);
+  glm::dvec3 local = sample_phong_normal(u1, u2, m.alpha);
+  glm::dvec3 mf = Frame(n).to_world(local);
   double sin_m = std::max(1e-6, std::sqrt(std::max(0.0, 1 - local.z * local.z)));
   double om = dot(wo, mf), k = 1 - eta * eta * (1 - om * om);
   double refraction = k > 0 ? eta * eta / std::sqrt(k) : 0;
@@ -189,11 +193,11 @@ TEST(ShadeLanes, SamplesAreTheDoubleSamplesOfTheSameNumbers) {
     std::size_t agree = 0, compared = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
       const Material& m = materials[b.material[i]];
-      Vec3d ns = column3(b.n, i), wo = column3(b.wo, i);
+      glm::dvec3 ns = column3(b.n, i), wo = column3(b.wo, i);
       Bsdf bsdf(m, ns, wo);
       BsdfSample ref = bsdf.sample(b.u_lobe[i], b.u1[i], b.u2[i]);
       bool lane_valid = b.pdf[i] > 0;
-      Vec3d wi = column3(b.wi, i);
+      glm::dvec3 wi = column3(b.wi, i);
       if (ref.valid() && near_a_branch(m, ns, wo, ref.wi)) continue;
       ++compared;
       if (lane_valid != ref.valid()) continue;  // counted below: rare at a lobe's very edge
@@ -216,14 +220,14 @@ TEST(ShadeLanes, SampledDirectionsFollowTheDoubleDensity) {
       make_material({0.5f, 0.4f, 0.3f}, {0.3f, 0.3f, 0.3f}, 10),
       make_material({0, 0, 0}, {0.04f, 0.04f, 0.04f}, 30, {1, 1, 1}, 1.5f)};
   LaneMaterials lane_materials(materials);
-  const Vec3d n(0, 0, 1);
+  const glm::dvec3 n(0, 0, 1);
   struct Case {
     int material;
-    Vec3d wo;
+    glm::dvec3 wo{};
   };
-  const Case cases[] = {{0, normalize(Vec3d(0.5, -0.2, 0.7))},
-                        {1, normalize(Vec3d(0.3, 0.1, 1))},
-                        {1, normalize(Vec3d(-0.2, 0.3, -1))}};
+  const Case cases[] = {{0, normalize(glm::dvec3(0.5, -0.2, 0.7))},
+                        {1, normalize(glm::dvec3(0.3, 0.1, 1))},
+                        {1, normalize(glm::dvec3(-0.2, 0.3, -1))}};
   const double level = testing::sidak_level(0.01, 3);
   Isa isa = best_isa();
   for (const Case& c : cases) {
@@ -233,20 +237,20 @@ TEST(ShadeLanes, SampledDirectionsFollowTheDoubleDensity) {
     Rng rng(40 + c.material);
     for (std::size_t i = 0; i < b.size(); ++i) {
       b.material[i] = c.material;
-      set3(b.n, i, Vec3f(n));
-      set3(b.wo, i, Vec3f(c.wo));
+      set3(b.n, i, glm::vec3(n));
+      set3(b.wo, i, glm::vec3(c.wo));
       b.u_lobe[i] = float(rng.uniform()), b.u1[i] = float(rng.uniform());
       b.u2[i] = float(rng.uniform());
     }
     shade_lanes(isa, lane_materials, b);
     std::size_t next = 0;
-    auto sample = [&](Rng&) -> std::optional<Vec3d> {
+    auto sample = [&](Rng&) -> std::optional<glm::dvec3> {
       std::size_t i = next++;
       if (!(b.pdf[i] > 0)) return std::nullopt;
       return column3(b.wi, i);
     };
-    Bsdf bsdf(materials[c.material], n, Vec3d(Vec3f(c.wo)));
-    auto pdf = [&](const Vec3d& w) { return bsdf.pdf(w); };
+    Bsdf bsdf(materials[c.material], n, glm::dvec3(glm::vec3(c.wo)));
+    auto pdf = [&](const glm::dvec3& w) { return bsdf.pdf(w); };
     testing::Chi2Result r = testing::chi2_test(setup, sample, pdf, 7);
     EXPECT_FALSE(r.zero_cell_hit);
     EXPECT_GT(r.p_value, level) << "chi2 = " << r.statistic << " with " << r.dof << " dof";
@@ -260,9 +264,9 @@ TEST(ShadeLanes, DegenerateRowsGiveNoSampleAndNoNaN) {
   for (Isa isa : supported_isas()) {
     ShadeBatch b = random_batch(37, int(materials.size()), 3);  // 37: partly filled batches
     for (std::size_t i = 0; i < b.size(); i += 2) {
-      set3(b.wo, i, Vec3f(1, 0, 0));
-      set3(b.n, i, Vec3f(0, 0, 1));
-      set3(b.light_wi, i, Vec3f(0, 0, 0));
+      set3(b.wo, i, glm::vec3(1, 0, 0));
+      set3(b.n, i, glm::vec3(0, 0, 1));
+      set3(b.light_wi, i, glm::vec3(0, 0, 0));
     }
     shade_lanes(isa, lane_materials, b);
     for (std::size_t i = 0; i < b.size(); ++i) {
@@ -293,7 +297,7 @@ TEST(ShadeLanes, DiffuseBatchesAreTheGeneralPathsAnswers) {
     for (std::size_t i = 7; i < alone.size(); i += 13)
       alone.material[i] = 1;  // black: its batch samples by the general path
     for (std::size_t i = 0; i < alone.size(); i += 9)
-      set3(alone.wo, i, Vec3f(1, 0, 0)), set3(alone.n, i, Vec3f(0, 0, 1));
+      set3(alone.wo, i, glm::vec3(1, 0, 0)), set3(alone.n, i, glm::vec3(0, 0, 1));
     for (std::size_t i = 5; i < alone.size(); i += 23)
       alone.u_lobe[i] = 1.0f;
     ShadeBatch mixed;

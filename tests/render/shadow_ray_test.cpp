@@ -24,7 +24,7 @@ namespace {
 
 // A scene of one light, `shape` scaled by `scale` about the origin and moved to `at`.
 ParsedScene light_scene(const std::string& kind, std::vector<double> numbers, double scale,
-                        const Vec3d& at, const std::string& extra = "") {
+                        const glm::dvec3& at, const std::string& extra = "") {
   static const std::string dir = [] {  // one triangle, for the mesh lights
     std::string d = testing::temp_dir();
     std::ofstream(d + "/shadow_tri.obj") << "v 0 0 0\nv 1 0 0\nv 0.2 1 0\nf 1 2 3\n";
@@ -50,22 +50,22 @@ struct Shadows {
 
 // Light samples from random shading points around the light (within 4 light sizes), each
 // from an origin offset off a random surface through the point, as the renderer makes them.
-Shadows shadow_rays(const Scene& scene, double scale, const Vec3d& at, int count) {
+Shadows shadow_rays(const Scene& scene, double scale, const glm::dvec3& at, int count) {
   LightSampler lights(scene);
   Rng rng(23);
   Shadows out;
   while (int(out.rays.size()) < count) {
-    Vec3d p =
-        at + Vec3d(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) * (8 * scale);
+    glm::dvec3 p = at + glm::dvec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) *
+                            (8 * scale);
     LightSample s = lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
     if (!s.valid()) continue;
-    Vec3d ng = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    glm::dvec3 ng = sample_uniform_sphere(rng.uniform(), rng.uniform());
     if (dot(ng, s.wi) < 0) ng = -ng;
     // The error bound of a point reached by a ray of length 2·scale (the renderer's bound).
-    Vec3d o = offset_ray_origin(p, hit_point_error({p, s.wi}, 2 * scale), ng, s.wi);
+    glm::dvec3 o = offset_ray_origin(p, hit_point_error({p, s.wi}, 2 * scale), ng, s.wi);
     out.rays.push_back({o, s.wi, 0, shadow_ray_tmax(o, p, s.wi, s.dist)});
     out.aims.push_back(s.light);
-    out.cos_light.push_back(s.n == Vec3d(0, 0, 0) ? 1.0 : std::abs(dot(s.wi, s.n)));
+    out.cos_light.push_back(s.n == glm::dvec3(0, 0, 0) ? 1.0 : std::abs(dot(s.wi, s.n)));
   }
   return out;
 }
@@ -92,7 +92,7 @@ void expect_every_tracer_says(const Scene& scene, const Bvh& bvh, const std::vec
 // where the ray's offset origin moves its crossing of the surface by much more than rounding).
 void expect_light_never_blocks_itself(const std::string& kind, std::vector<double> numbers) {
   for (double scale : {1e-2, 1.0, 300.0})
-    for (Vec3d at : {Vec3d(0, 0, 0), Vec3d(1e4, -2e4, 5e3) * scale}) {
+    for (glm::dvec3 at : {glm::dvec3(0, 0, 0), glm::dvec3(1e4, -2e4, 5e3) * scale}) {
       SCOPED_TRACE(kind + " scale " + std::to_string(scale) + " at x " + std::to_string(at.x));
       ParsedScene parsed = light_scene(kind, numbers, scale, at);
       ASSERT_TRUE(parsed.ok()) << to_string(parsed.diagnostics.items.front());
@@ -122,7 +122,8 @@ TEST(ShadowRays, AnOccluderJustInFrontOfTheLightBlocks) {
     std::ostringstream shell;
     shell.precision(17);
     shell << "brdf 0.5 0.5 0.5 0 0 0 1 0 0 0 1\nsphere 0 0 0 " << 1.0001 * scale << '\n';
-    ParsedScene parsed = light_scene("sphere", {0, 0, 0, 1}, scale, Vec3d(0, 0, 0), shell.str());
+    ParsedScene parsed =
+        light_scene("sphere", {0, 0, 0, 1}, scale, glm::dvec3(0, 0, 0), shell.str());
     ASSERT_TRUE(parsed.ok()) << to_string(parsed.diagnostics.items.front());
     Bvh bvh = build_bvh_and_reorder(parsed.scene);
     LightSampler lights(parsed.scene);
@@ -130,7 +131,7 @@ TEST(ShadowRays, AnOccluderJustInFrontOfTheLightBlocks) {
     std::vector<Rayd> rays;
     std::vector<PrimRef> aims;
     while (rays.size() < 2000) {
-      Vec3d p = sample_uniform_sphere(rng.uniform(), rng.uniform()) * (scale * 1.5);
+      glm::dvec3 p = sample_uniform_sphere(rng.uniform(), rng.uniform()) * (scale * 1.5);
       LightSample s = lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
       if (!s.valid()) continue;
       rays.push_back({p, s.wi, 0, shadow_ray_tmax(p, p, s.wi, s.dist)});

@@ -34,11 +34,11 @@ std::string write_pfm(const std::string& dir, const std::string& name, const Ima
   return path;
 }
 
-Vec3d texel(const Image& img, uint32_t x, uint32_t row_from_top) {
-  return Vec3d(img.at(x, row_from_top));
+glm::dvec3 texel(const Image& img, uint32_t x, uint32_t row_from_top) {
+  return glm::dvec3(img.at(x, row_from_top));
 }
 
-void expect_near(const Vec3d& a, const Vec3d& b, double tol, const std::string& where) {
+void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol, const std::string& where) {
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(a[k], b[k], tol) << where << " channel " << k;
 }
@@ -52,14 +52,14 @@ TEST(TextureLookup, TexelCentresBilinearBetweenVUpAndRepeat) {
       expect_near(texture_lookup(img, u, v), texel(img, x, r), 0, "centre");
     }
   // Halfway between two centres in u, a quarter of the way in v.
-  Vec3d mid_u = 0.5 * (texel(img, 1, 3) + texel(img, 2, 3));
+  glm::dvec3 mid_u = 0.5 * (texel(img, 1, 3) + texel(img, 2, 3));
   expect_near(texture_lookup(img, 0.5, 0.125), mid_u, 1e-12, "between columns 1 and 2");
-  Vec3d quarter_v = 0.75 * texel(img, 0, 3) + 0.25 * texel(img, 0, 2);
+  glm::dvec3 quarter_v = 0.75 * texel(img, 0, 3) + 0.25 * texel(img, 0, 2);
   expect_near(texture_lookup(img, 0.125, 0.1875), quarter_v, 1e-12, "a quarter up");
   // Repeat: u and v shift by whole numbers; at u = 0 the last and first columns blend.
   expect_near(texture_lookup(img, 2.375, -0.625), texture_lookup(img, 0.375, 0.375), 1e-12,
               "repeat");
-  Vec3d seam = 0.5 * (texel(img, 3, 3) + texel(img, 0, 3));
+  glm::dvec3 seam = 0.5 * (texel(img, 3, 3) + texel(img, 0, 3));
   expect_near(texture_lookup(img, 0.0, 0.125), seam, 1e-12, "the u seam");
 }
 
@@ -85,14 +85,14 @@ TEST(TextureAlbedo, BoxFaceHeadOnShowsEachTexelWhereTheSpecPutsIt) {
   Image out = albedo_of_face("texture \"" + path + "\"", 4);
   for (uint32_t y = 0; y < 4; ++y)
     for (uint32_t x = 0; x < 4; ++x)
-      expect_near(Vec3d(out.at(x, y)), texel(img, x, y), 1e-4, "pixel");
+      expect_near(glm::dvec3(out.at(x, y)), texel(img, x, y), 1e-4, "pixel");
   // 8×8 pixels: centres a quarter of a texel from the texel centres, so bilinear mixes 3:1.
   Image fine = albedo_of_face("texture \"" + path + "\"", 8);
-  Vec3d want = 0.75 * (0.75 * texel(img, 1, 1) + 0.25 * texel(img, 2, 1)) +
-               0.25 * (0.75 * texel(img, 1, 0) + 0.25 * texel(img, 2, 0));
+  glm::dvec3 want = 0.75 * (0.75 * texel(img, 1, 1) + 0.25 * texel(img, 2, 1)) +
+                    0.25 * (0.75 * texel(img, 1, 0) + 0.25 * texel(img, 2, 0));
   // Pixel (3, 2) of 8: u = 3.5/8 → 0.75 of column 1; its row from the top is 2 → v from the
   // top 2.5/8, 0.75 of row 1 and 0.25 of row 0.
-  expect_near(Vec3d(fine.at(3, 2)), want, 1e-4, "bilinear");
+  expect_near(glm::dvec3(fine.at(3, 2)), want, 1e-4, "bilinear");
 }
 
 std::string obj_quad_with_uvs(const std::string& dir) {
@@ -123,9 +123,9 @@ TEST(TextureAlbedo, MeshUvsInterpolateAndRepeat) {
     for (uint32_t x = 2; x < 6; ++x) {
       // Pixel x's centre has u = 2·(x − 2 + 0.5)/4 (the UVs double u): compare with the lookup.
       double u = 2 * (x - 2 + 0.5) / 4, v = (3 - y + 0.5) / 4;
-      expect_near(Vec3d(out.at(x, y)), texture_lookup(img, u, v), 1e-4, "quad pixel");
+      expect_near(glm::dvec3(out.at(x, y)), texture_lookup(img, u, v), 1e-4, "quad pixel");
     }
-  EXPECT_EQ(out.at(0, 0), Vec3f(0, 0, 0));  // off the quad: a miss
+  EXPECT_EQ(out.at(0, 0), glm::vec3(0, 0, 0));  // off the quad: a miss
 }
 
 TEST(TextureCommand, NeedsAMaterialAndAReadableImage) {

@@ -25,15 +25,15 @@ namespace {
 using testing::same_bits;
 
 struct Vertex {
-  Vec3d beta, p, ng, o, d;
+  glm::dvec3 beta{}, p{}, ng{}, o{}, d{};
   double t;
-  Vec3d light_wi, le, f;
+  glm::dvec3 light_wi{}, le{}, f{};
   double light_dist, light_pdf, bsdf_pdf;
-  Vec3d wi, value;
+  glm::dvec3 wi{}, value{};
   double pdf, u;
 };
 
-Vec3d random_unit(Rng& rng) {
+glm::dvec3 random_unit(Rng& rng) {
   return sample_uniform_sphere(rng.uniform(), rng.uniform());
 }
 
@@ -49,28 +49,28 @@ double to_float(double x) {
   volatile float f = float(x);
   return f;
 }
-Vec3d to_float(const Vec3d& v) {
+glm::dvec3 to_float(const glm::dvec3& v) {
   return {to_float(v.x), to_float(v.y), to_float(v.z)};
 }
 
 Vertex random_vertex(Rng& rng, int i) {
   Vertex v;
-  v.beta = Vec3d(rng.uniform(), rng.uniform(), rng.uniform()) * spread(rng, -3, 3);
+  v.beta = glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()) * spread(rng, -3, 3);
   v.d = random_unit(rng);
   v.o = random_unit(rng) * spread(rng, -2, 4);
   v.t = spread(rng, -6, 3);
-  v.p = i % 17 == 0 ? Vec3d(0, 0, 0) : v.o + v.d * v.t;
-  v.ng = i % 5 == 0 ? Vec3d(0, i % 2 ? 1.0 : -1.0, 0) : random_unit(rng);
+  v.p = i % 17 == 0 ? glm::dvec3(0, 0, 0) : v.o + v.d * v.t;
+  v.ng = i % 5 == 0 ? glm::dvec3(0, i % 2 ? 1.0 : -1.0, 0) : random_unit(rng);
   v.light_wi = random_unit(rng);
   v.light_dist = i % 37 == 0 ? std::numeric_limits<double>::infinity() : spread(rng, -4, 4);
-  v.le = Vec3d(1, 2, 3) * spread(rng, -1, 2);
-  v.f = i % 13 == 0 ? Vec3d(0, 0, 0) : to_float(Vec3d(rng.uniform(), rng.uniform(), 0.5));
+  v.le = glm::dvec3(1, 2, 3) * spread(rng, -1, 2);
+  v.f = i % 13 == 0 ? glm::dvec3(0, 0, 0) : to_float(glm::dvec3(rng.uniform(), rng.uniform(), 0.5));
   v.light_pdf = i % 11 == 0 ? 0.0 : spread(rng, -3, 3);
   if (i % 97 == 0) v.light_pdf = 1e-320;  // a contribution that overflows
   v.bsdf_pdf = i % 7 == 0 ? 0.0 : to_float(spread(rng, -3, 3));
   v.wi = to_float(random_unit(rng));
-  v.value =
-      i % 19 == 0 ? Vec3d(0, 0, 0) : to_float(Vec3d(rng.uniform(), rng.uniform(), rng.uniform()));
+  v.value = i % 19 == 0 ? glm::dvec3(0, 0, 0)
+                        : to_float(glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()));
   v.pdf = i % 23 == 0 ? 0.0 : to_float(spread(rng, -3, 3));
   if (i % 89 == 0) {  // a throughput that overflows
     v.pdf = std::numeric_limits<float>::denorm_min();
@@ -80,7 +80,7 @@ Vertex random_vertex(Rng& rng, int i) {
   if (i % 31 == 0) {
     // The offset lands exactly on 0: the origin must still step off it (to the least denormal).
     v.ng = {1, 0, 0};
-    v.light_wi = v.wi = to_float(normalize(Vec3d(1, 0.5, -0.5)));
+    v.light_wi = v.wi = to_float(normalize(glm::dvec3(1, 0.5, -0.5)));
     v.p.x = -hit_point_error(Rayd{v.o, v.d}, v.t).x;
   }
   return v;
@@ -114,10 +114,10 @@ void fill(Batches& b, const std::vector<Vertex>& vs) {
   }
 }
 
-Vec3d row(const VertexBatch::Columns3& c, std::size_t i) {
+glm::dvec3 row(const VertexBatch::Columns3& c, std::size_t i) {
   return {c[0][i], c[1][i], c[2][i]};
 }
-Vec3f row(const VertexBatch::FloatColumns3& c, std::size_t i) {
+glm::vec3 row(const VertexBatch::FloatColumns3& c, std::size_t i) {
   return {c[0][i], c[1][i], c[2][i]};
 }
 
@@ -132,23 +132,23 @@ void expect_rows_are_scalar(const VertexRules& rules, const std::vector<Vertex>&
   for (std::size_t i = 0; i < vs.size() && failures < 10; ++i) {
     const Vertex& v = vs[i];
     Rayd ray{v.o, v.d};
-    Vec3d err = hit_point_error(ray, v.t);
-    Vec3d c;
+    glm::dvec3 err = hit_point_error(ray, v.t);
+    glm::dvec3 c{};
     bool shadow = shadow_contribution(rules, v.beta, v.f, v.le, v.light_pdf, v.bsdf_pdf, c);
     bool ok = (b.shadow_ok[i] != 0) == shadow;
     if (shadow) {
-      const Vec3d o = offset_ray_origin(v.p, err, v.ng, v.light_wi);
+      const glm::dvec3 o = offset_ray_origin(v.p, err, v.ng, v.light_wi);
       // The origin and end rounded to float as ray_cast<float> rounds them.
-      ok = ok && same_bits(row(b.shadow_c, i), c) && same_bits(row(b.shadow_o, i), Vec3f(o)) &&
+      ok = ok && same_bits(row(b.shadow_c, i), c) && same_bits(row(b.shadow_o, i), glm::vec3(o)) &&
            same_bits(b.shadow_tmax[i], float(shadow_ray_tmax(o, v.p, v.light_wi, v.light_dist)));
       seen.environment += std::isinf(v.light_dist);
     }
-    Vec3d next;
+    glm::dvec3 next{};
     bool alive = next_throughput(rules, v.beta, v.value, v.pdf, v.u, next);
     ok = ok && (b.alive[i] != 0) == alive;
     if (alive)
       ok = ok && same_bits(row(b.next_beta, i), next) &&
-           same_bits(row(b.next_o, i), Vec3f(offset_ray_origin(v.p, err, v.ng, v.wi)));
+           same_bits(row(b.next_o, i), glm::vec3(offset_ray_origin(v.p, err, v.ng, v.wi)));
     failures += !ok;
     EXPECT_TRUE(ok) << "row " << i << ": shadow " << shadow << " alive " << alive;
     ++(shadow ? seen.shadows : seen.no_shadow);
@@ -195,19 +195,19 @@ TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
 // The scalar steps themselves, on values whose answers are known.
 TEST(VertexLanes, ScalarStepsOnKnownValues) {
   VertexRules rules{true, true, 0.8};
-  Vec3d c;
+  glm::dvec3 c{};
   // Equal densities: the power heuristic weighs 1/2; beta·f·Le·(1/2)/2.
   ASSERT_TRUE(shadow_contribution(rules, {1, 2, 4}, {0.5, 0.5, 0.5}, {2, 2, 2}, 2, 2, c));
-  EXPECT_EQ(c, Vec3d(0.25, 0.5, 1));
+  EXPECT_EQ(c, glm::dvec3(0.25, 0.5, 1));
   EXPECT_FALSE(shadow_contribution(rules, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, 1, 1, c));
   EXPECT_FALSE(shadow_contribution(rules, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}, 0, 1, c));
-  Vec3d next;
+  glm::dvec3 next{};
   ASSERT_TRUE(next_throughput(rules, {1, 1, 1}, {0.4, 0.8, 1.6}, 0.5, 0.5, next));
-  EXPECT_EQ(next, Vec3d(0.4 / 0.5 / 0.8, 0.8 / 0.5 / 0.8, 1.6 / 0.5 / 0.8));
+  EXPECT_EQ(next, glm::dvec3(0.4 / 0.5 / 0.8, 0.8 / 0.5 / 0.8, 1.6 / 0.5 / 0.8));
   EXPECT_FALSE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.8, next));  // roulette ends it
   rules.roulette = false;
   ASSERT_TRUE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.9, next));
-  EXPECT_EQ(next, Vec3d(1, 1, 1));
+  EXPECT_EQ(next, glm::dvec3(1, 1, 1));
   EXPECT_FALSE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 0, 0.5, next));
 }
 

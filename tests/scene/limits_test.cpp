@@ -56,8 +56,8 @@ TEST(Limits, LongOrientationList) {
     line += " x 36";
   auto p = parse(line + "\n");
   ASSERT_TRUE(p.ok()) << errors(p)[0];
-  const Mat3d& r = p.scene.camera->rotation;
-  Vec3d y = r * Vec3d(0, 1, 0);
+  const glm::dmat3& r = p.scene.camera->rotation;
+  glm::dvec3 y = r * glm::dvec3(0, 1, 0);
   EXPECT_NEAR(y.x, 0, 1e-9);
   EXPECT_NEAR(y.y, 1, 1e-9);
   EXPECT_NEAR(y.z, 0, 1e-9);

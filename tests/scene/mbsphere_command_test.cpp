@@ -22,12 +22,12 @@ TEST(MbsphereCommand, AppendsTheStartTheMotionAndTheRadius) {
   ASSERT_TRUE(p.ok()) << errors(p)[0];
   const MovingSphereTable& t = p.scene.table<MovingSphere>();
   ASSERT_EQ(t.size(), 2u);
-  EXPECT_EQ(t.start(0), Vec3f(1, 2, 3));
-  EXPECT_EQ(t.motion(0), Vec3f(3, 0, -2));
-  EXPECT_EQ(t.center_at(0, 0.5), Vec3d(2.5, 2, 2));
+  EXPECT_EQ(t.start(0), glm::vec3(1, 2, 3));
+  EXPECT_EQ(t.motion(0), glm::vec3(3, 0, -2));
+  EXPECT_EQ(t.center_at(0, 0.5), glm::dvec3(2.5, 2, 2));
   EXPECT_EQ(t.r[0], 0.5f);
   EXPECT_EQ(t.material[0], 0u);
-  EXPECT_EQ(t.motion(1), Vec3f(0, 0, 0));
+  EXPECT_EQ(t.motion(1), glm::vec3(0, 0, 0));
   // An emitting mbsphere is a light, as a sphere is.
   ASSERT_EQ(p.scene.lights.size(), 1u);
   EXPECT_EQ(p.scene.lights[0], PrimRef(tag_of<MovingSphere>, 1));
@@ -79,7 +79,7 @@ TEST(MbsphereCommand, BadLinesSayWhereAndWhatAndAddNothing) {
                           "3.4e38)"));
   // Only the underflowing line (1e-400 is 0, accepted where 0 is) made a row.
   ASSERT_EQ(p.scene.table<MovingSphere>().size(), 1u);
-  EXPECT_EQ(p.scene.table<MovingSphere>().start(0), Vec3f(0, 0, 0));
+  EXPECT_EQ(p.scene.table<MovingSphere>().start(0), glm::vec3(0, 0, 0));
   EXPECT_TRUE(p.scene.materials.size() == 1u);  // the grey default, for the accepted line
 }
 

@@ -17,7 +17,7 @@ std::string bytes_of(const char (&literal)[N]) {
 }
 
 MeshPlacement identity() {
-  return {{0, 0, 0}, 1.0, Mat3d::identity()};
+  return {{0, 0, 0}, 1.0, glm::dmat3(1.0)};
 }
 
 // Assimp 5.2.5 segfaulted on this binary PLY: `end_header` inside an element line, a non-text

@@ -20,7 +20,7 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 MeshPlacement identity() {
-  return {{0, 0, 0}, 1.0, Mat3d::identity()};
+  return {{0, 0, 0}, 1.0, glm::dmat3(1.0)};
 }
 
 TEST(MeshImport, LettersHaveTheirTriangles) {
@@ -37,26 +37,26 @@ TEST(MeshImport, LettersHaveTheirTriangles) {
     EXPECT_EQ(x.p0(i).z, 0.0f);
     // Flat letters: every normal is ±z, unit length.
     EXPECT_NEAR(std::abs(x.n0(i).z), 1.0f, 1e-6f);
-    EXPECT_NEAR(length(Vec3d(x.n2(i))), 1.0, 1e-6);
+    EXPECT_NEAR(length(glm::dvec3(x.n2(i))), 1.0, 1e-6);
   }
 }
 
 TEST(MeshImport, PlacementIsTranslateScaleRotate) {
   TriangleTable plain, placed;
-  Mat3d r = rotation_axis_angle({1, 0, 0}, 90);
+  glm::dmat3 r = rotation_axis_angle({1, 0, 0}, 90);
   MeshPlacement pl{{1, 2, 3}, 0.5, r};
   ASSERT_TRUE(import_mesh_file(source_path("scenes/letterY.ply"), identity(), 0, plain));
   ASSERT_TRUE(import_mesh_file(source_path("scenes/letterY.ply"), pl, 0, placed));
   ASSERT_EQ(plain.size(), placed.size());
   for (uint32_t i = 0; i < plain.size(); ++i) {
-    Vec3d want = Vec3d(1, 2, 3) + 0.5 * (r * Vec3d(plain.p1(i)));
+    glm::dvec3 want = glm::dvec3(1, 2, 3) + 0.5 * (r * glm::dvec3(plain.p1(i)));
     EXPECT_NEAR(placed.p1(i).x, want.x, 1e-6);
     EXPECT_NEAR(placed.p1(i).y, want.y, 1e-6);
     EXPECT_NEAR(placed.p1(i).z, want.z, 1e-6);
     // Normals turn with R (z → −y under Rx(90)) and stay unit.
-    Vec3d n = r * Vec3d(plain.n1(i));
+    glm::dvec3 n = r * glm::dvec3(plain.n1(i));
     EXPECT_NEAR(placed.n1(i).y, n.y, 1e-6);
-    EXPECT_NEAR(length(Vec3d(placed.n1(i))), 1.0, 1e-6);
+    EXPECT_NEAR(length(glm::dvec3(placed.n1(i))), 1.0, 1e-6);
   }
 }
 

@@ -13,56 +13,57 @@ using ::testing::ElementsAre;
 using testing::errors;
 using testing::parse;
 
-Mat3d camera_rotation(const std::string& orientation) {
+glm::dmat3 camera_rotation(const std::string& orientation) {
   auto p = parse("camera 0 0 0 1 " + orientation + "\n");
   EXPECT_TRUE(p.ok()) << errors(p)[0];
-  return p.ok() ? p.scene.camera->rotation : Mat3d();
+  return p.ok() ? p.scene.camera->rotation : glm::dmat3();
 }
 
-void expect_near(const Vec3d& a, const Vec3d& b, double tol = 1e-12) {
+void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-12) {
   EXPECT_NEAR(a.x, b.x, tol);
   EXPECT_NEAR(a.y, b.y, tol);
   EXPECT_NEAR(a.z, b.z, tol);
 }
 
 TEST(Orientation, EmptyIsIdentity) {
-  Mat3d r = camera_rotation("");
-  expect_near(r * Vec3d(1, 2, 3), Vec3d(1, 2, 3), 0);
+  glm::dmat3 r = camera_rotation("");
+  expect_near(r * glm::dvec3(1, 2, 3), glm::dvec3(1, 2, 3), 0);
 }
 
 TEST(Orientation, AxisRotationsFollowTheRightHandRule) {
-  expect_near(camera_rotation("x 90") * Vec3d(0, 1, 0), Vec3d(0, 0, 1));
-  expect_near(camera_rotation("y 90") * Vec3d(0, 0, 1), Vec3d(1, 0, 0));
-  expect_near(camera_rotation("z 90") * Vec3d(1, 0, 0), Vec3d(0, 1, 0));
-  expect_near(camera_rotation("a 90 0 0 5") * Vec3d(1, 0, 0), Vec3d(0, 1, 0));  // axis normalised
+  expect_near(camera_rotation("x 90") * glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1));
+  expect_near(camera_rotation("y 90") * glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0));
+  expect_near(camera_rotation("z 90") * glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0));
+  expect_near(camera_rotation("a 90 0 0 5") * glm::dvec3(1, 0, 0),
+              glm::dvec3(0, 1, 0));  // axis normalised
 }
 
 TEST(Orientation, QuaternionIsNormalisedWFirst) {
-  expect_near(camera_rotation("q 3 0 0 0") * Vec3d(1, 2, 3), Vec3d(1, 2, 3));
+  expect_near(camera_rotation("q 3 0 0 0") * glm::dvec3(1, 2, 3), glm::dvec3(1, 2, 3));
   // 90 degrees about z: (cos 45, 0, 0, sin 45), scaled by 2.
   double c = 2 * std::sqrt(0.5);
   expect_near(
-      camera_rotation("q " + std::to_string(c) + " 0 0 " + std::to_string(c)) * Vec3d(1, 0, 0),
-      Vec3d(0, 1, 0), 1e-6);
+      camera_rotation("q " + std::to_string(c) + " 0 0 " + std::to_string(c)) * glm::dvec3(1, 0, 0),
+      glm::dvec3(0, 1, 0), 1e-6);
 }
 
 // "x 90 y 30 is R = Rx(90)·Ry(30): the last-listed rotation acts first."
 TEST(Orientation, ComposesByRightMultiplication) {
-  Mat3d r = camera_rotation("x 90 y 30");
-  Mat3d expected = rotation_axis_angle({1, 0, 0}, 90) * rotation_axis_angle({0, 1, 0}, 30);
+  glm::dmat3 r = camera_rotation("x 90 y 30");
+  glm::dmat3 expected = rotation_axis_angle({1, 0, 0}, 90) * rotation_axis_angle({0, 1, 0}, 30);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      EXPECT_NEAR(r.m[i][j], expected.m[i][j], 1e-15);
+      EXPECT_NEAR(r[j][i], expected[j][i], 1e-15);
   // And not the other order.
-  Mat3d wrong = rotation_axis_angle({0, 1, 0}, 30) * rotation_axis_angle({1, 0, 0}, 90);
-  EXPECT_GT(std::abs(r.m[0][1] - wrong.m[0][1]) + std::abs(r.m[2][0] - wrong.m[2][0]), 0.1);
+  glm::dmat3 wrong = rotation_axis_angle({0, 1, 0}, 30) * rotation_axis_angle({1, 0, 0}, 90);
+  EXPECT_GT(std::abs(r[1][0] - wrong[1][0]) + std::abs(r[0][2] - wrong[0][2]), 0.1);
 }
 
 // The course's bunny line stands the PLY bunny's +Y up along world +Z.
 TEST(Orientation, CourseBunnyLineMapsYToZ) {
-  Mat3d r = camera_rotation("z -90 q 0 0 0.707107 0.707106");
+  glm::dmat3 r = camera_rotation("z -90 q 0 0 0.707107 0.707106");
   // The line's quaternion is rounded to 6 digits: 1e-5 covers it.
-  expect_near(r * Vec3d(0, 1, 0), Vec3d(0, 0, 1), 1e-5);
+  expect_near(r * glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), 1e-5);
 }
 
 TEST(Orientation, Errors) {

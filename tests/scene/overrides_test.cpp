@@ -22,7 +22,7 @@ TEST(Overrides, LastCameraAndScreenWinWithWarningsNamingBothPlaces) {
   ASSERT_TRUE(p.ok());
   EXPECT_EQ(p.scene.width, 32u);
   EXPECT_EQ(p.scene.height, 24u);
-  EXPECT_EQ(p.scene.camera->eye, Vec3d(1, 2, 3));
+  EXPECT_EQ(p.scene.camera->eye, glm::dvec3(1, 2, 3));
   EXPECT_THAT(testing::messages(p, Severity::kWarning),
               ElementsAre("--set:1:1: warning: screen given again (first at t.scn:1): the last "
                           "one wins",

@@ -33,23 +33,23 @@ TEST(Parser, ReadsEveryCommand) {
   EXPECT_EQ(s.width, 640u);
   EXPECT_EQ(s.height, 480u);
   ASSERT_TRUE(s.camera);
-  EXPECT_EQ(s.camera->eye, Vec3d(1, 2, 3));
+  EXPECT_EQ(s.camera->eye, glm::dvec3(1, 2, 3));
   EXPECT_EQ(s.camera->ry, 0.5);
-  EXPECT_EQ(s.ambient, Vec3f(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(s.ambient, glm::vec3(0.1f, 0.2f, 0.3f));
   ASSERT_EQ(s.materials.size(), 3u);
   EXPECT_TRUE(s.materials[0].is_light);
-  EXPECT_EQ(s.materials[0].emission, Vec3f(5, 6, 7));
-  EXPECT_EQ(s.materials[1].kd, Vec3f(0.1f, 0.2f, 0.3f));
-  EXPECT_EQ(s.materials[1].ks, Vec3f(0.4f, 0.5f, 0.6f));
+  EXPECT_EQ(s.materials[0].emission, glm::vec3(5, 6, 7));
+  EXPECT_EQ(s.materials[1].kd, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(s.materials[1].ks, glm::vec3(0.4f, 0.5f, 0.6f));
   EXPECT_EQ(s.materials[1].alpha, 20.0f);
-  EXPECT_EQ(s.materials[1].kt, Vec3f(0, 0, 0));
+  EXPECT_EQ(s.materials[1].kt, glm::vec3(0, 0, 0));
   EXPECT_EQ(s.materials[1].ior, 1.0f);
-  EXPECT_EQ(s.materials[2].kt, Vec3f(0.7f, 0.8f, 0.9f));
+  EXPECT_EQ(s.materials[2].kt, glm::vec3(0.7f, 0.8f, 0.9f));
   EXPECT_EQ(s.materials[2].ior, 1.5f);
   ASSERT_EQ(s.table<Sphere>().size(), 1u);
   EXPECT_EQ(s.table<Sphere>().material[0], 0u);
   ASSERT_EQ(s.table<Box>().size(), 1u);
-  EXPECT_EQ(s.table<Box>().hi(0), Vec3f(1, 2, 3));
+  EXPECT_EQ(s.table<Box>().hi(0), glm::vec3(1, 2, 3));
   EXPECT_EQ(s.table<Box>().material[0], 1u);
   ASSERT_EQ(s.table<Cylinder>().size(), 1u);
   EXPECT_EQ(s.table<Cylinder>().material[0], 2u);
@@ -118,7 +118,7 @@ TEST(Parser, StrictNumbers) {
                                      "t.scn:7:12: number '1e400' does not fit in a float",
                                      "t.scn:8:8: expected a number, found '0,0'"));
   ASSERT_EQ(p.scene.table<Sphere>().size(), 1u);
-  EXPECT_EQ(p.scene.table<Sphere>().center(0), Vec3f(1, -2, 0.3f));
+  EXPECT_EQ(p.scene.table<Sphere>().center(0), glm::vec3(1, -2, 0.3f));
   EXPECT_EQ(p.scene.table<Sphere>().r[0], 0.5f);
 }
 
@@ -138,9 +138,9 @@ TEST(Parser, TinyNumbers) {
                           "be > 0 after rounding (at least about 1.4e-45)",
                           "t.scn:5:14: sphere radius must be > 0"));
   ASSERT_EQ(p.scene.table<Sphere>().size(), 1u);
-  EXPECT_EQ(p.scene.table<Sphere>().center(0), Vec3f(0, 0, 0));
+  EXPECT_EQ(p.scene.table<Sphere>().center(0), glm::vec3(0, 0, 0));
   ASSERT_TRUE(p.scene.camera);  // the axis (1, 1, 1)/√3, not "must be non-zero"
-  EXPECT_NEAR(p.scene.camera->rotation.m[0][0], 1.0 / 3, 1e-12);
+  EXPECT_NEAR(p.scene.camera->rotation[0][0], 1.0 / 3, 1e-12);
 }
 
 // Invisible bytes are shown escaped, pointed at and explained (issue 13).
@@ -259,8 +259,8 @@ TEST(Parser, ValueRules) {
 TEST(Parser, NegativeBoxDiagonalIsTheSameBox) {
   auto p = parse(std::string(kCameraLine) + "box 1 1 1 -2 3 -0.5\n");
   ASSERT_TRUE(p.ok());
-  EXPECT_EQ(p.scene.table<Box>().lo(0), Vec3f(-1, 1, 0.5f));
-  EXPECT_EQ(p.scene.table<Box>().hi(0), Vec3f(1, 4, 1));
+  EXPECT_EQ(p.scene.table<Box>().lo(0), glm::vec3(-1, 1, 0.5f));
+  EXPECT_EQ(p.scene.table<Box>().hi(0), glm::vec3(1, 4, 1));
 }
 
 TEST(Parser, ARejectedCameraLineIsTheOnlyErrorNotAlsoAMissingCamera) {
@@ -301,7 +301,7 @@ TEST(Parser, RepeatedSettingsLastWinsWithWarning) {
                           "one wins"));
   EXPECT_EQ(p.scene.width, 20u);
   EXPECT_EQ(p.scene.height, 30u);
-  EXPECT_EQ(p.scene.ambient, Vec3f(2, 2, 2));
+  EXPECT_EQ(p.scene.ambient, glm::vec3(2, 2, 2));
   EXPECT_EQ(p.scene.camera->eye.z, 2.0);
 }
 
@@ -310,8 +310,8 @@ TEST(Parser, ShapeBeforeMaterialGetsDefaultGreyOnce) {
   EXPECT_TRUE(p.ok());
   EXPECT_EQ(warnings(p).size(), 1u);
   ASSERT_EQ(p.scene.materials.size(), 1u);
-  EXPECT_EQ(p.scene.materials[0].kd, Vec3f(0.5f, 0.5f, 0.5f));
-  EXPECT_EQ(p.scene.materials[0].ks, Vec3f(0, 0, 0));
+  EXPECT_EQ(p.scene.materials[0].kd, glm::vec3(0.5f, 0.5f, 0.5f));
+  EXPECT_EQ(p.scene.materials[0].ks, glm::vec3(0, 0, 0));
   EXPECT_EQ(p.scene.table<Box>().material[0], 0u);
 }
 

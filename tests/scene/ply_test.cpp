@@ -73,9 +73,9 @@ TEST(PlyReader, AsciiAndBothByteOrdersReadAlike) {
   }
   for (const PlyMesh& m : meshes) {
     ASSERT_EQ(m.positions.size(), 4u);
-    EXPECT_EQ(m.positions[2], Vec3f(1, 1, 0));
+    EXPECT_EQ(m.positions[2], glm::vec3(1, 1, 0));
     ASSERT_EQ(m.normals.size(), 4u);
-    EXPECT_EQ(m.normals[3], Vec3f(0, 0, 1));
+    EXPECT_EQ(m.normals[3], glm::vec3(0, 0, 1));
     ASSERT_EQ(m.uvs.size(), 4u);  // s and t are texture coordinates
     EXPECT_EQ(m.uvs[1].u, 1.0);
     EXPECT_EQ(m.uvs[1].v, 0.0);
@@ -88,7 +88,7 @@ TEST(PlyReader, AsciiAndBothByteOrdersReadAlike) {
 double area(const PlyMesh& m) {
   double a = 0;
   for (const auto& t : m.triangles) {
-    Vec3d p0(m.positions[t[0]]), p1(m.positions[t[1]]), p2(m.positions[t[2]]);
+    glm::dvec3 p0(m.positions[t[0]]), p1(m.positions[t[1]]), p2(m.positions[t[2]]);
     a += 0.5 * length(cross(p1 - p0, p2 - p0));
   }
   return a;
@@ -248,16 +248,17 @@ TEST(PlyImport, MadeNormalsDoNotDependOnHowFacesWereCut) {
   for (bool soup : {false, true}) {
     SCOPED_TRACE(soup ? "soup" : "indexed");
     TriangleTable table;
-    auto r = import_mesh_memory(cube_ply(soup), "cube.ply", {{0, 0, 0}, 1.0, Mat3d::identity()}, 0,
-                                table);
+    auto r =
+        import_mesh_memory(cube_ply(soup), "cube.ply", {{0, 0, 0}, 1.0, glm::dmat3(1.0)}, 0, table);
     ASSERT_TRUE(r) << r.error();
     ASSERT_EQ(table.size(), 12u);
     for (uint32_t i = 0; i < table.size(); ++i) {
-      std::array<Vec3f, 3> p = {table.p0(i), table.p1(i), table.p2(i)};
-      std::array<Vec3f, 3> n = {table.n0(i), table.n1(i), table.n2(i)};
+      std::array<glm::vec3, 3> p = {table.p0(i), table.p1(i), table.p2(i)};
+      std::array<glm::vec3, 3> n = {table.n0(i), table.n1(i), table.n2(i)};
       for (int k = 0; k < 3; ++k) {
-        Vec3d outward = normalize(Vec3d(p[k]) - Vec3d(0.5, 0.5, 0.5));
-        EXPECT_NEAR(length(Vec3d(n[k]) - outward), 0.0, 1e-6) << "row " << i << " corner " << k;
+        glm::dvec3 outward = normalize(glm::dvec3(p[k]) - glm::dvec3(0.5, 0.5, 0.5));
+        EXPECT_NEAR(length(glm::dvec3(n[k]) - outward), 0.0, 1e-6)
+            << "row " << i << " corner " << k;
       }
     }
   }

@@ -167,8 +167,8 @@ struct Shear {
   int kx, ky, kz;
   double sx, sy, sz;
 };
-Shear kernel_shear(const Vec3d& d) {
-  Vec3d a = abs(d);
+Shear kernel_shear(const glm::dvec3& d) {
+  glm::dvec3 a = abs(d);
   int kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
   int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
   if (d[kz] < 0) std::swap(kx, ky);
@@ -178,8 +178,8 @@ Shear kernel_shear(const Vec3d& d) {
 // (two), x̂ = fl(â_kx − ŝx·â_kz): one rounding with FMA, two without, so
 //   |x̂ − x| ≤ γ2|a_kx| + γ5|Sx·a_kz|,  and ẑ = fl(fl(1/d_kz)·â_kz): |ẑ − z| ≤ γ3|z|.
 // (pbrt-v4 Triangle::Intersect bounds the same quantities, δx = γ5(max|x| + max|z|).)
-ShearedVertex shear_vertex(const Vec3f& p, const Rayd& ray, const Shear& s) {
-  Vec3d a = Vec3d(p) - ray.o;
+ShearedVertex shear_vertex(const glm::vec3& p, const Rayd& ray, const Shear& s) {
+  glm::dvec3 a = glm::dvec3(p) - ray.o;
   double zx = s.sx * a[s.kz], zy = s.sy * a[s.kz];
   ShearedVertex v;
   v.x = a[s.kx] - zx;
@@ -250,10 +250,10 @@ double Criterion::ratio() const {
 // b = fl(f̂·d) (|b̂ − f·d| ≤ Ef|d| + γ3|f̂||d|), c = fl(fl(|f̂|²) − fl(r²)).
 // The decision is disc ≥ 0; its margin is the reference's r² − |l|² (docs/hard-cases.md S1).
 namespace {
-PrimVerdict classify_sphere(const Vec3d& centre, double Ec, double r, const Rayd& ray,
+PrimVerdict classify_sphere(const glm::dvec3& centre, double Ec, double r, const Rayd& ray,
                             double t_ref) {
-  Vec3d f = ray.o - centre;
-  const Vec3d& d = ray.d;
+  glm::dvec3 f = ray.o - centre;
+  const glm::dvec3& d = ray.d;
   double F = length(f), D = length(d), b = dot(f, d), dd = dot(d, d);
   double Ef = u * F + (1 + u) * Ec;
   double L = length(f - (b / dd) * d);
@@ -269,7 +269,7 @@ PrimVerdict classify_sphere(const Vec3d& centre, double Ec, double r, const Rayd
 }  // namespace
 
 PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
-  return classify_sphere(Vec3d(s.center(row)), 0.0, s.r[row], ray, intersect_ref(s, row, ray));
+  return classify_sphere(glm::dvec3(s.center(row)), 0.0, s.r[row], ray, intersect_ref(s, row, ray));
 }
 
 // Moving sphere kernel (moving_sphere_packet.h): the centre at the ray's time t is
@@ -277,8 +277,8 @@ PrimVerdict classify(const SphereTable& s, uint32_t row, const Rayd& ray) {
 // component; the reference's c (double, moving_sphere.h) is within 2^-53|c| of that, as t·m
 // is exact in double. Then the sphere's kernel.
 PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray) {
-  Vec3d c = s.center_at(row, ray.time);
-  double tm = length(Vec3d(s.motion(row)) * ray.time), cc = length(c);
+  glm::dvec3 c = s.center_at(row, ray.time);
+  double tm = length(glm::dvec3(s.motion(row)) * ray.time), cc = length(c);
   double Ec = (u * cc + u * (1 + u) * tm + 0x1p-52 * cc) * kRefSlack;
   return classify_sphere(c, Ec, s.r[row], ray, intersect_ref(s, row, ray));
 }
@@ -293,7 +293,7 @@ PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray) 
 // independent intervals would also count an axis against itself. The t of a clear hit is one
 // of the slab values, so its error stays γ3|t| — no conditioning issue near an edge.
 PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
-  Vec3d lo(bt.lo(row)), hi(bt.hi(row));
+  glm::dvec3 lo(bt.lo(row)), hi(bt.hi(row));
   double tn[3], tf[3];
   Interval near[3], far[3];
   Interval t0 = Interval::point(-kInf), t1 = Interval::point(kInf);
@@ -331,7 +331,8 @@ PrimVerdict classify(const BoxTable& bt, uint32_t row, const Rayd& ray) {
 // test, C5: the margin is r² − dist(ray line, axis line)²) and the interval roots of the side;
 // the axial slab is t = fl(fl(h − fa)·fl(1/da)) with fa, da within their bounds. Hit: side ok
 // and max(side near, slab near) ≤ min(side far, slab far) — the second criterion (caps, rims).
-InputErrors projected_errors(double F, double fa, double df, double P, Vec3d delta, Vec3d u_d) {
+InputErrors projected_errors(double F, double fa, double df, double P, glm::dvec3 delta,
+                             glm::dvec3 u_d) {
   double d_par = std::abs(dot(delta, u_d)), d_perp = length(delta - dot(delta, u_d) * u_d);
   double dU = length(delta), s = 1 + dU, F1 = F * (1 + u), fa1 = std::abs(fa) + df;
   double e1 = gamma(3) * F1 * s;
@@ -351,14 +352,14 @@ Interval norm2_interval(double X, InputErrors e) {
 }
 
 PrimVerdict classify(const CylinderTable& cyl, uint32_t row, const Rayd& ray) {
-  Vec3d axis(cyl.axis(row)), uf(cyl.unit_axis(row));
+  glm::dvec3 axis(cyl.axis(row)), uf(cyl.unit_axis(row));
   double h = length(axis), hf = cyl.h[row], r = cyl.r[row];
-  Vec3d ud = axis / h;
+  glm::dvec3 ud = axis / h;
   double dU = length(uf - ud), s = 1 + dU;
-  Vec3d f = ray.o - Vec3d(cyl.base(row));
-  const Vec3d& d = ray.d;
+  glm::dvec3 f = ray.o - glm::dvec3(cyl.base(row));
+  const glm::dvec3& d = ray.d;
   double fa = dot(f, ud), da = dot(d, ud);
-  Vec3d p = f - fa * ud, q = d - da * ud;
+  glm::dvec3 p = f - fa * ud, q = d - da * ud;
   double F = length(f), D = length(d), P = length(p), Q = length(q), b = dot(p, q), a = dot(q, q);
   double L = a > 0 ? length(p - (b / a) * q) : P;
 

@@ -20,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // primitive's bounds is a clear miss by a factor of hundreds; the band test checks this
 // shortcut against full classification on its own ray sets.
 bool line_misses_grown_bounds(const Bounds3f& b, const Rayd& ray) {
-  Vec3d lo(b.lo), hi(b.hi);
+  glm::dvec3 lo(b.lo), hi(b.hi);
   double g = 0x1p-12 * (length(ray.o - (lo + hi) * 0.5) + length(hi - lo));
   double t0 = -kInf, t1 = kInf;
   for (int k = 0; k < 3; ++k) {

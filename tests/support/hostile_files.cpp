@@ -115,12 +115,12 @@ std::string ply_with_long_header(std::size_t comment_bytes) {
   return s;
 }
 
-std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, int)>& colour, int x0,
-                                 int y0) {
+std::string exr_luminance_chroma(int w, int h, const std::function<glm::vec3(int, int)>& colour,
+                                 int x0, int y0) {
   std::vector<Imf::Rgba> pixels(std::size_t(w) * h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      Vec3f c = colour(x, y);
+      glm::vec3 c = colour(x, y);
       pixels[std::size_t(y) * w + x] = Imf::Rgba(c.x, c.y, c.z, 1.0f);
     }
   StringStream out;

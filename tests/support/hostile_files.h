@@ -7,7 +7,7 @@
 #include <functional>
 #include <string>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane::testing {
 
@@ -23,7 +23,7 @@ std::string ply_with_long_header(std::size_t comment_bytes);
 // (Y full, RY and BY subsampled 2×2: WRITE_YC), from colour(x, y); ZIP compressed, Y and
 // chroma kept to half precision (setYCRounding(10, 10)).
 // With a data window whose top-left corner is (x0, y0) (a display window of the same place).
-std::string exr_luminance_chroma(int w, int h, const std::function<Vec3f(int, int)>& colour,
+std::string exr_luminance_chroma(int w, int h, const std::function<glm::vec3(int, int)>& colour,
                                  int x0 = 0, int y0 = 0);
 
 }  // namespace raylane::testing

@@ -6,20 +6,20 @@
 #include <bit>
 #include <cstdint>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane::testing {
 
 inline bool same_bits(double a, double b) {
   return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
 }
-inline bool same_bits(const Vec3d& a, const Vec3d& b) {
+inline bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
 }
 inline bool same_bits(float a, float b) {
   return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
 }
-inline bool same_bits(const Vec3f& a, const Vec3f& b) {
+inline bool same_bits(const glm::vec3& a, const glm::vec3& b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
 }
 

@@ -80,26 +80,27 @@ TEST(BruteForce, AnyHitAgreesWithClosestHit) {
 TEST(BruteForce, NoRayEscapesAClosedMesh) {
   for (double off : {0.0, 1e4, 1e5}) {
     Scene s;
-    Vec3d c(off, off, -off);
+    glm::dvec3 c(off, off, -off);
     testing::add_closed_uv_sphere(s, 23, 12, 24, c);
     const auto& t = s.table<Triangle>();
     std::mt19937_64 rng(24);
     std::uniform_real_distribution<double> u(-0.25, 0.25), w(0, 1);
     int escapes = 0, rays = 0;
     for (int i = 0; i < 3000; ++i) {
-      Vec3f o(c + Vec3d(u(rng), u(rng), u(rng)));
+      glm::vec3 o(c + glm::dvec3(u(rng), u(rng), u(rng)));
       uint32_t row = uint32_t(rng() % t.size());
-      Vec3d target;
+      glm::dvec3 target{};
       if (i % 3 == 0)
-        target = Vec3d(t.p1(row));
+        target = glm::dvec3(t.p1(row));
       else if (i % 3 == 1)
-        target = Vec3d(Vec3f(Vec3d(t.p1(row)) * (1 - w(rng)) + Vec3d(t.p2(row)) * w(rng)));
+        target = glm::dvec3(
+            glm::vec3(glm::dvec3(t.p1(row)) * (1 - w(rng)) + glm::dvec3(t.p2(row)) * w(rng)));
       else
-        target = Vec3d(o) + Vec3d(u(rng), u(rng), u(rng));
-      Vec3d d(Vec3f(target - Vec3d(o)));
+        target = glm::dvec3(o) + glm::dvec3(u(rng), u(rng), u(rng));
+      glm::dvec3 d(glm::vec3(target - glm::dvec3(o)));
       if (length_squared(d) == 0) continue;
       ++rays;
-      escapes += !closest_hit_ref(s, {Vec3d(o), d}).hit();
+      escapes += !closest_hit_ref(s, {glm::dvec3(o), d}).hit();
     }
     EXPECT_EQ(escapes, 0) << "offset " << off << " of " << rays;
   }

@@ -16,8 +16,8 @@
 namespace raylane {
 namespace {
 
-void add_triangle(Scene& s, Vec3f a, Vec3f b, Vec3f c) {
-  Vec3f n(0, 0, 1);
+void add_triangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  glm::vec3 n(0, 0, 1);
   s.table<Triangle>().append({a, b, c}, {n, n, n}, 0);
 }
 
@@ -27,10 +27,10 @@ void add_sphere(Scene& s, double x, double y, double z, double r) {
 }
 
 // Rays from `eye` towards jittered points around `target`.
-std::vector<Rayd> rays_towards(Vec3d eye, Vec3d target, double spread, int n) {
+std::vector<Rayd> rays_towards(glm::dvec3 eye, glm::dvec3 target, double spread, int n) {
   std::vector<Rayd> rays;
   for (int i = 0; i < n; ++i) {
-    Vec3d jitter(spread * std::sin(i * 1.7), spread * std::cos(i * 2.3), 0);
+    glm::dvec3 jitter(spread * std::sin(i * 1.7), spread * std::cos(i * 2.3), 0);
     rays.push_back({eye, normalize(target + jitter - eye)});
   }
   return rays;

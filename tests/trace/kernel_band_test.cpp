@@ -67,14 +67,14 @@ double uniform(Rng& g, double a, double b) {
   return std::uniform_real_distribution<double>(a, b)(g);
 }
 
-Vec3d unit_vector(Rng& g) {
+glm::dvec3 unit_vector(Rng& g) {
   double z = uniform(g, -1, 1), phi = uniform(g, 0, 2 * M_PI), s = std::sqrt(1 - z * z);
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
 // A unit vector orthogonal to the unit vector n.
-Vec3d orthogonal_unit(Rng& g, const Vec3d& n) {
-  Vec3d v;
+glm::dvec3 orthogonal_unit(Rng& g, const glm::dvec3& n) {
+  glm::dvec3 v{};
   do
     v = cross(n, unit_vector(g));
   while (length_squared(v) < 1e-6);
@@ -89,11 +89,11 @@ double band_jitter(Rng& g) {
   return g() % 2 ? j : -j;
 }
 
-Vec3d centre_of(const Bounds3f& b) {
-  return (Vec3d(b.lo) + Vec3d(b.hi)) * 0.5;
+glm::dvec3 centre_of(const Bounds3f& b) {
+  return (glm::dvec3(b.lo) + glm::dvec3(b.hi)) * 0.5;
 }
 double radius_of(const Bounds3f& b) {
-  return 0.5 * length(Vec3d(b.hi) - Vec3d(b.lo));
+  return 0.5 * length(glm::dvec3(b.hi) - glm::dvec3(b.lo));
 }
 
 // Per kind: append one random primitive of size ~`scale` at `c`, and aim a ray from `o` at
@@ -103,18 +103,18 @@ struct Shapes;
 
 template <>
 struct Shapes<Sphere> {
-  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
+  static bool add(Scene& s, Rng& g, glm::dvec3 c, double scale) {
     std::array<double, 4> p{c.x, c.y, c.z, scale * uniform(g, 0.3, 1)};
     return !s.table<Sphere>().append(p, 0).has_value();
   }
-  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
+  static glm::dvec3 plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
   // A tangent from o: the line's distance from the centre is r(1 + jitter).
-  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
+  static glm::dvec3 edge_direction(const Scene& s, uint32_t row, const glm::dvec3& o, Rng& g) {
     const auto& t = s.table<Sphere>();
-    Vec3d to_c = Vec3d(t.center(row)) - o;
+    glm::dvec3 to_c = glm::dvec3(t.center(row)) - o;
     double dist = length(to_c), sin_a = t.r[row] * (1 + band_jitter(g)) / dist;
     if (!(sin_a < 1)) return to_c;
-    Vec3d c_hat = to_c / dist;
+    glm::dvec3 c_hat = to_c / dist;
     return c_hat * std::sqrt(1 - sin_a * sin_a) + orthogonal_unit(g, c_hat) * sin_a;
   }
 };
@@ -124,19 +124,20 @@ struct Shapes<Sphere> {
 // tangent to the sphere where it is at that time, so the band is populated at every time.
 template <>
 struct Shapes<MovingSphere> {
-  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
+  static bool add(Scene& s, Rng& g, glm::dvec3 c, double scale) {
     double r = scale * uniform(g, 0.3, 1);
-    Vec3d m = g() % 4 == 0 ? Vec3d(0, 0, 0) : unit_vector(g) * (r * uniform(g, 0, 4));
+    glm::dvec3 m = g() % 4 == 0 ? glm::dvec3(0, 0, 0) : unit_vector(g) * (r * uniform(g, 0, 4));
     std::array<double, 7> p{c.x, c.y, c.z, c.x + m.x, c.y + m.y, c.z + m.z, r};
     return !s.table<MovingSphere>().append(p, 0).has_value();
   }
-  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
-  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g, double time) {
+  static glm::dvec3 plane_normal(const Scene&, uint32_t, Rng& g) { return unit_vector(g); }
+  static glm::dvec3 edge_direction(const Scene& s, uint32_t row, const glm::dvec3& o, Rng& g,
+                                   double time) {
     const auto& t = s.table<MovingSphere>();
-    Vec3d to_c = t.center_at(row, time) - o;
+    glm::dvec3 to_c = t.center_at(row, time) - o;
     double dist = length(to_c), sin_a = t.r[row] * (1 + band_jitter(g)) / dist;
     if (!(sin_a < 1)) return to_c;
-    Vec3d c_hat = to_c / dist;
+    glm::dvec3 c_hat = to_c / dist;
     return c_hat * std::sqrt(1 - sin_a * sin_a) + orthogonal_unit(g, c_hat) * sin_a;
   }
 };
@@ -153,21 +154,21 @@ float ray_time(Rng& g, int i) {
 
 template <>
 struct Shapes<Box> {
-  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
+  static bool add(Scene& s, Rng& g, glm::dvec3 c, double scale) {
     std::array<double, 6> p{c.x, c.y, c.z};
     for (int k = 0; k < 3; ++k)
       p[3 + k] = scale * uniform(g, 0.2, 1) * (g() % 2 ? 1 : -1);
     return !s.table<Box>().append(p, 0).has_value();
   }
-  static Vec3d plane_normal(const Scene&, uint32_t, Rng& g) {
-    Vec3d n(0, 0, 0);
+  static glm::dvec3 plane_normal(const Scene&, uint32_t, Rng& g) {
+    glm::dvec3 n(0, 0, 0);
     n[int(g() % 3)] = 1;
     return n;
   }
   // At a point of an edge (a corner one time in eight), moved by the jitter.
-  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
+  static glm::dvec3 edge_direction(const Scene& s, uint32_t row, const glm::dvec3& o, Rng& g) {
     const auto& t = s.table<Box>();
-    Vec3d lo(t.lo(row)), hi(t.hi(row)), p;
+    glm::dvec3 lo(t.lo(row)), hi(t.hi(row)), p;
     int along = int(g() % 4);  // 3: a corner
     for (int k = 0; k < 3; ++k)
       p[k] = k == along ? uniform(g, lo[k], hi[k]) : (g() % 2 ? lo[k] : hi[k]);
@@ -178,32 +179,32 @@ struct Shapes<Box> {
 
 template <>
 struct Shapes<Cylinder> {
-  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
-    Vec3d a = unit_vector(g) * (scale * uniform(g, 0.5, 2));
+  static bool add(Scene& s, Rng& g, glm::dvec3 c, double scale) {
+    glm::dvec3 a = unit_vector(g) * (scale * uniform(g, 0.5, 2));
     std::array<double, 7> p{c.x, c.y, c.z, a.x, a.y, a.z, scale * uniform(g, 0.1, 0.6)};
     return !s.table<Cylinder>().append(p, 0).has_value();
   }
-  static Vec3d plane_normal(const Scene& s, uint32_t row, Rng&) {
-    return normalize(Vec3d(s.table<Cylinder>().axis(row)));
+  static glm::dvec3 plane_normal(const Scene& s, uint32_t row, Rng&) {
+    return normalize(glm::dvec3(s.table<Cylinder>().axis(row)));
   }
   // Half the time a tangent to the side (docs/hard-cases.md C5): in the plane across the axis the
   // line touches the circle of radius r(1 + jitter), and it climbs so that it touches at a height
   // inside the caps. Otherwise aimed at a rim point (C3).
-  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
+  static glm::dvec3 edge_direction(const Scene& s, uint32_t row, const glm::dvec3& o, Rng& g) {
     const auto& t = s.table<Cylinder>();
-    Vec3d b(t.base(row)), axis(t.axis(row)), u = normalize(axis);
+    glm::dvec3 b(t.base(row)), axis(t.axis(row)), u = normalize(axis);
     double h = length(axis), r = t.r[row];
-    Vec3d f = o - b;
+    glm::dvec3 f = o - b;
     double fa = dot(f, u);
-    Vec3d perp = f - u * fa;
+    glm::dvec3 perp = f - u * fa;
     double rho = length(perp);
     if (g() % 2 == 0 || !(rho > 1.01 * r)) {
-      Vec3d rim = b + u * (g() % 2 ? h : 0.0) + orthogonal_unit(g, u) * r;
+      glm::dvec3 rim = b + u * (g() % 2 ? h : 0.0) + orthogonal_unit(g, u) * r;
       return rim - o;
     }
-    Vec3d out = perp / rho, side = cross(u, out);
+    glm::dvec3 out = perp / rho, side = cross(u, out);
     double sin_b = r * (1 + band_jitter(g)) / rho, cos_b = std::sqrt(1 - sin_b * sin_b);
-    Vec3d e = out * -cos_b + side * (g() % 2 ? sin_b : -sin_b);
+    glm::dvec3 e = out * -cos_b + side * (g() % 2 ? sin_b : -sin_b);
     double run = std::sqrt(rho * rho - r * r), climb = uniform(g, 0.1, 0.9) * h - fa;
     return e * run + u * climb;
   }
@@ -211,28 +212,28 @@ struct Shapes<Cylinder> {
 
 template <>
 struct Shapes<Triangle> {
-  static bool add(Scene& s, Rng& g, Vec3d c, double scale) {
-    std::array<Vec3f, 3> p;
+  static bool add(Scene& s, Rng& g, glm::dvec3 c, double scale) {
+    std::array<glm::vec3, 3> p{};
     for (auto& v : p)
-      v = Vec3f(c + unit_vector(g) * (scale * uniform(g, 0.3, 1)));
-    Vec3d n = cross(Vec3d(p[1]) - Vec3d(p[0]), Vec3d(p[2]) - Vec3d(p[0]));
+      v = glm::vec3(c + unit_vector(g) * (scale * uniform(g, 0.3, 1)));
+    glm::dvec3 n = cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
     if (!(length(n) > 0)) return false;
-    Vec3f nf(normalize(n));
+    glm::vec3 nf(normalize(n));
     s.table<Triangle>().append(p, {nf, nf, nf}, 0);
     return true;
   }
-  static Vec3d plane_normal(const Scene& s, uint32_t row, Rng&) {
+  static glm::dvec3 plane_normal(const Scene& s, uint32_t row, Rng&) {
     const auto& t = s.table<Triangle>();
-    return normalize(
-        cross(Vec3d(t.p1(row)) - Vec3d(t.p0(row)), Vec3d(t.p2(row)) - Vec3d(t.p0(row))));
+    return normalize(cross(glm::dvec3(t.p1(row)) - glm::dvec3(t.p0(row)),
+                           glm::dvec3(t.p2(row)) - glm::dvec3(t.p0(row))));
   }
   // At a point of an edge or at a vertex (docs/hard-cases.md T1, T3), moved by the jitter.
-  static Vec3d edge_direction(const Scene& s, uint32_t row, const Vec3d& o, Rng& g) {
+  static glm::dvec3 edge_direction(const Scene& s, uint32_t row, const glm::dvec3& o, Rng& g) {
     const auto& t = s.table<Triangle>();
-    Vec3d v[3] = {Vec3d(t.p0(row)), Vec3d(t.p1(row)), Vec3d(t.p2(row))};
+    glm::dvec3 v[3] = {glm::dvec3(t.p0(row)), glm::dvec3(t.p1(row)), glm::dvec3(t.p2(row))};
     int k = int(g() % 3);
     double a = g() % 5 == 0 ? 0.0 : uniform(g, 0, 1);
-    Vec3d p = v[k] * (1 - a) + v[(k + 1) % 3] * a;
+    glm::dvec3 p = v[k] * (1 - a) + v[(k + 1) % 3] * a;
     p = p + unit_vector(g) * (band_jitter(g) * length(p - o));
     return p - o;
   }
@@ -242,10 +243,10 @@ struct Shapes<Triangle> {
 
 // A ray that crosses the primitive's plane (triangle, cap, box face) near `aim` at an angle of
 // 10^-1 … 10^-4 rad: t is ill-conditioned there (docs/hard-cases.md §0, T8, C4).
-Rayd grazing_ray(const Vec3d& aim, const Vec3d& n, double dist, Rng& g) {
+Rayd grazing_ray(const glm::dvec3& aim, const glm::dvec3& n, double dist, Rng& g) {
   double angle = std::pow(10.0, uniform(g, -4, -1)) * (g() % 2 ? 1 : -1);
-  Vec3d d = orthogonal_unit(g, n) * std::cos(angle) + n * std::sin(angle);
-  Vec3d o(Vec3f(aim - d * dist));
+  glm::dvec3 d = orthogonal_unit(g, n) * std::cos(angle) + n * std::sin(angle);
+  glm::dvec3 o(glm::vec3(aim - d * dist));
   return {o, normalize(aim - o)};
 }
 
@@ -263,15 +264,16 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
     uint32_t row = uint32_t(g() % table.size());
     const float time = kMoves<Kind> ? ray_time(g, i / 5) : 0.5f;
     Bounds3f b = table.bounds(row);
-    Vec3d c = centre_of(b);
+    glm::dvec3 c = centre_of(b);
     double size = radius_of(b);
     double dist = size * (i % 3 ? uniform(g, 2, 20) : std::pow(10.0, uniform(g, 2, 4)));
-    Vec3d o(Vec3f(c + unit_vector(g) * dist)), around = c + unit_vector(g) * (0.6 * size);
+    glm::dvec3 o(glm::vec3(c + unit_vector(g) * dist)), around = c + unit_vector(g) * (0.6 * size);
     Rayd r;
     if (i % 5 == 4)
       r = grazing_ray(around, Shapes<Kind>::plane_normal(s, row, g), dist, g);
     else if (i % 10 == 7)
-      r = {Vec3d(Vec3f(c + unit_vector(g) * (0.3 * size))), unit_vector(g)};  // from inside
+      r = {glm::dvec3(glm::vec3(c + unit_vector(g) * (0.3 * size))),
+           unit_vector(g)};  // from inside
     else if (i % 5 >= 2) {
       if constexpr (kMoves<Kind>)
         r = {o, normalize(Shapes<Kind>::edge_direction(s, row, o, g, time))};
@@ -310,11 +312,11 @@ std::vector<Rayd> make_rays(const Scene& s, Rng& g, int n) {
 
 // One primitive at the offset, or a small random set of them around it.
 template <class Kind>
-Scene make_scene(Rng& g, Vec3d offset, double scale, int count) {
+Scene make_scene(Rng& g, glm::dvec3 offset, double scale, int count) {
   Scene s;
   s.materials.push_back(Material{});
   for (int tries = 0; int(s.table<Kind>().size()) < count && tries < 10 * count; ++tries) {
-    Vec3d c = count == 1 ? offset : offset + unit_vector(g) * (3 * scale * uniform(g, 0, 1));
+    glm::dvec3 c = count == 1 ? offset : offset + unit_vector(g) * (3 * scale * uniform(g, 0, 1));
     Shapes<Kind>::add(s, g, c, scale);
   }
   return s;
@@ -424,7 +426,7 @@ TYPED_TEST(KernelBandTest, ClearClassesAgreeWithTheReference) {
     for (int count : {1, 6}) {
       SCOPED_TRACE(::testing::Message() << "offset " << at.offset << ", scale " << at.scale << ", "
                                         << count << " primitives");
-      Vec3d offset(at.offset, -at.offset, at.offset);
+      glm::dvec3 offset(at.offset, -at.offset, at.offset);
       Scene s = make_scene<Kind>(g, offset, at.scale, count);
       ASSERT_GT(s.table<Kind>().size(), 0u);
       check_scene(s, make_rays<Kind>(s, g, 16 * 500 + 7), paths, tallies);

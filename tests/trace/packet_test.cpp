@@ -160,7 +160,7 @@ TEST_P(SimdTracerTest, BoxFacePlaneAndSignedZeroRays) {
 TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
   for (double offset : {0.0, 1e4, 1e5}) {
     Scene s;
-    Vec3d c(offset, -offset, offset);
+    glm::dvec3 c(offset, -offset, offset);
     testing::add_closed_uv_sphere(s, 16, 24, 48, c);
     Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
     const auto& t = s.table<Triangle>();
@@ -168,20 +168,21 @@ TEST_P(SimdTracerTest, NoRayEscapesAClosedMesh) {
     std::uniform_real_distribution<double> u(-0.25, 0.25), w(0, 1);
     std::vector<Rayd> rays;
     for (int i = 0; i < 60000; ++i) {
-      Vec3f o(c + Vec3d(u(rng), u(rng), u(rng)));
+      glm::vec3 o(c + glm::dvec3(u(rng), u(rng), u(rng)));
       uint32_t row = uint32_t(rng() % t.size());
-      Vec3f target;
+      glm::vec3 target{};
       if (i % 3 == 0) {
         target = t.p0(row);  // a vertex
       } else if (i % 3 == 1) {
         float a = float(w(rng));  // a float point on an edge
-        target = Vec3f(Vec3d(t.p0(row)) * (1 - a) + Vec3d(t.p1(row)) * a);
+        target =
+            glm::vec3(glm::dvec3(t.p0(row)) * double(1 - a) + glm::dvec3(t.p1(row)) * double(a));
       } else {
-        target = Vec3f(Vec3d(o) + Vec3d(u(rng), u(rng), u(rng)));
+        target = glm::vec3(glm::dvec3(o) + glm::dvec3(u(rng), u(rng), u(rng)));
       }
-      Vec3d d = Vec3d(target) - Vec3d(o);
+      glm::dvec3 d = glm::dvec3(target) - glm::dvec3(o);
       if (length_squared(d) == 0) continue;
-      rays.push_back({Vec3d(o), normalize(d)});
+      rays.push_back({glm::dvec3(o), normalize(d)});
     }
     RayStream stream = RayStream::from(rays);
     HitStream hits;
@@ -270,7 +271,7 @@ TEST_P(SimdTracerTest, AimedOcclusionMatchesReference) {
 // whether d is negative along it. Packets whose rays share it take other code paths (permuted
 // loads of columns, one near plane per axis) than packets that mix them.
 int axes_key(const Rayd& r) {
-  Vec3f d(r.d);
+  glm::vec3 d(r.d);
   float a[3] = {std::abs(d.x), std::abs(d.y), std::abs(d.z)};
   int kz = (a[0] >= a[1] && a[0] >= a[2]) ? 0 : (a[1] >= a[2] ? 1 : 2);
   int octant = (d.x < 0) | (d.y < 0) << 1 | (d.z < 0) << 2;
@@ -459,27 +460,29 @@ TEST(SimdTracer, OcclusionPacketsVisitTheFartherChildFirst) {
   Scene s;
   s.materials.push_back(Material{});
   auto& tri = s.table<Triangle>();
-  const Vec3f up(0, 0, 1);
+  const glm::vec3 up(0, 0, 1);
   constexpr int kCells = 32;
   for (int i = 0; i < kCells; ++i)
     for (int j = 0; j < kCells; ++j) {
       float x0 = float(i) / kCells, x1 = float(i + 1) / kCells;
       float y0 = float(j) / kCells, y1 = float(j + 1) / kCells;
-      tri.append({Vec3f(x0, y0, 0), Vec3f(x1, y0, 0), Vec3f(x1, y1, 0)}, {up, up, up}, 0);
-      tri.append({Vec3f(x0, y0, 0), Vec3f(x1, y1, 0), Vec3f(x0, y1, 0)}, {up, up, up}, 0);
+      tri.append({glm::vec3(x0, y0, 0), glm::vec3(x1, y0, 0), glm::vec3(x1, y1, 0)}, {up, up, up},
+                 0);
+      tri.append({glm::vec3(x0, y0, 0), glm::vec3(x1, y1, 0), glm::vec3(x0, y1, 0)}, {up, up, up},
+                 0);
     }
   // Its box is centred on the grid's in x and y, so only z separates the two: z is the root's
   // split axis, along which coherent packets order the children.
-  tri.append({Vec3f(-19.5f, -19.5f, 5), Vec3f(20.5f, -19.5f, 5), Vec3f(0.5f, 20.5f, 5)},
+  tri.append({glm::vec3(-19.5f, -19.5f, 5), glm::vec3(20.5f, -19.5f, 5), glm::vec3(0.5f, 20.5f, 5)},
              {up, up, up}, 0);
   Bvh bvh = build_bvh_and_reorder(s);
   ASSERT_EQ(bvh.nodes[0].axis, 2);
   ASSERT_EQ(bvh.nodes[bvh.nodes[0].index + 1].count, 1);  // the blocker, alone
-  for (Vec3d light : {Vec3d(5, 5, 10), Vec3d(0.5, 0.5, 10)}) {
+  for (glm::dvec3 light : {glm::dvec3(5, 5, 10), glm::dvec3(0.5, 0.5, 10)}) {
     std::vector<Rayd> rays;
     for (int i = 0; i < 16; ++i)
       for (int j = 0; j < 16; ++j) {
-        Vec3d o(Vec3f(float(0.1 + 0.05 * i), float(0.1 + 0.05 * j), 0.0f));
+        glm::dvec3 o(glm::vec3(float(0.1 + 0.05 * i), float(0.1 + 0.05 * j), 0.0f));
         rays.push_back({o, light - o, 0.0, 1.0});  // from the grid to the light
       }
     RayStream stream = RayStream::from(rays);

@@ -37,8 +37,8 @@ TEST(RaySetIo, ReadsTheSpecLayout) {
   EXPECT_EQ(set->width, 4u);
   ASSERT_EQ(set->rays.size(), 1u);
   Rayf r = set->rays.get(0);
-  EXPECT_EQ(r.o, Vec3f(1, 2, 3));
-  EXPECT_EQ(r.d, Vec3f(0, 0, -1));
+  EXPECT_EQ(r.o, glm::vec3(1, 2, 3));
+  EXPECT_EQ(r.d, glm::vec3(0, 0, -1));
   EXPECT_EQ(r.tmax, 1e30f);
 }
 
@@ -90,16 +90,16 @@ TEST(RaySetIo, RoundTripsRaysTrianglesAndHits) {
   EXPECT_EQ(back->rays.tmax, set.rays.tmax);
 
   TriangleTable soup;
-  Vec3f n(0, 0, 1);
-  soup.append({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}, {n, n, n}, 0);
-  soup.append({Vec3f(0, 0, 1), Vec3f(0, 1, 1), Vec3f(1, 0, 1)}, {n, n, n}, 0);
+  glm::vec3 n(0, 0, 1);
+  soup.append({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {n, n, n}, 0);
+  soup.append({glm::vec3(0, 0, 1), glm::vec3(0, 1, 1), glm::vec3(1, 0, 1)}, {n, n, n}, 0);
   ASSERT_TRUE(write_triangle_soup(dir + "/a.tris", soup).ok());
   TriangleTable read;
   auto count = read_triangle_soup(dir + "/a.tris", 7, read);
   ASSERT_TRUE(count.ok()) << count.error();
   EXPECT_EQ(*count, 2u);
-  EXPECT_EQ(read.p2(1), Vec3f(1, 0, 1));
-  EXPECT_EQ(read.n0(1), Vec3f(0, 0, -1));  // the face normal by the winding
+  EXPECT_EQ(read.p2(1), glm::vec3(1, 0, 1));
+  EXPECT_EQ(read.n0(1), glm::vec3(0, 0, -1));  // the face normal by the winding
   EXPECT_EQ(read.material[0], 7u);
 
   std::vector<HitRecord> hits = {{1.5f, 0}, {INFINITY, kNoHit}};

@@ -25,16 +25,17 @@ std::vector<Rayd> random_rays(const Scene& scene, const Bvh& bvh, int count) {
   const TriangleTable& tris = scene.table<Triangle>();
   std::vector<Rayd> rays;
   for (int i = 0; i < count; ++i) {
-    Vec3d o;
+    glm::dvec3 o{};
     for (int k = 0; k < 3; ++k) {
       double u = rng.uniform();
       o[k] = b.lo[k] + (b.hi[k] - b.lo[k]) * u;
     }
     double u1 = rng.uniform(), u2 = rng.uniform();
-    Vec3d d = sample_uniform_sphere(u1, u2);
+    glm::dvec3 d = sample_uniform_sphere(u1, u2);
     if (i % 4 == 0 && tris.size() > 0) {
       auto row = uint32_t(std::min<double>(u1 * double(tris.size()), double(tris.size() - 1)));
-      Vec3d c = (Vec3d(tris.p0(row)) + Vec3d(tris.p1(row)) + Vec3d(tris.p2(row))) / 3.0;
+      glm::dvec3 c =
+          (glm::dvec3(tris.p0(row)) + glm::dvec3(tris.p1(row)) + glm::dvec3(tris.p2(row))) / 3.0;
       d = normalize(c - o);
     }
     rays.push_back({o, d});
@@ -57,7 +58,7 @@ void add_moving_spheres(Scene& scene) {
   }
 }
 
-bool same_bits(const Vec3d& a, const Vec3d& b) {
+bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 

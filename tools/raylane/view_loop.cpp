@@ -50,7 +50,7 @@ struct Controls {
   double exposure = 0;
   bool left_orbits = false;  // O
   Drag drag = Drag::kNone;
-  Vec3d pivot;
+  glm::dvec3 pivot{};
   bool quit = false;
   bool redraw = true;
   double window_height = 1;  // pixels: a drag is measured against the window, not the render
@@ -105,11 +105,12 @@ std::string title(const ViewSession& s, const std::string& name, const Controls&
 
 // Where an orbit turns about: the surface at the centre of the view, or, looking at nothing,
 // the point in front as far away as the scene's centre.
-Vec3d orbit_pivot(const ViewSession& s) {
+glm::dvec3 orbit_pivot(const ViewSession& s) {
   if (auto hit = s.pick(s.width() / 2.0, s.height() / 2.0)) return *hit;
   const CameraSpec& c = s.camera();
   Bounds3f b = s.scene().bounds();
-  Vec3d centre = b.empty() ? c.eye : Vec3d(b.centroid().x, b.centroid().y, b.centroid().z);
+  glm::dvec3 centre =
+      b.empty() ? c.eye : glm::dvec3(b.centroid().x, b.centroid().y, b.centroid().z);
   double d = std::max(length(centre - c.eye), 1e-3 * s.scene_size());
   return c.eye + camera_forward(c) * d;
 }
@@ -197,10 +198,10 @@ bool fly_keys(const ViewSession& s, double seconds, CameraSpec& camera) {
   auto axis = [&](SDL_Scancode plus, SDL_Scancode minus) {
     return double(held[plus]) - double(held[minus]);
   };
-  Vec3d dir(axis(SDL_SCANCODE_RIGHT, SDL_SCANCODE_LEFT),
-            axis(SDL_SCANCODE_PAGEUP, SDL_SCANCODE_PAGEDOWN),
-            axis(SDL_SCANCODE_UP, SDL_SCANCODE_DOWN));
-  if (dir == Vec3d(0, 0, 0)) return false;
+  glm::dvec3 dir(axis(SDL_SCANCODE_RIGHT, SDL_SCANCODE_LEFT),
+                 axis(SDL_SCANCODE_PAGEUP, SDL_SCANCODE_PAGEDOWN),
+                 axis(SDL_SCANCODE_UP, SDL_SCANCODE_DOWN));
+  if (dir == glm::dvec3(0, 0, 0)) return false;
   double speed = kSpeedPerSize * s.scene_size() * (mod & KMOD_SHIFT ? 4 : 1);
   camera = fly_move(camera, dir * (speed * seconds), s.world_up());
   return true;

@@ -95,7 +95,7 @@ void ViewSession::adopt(std::unique_ptr<ViewWorld> world, std::optional<CameraSp
 double ViewSession::scene_size() const {
   Bounds3f b = scene().bounds();
   if (b.empty()) return 1;
-  double d = length(Vec3d(b.diagonal().x, b.diagonal().y, b.diagonal().z));
+  double d = length(glm::dvec3(b.diagonal().x, b.diagonal().y, b.diagonal().z));
   return d > 0 && std::isfinite(d) ? d : 1;
 }
 
@@ -109,7 +109,7 @@ bool ViewSession::set_camera(const CameraSpec& c) {
   return true;
 }
 
-std::optional<Vec3d> ViewSession::pick(double x, double y) const {
+std::optional<glm::dvec3> ViewSession::pick(double x, double y) const {
   Camera cam = Camera::from_scene(scene());
   Rayd ray = cam.ray_through(x, height() - y);  // the pixel grid counts y up
   std::vector<Rayd> rays{ray};

@@ -59,7 +59,7 @@ class ViewSession {
   uint32_t height() const { return scene().height; }
   const Scene& scene() const { return world_->parsed.scene; }
   const CameraSpec& camera() const { return *scene().camera; }
-  Vec3d world_up() const { return world_up_; }
+  glm::dvec3 world_up() const { return world_up_; }
   double scene_size() const;  // the diagonal of the scene's bounds (1 for an empty scene)
 
   // The camera becomes `c` as `raylane render --set '<camera_line(c)>'` reads it (bit for bit:
@@ -67,7 +67,7 @@ class ViewSession {
   // the same image. A changed camera empties the film; returns whether it changed.
   bool set_camera(const CameraSpec& c);
   // The point that the ray through window pixel (x, y) (from the top left) hits first, if any.
-  std::optional<Vec3d> pick(double x, double y) const;
+  std::optional<glm::dvec3> pick(double x, double y) const;
 
   const ViewMode& mode() const { return mode_; }
   void set_mode(const ViewMode& mode);
@@ -106,7 +106,7 @@ class ViewSession {
 
   ViewRequest request_;
   std::unique_ptr<ViewWorld> world_;
-  Vec3d world_up_{0, 0, 1};
+  glm::dvec3 world_up_{0, 0, 1};
   ViewMode mode_;
   Film film_;
   Image image_;

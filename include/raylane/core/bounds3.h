@@ -5,21 +5,22 @@
 #include <limits>
 
 #include "raylane/core/float_util.h"
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
 template <class T>
 struct Bounds3 {
   static constexpr T inf = std::numeric_limits<T>::infinity();
-  Vec3<T> lo{inf, inf, inf};
-  Vec3<T> hi{-inf, -inf, -inf};
+  glm::vec<3, T> lo{inf, inf, inf};
+  glm::vec<3, T> hi{-inf, -inf, -inf};
 
   constexpr Bounds3() = default;
-  constexpr Bounds3(const Vec3<T>& a, const Vec3<T>& b) : lo(min(a, b)), hi(max(a, b)) {}
+  constexpr Bounds3(const glm::vec<3, T>& a, const glm::vec<3, T>& b)
+      : lo(min(a, b)), hi(max(a, b)) {}
 
   constexpr bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-  constexpr void extend(const Vec3<T>& p) {
+  constexpr void extend(const glm::vec<3, T>& p) {
     lo = min(lo, p);
     hi = max(hi, p);
   }
@@ -27,15 +28,15 @@ struct Bounds3 {
     lo = min(lo, b.lo);
     hi = max(hi, b.hi);
   }
-  constexpr Vec3<T> diagonal() const { return hi - lo; }
-  constexpr Vec3<T> centroid() const { return (lo + hi) * T(0.5); }
+  constexpr glm::vec<3, T> diagonal() const { return hi - lo; }
+  constexpr glm::vec<3, T> centroid() const { return (lo + hi) * T(0.5); }
   // Half the surface area: the SAH only ever uses ratios of areas.
   constexpr T half_area() const {
     if (empty()) return T(0);
-    Vec3<T> d = diagonal();
+    glm::vec<3, T> d = diagonal();
     return d.x * d.y + d.y * d.z + d.z * d.x;
   }
-  constexpr bool contains(const Vec3<T>& p) const {
+  constexpr bool contains(const glm::vec<3, T>& p) const {
     return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
   }
   constexpr bool contains(const Bounds3& b) const {

@@ -7,19 +7,19 @@
 
 #include <limits>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
 template <class T>
 struct Ray {
-  Vec3<T> o;
-  Vec3<T> d;
+  glm::vec<3, T> o{};
+  glm::vec<3, T> d{};
   T tmin = T(0);
   T tmax = std::numeric_limits<T>::infinity();
   T time = T(0.5);
 
-  constexpr Vec3<T> at(T t) const { return o + d * t; }
+  constexpr glm::vec<3, T> at(T t) const { return o + d * t; }
 };
 
 using Rayf = Ray<float>;
@@ -27,7 +27,7 @@ using Rayd = Ray<double>;
 
 template <class To, class From>
 constexpr Ray<To> ray_cast(const Ray<From>& r) {
-  return {Vec3<To>(r.o), Vec3<To>(r.d), To(r.tmin), To(r.tmax), To(r.time)};
+  return {glm::vec<3, To>(r.o), glm::vec<3, To>(r.d), To(r.tmin), To(r.tmax), To(r.time)};
 }
 
 }  // namespace raylane

@@ -13,11 +13,12 @@ namespace raylane {
 // side `toward` points to, by a bound on p's own rounding error (pbrt-v4 `OffsetRayOrigin`;
 // Wächter and Binder, Ray Tracing Gems ch. 6), so the ray cannot re-hit the surface it starts
 // on. `p_error` is a componentwise bound on |p − exact p|.
-Vec3d offset_ray_origin(const Vec3d& p, const Vec3d& p_error, const Vec3d& ng, const Vec3d& toward);
+glm::dvec3 offset_ray_origin(const glm::dvec3& p, const glm::dvec3& p_error, const glm::dvec3& ng,
+                             const glm::dvec3& toward);
 
 // A componentwise bound on the error of a hit point o + t·d whose t came from a float
 // kernel: a float t is within a few ulps, so allow 2^5 float roundoffs of |o| + |t·d|.
-Vec3d hit_point_error(const Rayd& ray, double t);
+glm::dvec3 hit_point_error(const Rayd& ray, double t);
 
 // Where a shadow ray from o toward a light point ends: at the point's distance along the ray.
 // `wi` is the unit direction from the shading point p to the light point, `dist` their
@@ -26,7 +27,8 @@ Vec3d hit_point_error(const Rayd& ray, double t);
 // surface, wherever rounding puts it, does not block it, and the query looks for blockers
 // before it. Infinite for an infinite distance (the environment).
 // Inline: the render loop computes one per shadow ray, in a loop a call would slow down.
-inline double shadow_ray_tmax(const Vec3d& o, const Vec3d& p, const Vec3d& wi, double dist) {
+inline double shadow_ray_tmax(const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& wi,
+                              double dist) {
   if (std::isinf(dist)) return dist;  // the environment: nothing may lie anywhere on the ray
   return dist + dot(p - o, wi);       // the light point p + dist·wi, projected on the ray
 }

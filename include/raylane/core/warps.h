@@ -4,7 +4,7 @@
 // gives NaN (docs/hard-cases.md N6).
 #pragma once
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
@@ -13,15 +13,15 @@ inline constexpr double kPi = 3.14159265358979323846;
 // An orthonormal frame (s, t, n) around a unit vector n (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited", JCGT 6(1)): branch-free except for the sign of n.z.
 struct Frame {
-  Vec3d s, t, n;
-  explicit Frame(const Vec3d& normal);
-  Vec3d to_world(const Vec3d& v) const { return s * v.x + t * v.y + n * v.z; }
-  Vec3d to_local(const Vec3d& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  glm::dvec3 s{}, t{}, n{};
+  explicit Frame(const glm::dvec3& normal);
+  glm::dvec3 to_world(const glm::dvec3& v) const { return s * v.x + t * v.y + n * v.z; }
+  glm::dvec3 to_local(const glm::dvec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
 };
 
 // Cosine-weighted hemisphere around +z (Malley's method: a uniform disk point lifted up);
 // pdf = cosθ/π.
-Vec3d sample_cosine_hemisphere(double u1, double u2);
+glm::dvec3 sample_cosine_hemisphere(double u1, double u2);
 inline double cosine_hemisphere_pdf(double cos_theta) {
   return cos_theta > 0 ? cos_theta / kPi : 0.0;
 }
@@ -29,15 +29,15 @@ inline double cosine_hemisphere_pdf(double cos_theta) {
 // A direction uniformly inside the cone around +z of half-angle θmax, given
 // one_minus_cos_max = 1 − cos θmax (computed by the caller without cancellation for narrow
 // cones); pdf = 1 / (2π·(1 − cos θmax)).
-Vec3d sample_uniform_cone(double u1, double u2, double one_minus_cos_max);
+glm::dvec3 sample_uniform_cone(double u1, double u2, double one_minus_cos_max);
 
 // A uniform point on the unit disc, by Shirley and Chiu's concentric map (1997, "A
 // low-distortion map between disk and square"): squares of the [-1, 1]² grid go to rings, so
 // the square's stratification survives (no polar map's pinch at the centre); pdf = 1/π.
 // Returned as (x, y, 0).
-Vec3d sample_concentric_disc(double u1, double u2);
+glm::dvec3 sample_concentric_disc(double u1, double u2);
 
 // A uniform direction on the unit sphere; pdf = 1/(4π).
-Vec3d sample_uniform_sphere(double u1, double u2);
+glm::dvec3 sample_uniform_sphere(double u1, double u2);
 
 }  // namespace raylane

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "raylane/core/limits.h"
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
@@ -18,11 +18,11 @@ struct Image {
   Image(uint32_t w, uint32_t h) : width(w), height(h), rgb(std::size_t(w) * h * 3, 0.0f) {}
 
   std::size_t index(uint32_t x, uint32_t y) const { return (std::size_t(y) * width + x) * 3; }
-  Vec3f at(uint32_t x, uint32_t y) const {
+  glm::vec3 at(uint32_t x, uint32_t y) const {
     std::size_t i = index(x, y);
     return {rgb[i], rgb[i + 1], rgb[i + 2]};
   }
-  void set(uint32_t x, uint32_t y, const Vec3f& c) {
+  void set(uint32_t x, uint32_t y, const glm::vec3& c) {
     std::size_t i = index(x, y);
     rgb[i] = c.x, rgb[i + 1] = c.y, rgb[i + 2] = c.z;
   }

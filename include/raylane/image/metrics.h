@@ -22,7 +22,7 @@ struct ImageDiff {
 // `ref` is the reference; the sizes must match. The 1e-2 in relMSE keeps dark pixels from
 // dominating (the same guard as pbrt's imgtool MRSE).
 Result<ImageDiff> compare(const Image& a, const Image& ref);
-Vec3d mean(const Image& image);
+glm::dvec3 mean(const Image& image);
 
 // Per-pixel relative error, for `raylane diff --heatmap` (as pbrt's `imgtool diff --difference`
 // and FLIP's error maps are read): in every channel of a pixel, sqrt(mean over its channels of

@@ -18,7 +18,7 @@ namespace raylane {
 // One pixel: mantissas scaled so the largest channel has its top bit set, and a shared
 // exponent biased by 128. Negatives and NaN encode as 0; +inf as the largest encodable value.
 std::array<uint8_t, 4> float_to_rgbe(float r, float g, float b);
-Vec3f rgbe_to_float(const std::array<uint8_t, 4>& e);
+glm::vec3 rgbe_to_float(const std::array<uint8_t, 4>& e);
 
 // The whole file. `metadata` lines (KEY=value) go into the header after SOFTWARE=raylane.
 std::string encode_rgbe(const Image& image, const std::vector<std::string>& metadata = {});

@@ -26,8 +26,8 @@ struct BoxTable {
 
   auto columns() { return std::tie(lox, loy, loz, hix, hiy, hiz, material); }
   std::size_t size() const { return lox.size(); }
-  Vec3f lo(uint32_t i) const { return {lox[i], loy[i], loz[i]}; }
-  Vec3f hi(uint32_t i) const { return {hix[i], hiy[i], hiz[i]}; }
+  glm::vec3 lo(uint32_t i) const { return {lox[i], loy[i], loz[i]}; }
+  glm::vec3 hi(uint32_t i) const { return {hix[i], hiy[i], hiz[i]}; }
 
   // p = (bx, by, bz, dx, dy, dz); every component of d must be non-zero, and stay so after
   // both corners are rounded to float; both corners must be finite floats.
@@ -85,7 +85,7 @@ inline void box_slab(double lo, double hi, double o, double d, double& tn, doubl
 // The reference kernel: the slab method (Kay and Kajiya 1986) in double, closed box. The
 // running extrema keep their value when a slab value is NaN (`t0 = tn > t0 ? tn : t0`).
 inline double intersect_ref(const BoxTable& b, uint32_t i, const Rayd& ray) {
-  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  glm::dvec3 lo(b.lo(i)), hi(b.hi(i));
   double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
   for (int k = 0; k < 3; ++k) {
     double tn, tf;
@@ -101,7 +101,7 @@ inline double intersect_ref(const BoxTable& b, uint32_t i, const Rayd& ray) {
 // exit, the axis whose far plane is first; ties go to the lowest axis, so the normal is
 // always exactly one unit axis vector (docs/hard-cases.md B5). The point is snapped onto that face.
 inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {
-  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  glm::dvec3 lo(b.lo(i)), hi(b.hi(i));
   double tn[3], tf[3];
   for (int k = 0; k < 3; ++k)
     detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn[k], tf[k]);
@@ -122,7 +122,7 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
       (entry_axis >= 0) & ((exit_axis < 0) | (std::abs(t - entry) <= std::abs(t - exit)));
   int axis = entering ? entry_axis : (exit_axis >= 0 ? exit_axis : 0);
   bool neg = std::signbit(ray.d[axis]);
-  Vec3d n(0, 0, 0), p = ray.at(t);
+  glm::dvec3 n(0, 0, 0), p = ray.at(t);
   // Entering, the face looks back at the ray; leaving, it looks along it.
   n[axis] = (entering == neg) ? 1.0 : -1.0;
   p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];
@@ -132,7 +132,7 @@ inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, doubl
 // On the face normal to axis k, u and v run 0 → 1 across it along the other two axes in x, y, z
 // order (normal to x: u along y, v along z; to y: x, z; to z: x, y).
 inline TexCoord texcoord_ref(const BoxTable& b, uint32_t i, const Surface& s) {
-  Vec3d lo(b.lo(i)), hi(b.hi(i));
+  glm::dvec3 lo(b.lo(i)), hi(b.hi(i));
   int k = s.ng.x != 0 ? 0 : (s.ng.y != 0 ? 1 : 2);
   int a = k == 0 ? 1 : 0, c = k == 2 ? 1 : 2;
   auto across = [&](int axis) { return (s.p[axis] - lo[axis]) / (hi[axis] - lo[axis]); };

@@ -38,16 +38,16 @@ struct CylinderTable {
 
   auto columns() { return std::tie(bx, by, bz, r, ux, uy, uz, h, material); }
   std::size_t size() const { return r.size(); }
-  Vec3f base(uint32_t i) const { return {bx[i], by[i], bz[i]}; }
+  glm::vec3 base(uint32_t i) const { return {bx[i], by[i], bz[i]}; }
   // Base to top-cap centre, exactly u·h.
-  Vec3d axis(uint32_t i) const { return Vec3d(unit_axis(i)) * double(h[i]); }
-  Vec3f unit_axis(uint32_t i) const { return {ux[i], uy[i], uz[i]}; }
+  glm::dvec3 axis(uint32_t i) const { return glm::dvec3(unit_axis(i)) * double(h[i]); }
+  glm::vec3 unit_axis(uint32_t i) const { return {ux[i], uy[i], uz[i]}; }
 
   // p = (bx, by, bz, ax, ay, az, r); |a| > 0 and r > 0 after rounding to float, and the
   // caps grown by r finite in float.
   std::optional<ParamError> append(std::span<const double, 7> p, uint32_t mat) {
-    Vec3f a{float(p[3]), float(p[4]), float(p[5])};
-    Vec3d ad(a);
+    glm::vec3 a{float(p[3]), float(p[4]), float(p[5])};
+    glm::dvec3 ad(a);
     double len = length(ad);
     if (!(len > 0.0)) return ParamError{3, "cylinder axis must be non-zero"};
     if (!std::isfinite(float(len))) return ParamError{3, "cylinder axis is too long"};
@@ -59,7 +59,7 @@ struct CylinderTable {
     for (int k = 0; k < 3; ++k)  // its bounds, both caps grown by r, must be finite floats
       if (!std::isfinite(float(std::abs(p[k]) + std::abs(double(a[k])) + double(radius))))
         return ParamError{3, "cylinder reaches beyond float (the largest is about 3.4e38)"};
-    Vec3d u = ad / len;
+    glm::dvec3 u = ad / len;
     bx.push_back(float(p[0]));
     by.push_back(float(p[1]));
     bz.push_back(float(p[2]));
@@ -75,12 +75,12 @@ struct CylinderTable {
   // The box of the two cap discs: the span of both centres grown by r·sqrt(1 − u_k²) per
   // axis (docs/hard-cases.md C7), computed in double and rounded outward.
   Bounds3f bounds(uint32_t i) const {
-    Vec3d b(base(i)), top = Vec3d(base(i)) + Vec3d(axis(i));
-    Vec3d u = normalize(Vec3d(axis(i)));
+    glm::dvec3 b(base(i)), top = glm::dvec3(base(i)) + glm::dvec3(axis(i));
+    glm::dvec3 u = normalize(glm::dvec3(axis(i)));
     double rad = r[i];
-    Vec3d g(rad * std::sqrt(std::max(0.0, 1 - u.x * u.x)),
-            rad * std::sqrt(std::max(0.0, 1 - u.y * u.y)),
-            rad * std::sqrt(std::max(0.0, 1 - u.z * u.z)));
+    glm::dvec3 g(rad * std::sqrt(std::max(0.0, 1 - u.x * u.x)),
+                 rad * std::sqrt(std::max(0.0, 1 - u.y * u.y)),
+                 rad * std::sqrt(std::max(0.0, 1 - u.z * u.z)));
     Bounds3d bb(b, top);
     return round_out(Bounds3d(bb.lo - g, bb.hi + g));
   }
@@ -109,17 +109,17 @@ namespace detail {
 inline bool cylinder_interval(const CylinderTable& c, uint32_t i, const Rayd& ray, double& t0,
                               double& t1) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  Vec3d u = normalize(Vec3d(c.axis(i)));
-  double h = length(Vec3d(c.axis(i))), r = c.r[i];
-  Vec3d f = ray.o - Vec3d(c.base(i));
+  glm::dvec3 u = normalize(glm::dvec3(c.axis(i)));
+  double h = length(glm::dvec3(c.axis(i))), r = c.r[i];
+  glm::dvec3 f = ray.o - glm::dvec3(c.base(i));
   double fa = dot(f, u), da = dot(ray.d, u);
-  Vec3d fp = f - fa * u, dp = ray.d - da * u;
+  glm::dvec3 fp = f - fa * u, dp = ray.d - da * u;
   double a = dot(dp, dp), b = dot(fp, dp);
   double s0 = -kInf, s1 = kInf;
   if (a == 0) {
     if (!(dot(fp, fp) <= r * r)) return false;  // parallel, outside
   } else {
-    Vec3d l = fp - (b / a) * dp;
+    glm::dvec3 l = fp - (b / a) * dp;
     double disc = r * r - dot(l, l);
     if (!(disc >= 0)) return false;
     solve_quadratic(a, b, dot(fp, fp) - r * r, a * disc, s0, s1);
@@ -146,15 +146,15 @@ inline double intersect_ref(const CylinderTable& c, uint32_t i, const Rayd& ray)
 
 // The part hit is the one the point is nearest to: a cap (±axis) or the side (radial).
 inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, double t) {
-  Vec3d u = normalize(Vec3d(c.axis(i)));
-  double h = length(Vec3d(c.axis(i))), r = c.r[i];
-  Vec3d p = ray.at(t);
-  Vec3d q = p - Vec3d(c.base(i));
+  glm::dvec3 u = normalize(glm::dvec3(c.axis(i)));
+  double h = length(glm::dvec3(c.axis(i))), r = c.r[i];
+  glm::dvec3 p = ray.at(t);
+  glm::dvec3 q = p - glm::dvec3(c.base(i));
   double z = dot(q, u);
-  Vec3d radial = q - z * u;
+  glm::dvec3 radial = q - z * u;
   double rlen = length(radial);
   double cap_dist = std::min(std::abs(z), std::abs(z - h));
-  Vec3d n;
+  glm::dvec3 n{};
   if (cap_dist < std::abs(rlen - r) || !(rlen > 0)) {
     n = z < h / 2 ? -u : u;
   } else {
@@ -167,10 +167,10 @@ inline Surface surface_ref(const CylinderTable& c, uint32_t i, const Rayd& ray, 
 // al. 2017: it depends on the axis alone) s towards t; v = 0 at the base to 1 at the top.
 // The caps: u, v = 0.5 + (the point's s and t coordinates from the cap's centre) / 2r.
 inline TexCoord texcoord_ref(const CylinderTable& c, uint32_t i, const Surface& s) {
-  Vec3d axis(c.axis(i));
+  glm::dvec3 axis(c.axis(i));
   double h = length(axis);
   Frame f(axis / h);
-  Vec3d local = f.to_local(s.p - Vec3d(c.base(i)));
+  glm::dvec3 local = f.to_local(s.p - glm::dvec3(c.base(i)));
   if (std::abs(dot(s.ng, f.n)) > 0.5) {  // a cap: its normal is ±axis
     double two_r = 2.0 * c.r[i];
     return {0.5 + local.x / two_r, 0.5 + local.y / two_r};

@@ -31,11 +31,11 @@ struct MovingSphereTable {
 
   auto columns() { return std::tie(cx, cy, cz, mx, my, mz, r, material); }
   std::size_t size() const { return r.size(); }
-  Vec3f start(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
-  Vec3f motion(uint32_t i) const { return {mx[i], my[i], mz[i]}; }
+  glm::vec3 start(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
+  glm::vec3 motion(uint32_t i) const { return {mx[i], my[i], mz[i]}; }
   // The centre at `time`, in double on the table's floats (the references' centre).
-  Vec3d center_at(uint32_t i, double time) const {
-    return Vec3d(start(i)) + Vec3d(motion(i)) * time;
+  glm::dvec3 center_at(uint32_t i, double time) const {
+    return glm::dvec3(start(i)) + glm::dvec3(motion(i)) * time;
   }
 
   // p = (x0, y0, z0, x1, y1, z1, r); r must be > 0 after rounding to float, and both ends'
@@ -68,8 +68,8 @@ struct MovingSphereTable {
   // The swept sphere's box: the union of the boxes of the sphere at the opening and at the
   // closing (a linear motion stays inside it at every time in between).
   Bounds3f bounds(uint32_t i) const {
-    Vec3d rr(r[i], r[i], r[i]);
-    Vec3d c0 = center_at(i, 0), c1 = center_at(i, 1);
+    glm::dvec3 rr(r[i], r[i], r[i]);
+    glm::dvec3 c0 = center_at(i, 0), c1 = center_at(i, 1);
     return round_out(Bounds3d(min(c0, c1) - rr, max(c0, c1) + rr));
   }
 };
@@ -89,12 +89,12 @@ struct MovingSphere {
   // sphere at the middle of the shutter, for the `lit` view and statistics.
   static double area(const Table& t, uint32_t i) { return 4 * kPi * double(t.r[i]) * t.r[i]; }
   static AreaSample sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
-    Vec3d n = sample_uniform_sphere(u1, u2);
+    glm::dvec3 n = sample_uniform_sphere(u1, u2);
     return {t.center_at(i, 0.5) + n * double(t.r[i]), n};
   }
   // The course's `lit` view lights from an emitting sphere's centre: here at mid-shutter, the
   // time the ray-casting views render.
-  static Vec3d point_light(const Table& t, uint32_t i) { return t.center_at(i, 0.5); }
+  static glm::dvec3 point_light(const Table& t, uint32_t i) { return t.center_at(i, 0.5); }
 };
 
 // The reference kernel, in double on the table's floats: the sphere's (sphere.h) about the
@@ -105,8 +105,8 @@ inline double intersect_ref(const MovingSphereTable& s, uint32_t i, const Rayd& 
 
 // The hit point projected back onto the sphere at the ray's time.
 inline Surface surface_ref(const MovingSphereTable& s, uint32_t i, const Rayd& ray, double t) {
-  Vec3d c = s.center_at(i, ray.time);
-  Vec3d n = normalize(ray.at(t) - c);
+  glm::dvec3 c = s.center_at(i, ray.time);
+  glm::dvec3 n = normalize(ray.at(t) - c);
   return {c + n * double(s.r[i]), n, n};
 }
 

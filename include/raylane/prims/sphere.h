@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "raylane/core/bounds3.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/core/ray.h"
 #include "raylane/core/warps.h"
-#include "raylane/core/prim_ref.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
@@ -27,7 +27,7 @@ struct SphereTable {
 
   auto columns() { return std::tie(cx, cy, cz, r, material); }
   std::size_t size() const { return r.size(); }
-  Vec3f center(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
+  glm::vec3 center(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
 
   // p = (cx, cy, cz, r); r must be > 0 after rounding to float, and c ± r finite in float.
   std::optional<ParamError> append(std::span<const double, 4> p, uint32_t mat) {
@@ -48,8 +48,8 @@ struct SphereTable {
   }
 
   Bounds3f bounds(uint32_t i) const {
-    Vec3d c(center(i));
-    Vec3d rr(r[i], r[i], r[i]);
+    glm::dvec3 c(center(i));
+    glm::dvec3 rr(r[i], r[i], r[i]);
     return round_out(Bounds3d(c - rr, c + rr));
   }
 };
@@ -74,20 +74,22 @@ struct Sphere {
   // Seen from outside: a direction uniform in the cone the sphere subtends (pbrt-v4
   // Sphere::Sample), and that cone's solid angle; nothing from inside (area sampling then).
   static std::optional<SubtendedSample> sample_subtended(const Table& t, uint32_t i,
-                                                         const Vec3d& ref, double u1, double u2);
-  static std::optional<double> subtended_solid_angle(const Table& t, uint32_t i, const Vec3d& ref);
+                                                         const glm::dvec3& ref, double u1,
+                                                         double u2);
+  static std::optional<double> subtended_solid_angle(const Table& t, uint32_t i,
+                                                     const glm::dvec3& ref);
   // The course's `lit` view lights from an emitting sphere's centre.
-  static Vec3d point_light(const Table& t, uint32_t i) { return Vec3d(t.center(i)); }
+  static glm::dvec3 point_light(const Table& t, uint32_t i) { return glm::dvec3(t.center(i)); }
 };
 
 // The reference kernel of a sphere of centre c and radius r, in double. The discriminant is the
 // squared distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a
 // far, small sphere does not cancel to nothing (docs/hard-cases.md S1).
-inline double intersect_sphere_ref(const Vec3d& c, double r, const Rayd& ray) {
+inline double intersect_sphere_ref(const glm::dvec3& c, double r, const Rayd& ray) {
   constexpr double kMiss = std::numeric_limits<double>::infinity();
-  Vec3d f = ray.o - c;
+  glm::dvec3 f = ray.o - c;
   double a = dot(ray.d, ray.d), b = dot(f, ray.d);
-  Vec3d l = f - (b / a) * ray.d;
+  glm::dvec3 l = f - (b / a) * ray.d;
   double disc = r * r - dot(l, l);
   if (!(disc >= 0)) return kMiss;
   double t0, t1;
@@ -97,20 +99,20 @@ inline double intersect_sphere_ref(const Vec3d& c, double r, const Rayd& ray) {
 
 // The reference kernel, in double on the table's floats.
 inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
-  return intersect_sphere_ref(Vec3d(s.center(i)), s.r[i], ray);
+  return intersect_sphere_ref(glm::dvec3(s.center(i)), s.r[i], ray);
 }
 
 // The hit point is projected back onto the sphere (pbrt-v4 Sphere::Intersect), so its error
 // is a few ulps of the radius, not of the distance travelled.
 inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, double t) {
-  Vec3d c(s.center(i));
-  Vec3d n = normalize(ray.at(t) - c);
+  glm::dvec3 c(s.center(i));
+  glm::dvec3 n = normalize(ray.at(t) - c);
   return {c + n * double(s.r[i]), n, n};
 }
 
 // u = φ/2π with φ = atan2(y, x) in [0, 2π), v = 1 − θ/π with θ from +Z, of a unit direction d
 // from the centre in world axes.
-inline TexCoord sphere_texcoord(const Vec3d& d) {
+inline TexCoord sphere_texcoord(const glm::dvec3& d) {
   double phi = std::atan2(d.y, d.x);
   if (phi < 0) phi += 2 * kPi;
   double u = phi / (2 * kPi);
@@ -120,7 +122,7 @@ inline TexCoord sphere_texcoord(const Vec3d& d) {
 
 // The point's direction from the centre (the point alone: light sampling has no normal for it).
 inline TexCoord texcoord_ref(const SphereTable& t, uint32_t i, const Surface& s) {
-  return sphere_texcoord(normalize(s.p - Vec3d(t.center(i))));
+  return sphere_texcoord(normalize(s.p - glm::dvec3(t.center(i))));
 }
 
 }  // namespace raylane

@@ -2,14 +2,15 @@
 // the points and directions a kind's sampling hooks return (prim_list.h).
 #pragma once
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
 struct Surface {
-  Vec3d p;   // the hit point
-  Vec3d ng;  // unit geometric normal, pointing out of the solid (or by the triangle's winding)
-  Vec3d ns;  // unit shading normal (interpolated for mesh triangles; = ng otherwise)
+  glm::dvec3 p{};  // the hit point
+  glm::dvec3
+      ng{};  // unit geometric normal, pointing out of the solid (or by the triangle's winding)
+  glm::dvec3 ns{};  // unit shading normal (interpolated for mesh triangles; = ng otherwise)
 };
 
 // Texture coordinates (docs/scene-language.md, "Beyond project 4: textures, environment, lens"): u
@@ -21,14 +22,14 @@ struct TexCoord {
 
 // A point on a primitive's surface and its unit outward normal (by the winding for triangles).
 struct AreaSample {
-  Vec3d p, n;
+  glm::dvec3 p{}, n{};
 };
 
 // A direction toward a primitive from a reference point, drawn uniformly over the solid angle
 // the primitive subtends there (density 1 / solid_angle), and the distance to the surface
 // along it.
 struct SubtendedSample {
-  Vec3d wi;
+  glm::dvec3 wi{};
   double dist = 0;
   double solid_angle = 0;
 };

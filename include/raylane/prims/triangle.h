@@ -47,15 +47,15 @@ struct TriangleTable {
     std::apply([](auto&... c) { (std::vector<float>().swap(c), ...); }, optional_columns());
   }
   std::size_t size() const { return p0x.size(); }
-  Vec3f p0(uint32_t i) const { return {p0x[i], p0y[i], p0z[i]}; }
-  Vec3f p1(uint32_t i) const { return {p1x[i], p1y[i], p1z[i]}; }
-  Vec3f p2(uint32_t i) const { return {p2x[i], p2y[i], p2z[i]}; }
-  Vec3f n0(uint32_t i) const { return {n0x[i], n0y[i], n0z[i]}; }
-  Vec3f n1(uint32_t i) const { return {n1x[i], n1y[i], n1z[i]}; }
-  Vec3f n2(uint32_t i) const { return {n2x[i], n2y[i], n2z[i]}; }
+  glm::vec3 p0(uint32_t i) const { return {p0x[i], p0y[i], p0z[i]}; }
+  glm::vec3 p1(uint32_t i) const { return {p1x[i], p1y[i], p1z[i]}; }
+  glm::vec3 p2(uint32_t i) const { return {p2x[i], p2y[i], p2z[i]}; }
+  glm::vec3 n0(uint32_t i) const { return {n0x[i], n0y[i], n0z[i]}; }
+  glm::vec3 n1(uint32_t i) const { return {n1x[i], n1y[i], n1z[i]}; }
+  glm::vec3 n2(uint32_t i) const { return {n2x[i], n2y[i], n2z[i]}; }
 
   // A row; its UVs (if the table has UV columns) are `uv`, or (0, 0) without.
-  void append(const std::array<Vec3f, 3>& p, const std::array<Vec3f, 3>& n, uint32_t mat,
+  void append(const std::array<glm::vec3, 3>& p, const std::array<glm::vec3, 3>& n, uint32_t mat,
               const std::array<TexCoord, 3>* uv = nullptr) {
     p0x.push_back(p[0].x), p0y.push_back(p[0].y), p0z.push_back(p[0].z);
     p1x.push_back(p[1].x), p1y.push_back(p[1].y), p1z.push_back(p[1].z);
@@ -114,14 +114,14 @@ struct WoopRef {
   double u, v, w, det, t;
 };
 inline bool woop_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, WoopRef& out) {
-  Vec3d p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
+  glm::dvec3 p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
   if (length_squared(cross(p1 - p0, p2 - p0)) == 0)
     return false;  // zero area (docs/hard-cases.md T4)
   int kz = max_dimension(abs(ray.d));
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
   if (ray.d[kz] < 0) std::swap(kx, ky);
   double sx = ray.d[kx] / ray.d[kz], sy = ray.d[ky] / ray.d[kz], sz = 1.0 / ray.d[kz];
-  Vec3d a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+  glm::dvec3 a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
   double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
   double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
   double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
@@ -147,16 +147,17 @@ inline double intersect_ref(const TriangleTable& tri, uint32_t i, const Rayd& ra
 // The point from the barycentrics (pbrt-v4 Triangle::InteractionFromIntersection), the
 // geometric normal by the winding, the shading normal interpolated from the vertex normals.
 inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, double t) {
-  Vec3d p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
-  Vec3d ng = normalize(cross(p1 - p0, p2 - p0));
+  glm::dvec3 p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
+  glm::dvec3 ng = normalize(cross(p1 - p0, p2 - p0));
   detail::WoopRef w;
   Rayd unbounded = ray;
   unbounded.tmin = -std::numeric_limits<double>::infinity();
   unbounded.tmax = std::numeric_limits<double>::infinity();
   if (!detail::woop_ref(tri, i, unbounded, w)) return {ray.at(t), ng, ng};
   double b0 = w.u / w.det, b1 = w.v / w.det, b2 = w.w / w.det;
-  Vec3d p = b0 * p0 + b1 * p1 + b2 * p2;
-  Vec3d ns = b0 * Vec3d(tri.n0(i)) + b1 * Vec3d(tri.n1(i)) + b2 * Vec3d(tri.n2(i));
+  glm::dvec3 p = b0 * p0 + b1 * p1 + b2 * p2;
+  glm::dvec3 ns =
+      b0 * glm::dvec3(tri.n0(i)) + b1 * glm::dvec3(tri.n1(i)) + b2 * glm::dvec3(tri.n2(i));
   double len = length(ns);
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
 }
@@ -166,7 +167,8 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
 // rounding of it). (0, 0) for a table without UVs.
 inline TexCoord texcoord_ref(const TriangleTable& tri, uint32_t i, const Surface& s) {
   if (!tri.has_uv()) return {};
-  Vec3d p0(tri.p0(i)), e1 = Vec3d(tri.p1(i)) - p0, e2 = Vec3d(tri.p2(i)) - p0, q = s.p - p0;
+  glm::dvec3 p0(tri.p0(i)), e1 = glm::dvec3(tri.p1(i)) - p0, e2 = glm::dvec3(tri.p2(i)) - p0,
+                            q = s.p - p0;
   double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
   double q1 = dot(q, e1), q2 = dot(q, e2);
   double det = d11 * d22 - d12 * d12;

@@ -9,9 +9,9 @@
 namespace raylane {
 
 struct Camera {
-  Vec3d eye;
-  Vec3d right, up, forward;  // R·x, R·y, R·(−z)
-  double rx = 1, ry = 1;     // tan of the half fields of view; rx = ry·W/H
+  glm::dvec3 eye{};
+  glm::dvec3 right{}, up{}, forward{};  // R·x, R·y, R·(−z)
+  double rx = 1, ry = 1;                // tan of the half fields of view; rx = ry·W/H
   uint32_t width = 1, height = 1;
   double lens_radius = 0, focus = 1;  // `lens r d` (0: the pinhole)
 
@@ -22,7 +22,7 @@ struct Camera {
   // the left edge, y counts UP from the bottom edge; (i + 0.5, j + 0.5) is a pixel centre.
   Rayd ray_through(double x, double y) const {
     double dx = 2 * x / width - 1, dy = 2 * y / height - 1;
-    Vec3d d = normalize(right * (dx * rx) + up * (dy * ry) + forward);
+    glm::dvec3 d = normalize(right * (dx * rx) + up * (dy * ry) + forward);
     return {eye, d};
   }
 

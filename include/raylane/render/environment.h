@@ -14,15 +14,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "raylane/core/mat3.h"
-#include "raylane/core/vec3.h"
+#include "raylane/core/rotation.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/core/warps.h"
 #include "raylane/image/image.h"
 
 namespace raylane {
 
 // Rec. 709 luminance of linear RGB (ITU-R BT.709 primaries, Y row).
-inline double rec709_luminance(const Vec3d& rgb) {
+inline double rec709_luminance(const glm::dvec3& rgb) {
   return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
 }
 
@@ -87,9 +87,9 @@ class PiecewiseConstant2D {
 };
 
 struct EnvironmentSample {
-  Vec3d wi;        // unit world direction toward the environment
-  Vec3d le;        // the radiance s·E(wi) arriving along −wi
-  double pdf = 0;  // solid-angle density; 0 = invalid (black map, or a pole)
+  glm::dvec3 wi{};  // unit world direction toward the environment
+  glm::dvec3 le{};  // the radiance s·E(wi) arriving along −wi
+  double pdf = 0;   // solid-angle density; 0 = invalid (black map, or a pole)
   bool valid() const { return pdf > 0; }
 };
 
@@ -100,14 +100,14 @@ class EnvironmentMap {
   // Total all the same, so no input can put a NaN into a render: an empty image, or one whose
   // buffer does not match its size, becomes a black 1×1 map; a negative or non-finite texel
   // becomes 0; a scale that is not finite and > 0 makes the map black.
-  EnvironmentMap(Image image, double scale, const Mat3d& rotation);
+  EnvironmentMap(Image image, double scale, const glm::dmat3& rotation);
 
   // s·E(d) for a ray leaving the scene along dir_world (any length > 0): bilinear between
   // texel centres, repeating in u (across φ = 0) and clamped in v (at the poles), as the
   // scene language's textures filter.
-  Vec3d radiance(const Vec3d& dir_world) const;
+  glm::dvec3 radiance(const glm::dvec3& dir_world) const;
   // s·E at image coordinates (u, v) ∈ [0, 1)²: the same filter, without the direction.
-  Vec3d radiance_uv(double u, double v) const;
+  glm::dvec3 radiance_uv(double u, double v) const;
 
   // A direction drawn ∝ luminance × sin θ (piecewise constant over the pixels) from u1, u2 ∈
   // [0, 1): pdf = pdf_uv / (2π² sin θ), the Jacobian of (u, v) ↦ direction being
@@ -116,7 +116,7 @@ class EnvironmentMap {
   EnvironmentSample sample(double u1, double u2) const;
   // The density sample() has for dir_world (any length > 0), for MIS weights: 0 when the map
   // is black, at the poles, or for a zero vector.
-  double pdf(const Vec3d& dir_world) const;
+  double pdf(const glm::dvec3& dir_world) const;
   // False when the map is black: sample() is then always invalid and pdf() always 0.
   bool can_sample() const { return distribution_.integral() > 0; }
 
@@ -131,7 +131,7 @@ class EnvironmentMap {
   uint32_t width() const { return image_.width; }
   uint32_t height() const { return image_.height; }
   double scale() const { return scale_; }
-  const Mat3d& rotation() const { return rotation_; }
+  const glm::dmat3& rotation() const { return rotation_; }
   // Memory held: the image and the sampling tables.
   std::size_t bytes() const;
 
@@ -141,16 +141,16 @@ class EnvironmentMap {
   struct ImagePoint {
     double u, v, sin_theta;
   };
-  static ImagePoint to_image_point(const Vec3d& d_image);
-  Vec3d to_image(const Vec3d& d_world) const;  // Rᵀ·d: R is orthonormal
-  Vec3d texel(uint32_t x, uint32_t y) const;   // unscaled RGB in double
+  static ImagePoint to_image_point(const glm::dvec3& d_image);
+  glm::dvec3 to_image(const glm::dvec3& d_world) const;  // Rᵀ·d: R is orthonormal
+  glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
   void build_distribution();
   // ∫ lum(E) dω over the sphere (unscaled), from the texels' luminances lum (row-major).
   double luminance_sphere_integral(const std::vector<double>& lum) const;
 
   Image image_;
   double scale_;
-  Mat3d rotation_;
+  glm::dmat3 rotation_{1.0};
   PiecewiseConstant2D distribution_;  // ∝ cell-average luminance × sin θ of the row centre
   double luminance_integral_ = 0;     // ∫ s·lum(E) dω
 };

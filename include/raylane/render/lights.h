@@ -28,11 +28,11 @@ namespace raylane {
 
 struct LightSample {
   PrimRef light = PrimRef::invalid();  // invalid for the environment
-  Vec3d p;                             // the point on the light
-  Vec3d n;          // its outward normal, where sampled by area (0 from a sphere's cone)
-  Vec3d wi;         // unit direction from the reference point to p
+  glm::dvec3 p{};                      // the point on the light
+  glm::dvec3 n{};   // its outward normal, where sampled by area (0 from a sphere's cone)
+  glm::dvec3 wi{};  // unit direction from the reference point to p
   double dist = 0;  // |p − reference point|; infinite for the environment
-  Vec3d le;         // the radiance arriving along −wi
+  glm::dvec3 le{};  // the radiance arriving along −wi
   double pdf = 0;   // solid-angle density, including the choice of the light
   bool valid() const { return pdf > 0; }
 };
@@ -54,8 +54,8 @@ struct LightQueries {
   // Rows [0, n), padded to a multiple of 8 lanes as ConeBatch. The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
-  Vec3d ref(std::size_t r) const { return column3(cones.ref, r); }
-  Vec3d wi(std::size_t r) const { return column3(cones.wi, r); }
+  glm::dvec3 ref(std::size_t r) const { return column3(cones.ref, r); }
+  glm::dvec3 wi(std::size_t r) const { return column3(cones.wi, r); }
   double pdf(std::size_t r) const { return cones.pdf[r]; }
   bool valid(std::size_t r) const { return cones.pdf[r] > 0; }
   // Row r's outputs from one sample.
@@ -66,7 +66,7 @@ struct LightQueries {
   std::vector<uint32_t> cone_light;
 
  private:
-  static Vec3d column3(const std::array<Column, 3>& c, std::size_t r) {
+  static glm::dvec3 column3(const std::array<Column, 3>& c, std::size_t r) {
     return {c[0][r], c[1][r], c[2][r]};
   }
   std::size_t size_ = 0;
@@ -82,21 +82,26 @@ class LightSampler {
   int numbers_read() const;
 
   // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
-  LightSample sample(const Vec3d& ref, double u_light, double u_part, double u1, double u2) const;
+  LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1,
+                     double u2) const;
   // sample() for every query: sphere lights seen from outside by their cones in double lanes
   // (render/light_lanes.h, the same formulas), the rest one by one.
   void sample_many(Isa isa, LightQueries& q) const;
 
   // The density sample() would have had for direction wi from ref, hitting `hit` on a light.
-  double pdf(const Vec3d& ref, const Vec3d& wi, const Hit& hit) const;
+  double pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit) const;
 
   // The radiance a ray sees where it hits an emitter (0 from behind a solid emitter).
-  Vec3d emitted(const Hit& hit) const;
+  glm::dvec3 emitted(const Hit& hit) const;
 
   // What a ray that leaves the scene along d sees (0 without an environment), and the density
   // sample() has for that direction (for MIS).
-  Vec3d escaped(const Vec3d& d) const { return env_ ? env_->radiance(d) : Vec3d(0, 0, 0); }
-  double environment_pdf(const Vec3d& d) const { return env_choice_ * (env_ ? env_->pdf(d) : 0.0); }
+  glm::dvec3 escaped(const glm::dvec3& d) const {
+    return env_ ? env_->radiance(d) : glm::dvec3(0, 0, 0);
+  }
+  double environment_pdf(const glm::dvec3& d) const {
+    return env_choice_ * (env_ ? env_->pdf(d) : 0.0);
+  }
   const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
 
  private:
@@ -114,7 +119,7 @@ class LightSampler {
   std::vector<PrimRef> lights_;
   std::vector<double> cdf_;        // cumulative choice probabilities
   std::vector<double> choice_;     // choice probability of lights_[k]
-  std::vector<Vec3d> le_;          // emission of lights_[k]
+  std::vector<glm::dvec3> le_;     // emission of lights_[k]
   std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
   // The sample of sample_many's row r, a sphere light k's, where the kernel's answer needs more:
   // a point inside the sphere (sampled by area) or a texture.

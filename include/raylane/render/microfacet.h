@@ -9,7 +9,7 @@
 // its own float transcription (src/render/microfacet_lanes_impl.h), tested against these.
 #pragma once
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/scene/material.h"
 
 namespace raylane {
@@ -28,7 +28,7 @@ double ggx_g1(double cos_v, double cos_vm, double alpha_g);
 double beckman_g1(double cos_v, double cos_vm, double alpha_g);
 
 // A microfacet normal around +z with density D(m)·cos θm, from (u1, u2) in [0, 1]².
-Vec3d sample_ggx_normal(double u1, double u2, double alpha_g);
-Vec3d sample_beckman_normal(double u1, double u2, double alpha_g);
+glm::dvec3 sample_ggx_normal(double u1, double u2, double alpha_g);
+glm::dvec3 sample_beckman_normal(double u1, double u2, double alpha_g);
 
 }  // namespace raylane

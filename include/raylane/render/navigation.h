@@ -10,31 +10,26 @@
 #include <cstdint>
 #include <string>
 
-#include "raylane/core/mat3.h"
+#include "raylane/core/rotation.h"
 #include "raylane/scene/scene.h"
 
 namespace raylane {
 
-// A rotation as the unit quaternion w + xi + yj + zk (the `q` of the orientation mini-language).
-struct Quatd {
-  double w = 1, x = 0, y = 0, z = 0;
-};
-
 // The unit quaternion of a rotation matrix, with w ≥ 0 (Shoemake 1985, "Animating rotation with
 // quaternion curves": from the trace when it is positive, else from the largest diagonal
-// element, so the division is never by a small number). rotation_quaternion() inverts it.
-Quatd quaternion_from_rotation(const Mat3d& r);
+// element, so the division is never by a small number). glm::mat3_cast inverts it.
+glm::dquat quaternion_from_rotation(const glm::dmat3& r);
 
-Vec3d camera_right(const CameraSpec& c);    // R·x
-Vec3d camera_up(const CameraSpec& c);       // R·y
-Vec3d camera_forward(const CameraSpec& c);  // R·(−z)
+glm::dvec3 camera_right(const CameraSpec& c);    // R·x
+glm::dvec3 camera_up(const CameraSpec& c);       // R·y
+glm::dvec3 camera_forward(const CameraSpec& c);  // R·(−z)
 
 // The world axis (±x, ±y, ±z) nearest the camera's up vector.
-Vec3d world_up_for(const CameraSpec& c);
+glm::dvec3 world_up_for(const CameraSpec& c);
 
 // The level rotation that looks along the unit `forward`: right = forward × up normalised (so
 // horizontal), camera up = right × forward. `forward` must not be parallel to `world_up`.
-Mat3d level_rotation(const Vec3d& forward, const Vec3d& world_up);
+glm::dmat3 level_rotation(const glm::dvec3& forward, const glm::dvec3& world_up);
 
 // Pitch never goes past this many degrees from the horizon, so the view never flips over.
 inline constexpr double kMaxPitchDegrees = 89.0;
@@ -43,21 +38,21 @@ inline constexpr double kMaxPitchDegrees = 89.0;
 // right-hand rule about up) and `pitch` degrees toward up (positive: up), its elevation clamped
 // to ±kMaxPitchDegrees. `hint` (a unit vector in the image's up direction) gives the heading
 // when `dir` is straight up or down.
-Vec3d turn_direction(const Vec3d& dir, double yaw, double pitch, const Vec3d& world_up,
-                     const Vec3d& hint);
+glm::dvec3 turn_direction(const glm::dvec3& dir, double yaw, double pitch,
+                          const glm::dvec3& world_up, const glm::dvec3& hint);
 
 // Moves the eye by step.x along right, step.y along world up and step.z along forward (scene
 // units); the orientation is unchanged.
-CameraSpec fly_move(const CameraSpec& c, const Vec3d& step, const Vec3d& world_up);
+CameraSpec fly_move(const CameraSpec& c, const glm::dvec3& step, const glm::dvec3& world_up);
 
 // Turns the view (yaw, pitch as in turn_direction); the result is level.
-CameraSpec fly_look(const CameraSpec& c, double yaw, double pitch, const Vec3d& world_up);
+CameraSpec fly_look(const CameraSpec& c, double yaw, double pitch, const glm::dvec3& world_up);
 
 // Moves the eye on the sphere about `pivot` through the eye: the direction from the eye to the
 // pivot turns by (yaw, pitch) as in turn_direction, the distance stays, and the camera looks at
 // the pivot, level.
-CameraSpec orbit(const CameraSpec& c, const Vec3d& pivot, double yaw, double pitch,
-                 const Vec3d& world_up);
+CameraSpec orbit(const CameraSpec& c, const glm::dvec3& pivot, double yaw, double pitch,
+                 const glm::dvec3& world_up);
 
 // The field of view scaled by `factor` (ry = tan of half the vertical field), kept within
 // [kMinFovDegrees, kMaxFovDegrees].

@@ -18,7 +18,7 @@ inline double phong_d_scale(double alpha) {
 // needs the exponent 1/(α+2) (Walter et al. 2007, "Microfacet Models for Refraction through
 // Rough Surfaces", eq. 35). Keeping the course's warp, the pdf must be this one; pairing the
 // warp with D·cos θm biases the estimate (the chi-square test in sampling_test.cpp sees it).
-Vec3d sample_phong_normal(double u1, double u2, double alpha);
+glm::dvec3 sample_phong_normal(double u1, double u2, double alpha);
 double phong_normal_pdf(double cos_theta_m, double alpha);
 inline double phong_normal_pdf_scale(double alpha) {
   return (alpha + 1) / (2 * kPi);

@@ -12,10 +12,11 @@ namespace raylane {
 TexCoord texcoord_of(const Scene& scene, PrimRef prim, const Surface& surface);
 
 // The material's image at the point, or (1, 1, 1) for an untextured material.
-Vec3d texture_factor(const Scene& scene, const Material& m, PrimRef prim, const Surface& surface);
+glm::dvec3 texture_factor(const Scene& scene, const Material& m, PrimRef prim,
+                          const Surface& surface);
 
 // Kd of the primitive's material (0 on a light) times its texture at the point: what
 // `--mode albedo` shows and the albedo AOV sums.
-Vec3d albedo_at(const Scene& scene, PrimRef prim, const Surface& surface);
+glm::dvec3 albedo_at(const Scene& scene, PrimRef prim, const Surface& surface);
 
 }  // namespace raylane

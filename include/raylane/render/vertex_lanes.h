@@ -16,7 +16,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/render/lights.h"
 #include "raylane/render/shade_lanes.h"
 #include "raylane/simd/isa.h"
@@ -103,11 +103,11 @@ void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
 //
 // A shadow ray's contribution if it sees the light, beta·f·Le·(w / light_pdf) with w the power
 // heuristic under MIS: false when it has none (no light point, f = 0, or not finite).
-bool shadow_contribution(const VertexRules& rules, const Vec3d& beta, const Vec3d& f,
-                         const Vec3d& le, double light_pdf, double bsdf_pdf, Vec3d& c);
+bool shadow_contribution(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& f,
+                         const glm::dvec3& le, double light_pdf, double bsdf_pdf, glm::dvec3& c);
 // The throughput after the BSDF's sample, beta·value / pdf, and Russian roulette: false when
 // the path ends (no sample, roulette, or a zero or non-finite throughput).
-bool next_throughput(const VertexRules& rules, const Vec3d& beta, const Vec3d& value, double pdf,
-                     double u_roulette, Vec3d& next);
+bool next_throughput(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& value,
+                     double pdf, double u_roulette, glm::dvec3& next);
 
 }  // namespace raylane

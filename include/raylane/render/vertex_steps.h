@@ -1,7 +1,7 @@
 // The arithmetic after a vertex's BSDF, written once over the number type: N = double for the
 // double shading (render/vertex_lanes.h's shadow_contribution and next_throughput), N = a batch
 // of double lanes for the vertex lanes (src/render/vertex_lanes_impl.h); V3 is its 3-vector
-// (Vec3d, simd::DoubleVec3). One text for both, so they agree bit for bit by construction (the
+// (glm::dvec3, simd::DoubleVec3). One text for both, so they agree bit for bit by construction (the
 // build has -ffp-contract=off). What to keep stays with each caller: the scalar steps return
 // early, the lanes carry a mask. This header has no xsimd: a batch's select is xsimd::select,
 // which the templates find by argument-dependent lookup where a batch instantiates them.

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string_view>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 
 namespace raylane {
 
@@ -20,12 +20,12 @@ std::optional<Microfacet> microfacet_named(std::string_view name);
 const char* microfacet_name(Microfacet m);
 
 struct Material {
-  Vec3f kd{0.5f, 0.5f, 0.5f};
-  Vec3f ks{0.0f, 0.0f, 0.0f};
-  Vec3f kt{0.0f, 0.0f, 0.0f};
+  glm::vec3 kd{0.5f, 0.5f, 0.5f};
+  glm::vec3 ks{0.0f, 0.0f, 0.0f};
+  glm::vec3 kt{0.0f, 0.0f, 0.0f};
   float alpha = 0.0f;
   float ior = 1.0f;
-  Vec3f emission{0.0f, 0.0f, 0.0f};
+  glm::vec3 emission{0.0f, 0.0f, 0.0f};
   bool is_light = false;
   Microfacet microfacet = Microfacet::kPhong;
   int32_t texture = -1;  // index into Scene::textures, or none

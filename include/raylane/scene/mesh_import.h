@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
-#include "raylane/core/mat3.h"
+#include "raylane/core/rotation.h"
 #include "raylane/image/image.h"
 #include "raylane/prims/triangle.h"
 #include "raylane/scene/parse_state.h"
@@ -18,9 +18,9 @@
 namespace raylane {
 
 struct MeshPlacement {
-  Vec3d translation;
+  glm::dvec3 translation{};
   double scale = 1.0;
-  Mat3d rotation;
+  glm::dmat3 rotation{1.0};
 };
 
 struct MeshImportStats {

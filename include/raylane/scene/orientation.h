@@ -5,13 +5,13 @@
 #include <cstddef>
 #include <optional>
 
-#include "raylane/core/mat3.h"
+#include "raylane/core/rotation.h"
 #include "raylane/scene/parse_state.h"
 #include "raylane/scene/scene.h"
 
 namespace raylane {
 
 // Parses tokens [first, end of line) of `line`; an empty list is the identity.
-std::optional<Mat3d> parse_orientation(const Line& line, std::size_t first, ParseState& state);
+std::optional<glm::dmat3> parse_orientation(const Line& line, std::size_t first, ParseState& state);
 
 }  // namespace raylane

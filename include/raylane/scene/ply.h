@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "raylane/core/error.h"
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/prims/surface.h"
 
 namespace raylane {
@@ -76,9 +76,9 @@ Status check_ply_plausible(const PlyHeader& header, uint64_t file_size, const st
 // What raylane takes from a PLY file: vertex positions, and normals and texture coordinates
 // when every vertex has them, and the faces cut into triangles.
 struct PlyMesh {
-  std::vector<Vec3f> positions;
-  std::vector<Vec3f> normals;  // empty, or one per vertex (nx ny nz)
-  std::vector<TexCoord> uvs;   // empty, or one per vertex (u v, s t, texture_u …)
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // empty, or one per vertex (nx ny nz)
+  std::vector<TexCoord> uvs;       // empty, or one per vertex (u v, s t, texture_u …)
   std::vector<std::array<uint32_t, 3>> triangles;
   uint64_t faces_skipped = 0;  // faces of fewer than three corners
   std::vector<std::string> texture_files;

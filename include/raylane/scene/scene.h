@@ -10,7 +10,7 @@
 
 #include "raylane/core/error.h"
 #include "raylane/core/limits.h"
-#include "raylane/core/mat3.h"
+#include "raylane/core/rotation.h"
 #include "raylane/prims/prim_list.h"
 #include "raylane/scene/material.h"
 #include "raylane/scene/texture.h"
@@ -18,9 +18,9 @@
 namespace raylane {
 
 struct CameraSpec {
-  Vec3d eye;
-  double ry = 1.0;  // tan(half the vertical field of view)
-  Mat3d rotation;   // right = R·x, up = R·y, forward = R·(−z)
+  glm::dvec3 eye{};
+  double ry = 1.0;           // tan(half the vertical field of view)
+  glm::dmat3 rotation{1.0};  // right = R·x, up = R·y, forward = R·(−z)
 };
 
 // Thin-lens depth of field (`lens r d`): aperture radius and the distance from the eye to the
@@ -37,7 +37,7 @@ struct EnvironmentSpec {
   std::string file;
   Image image;
   double scale = 1;
-  Mat3d rotation;
+  glm::dmat3 rotation{1.0};
 };
 
 struct Token {
@@ -65,7 +65,7 @@ struct Scene {
   uint32_t width = kDefaultWidth, height = kDefaultHeight;
   std::optional<CameraSpec> camera;
   LensSpec lens;
-  Vec3f ambient{0.0f, 0.0f, 0.0f};
+  glm::vec3 ambient{0.0f, 0.0f, 0.0f};
   std::vector<Material> materials;
   std::vector<Texture> textures;  // images the materials refer to, each file once
   PrimTables tables;

@@ -7,20 +7,20 @@
 #include <cstdint>
 #include <string>
 
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/image/image.h"
 
 namespace raylane {
 
 struct Texture {
-  std::string file;  // as found (for messages and `raylane info`)
-  Image image;       // linear RGB, top row first
-  Vec3d mean;        // the average texel: what a textured emitter's power is estimated with
+  std::string file;   // as found (for messages and `raylane info`)
+  Image image;        // linear RGB, top row first
+  glm::dvec3 mean{};  // the average texel: what a textured emitter's power is estimated with
 };
 
 Texture make_texture(std::string file, Image image);
 
 // The bilinear value at (u, v), repeating in both directions.
-Vec3d texture_lookup(const Image& image, double u, double v);
+glm::dvec3 texture_lookup(const Image& image, double u, double v);
 
 }  // namespace raylane

@@ -198,7 +198,8 @@ inline constexpr int kDoubleWidth = int(Doubles<A>::size);
 
 // Three lanes of one number type, B a batch of floats or of doubles: a point or a direction
 // per lane. The code base's one lane vector (FloatVec3 in the BSDF's float lanes, DoubleVec3 in
-// the surfaces, lights and the steps after the BSDF); the scalar Vec3 is core/vec3.h's.
+// the surfaces, lights and the steps after the BSDF); the scalar vectors are GLM's
+// (core/vec_math.h).
 template <class B>
 struct LaneVec3 {
   B x, y, z;

@@ -24,7 +24,7 @@ struct SurfaceLanes {
   simd::DoubleVec3<A> p, n;
 };
 
-// a·b in Vec3's order ((x + y) + z).
+// a·b in glm::dot's order ((x + y) + z).
 template <class A>
 inline simd::Doubles<A> dot_lanes(const simd::DoubleVec3<A>& a, const simd::DoubleVec3<A>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;

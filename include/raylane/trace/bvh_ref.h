@@ -14,6 +14,7 @@ bool any_hit_bvh_ref(const Scene& scene, const Bvh& bvh, const Rayd& ray);
 // The slab test of a float node box against a double ray: does the ray's segment
 // (tmin, tmax) overlap the box? Closed box; NaN-safe; ±0 direction components give the same
 // answer (docs/hard-cases.md B3, B4). Exposed for tests.
-bool ray_overlaps_box_ref(const Rayd& ray, const Vec3d& inv_d, const Bounds3f& box, double tmax);
+bool ray_overlaps_box_ref(const Rayd& ray, const glm::dvec3& inv_d, const Bounds3f& box,
+                          double tmax);
 
 }  // namespace raylane

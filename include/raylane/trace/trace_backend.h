@@ -55,6 +55,6 @@ std::unique_ptr<const TraceBackend> bvh_reference_backend(const Scene& scene, co
 std::unique_ptr<const TraceBackend> brute_force_backend(const Scene& scene);
 
 // One surface into row r of `out`, from a Surface record, for a ray of direction d.
-void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Vec3d& d);
+void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const glm::dvec3& d);
 
 }  // namespace raylane

@@ -22,8 +22,8 @@ double emission_weight(const TileContext& ctx, const PathState& p, int depth, Li
 
 // What a path gains where it hits an emitter (its density for MIS is the light sampler's).
 void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit, int depth) {
-  Vec3d le = ctx.lights.emitted(hit);
-  if (le == Vec3d(0, 0, 0)) return;
+  glm::dvec3 le = ctx.lights.emitted(hit);
+  if (le == glm::dvec3(0, 0, 0)) return;
   // A moving light is not sampled (LightSampler): what BSDF sampling finds of it is all of it.
   const bool sampled = hit.prim.tag() != tag_of<MovingSphere>;
   double w = !sampled ? 1.0 : emission_weight(ctx, p, depth, [&] {
@@ -35,8 +35,8 @@ void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hi
 // What a path gains when its ray leaves the scene: the environment (its density for MIS is the
 // environment's).
 void add_escape(TileContext& ctx, PathState& p, const Rayd& ray, int depth) {
-  Vec3d le = ctx.lights.escaped(ray.d);
-  if (le == Vec3d(0, 0, 0)) return;
+  glm::dvec3 le = ctx.lights.escaped(ray.d);
+  if (le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, depth, [&] { return ctx.lights.environment_pdf(ray.d); });
   p.radiance += p.beta * le * w;
 }

@@ -131,7 +131,7 @@ void add_camera_aovs(const TileContext& ctx, Film& film) {
     const Hit& h = hits[i];
     if (!h.hit()) continue;
     double* out = &film.aov_sum[paths[i].pixel * stride];
-    auto add = [&](Aov a, const Vec3d& v) {
+    auto add = [&](Aov a, const glm::dvec3& v) {
       if (!set.has(a)) return;
       double* at = out + set.offset(a);
       for (int k = 0; k < aov_channels(a); ++k)

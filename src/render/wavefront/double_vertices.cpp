@@ -58,10 +58,11 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& 
 
 // The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
 void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Rayd& ray,
-                      const Hit& hit, const LightSample& ls, const Vec3d& f, double bsdf_pdf) {
-  Vec3d c;
+                      const Hit& hit, const LightSample& ls, const glm::dvec3& f, double bsdf_pdf) {
+  glm::dvec3 c{};
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
+  glm::dvec3 o =
+      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
   ShadowQueue& s = ctx.wave.next_shadows;
   RayAppender(s.rays, 1, true)
       .push(ray_cast<float>(Rayd{o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)}),
@@ -77,7 +78,8 @@ bool continue_path(PathState& p, const Rayd& ray, const Hit& hit, const BsdfSamp
   p.prev_p = hit.surface.p;
   p.prev_pdf = s.pdf;
   p.prev_specular = s.specular;
-  Vec3d o = offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, s.wi);
+  glm::dvec3 o =
+      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, s.wi);
   next = {o, s.wi};
   return true;
 }
@@ -88,7 +90,8 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Ra
   // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
   Material m = material;
   if (m.texture >= 0)
-    m.kd = Vec3f(Vec3d(m.kd) * texture_factor(ctx.tracer.scene(), m, hit.prim, hit.surface));
+    m.kd =
+        glm::vec3(glm::dvec3(m.kd) * texture_factor(ctx.tracer.scene(), m, hit.prim, hit.surface));
   Bsdf bsdf(m, hit.surface.ns, -ray.d);
   if (bsdf.black()) return false;
   if (samples_lights(ctx)) {

@@ -17,7 +17,7 @@ struct Column3View {
   const T *x, *y, *z;
   explicit Column3View(const std::array<std::vector<T>, 3>& c)
       : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
-  Vec3<T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
+  glm::vec<3, T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
 };
 
 // Room for `rows` more rows at the end of a stream (trimmed by the caller to what was kept).

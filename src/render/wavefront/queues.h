@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raylane/core/column.h"
-#include "raylane/core/vec3.h"
+#include "raylane/core/vec_math.h"
 #include "raylane/render/lights.h"
 #include "raylane/render/shade_lanes.h"
 #include "raylane/render/sobol.h"
@@ -21,9 +21,9 @@ namespace raylane::path_detail {
 
 // A path between wavefronts. Its ray is not here: it waits in a RayQueue.
 struct PathState {
-  Vec3d beta{1, 1, 1};  // throughput
-  Vec3d radiance{0, 0, 0};
-  Vec3d prev_p;                // the vertex the ray left (for the light pdf of MIS)
+  glm::dvec3 beta{1, 1, 1};  // throughput
+  glm::dvec3 radiance{0, 0, 0};
+  glm::dvec3 prev_p{};         // the vertex the ray left (for the light pdf of MIS)
   double prev_pdf = 0;         // the BSDF density of the ray's direction
   bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
   std::size_t pixel = 0;
@@ -57,12 +57,12 @@ struct ShadowQueue {
       c.resize(n);
   }
   void clear() { rays.clear(), resize_queries(0); }
-  void push_back(uint32_t p, const Vec3d& c) {
+  void push_back(uint32_t p, const glm::dvec3& c) {
     path.push_back(p);
     for (int k = 0; k < 3; ++k)
       contribution[std::size_t(k)].push_back(c[k]);
   }
-  Vec3d contribution_of(std::size_t q) const {
+  glm::dvec3 contribution_of(std::size_t q) const {
     return {contribution[0][q], contribution[1][q], contribution[2][q]};
   }
   void swap(ShadowQueue& other) {
