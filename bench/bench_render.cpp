@@ -12,6 +12,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -106,6 +107,7 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
     rays += double(stats.rays());
     all.phases.add(stats.phases);
     all.bounce_rays += stats.bounce_rays, all.shadow_rays += stats.shadow_rays;
+    all.camera_rays += stats.camera_rays, all.steps += stats.steps;
   }
   state.counters["samples/s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
   state.counters["rays/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
@@ -115,6 +117,8 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
         double(all.bounce_rays + all.shadow_rays) / all.phases.trace_rest * 1e-6;
     state.counters["shade/trace"] =
         (all.phases.shade + all.phases.lights) / (all.phases.trace_rest + all.phases.trace_camera);
+    // How full the wavefronts ran (src/render/wavefront/tiles_in_flight.h).
+    state.counters["rays/step"] = double(all.rays()) / double(std::max<uint64_t>(all.steps, 1));
   }
 }
 

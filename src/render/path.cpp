@@ -9,7 +9,7 @@
 
 #include "raylane/render/camera.h"
 #include "raylane/render/film.h"
-#include "render/wavefront/stages.h"
+#include "render/wavefront/tiles_in_flight.h"
 
 namespace raylane {
 
@@ -17,74 +17,13 @@ using namespace path_detail;
 
 namespace {
 
-// One sample for every pixel of a tile (its camera rays already in `rays`), depth by depth:
-// each depth traces the live paths' rays and the shadow rays of the vertices before, then
-// runs the stages of render/wavefront/stages.h, which fill the next depth's queues.
-void render_tile(TileContext& ctx, Film& f) {
-  Wavefront& w = ctx.wave;
-  w.shadows.clear();
-  ctx.stats.camera_rays += w.paths.size();
-  PathPhases& phases = ctx.stats.phases;
-  const double lights_at_start = phases.lights, shade_at_start = phases.shade;
-  PhaseClock clock(ctx.settings.time_phases);
-  for (int depth = 0; !w.rays.empty() || !w.shadows.empty(); ++depth) {
-    clock.lap(phases.shade);
-    // Surfaces for every hit only where they are all read: the double shading's vertices, the
-    // AOVs of the camera hits. Otherwise prim and t alone, and the surfaces of the vertices that
-    // need one follow: the lanes' into their columns (Tracer::surfaces), the rest one by one.
-    const bool all_surfaces = ctx.settings.shading == Shading::kDouble ||
-                              (depth == 0 && !f.aovs.empty()) ||
-                              ctx.tracer.backend() != TracerBackend::kPacket;
-    stamp_times(ctx);
-    ctx.tracer.closest(w.rays.rays, w.hits, all_surfaces ? w.rays.size() : 0, w.scratch);
-    w.hits_have_surfaces = all_surfaces;
-    // Shadow rays, aimed at their light: it is seen when nothing else lies before it.
-    ctx.tracer.occluded(w.shadows.rays, w.blocked, w.scratch);
-    clock.lap(depth == 0 ? phases.trace_camera : phases.trace_rest);
-    if (depth == 0 && !f.aovs.empty()) add_camera_aovs(ctx, f);
-    if (depth > 0) ctx.stats.bounce_rays += w.rays.size();
-    ctx.stats.shadow_rays += w.shadows.size();
-    add_unblocked_shadows(ctx);
-    w.next_shadows.clear();
-    w.next_rays.clear();
-    sort_arrivals(ctx, depth);
-    shade_double_vertices(ctx, depth);
-    if (w.lane_vertices.count > 0) shade_lane_vertices(ctx, depth);
-    w.rays.swap(w.next_rays);
-    w.shadows.swap(w.next_shadows);
-  }
-  clock.lap(phases.shade);
-  // Light sampling ran inside shading: its estimate (timed on a sample of calls, so it can
-  // exceed the shading it is part of) is capped by the shading time and taken out of it.
-  double shade_here = phases.shade - shade_at_start;
-  double lights_here = std::min(phases.lights - lights_at_start, shade_here);
-  phases.lights = lights_at_start + lights_here;
-  phases.shade = shade_at_start + shade_here - lights_here;
-  for (const PathState& p : w.paths) {
-    if (!is_finite(p.radiance)) {
-      ++ctx.stats.nonfinite_samples;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k)
-      f.sum[p.pixel * 3 + k] += p.radiance[k];
-  }
-  clock.lap(phases.film);
-}
-
 void add_stats(PathStats& into, const PathStats& s) {
   into.phases.add(s.phases);
   into.camera_rays += s.camera_rays;
   into.bounce_rays += s.bounce_rays;
   into.shadow_rays += s.shadow_rays;
   into.nonfinite_samples += s.nonfinite_samples;
-}
-
-// CPU time of the calling thread: a tile's cost without the time the thread spent preempted
-// (on a shared machine wall time made a few tiles look 8x their cost).
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+  into.steps += s.steps;
 }
 
 }  // namespace
@@ -101,8 +40,8 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   LightSampler lights(scene);
   LaneMaterials lane_materials(scene.materials);
   const LaneShading lanes{lane_materials, tracer.isa()};
-  uint32_t tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
-  const std::ptrdiff_t tiles = std::ptrdiff_t(tiles_x) * tiles_y;
+  const std::ptrdiff_t tiles = std::ptrdiff_t((cam.width + kTile - 1) / kTile) *
+                               std::ptrdiff_t((cam.height + kTile - 1) / kTile);
   Film own;
   Film& f = film ? *film : own;
   if (f.sum.empty()) {
@@ -119,6 +58,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   TileShare share = settings.share;
   std::vector<double> tile_seconds(settings.reshare ? std::size_t(tiles) : 0);
   for (int pass = f.passes; pass < settings.spp; ++pass) {
+    TileClaims claims(cam, share, settings);
 #pragma omp parallel
     {
       // The team may be larger than omp_get_max_threads() said before it (seen under clang's
@@ -127,27 +67,12 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
 #pragma omp single
       if (per_thread.size() < std::size_t(omp_get_num_threads()))
         per_thread.resize(std::size_t(omp_get_num_threads()));
-      PathStats local;
-      Wavefront& wave = per_thread[std::size_t(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 1)
-      for (std::ptrdiff_t t = 0; t < tiles; ++t) {
-        if (!share.owns(uint64_t(t))) continue;
-        if (settings.region &&
-            !region_meets_tile(*settings.region, cam.width, cam.height, uint64_t(t)))
-          continue;
-        double started = tile_seconds.empty() ? 0 : thread_cpu_seconds();
-        TileContext ctx{wave,     tracer, lights,
-                        settings, lanes,  Rng::for_tile(settings.seed, t, pass),
-                        {},       0,      uint32_t(pass)};
-        PhaseClock clock(settings.time_phases);
-        make_camera_rays(ctx, cam, uint32_t(t % tiles_x) * kTile, uint32_t(t / tiles_x) * kTile);
-        clock.lap(ctx.stats.phases.camera);
-        render_tile(ctx, f);
-        if (!tile_seconds.empty()) tile_seconds[std::size_t(t)] = thread_cpu_seconds() - started;
-        add_stats(local, ctx.stats);
-      }
+      TileContext ctx{
+          per_thread[std::size_t(omp_get_thread_num())],   tracer, lights, settings,      lanes,
+          Rng::for_tile(settings.seed, 0, uint64_t(pass)), {},     0,      uint32_t(pass)};
+      render_claimed_tiles(ctx, cam, claims, f, tile_seconds);
 #pragma omp critical
-      add_stats(total, local);
+      add_stats(total, ctx.stats);
     }
     total.passes = f.passes = pass + 1;
     if (settings.on_pass) settings.on_pass(total.passes);

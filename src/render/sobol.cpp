@@ -112,7 +112,7 @@ uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
 // A group's 64-bit seed for a pixel: its low half scrambles the index, its high half seeds the
 // components' scrambles. (sobol_lanes_impl.h's group_seeds computes it in lanes.)
 uint64_t group_seed_of(uint64_t seed, uint32_t group) {
-  return mix64(seed ^ (uint64_t(group) * 0x9e3779b97f4a7c15ull));
+  return mix64(seed ^ group_salt(group));
 }
 
 }  // namespace

@@ -84,7 +84,7 @@ void store_component(SobolBatch& b, std::size_t i, uint32_t c, const U32<A>& poi
 // (AVX2 and SSE4.2 have no 64-bit low multiply).
 template <class A>
 void group_seeds(uint32_t group, SobolBatch& b) {
-  const uint64_t salt = uint64_t(group) * 0x9e3779b97f4a7c15ull;
+  const uint64_t salt = group_salt(group);
   if constexpr (std::is_base_of_v<xsimd::avx512dq, A>) {
     using U64 = xsimd::batch<uint64_t, A>;
     constexpr std::size_t W = U64::size;

@@ -16,7 +16,7 @@ void VertexBatch::resize(std::size_t rows) {
     for (auto* v : {&beta, &p, &ng, &ray_o, &ray_d, &shadow_c, &next_beta})
       for (Column& c : *v)
         c.resize(padded);
-    for (Column* c : {&t, &u_roulette, &shadow_ok, &alive})
+    for (Column* c : {&t, &u_roulette, &survival, &shadow_ok, &alive})
       c->resize(padded);
     for (auto* v : {&shadow_o, &next_o})
       for (FloatColumn& c : *v)

@@ -129,8 +129,9 @@ void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatc
   const D pdf = load_widened<A>(bsdf.pdf, i);
   DoubleVec3<A> nb = sampled_throughput(beta, value, pdf);
   DMask<A> alive = pdf > D(0.0);
-  if (rules.roulette) {
-    const D u = D::load_unaligned(b.u_roulette.data() + i), s(rules.survival);
+  if (rules.roulette) {  // each row's survival (1 where it has no roulette)
+    const D u = D::load_unaligned(b.u_roulette.data() + i);
+    const D s = D::load_unaligned(b.survival.data() + i);
     alive = alive & !(u >= s);
     nb = survivor_throughput(nb, s);
   }

@@ -115,18 +115,18 @@ void Cluster::sum_on_root(double* values, int n) const {
 
 void Cluster::sum(PathStats& s) const {
   if (!mpi_ || size_ == 1) return;
-  uint64_t counts[4] = {s.camera_rays, s.bounce_rays, s.shadow_rays, s.nonfinite_samples};
+  uint64_t counts[5] = {s.camera_rays, s.bounce_rays, s.shadow_rays, s.nonfinite_samples, s.steps};
   double phases[6] = {s.phases.camera, s.phases.trace_camera, s.phases.trace_rest,
                       s.phases.shade,  s.phases.lights,       s.phases.film};
   if (root()) {
-    MPI_Reduce(MPI_IN_PLACE, counts, 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(MPI_IN_PLACE, counts, 5, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
     MPI_Reduce(MPI_IN_PLACE, phases, 6, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
   } else {
-    MPI_Reduce(counts, nullptr, 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(counts, nullptr, 5, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
     MPI_Reduce(phases, nullptr, 6, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
   }
   s.camera_rays = counts[0], s.bounce_rays = counts[1], s.shadow_rays = counts[2];
-  s.nonfinite_samples = counts[3];
+  s.nonfinite_samples = counts[3], s.steps = counts[4];
   s.phases = {phases[0], phases[1], phases[2], phases[3], phases[4], phases[5]};
 }
 

@@ -121,6 +121,9 @@ void print_phases(const PathStats& s, double seconds, int threads) {
                "per thread\n",
                (unsigned long long)s.bounce_rays, (unsigned long long)s.shadow_rays,
                rate(s.bounce_rays + s.shadow_rays, p.trace_rest));
+  if (s.steps > 0)
+    std::fprintf(stderr, "  wavefront steps: %llu, %.0f rays each on average\n",
+                 (unsigned long long)s.steps, double(s.rays()) / double(s.steps));
 }
 
 }  // namespace raylane::cli

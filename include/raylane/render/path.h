@@ -77,7 +77,11 @@ struct PathSettings {
   double time_limit = 0;     // seconds; 0 = none. Checked between passes.
   bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
   AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/aov.h)
-  TileShare share;           // the tiles this process renders (all of them by default)
+  // With the Sobol sampler, a thread's wavefront takes the next tile's camera rays whenever its
+  // rays run low (src/render/wavefront/tiles_in_flight.h): the image is the same bit for bit
+  // either way (tests/render/refill_test.cpp holds it to that); off, tile by tile.
+  bool refill = true;
+  TileShare share;  // the tiles this process renders (all of them by default)
   // Only the tiles that meet this pixel rectangle are rendered (render/region.h); the film
   // stays the image's size, zero elsewhere.
   std::optional<PixelRegion> region;
@@ -93,12 +97,14 @@ struct PathSettings {
 
 // Thread-seconds spent in each phase of the render loop, summed over the threads (`--stats`).
 struct PathPhases {
-  double camera = 0;        // making camera rays
-  double trace_camera = 0;  // tracing the first wavefront: camera rays only
-  double trace_rest = 0;    // tracing later wavefronts: bounce and shadow rays together
-  double shade = 0;         // emission, absorption, BSDF sampling and evaluation, roulette
-  double lights = 0;        // light sampling (inside shading; not counted in `shade`)
-  double film = 0;          // adding the tile's samples to the film
+  double camera = 0;  // making camera rays
+  // Tracing: a step's time is shared between its camera rays and the rest (bounce and shadow
+  // rays) by their counts.
+  double trace_camera = 0;
+  double trace_rest = 0;
+  double shade = 0;   // emission, absorption, BSDF sampling and evaluation, roulette
+  double lights = 0;  // light sampling (inside shading; not counted in `shade`)
+  double film = 0;    // adding the finished tiles' samples to the film
   double total() const { return camera + trace_camera + trace_rest + shade + lights + film; }
   void add(const PathPhases& o);
 };
@@ -107,7 +113,10 @@ struct PathStats {
   PathPhases phases;  // with PathSettings::time_phases
   uint64_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
   uint64_t nonfinite_samples = 0;  // samples dropped for NaN/inf radiance (should stay 0)
-  int passes = 0;                  // samples per pixel actually taken
+  // Wavefront steps (one trace of a thread's rays and shadow rays, and the shading after it):
+  // rays() / steps is how full the wavefronts ran.
+  uint64_t steps = 0;
+  int passes = 0;  // samples per pixel actually taken
   uint64_t rays() const { return camera_rays + bounce_rays + shadow_rays; }
 };
 

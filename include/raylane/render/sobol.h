@@ -65,6 +65,13 @@ struct SobolNumbers {
 // always; the others keep what they held. A decision that reads fewer numbers saves the rest,
 // dimensions 2 and 3 most (table gathers).
 inline constexpr unsigned kAllComponents = 0xfu;
+// What a group adds to a pixel's seed before the group's hash: seed ^ group_salt(group). Group
+// 0's salt is 0, so sobol_groups for group 0 on seeds already salted by group_salt(g) gives
+// group g's numbers: a batch whose rows are at different depths (a wavefront that refills)
+// draws each row's own group in one call.
+constexpr uint64_t group_salt(uint32_t group) {
+  return uint64_t(group) * 0x9e3779b97f4a7c15ull;
+}
 constexpr unsigned first_components(int n) {
   return (1u << n) - 1u;
 }

@@ -33,8 +33,10 @@ struct VertexBatch {
   // Inputs. The vertex: the path's throughput, the hit point and geometric normal, the ray that
   // found it with its t (for the bound on the point's error), and roulette's number. The light
   // point and the BSDF's answers are read where their steps left them (finish_vertices).
+  // Roulette's survival probability per row (VertexRules::roulette): 1 for a row without
+  // roulette, which then always survives (u < 1) with its throughput unchanged (x / 1 is x).
   Columns3 beta, p, ng, ray_o, ray_d;
-  Column t, u_roulette;
+  Column t, u_roulette, survival;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
   // light.
   Columns3 shadow_c;
@@ -85,8 +87,8 @@ std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
 
 struct VertexRules {
   bool mis = false;       // weigh the shadow ray by the power heuristic (else 1)
-  bool roulette = false;  // Russian roulette at this depth
-  double survival = 1;    // roulette's survival probability
+  bool roulette = false;  // Russian roulette at this depth (the lanes: at some rows)
+  double survival = 1;    // roulette's survival probability (the lanes: the survival column)
 };
 
 // The batch's shadow rays and next rays. Row r's light point is row r of `lights` (its

@@ -13,31 +13,31 @@ namespace {
 // the MIS share after another bounce, nothing for NEE alone (light sampling counted it
 // already). `light_pdf` is called only for the MIS share.
 template <class LightPdf>
-double emission_weight(const TileContext& ctx, const PathState& p, int depth, LightPdf light_pdf) {
-  bool sampled_light_too = depth > 0 && !p.prev_specular;
+double emission_weight(const TileContext& ctx, const PathState& p, LightPdf light_pdf) {
+  bool sampled_light_too = p.depth > 0 && !p.prev_specular;
   if (!sampled_light_too || ctx.settings.integrator == Integrator::kBrdf) return 1;
   if (ctx.settings.integrator == Integrator::kNee) return 0;
   return power_heuristic(p.prev_pdf, light_pdf());
 }
 
 // What a path gains where it hits an emitter (its density for MIS is the light sampler's).
-void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit, int depth) {
+void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit) {
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
   // A moving light is not sampled (LightSampler): what BSDF sampling finds of it is all of it.
   const bool sampled = hit.prim.tag() != tag_of<MovingSphere>;
-  double w = !sampled ? 1.0 : emission_weight(ctx, p, depth, [&] {
-    return ctx.lights.pdf(p.prev_p, ray.d, hit);
-  });
+  double w = !sampled
+                 ? 1.0
+                 : emission_weight(ctx, p, [&] { return ctx.lights.pdf(p.prev_p, ray.d, hit); });
   p.radiance += p.beta * le * w;
 }
 
 // What a path gains when its ray leaves the scene: the environment (its density for MIS is the
 // environment's).
-void add_escape(TileContext& ctx, PathState& p, const Rayd& ray, int depth) {
+void add_escape(TileContext& ctx, PathState& p, const Rayd& ray) {
   glm::dvec3 le = ctx.lights.escaped(ray.d);
   if (le == glm::dvec3(0, 0, 0)) return;
-  double w = emission_weight(ctx, p, depth, [&] { return ctx.lights.environment_pdf(ray.d); });
+  double w = emission_weight(ctx, p, [&] { return ctx.lights.environment_pdf(ray.d); });
   p.radiance += p.beta * le * w;
 }
 
@@ -50,7 +50,7 @@ void add_unblocked_shadows(TileContext& ctx) {
     if (w.blocked[q] == 0) w.paths[s.path[q]].radiance += s.contribution_of(q);
 }
 
-void sort_arrivals(TileContext& ctx, int depth) {
+void sort_arrivals(TileContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
   const bool lanes = ctx.settings.shading == Shading::kFloat;
@@ -61,21 +61,23 @@ void sort_arrivals(TileContext& ctx, int depth) {
     PathState& p = w.paths[path];
     Hit& hit = w.hits[k];
     if (!hit.hit()) {
-      add_escape(ctx, p, ray_of(w.rays.rays, k), depth);
+      add_escape(ctx, p, ray_of(w.rays.rays, k));
       continue;
     }
     const uint32_t material = scene.material_of(hit.prim);
     if (scene.materials[material].is_light) {  // emitters reflect nothing: the path ends
       const Rayd ray = ray_of(w.rays.rays, k);
       if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
-      add_emission(ctx, p, ray, hit, depth);
+      add_emission(ctx, p, ray, hit);
       continue;
     }
-    if (depth >= ctx.settings.max_depth) continue;
+    const uint32_t depth = p.depth;
+    if (int(depth) >= ctx.settings.max_depth) continue;
+    p.depth = depth + 1;  // where the ray it sends on (if any) arrives
     if (lanes && ctx.lanes.materials.in_lanes[material])
-      w.lane_vertices.push(path, uint32_t(k), material);
+      w.lane_vertices.push(path, uint32_t(k), material, depth);
     else
-      w.double_vertices.ray.push_back(uint32_t(k)), w.double_vertices.material.push_back(material);
+      w.double_vertices.push(uint32_t(k), material, depth);
   }
 }
 

@@ -10,14 +10,16 @@ namespace raylane::path_detail {
 
 namespace {
 
-// A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), before their
-// camera rays: pixel and Sobol scramble, and the pixel's corner in the camera's points.
-void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
+// A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), into the
+// slots from `first` on, before their camera rays: pixel and Sobol scramble, and the pixel's
+// corner in the camera's points. Returns how many.
+uint32_t tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0, uint32_t first) {
   std::vector<PathState>& paths = ctx.wave.paths;
   CameraPoints& points = ctx.wave.camera;
-  paths.clear();
+  if (paths.size() < first + kTile * kTile) paths.resize(first + kTile * kTile);
   points.x.clear(), points.y.clear();
   uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
+  uint32_t i = first;
   for (uint32_t by = y0; by < y1; by += kBlock)
     for (uint32_t bx = x0; bx < x1; bx += kBlock)
       for (uint32_t y = by; y < std::min(by + kBlock, y1); ++y)
@@ -25,37 +27,36 @@ void tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
           PathState p;
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
           p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
-          paths.push_back(p);
+          paths[i++] = p;
           points.x.push_back(double(x)), points.y.push_back(double(y));
         }
-  points.resize(paths.size());
+  points.resize(points.x.size());
+  return i - first;
 }
 
 // The pinhole's camera rays with Sobol numbers: the jitter from the lanes straight into the
 // points' columns, the rays from the camera's lanes (bit for bit what the loop below makes).
-void pinhole_sobol_rays(TileContext& ctx, const Camera& cam) {
+void pinhole_sobol_rays(TileContext& ctx, const Camera& cam, RayStream& rays) {
   Wavefront& w = ctx.wave;
   CameraPoints& points = w.camera;
   SobolNumbers to;
   to.as_double = {points.jx.data(), points.jy.data(), nullptr, nullptr};
   sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, w.lane_vertices.sobol, first_components(2),
                to);
-  pinhole_rays(
-      ctx.lanes.isa, cam,
-      {points.x.data(), points.y.data(), points.jx.data(), points.jy.data(), w.paths.size()},
-      w.rays.rays);
+  pinhole_rays(ctx.lanes.isa, cam,
+               {points.x.data(), points.y.data(), points.jx.data(), points.jy.data(), rays.size()},
+               rays);
 }
 
-// A scene that moves: each path's time, one more number of its camera sample (Sobol's group of
-// its own, Dims::time; MT19937's next number after the tile's camera numbers). A scene that
-// does not move draws nothing and keeps no times.
-void draw_path_times(TileContext& ctx) {
+// A scene that moves: the time of each path in slots [first, first + n), one more number of its
+// camera sample (Sobol's group of its own, Dims::time; MT19937's next number after the tile's
+// camera numbers). A scene that does not move draws nothing and keeps no times.
+void draw_path_times(TileContext& ctx, uint32_t first, uint32_t n) {
   Wavefront& w = ctx.wave;
-  w.path_time.clear();
   if (!ctx.tracer.scene().moves()) return;
-  w.path_time.resize(w.paths.size());
+  if (w.path_time.size() < w.paths.size()) w.path_time.resize(w.paths.size());
   const bool sobol = ctx.settings.sampler == Sampler::kSobol;
-  for (std::size_t i = 0; i < w.paths.size(); ++i) {
+  for (std::size_t i = first; i < first + n; ++i) {
     const double u =
         sobol ? sobol_group(w.paths[i].pixel_seed, ctx.pass, Dims::time)[0] : ctx.rng.uniform();
     w.path_time[i] = unit_float(u);  // in [0, 1): never rounded up to the shutter's closing
@@ -79,33 +80,33 @@ void stamp_times(TileContext& ctx) {
   stamp_stream(w.shadows.rays, w.shadows.path, w.path_time);
 }
 
-// Jittered camera rays for a tile's paths (ray i for path i). Sobol's camera groups come from
-// the lanes for the whole tile at once (bit for bit sobol_group); MT19937 draws pixel by pixel.
-void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0) {
+uint32_t make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                          uint32_t first, RayQueue& into) {
   Wavefront& w = ctx.wave;
-  std::vector<PathState>& paths = w.paths;
-  tile_paths(ctx, cam, x0, y0);
-  RayStream& rays = w.rays.rays;
-  w.rays.clear();
-  rays.resize(paths.size());
-  w.rays.path.resize(paths.size());
-  for (uint32_t i = 0; i < paths.size(); ++i)
-    w.rays.path[i] = i;
+  const uint32_t n = tile_paths(ctx, cam, x0, y0, first);
+  const PathState* paths = w.paths.data() + first;
+  RayStream& rays = into.rays;
+  into.clear();
+  rays.resize(n);
+  into.path.resize(n);
+  for (uint32_t i = 0; i < n; ++i)
+    into.path[i] = first + i;
   const bool sobol = ctx.settings.sampler == Sampler::kSobol;
   SobolBatch& s = w.lane_vertices.sobol;
   if (sobol) {
-    s.resize(paths.size());
-    for (std::size_t i = 0; i < paths.size(); ++i)
+    s.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
       s.seed[i] = paths[i].pixel_seed;
     if (!cam.has_lens()) {
-      pinhole_sobol_rays(ctx, cam);
-      return draw_path_times(ctx);
+      pinhole_sobol_rays(ctx, cam, rays);
+      draw_path_times(ctx, first, n);
+      return n;
     }
     sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
   }
   const CameraPoints& points = w.camera;
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    PathState& p = paths[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    const PathState& p = paths[i];
     std::array<double, 4> u;
     if (sobol)
       for (int c = 0; c < 4; ++c)
@@ -116,21 +117,22 @@ void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t
     rays.set(i, ray_cast<float>(
                     cam.ray_through_lens(points.x[i] + u[0], points.y[i] + u[1], u[2], u[3])));
   }
-  draw_path_times(ctx);
+  draw_path_times(ctx, first, n);
+  return n;
 }
 
-// The AOVs of a tile's camera samples (render/aov.h), from the first wavefront's hits: there
-// hit i belongs to path i. A sample that meets nothing adds zeros.
+// The AOVs of the camera samples (render/aov.h) from this step's hits: rays
+// [0, Wavefront::camera_rays) are camera rays. A sample that meets nothing adds zeros.
 void add_camera_aovs(const TileContext& ctx, Film& film) {
   const Scene& scene = ctx.tracer.scene();
-  const std::vector<PathState>& paths = ctx.wave.paths;
-  const std::vector<Hit>& hits = ctx.wave.hits;
+  const Wavefront& w = ctx.wave;
+  const std::vector<Hit>& hits = w.hits;
   const AovSet set = film.aovs;
   const std::size_t stride = std::size_t(set.channels());
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    const Hit& h = hits[i];
+  for (std::size_t k = 0; k < w.camera_rays; ++k) {
+    const Hit& h = hits[k];
     if (!h.hit()) continue;
-    double* out = &film.aov_sum[paths[i].pixel * stride];
+    double* out = &film.aov_sum[w.paths[w.rays.path[k]].pixel * stride];
     auto add = [&](Aov a, const glm::dvec3& v) {
       if (!set.has(a)) return;
       double* at = out + set.offset(a);

@@ -17,7 +17,7 @@
 
 namespace raylane::path_detail {
 
-inline constexpr uint32_t kTile = kPathTile;  // pixels per tile side: 256 paths per wavefront
+inline constexpr uint32_t kTile = kPathTile;  // pixels per tile side: 256 paths per tile
 inline constexpr uint32_t kBlock = 4;         // camera rays in 4×4 blocks: one coherent packet
 inline constexpr double kRouletteSurvival = 0.8;
 
@@ -64,8 +64,8 @@ inline bool samples_lights(const TileContext& ctx) {
 }
 
 // What the vertices of this depth follow: MIS or not, roulette or not.
-inline VertexRules vertex_rules(const TileContext& ctx, int depth) {
-  return {ctx.settings.integrator == Integrator::kMis, depth + 1 >= ctx.settings.rr_depth,
+inline VertexRules vertex_rules(const TileContext& ctx, uint32_t depth) {
+  return {ctx.settings.integrator == Integrator::kMis, int(depth) + 1 >= ctx.settings.rr_depth,
           kRouletteSurvival};
 }
 
@@ -75,9 +75,9 @@ inline VertexRules vertex_rules(const TileContext& ctx, int depth) {
 struct Dims {
   static constexpr uint32_t camera = 0;  // (jitter x, jitter y, lens u1, lens u2)
   // The Sobol group of the light sample at a depth: (u1, u2, light, part).
-  static uint32_t light_group(int depth) { return 1 + 2 * uint32_t(depth); }
+  static uint32_t light_group(uint32_t depth) { return 1 + 2 * depth; }
   // The Sobol group of the BSDF sample at a depth: (u1, u2, lobe, roulette).
-  static uint32_t bsdf_group(int depth) { return 2 + 2 * uint32_t(depth); }
+  static uint32_t bsdf_group(uint32_t depth) { return 2 + 2 * depth; }
   // The Sobol group of a path's time, component 0 (motion blur only): one group of its own,
   // beyond every depth's, so that a scene that moves draws the other groups as one that does
   // not.

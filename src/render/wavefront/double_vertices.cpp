@@ -43,7 +43,8 @@ double clock_read_seconds() {
 }
 
 // Next-event estimation's point on a light, seen from this vertex (invalid: none).
-LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit, int depth) {
+LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit,
+                               uint32_t depth) {
   const auto u = draw(ctx, p, Dims::light_group(depth), kLightDrawOrder);
   bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
   PhaseClock clock(timed);
@@ -86,7 +87,7 @@ bool continue_path(PathState& p, const Rayd& ray, const Hit& hit, const BsdfSamp
 
 // One vertex with the double Bsdf: light sampling, then the next direction.
 bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Rayd& ray,
-                         const Hit& hit, const Material& material, int depth, Rayd& next) {
+                         const Hit& hit, const Material& material, uint32_t depth, Rayd& next) {
   // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
   Material m = material;
   if (m.texture >= 0)
@@ -104,13 +105,14 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Ra
   auto u = draw(ctx, p, Dims::bsdf_group(depth), kBsdfDrawOrder);
   BsdfSample s = bsdf.sample(u[2], u[0], u[1]);
   if (!s.valid()) return false;
-  double u_roulette = depth + 1 >= ctx.settings.rr_depth ? roulette_uniform(ctx, u) : 0.0;
-  return continue_path(p, ray, hit, s, u_roulette, vertex_rules(ctx, depth), next);
+  const VertexRules rules = vertex_rules(ctx, depth);
+  double u_roulette = rules.roulette ? roulette_uniform(ctx, u) : 0.0;
+  return continue_path(p, ray, hit, s, u_roulette, rules, next);
 }
 
 }  // namespace
 
-void shade_double_vertices(TileContext& ctx, int depth) {
+void shade_double_vertices(TileContext& ctx) {
   Wavefront& w = ctx.wave;
   const DoubleVertexQueue& q = w.double_vertices;
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
@@ -123,7 +125,7 @@ void shade_double_vertices(TileContext& ctx, int depth) {
     if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
     p.beta = p.beta * beer_transmittance(m, hit.front_face, hit.t);
     Rayd next;
-    if (!shade_vertex_double(ctx, path, p, ray, hit, m, depth, next)) continue;
+    if (!shade_vertex_double(ctx, path, p, ray, hit, m, q.depth[i], next)) continue;
     w.next_rays.path.push_back(path);
     RayAppender(w.next_rays.rays, 1, false).push(ray_cast<float>(next));
   }

@@ -32,18 +32,44 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
   q.cones.u1[r] = u[0], q.cones.u2[r] = u[1], q.u_light[r] = u[2], q.u_part[r] = u[3];
 }
 
+// Whether row r has Russian roulette (at its own depth), and its survival probability in the
+// vertex lanes' column (1 without: VertexBatch::survival). Returns whether any row has it.
+bool roulette_columns(TileContext& ctx) {
+  LaneVertexQueue& lv = ctx.wave.lane_vertices;
+  double* survival = lv.vertices.survival.data();
+  bool any = false;
+  for (std::size_t r = 0; r < lv.count; ++r) {
+    const VertexRules rules = vertex_rules(ctx, lv.depth[r]);
+    survival[r] = rules.roulette ? rules.survival : 1.0;
+    any = any || rules.roulette;
+  }
+  return any;
+}
+
+// The rows' Sobol seeds for the group each row draws at its own depth: the pixel's seed salted
+// by the group (sobol.h, group_salt), so that one call for group 0 draws every row's group.
+template <class GroupOf>
+void salt_seeds(TileContext& ctx, GroupOf group_of) {
+  LaneVertexQueue& lv = ctx.wave.lane_vertices;
+  const PathState* paths = ctx.wave.paths.data();
+  uint64_t* seed = lv.sobol.seed.data();
+  for (std::size_t r = 0; r < lv.count; ++r)
+    seed[r] = paths[lv.path[r]].pixel_seed ^ group_salt(group_of(lv.depth[r]));
+}
+
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
-// the double shading's order (light, BSDF, roulette).
-void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
+// the double shading's order (light, BSDF, roulette where the row has it).
+void draw_numbers(TileContext& ctx, bool lights, bool roulette) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   LightQueries& q = lv.light_queries;
   if (ctx.settings.sampler != Sampler::kSobol) {
     for (std::size_t r = 0; r < lv.count; ++r) {
       const PathState& p = w.paths[lv.path[r]];
+      const uint32_t depth = lv.depth[r];
       if (lights) set_light_numbers(q, r, draw(ctx, p, Dims::light_group(depth), kLightDrawOrder));
       auto u = draw(ctx, p, Dims::bsdf_group(depth), kBsdfDrawOrder);
-      set_bsdf_numbers(ctx, r, u, roulette ? ctx.rng.uniform() : 0.0);
+      set_bsdf_numbers(ctx, r, u, vertex_rules(ctx, depth).roulette ? ctx.rng.uniform() : 0.0);
     }
     return;
   }
@@ -54,10 +80,10 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
     SobolNumbers to;
     to.as_double = {q.cones.u1.data(), q.cones.u2.data(), read > 2 ? q.u_light.data() : nullptr,
                     read > 3 ? q.u_part.data() : nullptr};
-    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::light_group(depth), s, first_components(read), to);
+    salt_seeds(ctx, Dims::light_group);
+    sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, first_components(read), to);
   }
-  // Roulette's number only at the depths that have roulette (the vertex lanes read it only
-  // there).
+  // Roulette's number only where a row has roulette (the vertex lanes read it only then).
   // The lobe's number only where a material has more than one lobe (else 0, which picks the
   // diffuse lobe as every number in [0, 1) would): for a diffuse-only scene below roulette's
   // depth, no table gathers at all.
@@ -67,8 +93,8 @@ void draw_numbers(TileContext& ctx, int depth, bool lights, bool roulette) {
   SobolNumbers to;
   to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
   if (roulette) to.as_double[3] = lv.vertices.u_roulette.data();
-  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::bsdf_group(depth), s,
-               3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
+  salt_seeds(ctx, Dims::bsdf_group);
+  sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, 3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
 }
 
 // The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated
@@ -165,7 +191,7 @@ void drop_black_rows(TileContext& ctx) {
   std::size_t kept = first;
   for (std::size_t r = first + 1; r < n; ++r) {
     if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
-    rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r];
+    rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
     p.move(kept, r), ng.move(kept, r), ns.move(kept, r);
     ++kept;
@@ -189,9 +215,9 @@ void hit_columns(TileContext& ctx, bool lights) {
     std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
 }
 
-// The rows' rays (the stream's float rays, widened exactly), the paths' throughputs with
-// Beer's law on the segment just travelled, and their scrambles into the columns.
-void path_columns(TileContext& ctx, bool sobol) {
+// The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs with
+// Beer's law on the segment just travelled into the columns.
+void path_columns(TileContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const LaneVertexQueue& rows = lv;
@@ -210,24 +236,22 @@ void path_columns(TileContext& ctx, bool sobol) {
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<double> beta(lv.vertices.beta);
   const double* t = lv.vertices.t.data();
-  uint64_t* seed = lv.sobol.seed.data();
   for (std::size_t r = 0; r < n; ++r) {
     const PathState& path = paths[rows.path[r]];
     // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
     beta.set(r, rows.front[r]
                     ? path.beta
                     : path.beta * beer_transmittance(materials[rows.material[r]], false, t[r]));
-    if (sobol) seed[r] = path.pixel_seed;
   }
 }
 
 }  // namespace
 
-void shade_lane_vertices(TileContext& ctx, int depth) {
+void shade_lane_vertices(TileContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;
-  const VertexRules rules = vertex_rules(ctx, depth);
+  VertexRules rules = vertex_rules(ctx, 0);
   surface_columns(ctx);
   drop_black_rows(ctx);
   if (lv.count == 0) return;
@@ -236,8 +260,9 @@ void shade_lane_vertices(TileContext& ctx, int depth) {
   if (lights) lv.light_queries.resize(lv.count);
   if (sobol) lv.sobol.resize(lv.count);
   hit_columns(ctx, lights);
-  path_columns(ctx, sobol);
-  draw_numbers(ctx, depth, lights, rules.roulette);
+  path_columns(ctx);
+  rules.roulette = roulette_columns(ctx);
+  draw_numbers(ctx, lights, rules.roulette);
   light_columns(ctx, lights);
   shade_lanes(ctx.lanes.isa, ctx.lanes.materials, lv.shade);
   finish_vertices(ctx.lanes.isa, rules, lv.shade, lights ? &lv.light_queries : nullptr,

@@ -4,7 +4,9 @@
 // themselves are listed in render/wavefront/stages.h, and run in that order by path.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +30,10 @@ struct PathState {
   bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
   std::size_t pixel = 0;
   uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
+  // The depth its ray in flight arrives at: 0 for the camera ray, one more at every vertex
+  // that sends the path on (sort_arrivals counts it). A wavefront that refills holds paths of
+  // different depths side by side.
+  uint32_t depth = 0;
 };
 
 // Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
@@ -39,6 +45,17 @@ struct RayQueue {
   bool empty() const { return path.empty(); }
   void clear() { path.clear(), rays.clear(); }
   void swap(RayQueue& other) { path.swap(other.path), std::swap(rays, other.rays); }
+  // The rays of `other` after these (their tmin, tmax and paths; no aims or times: a stream of
+  // camera and bounce rays has neither before stamp_times).
+  void append(const RayQueue& other) {
+    const std::size_t at = size(), n = other.size();
+    path.resize(at + n), rays.resize(at + n);
+    std::copy_n(other.path.begin(), n, path.begin() + std::ptrdiff_t(at));
+    const RayStream& o = other.rays;
+    for (auto c : {&RayStream::ox, &RayStream::oy, &RayStream::oz, &RayStream::dx, &RayStream::dy,
+                   &RayStream::dz, &RayStream::tmin, &RayStream::tmax})
+      std::copy_n((o.*c).begin(), n, (rays.*c).begin() + std::ptrdiff_t(at));
+  }
 };
 
 // Shadow rays, each aimed at its light (the stream's aim column), and what each adds to its
@@ -77,10 +94,14 @@ struct CameraPoints {
   void resize(std::size_t n) { x.resize(n), y.resize(n), jx.resize(n), jy.resize(n); }
 };
 
-// Hits on a material shaded one by one in double: ray k of the wavefront, its material row.
+// Hits on a material shaded one by one in double: ray k of the wavefront, its material row,
+// the vertex's depth.
 struct DoubleVertexQueue {
-  std::vector<uint32_t> ray, material;
-  void clear() { ray.clear(), material.clear(); }
+  std::vector<uint32_t> ray, material, depth;
+  void clear() { ray.clear(), material.clear(), depth.clear(); }
+  void push(uint32_t k, uint32_t m, uint32_t d) {
+    ray.push_back(k), material.push_back(m), depth.push_back(d);
+  }
 };
 
 // Hits on a material shaded in lanes, as columns: row r is vertex r of every batch below
@@ -91,6 +112,7 @@ struct LaneVertexQueue {
   std::vector<uint32_t> path;      // index into the wavefront's paths
   std::vector<uint32_t> ray;       // index into the wavefront's rays and hits
   std::vector<uint32_t> material;  // the hit's material row
+  std::vector<uint32_t> depth;     // the vertex's depth (its Sobol groups, its roulette)
   // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
@@ -101,19 +123,30 @@ struct LaneVertexQueue {
 
   void grow(std::size_t n) {
     if (path.size() >= n) return;
-    path.resize(n), ray.resize(n), material.resize(n), cos_ns.resize(n), front.resize(n);
+    path.resize(n), ray.resize(n), material.resize(n), depth.resize(n), cos_ns.resize(n);
+    front.resize(n);
   }
-  void push(uint32_t p, uint32_t k, uint32_t m) {
+  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d) {
     const std::size_t r = count++;
-    path[r] = p, ray[r] = k, material[r] = m;
+    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d;
   }
 };
 
+// A tile whose paths are in a wavefront: path slots [first, first + paths) of its `paths`.
+struct TileInFlight {
+  std::ptrdiff_t tile = -1;  // -1: a free block of slots
+  uint32_t first = 0, paths = 0;
+  uint32_t live = 0;   // rays and shadow rays of its paths in the wavefront's queues
+  double seconds = 0;  // its share of the thread's CPU time (MPI's tile costs)
+};
+
 // A thread's wavefront, reused tile after tile: the render loop allocates nothing per sample
-// once its queues have grown to a tile's size. Each depth traces `rays` and `shadows` (the
-// shadow rays of the vertices before), then its stages sort the hits into `double_vertices`
-// and `lane_vertices` (escaped rays and emitters are finished as they are sorted), and shading
-// fills `next_rays` and `next_shadows`.
+// once its queues have grown. Each step traces `rays` and `shadows` (the shadow rays of the
+// vertices before), then its stages sort the hits into `double_vertices` and `lane_vertices`
+// (escaped rays and emitters are finished as they are sorted), and shading fills `next_rays`
+// and `next_shadows`. With the Sobol sampler the wavefront refills: when its rays run low, the
+// next tile's camera rays join the paths still going (path.cpp), so the paths of a step may be
+// at any depth, each its own (PathState::depth).
 // Aligned to 128 bytes (a cache line and the one the adjacent-line prefetcher pairs with it):
 // the threads' wavefronts sit side by side in one vector, and a queue's resizes write vector
 // headers another thread would otherwise read its columns' pointers next to.
@@ -131,6 +164,8 @@ struct alignas(128) Wavefront {
   DoubleVertexQueue double_vertices;
   LaneVertexQueue lane_vertices;
   TraceScratch scratch;
+  std::vector<TileInFlight> tiles;  // block b holds paths [b·kTile², (b + 1)·kTile²)
+  std::size_t camera_rays = 0;      // rays [0, camera_rays) of `rays` are camera rays (this step)
 };
 
 }  // namespace raylane::path_detail

@@ -1,5 +1,5 @@
-// The stages of the path tracer's wavefront, in the order path.cpp runs them for each depth of
-// a tile (include from src/render only). Each reads and writes the queues of
+// The stages of the path tracer's wavefront, in the order path.cpp runs them at each step of a
+// thread's wavefront (include from src/render only). Each reads and writes the queues of
 // render/wavefront/queues.h; one file per stage, named after it.
 #pragma once
 
@@ -9,32 +9,35 @@
 
 namespace raylane::path_detail {
 
-// camera_rays.cpp: the tile's paths (pixel by pixel in 4×4 blocks) and their jittered camera
-// rays into `rays`.
-void make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0);
+// camera_rays.cpp: the paths of the tile from (x0, y0) (pixel by pixel in 4×4 blocks) into the
+// wavefront's path slots from `first` on, and their jittered camera rays into `into` (cleared
+// first). Returns how many paths.
+uint32_t make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                          uint32_t first, RayQueue& into);
 // camera_rays.cpp: a scene that moves: every ray of `rays` and `shadows` gets its path's time
 // (Wavefront::path_time) in its stream's time column, before they are traced. A scene that
 // does not move: nothing (its streams have no time column).
 void stamp_times(TileContext& ctx);
-// camera_rays.cpp: the AOVs of the camera hits (the first wavefront's, ray k is path k's).
+// camera_rays.cpp: the AOVs of this step's camera hits (rays [0, Wavefront::camera_rays)).
 void add_camera_aovs(const TileContext& ctx, Film& film);
 
 // arrival.cpp: each shadow ray's contribution to its path where its light is unblocked.
 void add_unblocked_shadows(TileContext& ctx);
 // arrival.cpp: where each ray of `rays` arrives. An escaped ray gets the environment, a hit on
 // an emitter its emission (both end the path); a hit on a material that may scatter is queued
-// in lane_vertices (where the settings and the material allow) or double_vertices.
-void sort_arrivals(TileContext& ctx, int depth);
+// in lane_vertices (where the settings and the material allow) or double_vertices, at its
+// path's depth, and the path's depth counts the vertex.
+void sort_arrivals(TileContext& ctx);
 
 // double_vertices.cpp: the double_vertices queue, one by one with the double Bsdf: their
 // shadow rays and next rays into next_shadows and next_rays.
-void shade_double_vertices(TileContext& ctx, int depth);
+void shade_double_vertices(TileContext& ctx);
 
 // lane_vertices.cpp: an empty lane_vertices queue with room for `most` vertices.
 void start_lane_vertices(TileContext& ctx, std::size_t most);
 // lane_vertices.cpp: the lane_vertices queue at once, in columns and lanes: their shadow rays
 // and next rays into next_shadows and next_rays (through lane_write_back.cpp).
-void shade_lane_vertices(TileContext& ctx, int depth);
+void shade_lane_vertices(TileContext& ctx);
 void write_lane_shadow_rays(TileContext& ctx);
 void write_lane_next_rays(TileContext& ctx);
 
