@@ -136,7 +136,7 @@ struct LaneVertexQueue {
 struct TileInFlight {
   std::ptrdiff_t tile = -1;  // -1: a free block of slots
   uint32_t first = 0, paths = 0;
-  uint32_t live = 0;   // rays and shadow rays of its paths in the wavefront's queues
+  uint32_t live = 0;   // rays and shadow rays of its paths waiting (or 1 for any: finish_tiles)
   double seconds = 0;  // its share of the thread's CPU time (MPI's tile costs)
 };
 

@@ -116,9 +116,36 @@ void add_to_film(TileContext& ctx, const TileInFlight& tile, Film& f) {
   }
 }
 
-// The step's CPU time shared by the tiles by their rays in it; then each tile's rays for the
-// next step counted, and the tiles with none finished (their samples into the film, their
-// blocks freed).
+// The blocks that hold a path of `paths` as bits (block b: bit b; at most 64 blocks). An OR
+// into a register: counting into each tile's `live` instead chained every increment on the one
+// before through memory (2.6 % of a render).
+uint64_t blocks_of(const Column<uint32_t>& paths) {
+  uint64_t blocks = 0;
+  for (uint32_t p : paths)
+    blocks |= uint64_t(1) << (p / kTilePaths);
+  return blocks;
+}
+
+// Each tile's `live`: its rays and shadow rays waiting, counted where they are read (MPI's tile
+// costs) or where the blocks outnumber a word's bits; else 1 for a tile that has any.
+void mark_live_tiles(Wavefront& w, bool counted) {
+  for (TileInFlight& t : w.tiles)
+    t.live = 0;
+  if (counted || w.tiles.size() > 64) {
+    for (uint32_t p : w.rays.path)
+      ++w.tiles[p / kTilePaths].live;
+    for (uint32_t p : w.shadows.path)
+      ++w.tiles[p / kTilePaths].live;
+    return;
+  }
+  const uint64_t blocks = blocks_of(w.rays.path) | blocks_of(w.shadows.path);
+  for (std::size_t b = 0; b < w.tiles.size(); ++b)
+    w.tiles[b].live = uint32_t(blocks >> b & 1u);
+}
+
+// The step's CPU time shared by the tiles by their rays in it; then the tiles that have rays
+// for the next step marked, and the others finished (their samples into the film, their blocks
+// freed).
 void finish_tiles(TileContext& ctx, Film& f, double step_seconds,
                   std::vector<double>& tile_seconds) {
   Wavefront& w = ctx.wave;
@@ -129,12 +156,7 @@ void finish_tiles(TileContext& ctx, Film& f, double step_seconds,
     for (TileInFlight& t : w.tiles)
       if (t.tile >= 0 && rays > 0) t.seconds += step_seconds * double(t.live) / double(rays);
   }
-  for (TileInFlight& t : w.tiles)
-    t.live = 0;
-  for (uint32_t p : w.rays.path)
-    ++w.tiles[p / kTilePaths].live;
-  for (uint32_t p : w.shadows.path)
-    ++w.tiles[p / kTilePaths].live;
+  mark_live_tiles(w, !tile_seconds.empty());
   PhaseClock clock(ctx.settings.time_phases);
   for (TileInFlight& t : w.tiles) {
     if (t.tile < 0 || t.live > 0) continue;
