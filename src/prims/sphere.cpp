@@ -20,16 +20,14 @@ double Sphere::area(const Table& t, uint32_t i) {
   return 4 * kPi * double(t.r[i]) * t.r[i];
 }
 
-AreaSample Sphere::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
+AreaSample sample_sphere_area(const glm::dvec3& c, double r, double u1, double u2) {
   glm::dvec3 n = sample_uniform_sphere(u1, u2);
-  return {glm::dvec3(t.center(i)) + n * double(t.r[i]), n};
+  return {c + n * r, n};
 }
 
-std::optional<SubtendedSample> Sphere::sample_subtended(const Table& t, uint32_t i,
-                                                        const glm::dvec3& ref, double u1,
-                                                        double u2) {
-  glm::dvec3 c(t.center(i));
-  double r = t.r[i], d2 = length_squared(c - ref);
+std::optional<SubtendedSample> sample_sphere_cone(const glm::dvec3& c, double r,
+                                                  const glm::dvec3& ref, double u1, double u2) {
+  double d2 = length_squared(c - ref);
   if (!(d2 > r * r)) return std::nullopt;
   double d = std::sqrt(d2), omc = cone_one_minus_cos(r * r, d2);
   glm::dvec3 local = sample_uniform_cone(u1, u2, omc);
@@ -39,11 +37,26 @@ std::optional<SubtendedSample> Sphere::sample_subtended(const Table& t, uint32_t
   return SubtendedSample{Frame((c - ref) / d).to_world(local), t_hit, 2 * kPi * omc};
 }
 
-std::optional<double> Sphere::subtended_solid_angle(const Table& t, uint32_t i,
-                                                    const glm::dvec3& ref) {
-  double r = t.r[i], d2 = length_squared(glm::dvec3(t.center(i)) - ref);
+std::optional<double> sphere_cone_solid_angle(const glm::dvec3& c, double r,
+                                              const glm::dvec3& ref) {
+  double d2 = length_squared(c - ref);
   if (!(d2 > r * r)) return std::nullopt;
   return 2 * kPi * cone_one_minus_cos(r * r, d2);
+}
+
+AreaSample Sphere::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
+  return sample_sphere_area(glm::dvec3(t.center(i)), t.r[i], u1, u2);
+}
+
+std::optional<SubtendedSample> Sphere::sample_subtended(const Table& t, uint32_t i,
+                                                        const glm::dvec3& ref, double u1,
+                                                        double u2) {
+  return sample_sphere_cone(glm::dvec3(t.center(i)), t.r[i], ref, u1, u2);
+}
+
+std::optional<double> Sphere::subtended_solid_angle(const Table& t, uint32_t i,
+                                                    const glm::dvec3& ref) {
+  return sphere_cone_solid_angle(glm::dvec3(t.center(i)), t.r[i], ref);
 }
 
 }  // namespace raylane

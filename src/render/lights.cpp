@@ -17,21 +17,55 @@ double area_of(const Scene& scene, PrimRef l) {
   });
 }
 
-// A point on light l as seen from ref: by the solid angle it subtends where the kind can, by
-// area otherwise (converted to solid angle). `s` arrives with the light and Le filled in.
+// A kind's emitter sampling at `time`: a moving kind's routines take the time, a still kind's
+// do not.
+template <class Kind>
+std::optional<SubtendedSample> subtended_at(const typename Kind::Table& t, uint32_t row,
+                                            const glm::dvec3& ref, double u1, double u2,
+                                            double time) {
+  if constexpr (requires { Kind::sample_subtended(t, row, ref, u1, u2, time); })
+    return Kind::sample_subtended(t, row, ref, u1, u2, time);
+  else if constexpr (requires { Kind::sample_subtended(t, row, ref, u1, u2); })
+    return Kind::sample_subtended(t, row, ref, u1, u2);
+  else
+    return std::nullopt;
+}
+
+template <class Kind>
+std::optional<double> solid_angle_at(const typename Kind::Table& t, uint32_t row,
+                                     const glm::dvec3& ref, double time) {
+  if constexpr (requires { Kind::subtended_solid_angle(t, row, ref, time); })
+    return Kind::subtended_solid_angle(t, row, ref, time);
+  else if constexpr (requires { Kind::subtended_solid_angle(t, row, ref); })
+    return Kind::subtended_solid_angle(t, row, ref);
+  else
+    return std::nullopt;
+}
+
+template <class Kind>
+AreaSample area_sample_at(const typename Kind::Table& t, uint32_t row, double u_part, double u1,
+                          double u2, double time) {
+  if constexpr (requires { Kind::sample_area(t, row, u_part, u1, u2, time); })
+    return Kind::sample_area(t, row, u_part, u1, u2, time);
+  else
+    return Kind::sample_area(t, row, u_part, u1, u2);
+}
+
+// A point on light l as seen from ref at `time`: by the solid angle it subtends where the kind
+// can, by area otherwise (converted to solid angle). `s` arrives with the light and Le filled
+// in.
 template <class Kind>
 LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref,
-                        double choice, double u_part, double u1, double u2, LightSample s) {
-  if constexpr (requires { Kind::sample_subtended(t, row, ref, u1, u2); }) {
-    if (auto d = Kind::sample_subtended(t, row, ref, u1, u2)) {
-      s.wi = d->wi;
-      s.dist = d->dist;
-      s.p = ref + d->wi * d->dist;
-      s.pdf = choice / d->solid_angle;
-      return s;
-    }
+                        double choice, double u_part, double u1, double u2, double time,
+                        LightSample s) {
+  if (auto d = subtended_at<Kind>(t, row, ref, u1, u2, time)) {
+    s.wi = d->wi;
+    s.dist = d->dist;
+    s.p = ref + d->wi * d->dist;
+    s.pdf = choice / d->solid_angle;
+    return s;
   }
-  AreaSample a = Kind::sample_area(t, row, u_part, u1, u2);
+  AreaSample a = area_sample_at<Kind>(t, row, u_part, u1, u2, time);
   glm::dvec3 to = a.p - ref;
   double d2 = length_squared(to);
   if (!(d2 > 0)) return s;
@@ -47,14 +81,12 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::
   return s;
 }
 
-// The density sample_kind would have had for direction wi from ref, hitting `hit` on light
-// row `row`.
+// The density sample_kind would have had for direction wi from ref at `time`, hitting `hit` on
+// light row `row`.
 template <class Kind>
 double pdf_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref,
-                const glm::dvec3& wi, const Hit& hit, double choice) {
-  if constexpr (requires { Kind::subtended_solid_angle(t, row, ref); }) {
-    if (auto omega = Kind::subtended_solid_angle(t, row, ref)) return choice / *omega;
-  }
+                const glm::dvec3& wi, const Hit& hit, double time, double choice) {
+  if (auto omega = solid_angle_at<Kind>(t, row, ref, time)) return choice / *omega;
   double d2 = length_squared(hit.surface.p - ref);
   double cos_l = std::abs(dot(wi, hit.surface.ng));
   if (!Kind::two_sided && !hit.front_face) return 0;
@@ -78,10 +110,6 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     total += env_power;
   }
   for (PrimRef l : scene.lights) {
-    // A moving light's points depend on the path's time, which light sampling does not take
-    // (yet): it is left to BSDF sampling, which finds it where it is at the path's time
-    // (arrival.cpp counts all of what a path meets of it).
-    if (l.tag() == tag_of<MovingSphere>) continue;
     const Material& m = scene.materials[scene.material_of(l)];
     glm::dvec3 le(m.emission);
     glm::dvec3 mean_le = m.texture >= 0 ? le * scene.textures[m.texture].mean : le;
@@ -115,8 +143,8 @@ std::optional<double> LightSampler::choice_of(PrimRef light) const {
 }
 
 int LightSampler::numbers_read() const {
-  for (PrimRef l : lights_)
-    if (l.tag() != tag_of<Sphere>) return 4;
+  for (PrimRef l : lights_)  // a (moving) sphere's point needs no part
+    if (l.tag() != tag_of<Sphere> && l.tag() != tag_of<MovingSphere>) return 4;
   return cdf_.size() > 1 ? 3 : 2;
 }
 
@@ -137,7 +165,7 @@ LightSample LightSampler::sample_environment(double u1, double u2) const {
 }
 
 LightSample LightSampler::sample(const glm::dvec3& ref, double u_light, double u_part, double u1,
-                                 double u2) const {
+                                 double u2, double time) const {
   LightSample s;
   if (empty()) return s;
   std::size_t k = pick(u_light);
@@ -147,16 +175,40 @@ LightSample LightSampler::sample(const glm::dvec3& ref, double u_light, double u
   s.le = le_[k];
   s = dispatch(l.tag(), [&](auto kind) {
     using Kind = decltype(kind);
-    return sample_kind<Kind>(scene_.table<Kind>(), l.row(), ref, choice_[k], u_part, u1, u2, s);
+    return sample_kind<Kind>(scene_.table<Kind>(), l.row(), ref, choice_[k], u_part, u1, u2, time,
+                             s);
   });
-  if (textured_[k]) apply_texture(k, s);
+  if (textured_[k]) apply_texture(k, s, time);
   return s;
 }
 
-void LightSampler::apply_texture(std::size_t k, LightSample& s) const {
+void LightSampler::apply_texture(std::size_t k, LightSample& s, double time) const {
   if (!s.valid()) return;
   const Material& m = scene_.materials[scene_.material_of(lights_[k])];
-  s.le = s.le * texture_factor(scene_, m, lights_[k], Surface{s.p, s.n, s.n});
+  Surface surface{s.p, s.n, s.n};
+  if (lights_[k].tag() == tag_of<MovingSphere>) {
+    // Its texture is looked up by the normal (moving_sphere.h), which a cone's sample leaves 0.
+    glm::dvec3 n = normalize(s.p - sphere_at(k, time).first);
+    surface = Surface{s.p, n, n};
+  }
+  s.le = s.le * texture_factor(scene_, m, lights_[k], surface);
+}
+
+std::pair<glm::dvec3, double> LightSampler::sphere_at(std::size_t k, double time) const {
+  const uint32_t row = lights_[k].row();
+  if (lights_[k].tag() == tag_of<MovingSphere>) {
+    const MovingSphereTable& t = scene_.table<MovingSphere>();
+    return {t.center_at(row, time), double(t.r[row])};
+  }
+  const SphereTable& t = scene_.table<Sphere>();
+  return {glm::dvec3(t.center(row)), double(t.r[row])};
+}
+
+void LightQueries::set_times(const uint32_t* path, const std::vector<float>& path_time) {
+  if (path_time.empty()) return time.clear();
+  time.resize(size_);
+  for (std::size_t r = 0; r < size_; ++r)
+    time[r] = path_time[path[r]];
 }
 
 void LightQueries::resize(std::size_t n) {
@@ -207,27 +259,29 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Sphere>)
     return sample_one_sphere(isa, q);
   ConeBatch& cb = q.cones;
-  const SphereTable& spheres = scene_.table<Sphere>();
   const std::size_t n = q.size();
-  // Each row's light; a sphere's rows get its center, radius and choice for the cone kernel.
-  // The other rows get a unit sphere two units above their point, so that their lanes stay
-  // finite (what the kernel makes of them is overwritten below).
+  // Each row's light; a sphere's rows get its center (a moving one's at the row's time),
+  // radius and choice for the cone kernel. The other rows get a unit sphere two units above
+  // their point, so that their lanes stay finite (what the kernel makes of them is overwritten
+  // below).
   for (std::size_t r = 0; r < n; ++r) {
     std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
-    bool cone = k < lights_.size() && lights_[k].tag() == tag_of<Sphere>;
+    bool cone = k < lights_.size() &&
+                (lights_[k].tag() == tag_of<Sphere> || lights_[k].tag() == tag_of<MovingSphere>);
     q.cone_light[r] = cone ? uint32_t(k) : LightQueries::kNoCone;
-    glm::dvec3 center =
-        cone ? glm::dvec3(spheres.center(lights_[k].row())) : q.ref(r) + glm::dvec3(0, 0, 2);
+    auto [center, radius] =
+        cone ? sphere_at(k, q.time_of(r))
+             : std::pair<glm::dvec3, double>(q.ref(r) + glm::dvec3(0, 0, 2), 1.0);
     for (int c = 0; c < 3; ++c)
       cb.center[c][r] = center[c];
-    cb.radius[r] = cone ? double(spheres.r[lights_[k].row()]) : 1.0;
+    cb.radius[r] = radius;
     cb.choice[r] = cone ? choice_[k] : 1.0;
   }
   sample_cones(isa, cb);  // direction, distance and density of every cone row
   for (std::size_t r = 0; r < n; ++r) {
     const uint32_t k = q.cone_light[r];
     if (k == LightQueries::kNoCone) {
-      q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r]));
+      q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r], q.time_of(r)));
       continue;
     }
     q.light[r] = lights_[k];
@@ -244,26 +298,31 @@ LightSample LightSampler::finish_sphere_row(const LightQueries& q, std::size_t r
   LightSample s;
   s.light = lights_[k];
   s.le = le_[k];
+  const double time = q.time_of(r);
   if (!(cb.solid_angle[r] > 0)) {  // inside the sphere: by area, as sample() does
-    s = sample_kind<Sphere>(scene_.table<Sphere>(), s.light.row(), q.ref(r), choice_[k],
-                            q.u_part[r], cb.u1[r], cb.u2[r], s);
+    s = s.light.tag() == tag_of<MovingSphere>
+            ? sample_kind<MovingSphere>(scene_.table<MovingSphere>(), s.light.row(), q.ref(r),
+                                        choice_[k], q.u_part[r], cb.u1[r], cb.u2[r], time, s)
+            : sample_kind<Sphere>(scene_.table<Sphere>(), s.light.row(), q.ref(r), choice_[k],
+                                  q.u_part[r], cb.u1[r], cb.u2[r], time, s);
   } else {
     s.wi = q.wi(r);
     s.dist = cb.dist[r];
     s.p = q.ref(r) + s.wi * s.dist;
     s.pdf = cb.pdf[r];
   }
-  if (textured_[k]) apply_texture(k, s);
+  if (textured_[k]) apply_texture(k, s, time);
   return s;
 }
 
-double LightSampler::pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit) const {
+double LightSampler::pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit,
+                         double time) const {
   std::optional<double> choice = choice_of(hit.prim);
   if (!choice) return 0;
   PrimRef l = hit.prim;
   return dispatch(l.tag(), [&](auto kind) {
     using Kind = decltype(kind);
-    return pdf_kind<Kind>(scene_.table<Kind>(), l.row(), ref, wi, hit, *choice);
+    return pdf_kind<Kind>(scene_.table<Kind>(), l.row(), ref, wi, hit, time, *choice);
   });
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <regex>
 
 #include "support/cli_run.h"
 #include "support/paths.h"
@@ -78,6 +79,41 @@ TEST(CliSaveAt, ResumingWritesTheUninterruptedRendersFiles) {
     ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) + " -o " + ref), 0);
     EXPECT_TRUE(same_bytes(dir + "/rest." + std::to_string(n) + ".hdr", ref));
   }
+}
+
+// --stats-json lists the series (for tools/converge): each save's pass count, its cost so far
+// (seconds and CPU seconds since the start, growing with the passes: 7 then 8 passes catches
+// a per-save interval, which would shrink) and its files, which exist; a render without
+// --save-at lists an empty series.
+TEST(CliSaveAt, StatsJsonListsEachSavesPassesCostAndFiles) {
+  std::string dir = temp_dir(), common = scene_args() + " --threads 1 --spp 8";
+  ASSERT_EQ(run_status("render " + common + " --save-at 8,1,7 --png --stats-json " + dir +
+                       "/s.json -o " + dir + "/room.hdr"),
+            0);
+  std::string json = read_file(dir + "/s.json");
+  std::regex save(
+      "\\{\"spp\": ([0-9]+), \"seconds\": ([-0-9.e]+), \"cpu_seconds\": ([-0-9.e]+), "
+      "\"outputs\": \\[\"([^\"]*)\", \"([^\"]*)\"\\]\\}");
+  std::vector<int> spp;
+  double last_seconds = 0, last_cpu = 0;
+  for (std::sregex_iterator it(json.begin(), json.end(), save), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    int n = std::stoi(m[1]);
+    spp.push_back(n);
+    double seconds = std::stod(m[2]), cpu = std::stod(m[3]);
+    EXPECT_GT(seconds, last_seconds) << json;
+    EXPECT_GT(cpu, 0) << json;
+    EXPECT_GE(cpu, last_cpu) << json;  // getrusage counts in scheduler ticks
+    last_seconds = seconds, last_cpu = cpu;
+    EXPECT_EQ(m[4].str(), dir + "/room." + std::to_string(n) + ".hdr");
+    EXPECT_EQ(m[5].str(), dir + "/room." + std::to_string(n) + ".png");
+    EXPECT_TRUE(fs::exists(m[4].str()) && fs::exists(m[5].str())) << json;
+  }
+  EXPECT_EQ(spp, (std::vector<int>{1, 7, 8})) << json;
+  EXPECT_NE(json.find("]}], \"outputs\": [\"" + dir + "/room.hdr\""), std::string::npos) << json;
+  ASSERT_EQ(
+      run_status("render " + common + " --stats-json " + dir + "/t.json -o " + dir + "/t.hdr"), 0);
+  EXPECT_NE(read_file(dir + "/t.json").find("\"series\": [], \"outputs\": "), std::string::npos);
 }
 
 TEST(CliSaveAt, BadListsAndClashingNamesExitTwoAndWriteNothing) {

@@ -32,15 +32,31 @@ grep -q "missing or not executable" bt.out || fail "bench_table: $(cat bt.out)"
 
 # A small convergence report, from a folder that is not the repository's.
 "$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
-  --ref-spp 8 --max-spp 2 --methods mis,nee --out report >converge.out 2>&1 ||
+  --ref-spp 8 --max-spp 4 --methods mis,nee --out report >converge.out 2>&1 ||
   { cat converge.out; fail "converge exits $?"; }
-[ "$(wc -l <report/converge.csv)" -eq 5 ] || fail "converge.csv: $(cat report/converge.csv)"
+[ "$(wc -l <report/converge.csv)" -eq 7 ] || fail "converge.csv: $(cat report/converge.csv)"
 # Its seconds are the renders' --stats-json `seconds`: positive, and no JSON file left behind.
 awk -F, 'NR > 1 && !($3 > 0) {exit 1}' report/converge.csv || fail "seconds: $(cat report/converge.csv)"
 ! ls report/*.json >/dev/null 2>&1 || fail "converge left $(ls report/*.json)"
 if command -v gnuplot >/dev/null; then
   [ "$(head -c 4 report/converge.png | tail -c 3)" = "PNG" ] || fail "no plot: $(cat converge.out)"
 fi
+
+# The same report from one --save-at render per method (--series), against the same reference:
+# each series image is the render stopped there, so every error is the per-count run's exactly;
+# its CPU seconds (the render's own, up to each save) are positive and grow with the count.
+mkdir series && cp report/ref.pfm series/
+"$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
+  --ref-spp 8 --max-spp 4 --methods mis,nee --out series --series >series.out 2>&1 ||
+  { cat series.out; fail "converge --series exits $?"; }
+errors() { awk -F, '{print $1, $2, $5, $6}' "$1"; }
+[ "$(errors series/converge.csv)" = "$(errors report/converge.csv)" ] ||
+  fail "--series errors differ: $(diff <(errors report/converge.csv) <(errors series/converge.csv))"
+[ "$(wc -l <series/converge.csv)" -eq 7 ] || fail "series: $(cat series/converge.csv)"
+awk -F, 'NR > 1 { if (!($3 > 0 && $4 > 0) || ($1 == m && $4 < cpu)) exit 1; m = $1; cpu = $4 }' \
+  series/converge.csv || fail "series times: $(cat series/converge.csv)"
+[ -z "$(ls series | grep -v -x -e ref.pfm -e converge.csv -e converge.dat -e converge.png)" ] ||
+  fail "converge --series left $(ls series)"
 
 # bench_trace: its help, the bunny of its own build tree, another with --bunny.
 bench=$build/bench/bench_trace

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
 #include "raylane/render/lights.h"
 #include "raylane/render/rng.h"
 #include "raylane/scene/parser.h"
+#include "support/paths.h"
 #include "support/same_bits.h"
 
 namespace raylane {
@@ -93,6 +96,37 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
   }
 }
 
+// sample_many's rows against sample() one by one, at every instruction set: the same light,
+// radiance, direction, distance and density, bit for bit; counts the kinds picked.
+void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, int* kinds_seen) {
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    lights.sample_many(isa, q);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      LightSample want = lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i],
+                                       q.cones.u2[i], q.time_of(i));
+      ASSERT_EQ(q.light[i], want.light) << "query " << i;
+      ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
+      ++kinds_seen[std::size_t(q.light[i].tag())];
+      if (!want.valid()) continue;
+      glm::dvec3 le(q.le[0][i], q.le[1][i], q.le[2][i]);
+      EXPECT_EQ(le, want.le);
+      // The point is ref + wi·dist for a cone's sample, so these pin it down too.
+      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf(i), want.pdf) &&
+                  same_bits(q.cones.dist[i], want.dist))
+          << "query " << i;
+    }
+  }
+}
+
+// Query i: the shading point and random numbers.
+void set_query(LightQueries& q, std::size_t i, const glm::dvec3& ref, Rng& rng) {
+  for (int k = 0; k < 3; ++k)
+    q.cones.ref[k][i] = ref[k];
+  q.cones.u1[i] = rng.uniform(), q.cones.u2[i] = rng.uniform();
+  q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
+}
+
 // A scene with a sphere, a box, a cylinder and a triangle light (the last two by area), and
 // shading points around them, some inside the sphere light (by area too).
 TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
@@ -109,32 +143,50 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
     glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
                                  : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
                                               8 * rng.uniform() - 4);
-    for (int k = 0; k < 3; ++k)
-      q.cones.ref[k][i] = ref[k];
-    q.cones.u1[i] = rng.uniform(), q.cones.u2[i] = rng.uniform();
-    q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
+    set_query(q, i, ref, rng);
   }
-  int kinds_seen[4] = {};
-  for (Isa isa : supported_isas()) {
-    SCOPED_TRACE(cat("isa ", isa_name(isa)));
-    lights.sample_many(isa, q);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      LightSample want =
-          lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i], q.cones.u2[i]);
-      ASSERT_EQ(q.light[i], want.light) << "query " << i;
-      ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
-      ++kinds_seen[std::size_t(q.light[i].tag())];
-      if (!want.valid()) continue;
-      glm::dvec3 le(q.le[0][i], q.le[1][i], q.le[2][i]);
-      EXPECT_EQ(le, want.le);
-      // The point is ref + wi·dist for a cone's sample, so these pin it down too.
-      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf(i), want.pdf) &&
-                  same_bits(q.cones.dist[i], want.dist))
-          << "query " << i;
-    }
-  }
+  int kinds_seen[8] = {};
+  expect_sample_many_is_sample(lights, q, kinds_seen);
   for (int k = 0; k < 3; ++k)
     EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
+}
+
+// Moving sphere lights (one textured) next to a still sphere and a box, each row at its own
+// time (the path's): the kernel's cone about the centre at that time and, for rows inside the
+// sphere then, area sampling, as sample() at that time does. Every row is at a different time,
+// so a row given another row's time, or the middle of the shutter, differs.
+TEST(LightLanes, SampleManyIsSampleAtEachRowsTimeForMovingLights) {
+  auto parsed = parse_scene(
+      "camera 0 0 0 1\nlight 5 5 5\nmbsphere -2 3 0 2 3 0 0.5\nlight 1 2 3\n"
+      "box 2 2 2 1 0.5 0.25\nlight 2 2 2\nsphere 0 -3 0 0.4\nlight 3 3 3\ntexture \"" +
+          testing::source_path("scenes/checker.png") + "\"\nmbsphere 0 0 -3 0 1 3 0.7\n",
+      "moving.scn");
+  ASSERT_TRUE(parsed.ok()) << parsed.diagnostics.items.front().message;
+  LightSampler lights(parsed.scene);
+  Rng rng(5);
+  LightQueries q;
+  q.resize(4000);
+  q.time.resize(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    q.time[i] = rng.uniform();
+    // One row in ten at the first moving sphere's centre at its time (inside it, by area).
+    glm::dvec3 ref = i % 10 == 0 ? glm::dvec3(-2 + 4 * q.time[i], 3, 0.1 * rng.uniform())
+                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
+                                              8 * rng.uniform() - 4);
+    set_query(q, i, ref, rng);
+  }
+  int kinds_seen[8] = {};
+  expect_sample_many_is_sample(lights, q, kinds_seen);
+  EXPECT_GT(kinds_seen[std::size_t(tag_of<MovingSphere>)], 0);
+  EXPECT_GT(kinds_seen[std::size_t(tag_of<Sphere>)], 0);
+  // The rows' samples depend on their times: the same queries at mid-shutter differ.
+  std::vector<double> pdf_at_times(q.cones.pdf.begin(), q.cones.pdf.begin() + q.size());
+  q.time.clear();
+  lights.sample_many(supported_isas().front(), q);
+  int moved = 0;
+  for (std::size_t i = 0; i < q.size(); ++i)
+    moved += q.light[i].tag() == tag_of<MovingSphere> && q.cones.pdf[i] != pdf_at_times[i];
+  EXPECT_GT(moved, 100);
 }
 
 // The render computes only the numbers numbers_read() names (render/wavefront/lane_vertices.cpp):
@@ -145,6 +197,7 @@ TEST(LightLanes, NumbersReadAreAllSamplingReads) {
       {"light 1 1 1\nsphere 0 3 0 0.5\nsphere 2 3 0 0.25\n", "3"},
       {"light 1 1 1\nsphere 0 3 0 0.5\nbox 2 2 2 1 0.5 0.25\n", "4"},
       {"light 1 1 1\nbox 2 2 2 1 0.5 0.25\n", "4"},
+      {"light 1 1 1\nsphere 0 3 0 0.5\nmbsphere 2 3 0 2 4 1 0.25\n", "3"},
   };
   for (const auto& [text, want] : kScenes) {
     SCOPED_TRACE(text);
@@ -158,10 +211,10 @@ TEST(LightLanes, NumbersReadAreAllSamplingReads) {
     for (int i = 0; i < 2000; ++i) {
       glm::dvec3 ref(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 4);
       double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-      LightSample a = lights.sample(ref, u[2], u[3], u[0], u[1]);
+      LightSample a = lights.sample(ref, u[2], u[3], u[0], u[1], 0.5);
       for (int c = read; c < 4; ++c)
         u[c] = rng.uniform();  // what an unread number holds does not matter
-      LightSample b = lights.sample(ref, u[2], u[3], u[0], u[1]);
+      LightSample b = lights.sample(ref, u[2], u[3], u[0], u[1], 0.5);
       ASSERT_EQ(a.light, b.light) << "sample " << i;
       ASSERT_TRUE(same_bits(a.wi, b.wi) && same_bits(a.pdf, b.pdf)) << "sample " << i;
     }

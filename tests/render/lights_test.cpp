@@ -3,10 +3,14 @@
 //  - Irradiance-like ∫ cos θ · V(ω) dω over the light's emitting side, by next-event sampling
 //    (cos/pdf) and by uniform directions ray-cast against the light (4π·cos·[front hit]).
 //  - ∫ pdf dω over the sphere (uniform directions) = the fraction of valid samples.
+// A moving light (mbsphere) at a path's time: sampled, hit and given its density where it is
+// at that time.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <string>
 
 #include "raylane/render/lights.h"
 #include "raylane/render/rng.h"
@@ -23,6 +27,8 @@ using testing::estimate;
 
 // The nearest light hit by a ray, with the double reference kernels (the scene holds only
 // lights).
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
 Hit hit_light(const Scene& scene, const Rayd& ray) {
   Hit h;
   for (PrimRef light : scene.lights)
@@ -38,8 +44,9 @@ Hit hit_light(const Scene& scene, const Rayd& ray) {
   return h;
 }
 
+// At `time`: the samples and the rays that check them (a moving light is where it is then).
 void check_light(const std::string& shape_line, const glm::dvec3& ref, const glm::dvec3& n,
-                 bool seen = true) {
+                 bool seen = true, double time = 0.5) {
   // Named as if in a folder holding tri.obj (one triangle), so `mesh` finds it.
   static const std::string dir = [] {
     std::string d = testing::temp_dir();
@@ -55,11 +62,11 @@ void check_light(const std::string& shape_line, const glm::dvec3& ref, const glm
   int valid = 0;
   Estimate nee = estimate(count, [&] {
     double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-    LightSample s = lights.sample(ref, u[0], u[1], u[2], u[3]);
+    LightSample s = lights.sample(ref, u[0], u[1], u[2], u[3], time);
     if (!s.valid()) return 0.0;
     ++valid;
     // The sample must lie on the light where a ray toward it first meets the light.
-    Hit h = hit_light(scene, {ref, s.wi});
+    Hit h = hit_light(scene, {ref, s.wi, 0, kInf, time});
     EXPECT_TRUE(h.hit());
     if (h.hit()) {
       EXPECT_NEAR(h.t, s.dist, 1e-6 * (1 + s.dist));
@@ -68,16 +75,16 @@ void check_light(const std::string& shape_line, const glm::dvec3& ref, const glm
   });
   Estimate uniform_cos = estimate(count, [&] {
     glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
-    Hit h = hit_light(scene, {ref, w});
+    Hit h = hit_light(scene, {ref, w, 0, kInf, time});
     bool emits = h.hit() && (h.front_face || kind_two_sided(h.prim.tag()));
     return emits ? 4 * kPi * std::abs(dot(w, n)) : 0.0;
   });
   Estimate uniform_pdf = estimate(count, [&] {
     glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
-    Hit h = hit_light(scene, {ref, w});
-    return h.hit() ? 4 * kPi * lights.pdf(ref, w, h) : 0.0;
+    Hit h = hit_light(scene, {ref, w, 0, kInf, time});
+    return h.hit() ? 4 * kPi * lights.pdf(ref, w, h, time) : 0.0;
   });
-  SCOPED_TRACE(shape_line);
+  SCOPED_TRACE(shape_line + " at time " + std::to_string(time));
   if (seen) {
     EXPECT_GT(uniform_cos.mean, 0.05);
   } else {  // nothing emitted toward ref: no valid sample either
@@ -106,6 +113,16 @@ TEST(Lights, EveryKindSamplesItsEmittingSurface) {
   check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", cap, normalize(glm::dvec3(-0.6, 0.3, 0.9)));
   check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(0.1, 0.1, 0.95), up);
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", glm::dvec3(0.1, 0.1, 0.55), up);
+}
+
+// A sphere moving 3 units, seen from outside (its cone) and from inside (by area: ref is in
+// the sphere at time 0.5, outside it at the ends), at times across the shutter.
+TEST(Lights, AMovingLightIsSampledWhereItIsAtThePathsTime) {
+  glm::dvec3 ref(0.1, -0.2, 0.05), n = normalize(glm::dvec3(0.2, 0.1, 1));
+  for (double time : {0.0, 0.23, 0.5, 0.91}) {
+    check_light("mbsphere -1.2 0.2 2 1.8 0.2 2 0.8", ref, n, true, time);
+    check_light("mbsphere -1.4 -0.2 0.6 1.6 -0.2 0.6 0.7", ref, n, time < 0.3 || time > 0.7, time);
+  }
 }
 
 }  // namespace

@@ -119,6 +119,39 @@ TEST(MotionBlur, AMovingSpheresImageIsTheAverageOfStaticRendersAtStratifiedTimes
   EXPECT_GT(compare_strips(moving, middle, 4).max_z, 10.0);
 }
 
+// An emitting ball sweeping low over the floor (4 units, 0.1 above it at its lowest) beside the
+// still light. Light sampling must find it where it is at each path's time: with MIS and with
+// next-event estimation alone, in the float lanes and in double shading, the image is in
+// expectation the one BSDF sampling alone gives (which finds the light wherever the path's rays
+// meet it). 4 renders × 48 comparisons: |z| ≤ 4.5 for all fails by chance with probability
+// 1 − (1 − 6.8e-6)^192 ≈ 0.13 %. The still scene's wall and floor are lit by the moving ball
+// very differently at each time, so a sample at another time (mid-shutter) is far outside.
+TEST(MotionBlur, AMovingLightIsLightSampledAtThePathsTime) {
+  const std::string scene =
+      ball_scene("sphere 1.3 0.5 0 0.5") + "light 30 30 30\nmbsphere -2 -1.5 -0.6 2 -1.5 -0.6 0.3\n";
+  PathSettings bsdf_only;
+  bsdf_only.integrator = Integrator::kBrdf;
+  bsdf_only.spp = 4096;
+  bsdf_only.seed = 1;
+  const Image reference = render(scene, bsdf_only);
+  for (Shading shading : {Shading::kFloat, Shading::kDouble})
+    for (Integrator integrator : {Integrator::kMis, Integrator::kNee}) {
+      PathSettings s;
+      s.integrator = integrator;
+      s.shading = shading;
+      s.spp = 256;
+      s.seed = 2;  // independent of the reference's noise
+      StripComparison c = compare_strips(render(scene, s), reference, 4);
+      std::printf(
+          "moving light, %s, %s shading, vs brdf: %d strips, max |z| %.3f, max "
+          "sigma/mean %.4f\n",
+          std::string(integrator_name(integrator)).c_str(),
+          std::string(shading_name(shading)).c_str(), c.strips, c.max_z, c.max_relative_sigma);
+      EXPECT_LE(c.max_z, 4.5);
+      EXPECT_LT(c.max_relative_sigma, 0.05);
+    }
+}
+
 // The ray-casting views show the shutter's middle (docs/motion-blur.md): a ball moving from
 // x = −1.25 to 1.25 is, at time 0.5, the ball at x = 0 (c0 + 0.5·m is exactly 0 in float), so
 // each view's image is the still ball's: bit for bit for the references and for the packet

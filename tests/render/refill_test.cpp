@@ -3,7 +3,8 @@
 // still going, so one step shades vertices of several depths. Every number a path draws comes
 // from its pixel, pass and depth, so the image must be the one rendered tile by tile, bit for
 // bit: the colour and the AOVs, with either shading, every integrator, roulette from the first
-// bounce, glass (both vertex queues in one step) and motion blur (the paths' times).
+// bounce, glass (both vertex queues in one step) and motion blur (the paths' times, moving
+// lights sampled at them).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -63,6 +64,7 @@ TEST(WavefrontRefill, TheImageIsTheTileByTileImageBitForBit) {
       {"scenes/testscene-glass.scn", Shading::kFloat, Integrator::kMis, 1},
       {"scenes/testscene-textured.scn"},
       {"scenes/motion-blur.scn"},
+      {"scenes/motion-blur-light.scn"},  // lights sampled at each path's time
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(cat(c.file, " ", shading_name(c.shading), " ", integrator_name(c.integrator),

@@ -119,7 +119,7 @@ TEST(Sampling, SphereLightSolidAngleFollowsItsPdf) {
     int off_sphere = 0;
     auto sample = [&](Rng& rng) -> std::optional<glm::dvec3> {
       double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-      LightSample s = lights.sample(ref, u[0], u[1], u[2], u[3]);
+      LightSample s = lights.sample(ref, u[0], u[1], u[2], u[3], 0.5);
       if (!s.valid()) return std::nullopt;
       off_sphere += std::abs(length(s.p - c) - r) > 1e-9;
       return s.wi;

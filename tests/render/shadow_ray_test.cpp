@@ -57,7 +57,8 @@ Shadows shadow_rays(const Scene& scene, double scale, const glm::dvec3& at, int 
   while (int(out.rays.size()) < count) {
     glm::dvec3 p = at + glm::dvec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) *
                             (8 * scale);
-    LightSample s = lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+    LightSample s =
+        lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), 0.5);
     if (!s.valid()) continue;
     glm::dvec3 ng = sample_uniform_sphere(rng.uniform(), rng.uniform());
     if (dot(ng, s.wi) < 0) ng = -ng;
@@ -132,7 +133,8 @@ TEST(ShadowRays, AnOccluderJustInFrontOfTheLightBlocks) {
     std::vector<PrimRef> aims;
     while (rays.size() < 2000) {
       glm::dvec3 p = sample_uniform_sphere(rng.uniform(), rng.uniform()) * (scale * 1.5);
-      LightSample s = lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+      LightSample s =
+          lights.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), 0.5);
       if (!s.valid()) continue;
       rays.push_back({p, s.wi, 0, shadow_ray_tmax(p, p, s.wi, s.dist)});
       aims.push_back(s.light);

@@ -1,5 +1,7 @@
 #include "pass_series.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -111,8 +113,22 @@ void PassSeries::finish(int passes_done) const {
                  comma_list(missed).c_str(), passes_done);
 }
 
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return seconds(u.ru_utime) + seconds(u.ru_stime);
+}
+
 // The files `raylane render --spp N` writes: the same options, RAYLANE_SPP=N.
 void PassSeries::write(const Film& film, int passes) {
+  SeriesSave save;
+  save.spp = passes;
+  const double cpu = process_cpu_seconds();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  save.cpu_seconds = cpu - writing_cpu_;
+  save.seconds = wall - writing_seconds_;
   WriteOptions wopts;
   wopts.exposure = r_.exposure;
   wopts.exr_half = r_.exr_half;
@@ -132,9 +148,14 @@ void PassSeries::write(const Film& film, int passes) {
   for (std::size_t i = 0; i < files.size(); ++i) {
     const std::string& out = files[i].first;
     const Image& file_image = i < colour.size() ? image : files[i].second;
-    write_render_output(out, file_image, is_exr(out) ? exr_wopts : wopts, failed_);
+    if (auto path = write_render_output(out, file_image, is_exr(out) ? exr_wopts : wopts, failed_))
+      save.outputs.push_back(*path);
   }
   std::fflush(stdout);
+  saves_.push_back(std::move(save));
+  writing_cpu_ += process_cpu_seconds() - cpu;
+  writing_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() - wall;
 }
 
 std::optional<std::string> write_render_output(const std::string& out, const Image& image,

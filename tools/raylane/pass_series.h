@@ -5,12 +5,14 @@
 // stopped at N, and the header says RAYLANE_SPP=N.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
 #include "cluster.h"
 #include "raylane/core/error.h"
 #include "raylane/render/film.h"
+#include "render_request.h"
 
 namespace raylane::cli {
 
@@ -44,6 +46,8 @@ class PassSeries {
   // After the render: the listed counts it stopped before (--time, Ctrl-C), in a warning.
   void finish(int passes_done) const;
   bool failed() const { return failed_; }
+  // What was written, for --stats-json (rank 0).
+  const std::vector<SeriesSave>& saves() const { return saves_; }
 
  private:
   void write(const Film& film, int passes);
@@ -51,6 +55,14 @@ class PassSeries {
   const RenderRequest& r_;
   const Cluster& cluster_;
   bool failed_ = false;
+  std::vector<SeriesSave> saves_;
+  // The clocks, and how much of them the writing of the series took (left out of each save's
+  // cost: a render stopped at N spp does not write the images before N).
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double writing_seconds_ = 0, writing_cpu_ = 0;
 };
+
+// This process's CPU time so far, user and system, all threads (getrusage).
+double process_cpu_seconds();
 
 }  // namespace raylane::cli

@@ -458,7 +458,7 @@ int render_command(const std::vector<std::string>& args) {
   std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int spp = 1;
   PathStats path_stats;
-  PathOutcome balance;  // the MPI job's wait and tile moves (--stats)
+  PathOutcome balance;  // the MPI job's wait and tile moves (--stats), the --save-at series
   bool interrupted_run = false, series_failed = false;
   if (r.path) {
     PathOutcome run = run_path(r, tracer, cluster);
@@ -472,6 +472,7 @@ int render_command(const std::vector<std::string>& args) {
     balance.tiles_moved = run.tiles_moved, balance.balances = run.balances;
     interrupted_run = run.interrupted;
     series_failed = run.series_failed;
+    balance.series = std::move(run.series);
     rays = path_stats.rays();
     spp = path_stats.passes;
     what = cat("path/", integrator_name(r.path_settings.integrator), "/",

@@ -118,6 +118,7 @@ class PassLoop {
   // --save-at: a resumed film may already hold a listed pass count.
   void start() { series_.start(film_); }
   bool series_failed() const { return series_.failed(); }
+  const std::vector<SeriesSave>& series_saves() const { return series_.saves(); }
 
   bool interrupted_run() const { return interrupted_; }
   double wait_seconds() const { return wait_; }
@@ -192,6 +193,7 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
   render_path(tracer, settings, &out.stats, &*film);
   loop.finish();
   out.series_failed = loop.series_failed();
+  out.series = loop.series_saves();
   cluster.sum(out.stats);
   double balance[2] = {loop.wait_seconds(), loop.busy_seconds()};
   cluster.sum_on_root(balance, 2);

@@ -59,6 +59,16 @@ inline std::vector<std::string> path_metadata(const PathSettings& p) {
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 constexpr int kMaxSpp = 1 << 24;
 
+// One save of the --save-at series: the pass count, the render's cost up to that pass (the
+// writing of earlier saves left out, so a render stopped at `spp` would have cost about the
+// same) and the files written (rescue files where they replaced an output).
+struct SeriesSave {
+  int spp = 0;
+  double seconds = 0;      // wall time since the render started
+  double cpu_seconds = 0;  // this process's CPU time (all threads) since it started
+  std::vector<std::string> outputs;
+};
+
 // A path render's results on rank 0 (other ranks hold their own share's only).
 struct PathOutcome {
   Image image;
@@ -73,6 +83,7 @@ struct PathOutcome {
   int tiles_moved = 0;         // tiles dealt to another process, over all the times
   int balances = 0;            // times the tiles were dealt again (--balance)
   bool series_failed = false;  // a --save-at image went to a rescue file or nowhere
+  std::vector<SeriesSave> series;  // the --save-at images written, in pass order (rank 0)
 };
 
 // Renders the path-traced image: progress, --time, Ctrl-C and checkpoints, with the tiles

@@ -74,14 +74,30 @@ std::string phases_json(const RenderSummary& s) {
       .str();
 }
 
+std::string string_array(const std::vector<std::string>& v) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out += cat(i ? ", " : "", json_string(v[i]));
+  return out + "]";
+}
+
+// [{"spp": N, "seconds": ..., "cpu_seconds": ..., "outputs": [...]}, ...]
+std::string series_json(const std::vector<SeriesSave>& series) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < series.size(); ++i)
+    out += cat(i ? ", " : "", JsonObject()
+                                  .count("spp", uint64_t(series[i].spp))
+                                  .number("seconds", series[i].seconds)
+                                  .number("cpu_seconds", series[i].cpu_seconds)
+                                  .raw("outputs", string_array(series[i].outputs))
+                                  .str());
+  return out + "]";
+}
+
 }  // namespace
 
 std::string summary_json(const RenderSummary& s) {
   const PathStats& st = s.stats;
-  std::string outputs = "[";
-  for (std::size_t i = 0; i < s.outputs.size(); ++i)
-    outputs += cat(i ? ", " : "", json_string(s.outputs[i]));
-  outputs += "]";
   JsonObject o;
   o.count("width", s.width).count("height", s.height);
   if (!s.region.empty()) o.raw("region", s.region);
@@ -111,7 +127,8 @@ std::string summary_json(const RenderSummary& s) {
                          .count("tiles_moved", uint64_t(s.tiles_moved))
                          .count("balances", uint64_t(s.balances))
                          .str());
-  o.raw("outputs", outputs);
+  if (s.path) o.raw("series", series_json(s.series));
+  o.raw("outputs", string_array(s.outputs));
   return o.str() + "\n";
 }
 
@@ -123,7 +140,7 @@ bool write_summary_json(const std::string& path, const RenderSummary& s) {
 }
 
 RenderSummary render_summary(const RenderRequest& r, const Scene& scene, const Bvh& bvh,
-                             const PathStats& stats, const PathOutcome& balance, double seconds,
+                             const PathStats& stats, const PathOutcome& run, double seconds,
                              bool interrupted, int processes, std::vector<std::string> written) {
   RenderSummary s;
   s.width = scene.width, s.height = scene.height;
@@ -147,8 +164,10 @@ RenderSummary render_summary(const RenderRequest& r, const Scene& scene, const B
   s.processes = processes;
   s.bvh_nodes = bvh.nodes.size();
   s.bvh_seconds = bvh.stats.build_seconds;
-  s.wait_seconds = balance.wait_seconds, s.busy_seconds = balance.busy_seconds;
-  s.tiles_moved = balance.tiles_moved, s.balances = balance.balances;
+  s.wait_seconds = run.wait_seconds, s.busy_seconds = run.busy_seconds;
+  s.tiles_moved = run.tiles_moved, s.balances = run.balances;
+  s.path = r.path;
+  s.series = run.series;
   s.outputs = std::move(written);
   return s;
 }

@@ -29,6 +29,8 @@ struct RenderSummary {
   double wait_seconds = 0, busy_seconds = 0;  // under mpirun, summed over the processes
   int tiles_moved = 0, balances = 0;
   std::vector<std::string> outputs;  // the images written
+  bool path = false;                 // a path render: the series is listed (maybe empty)
+  std::vector<SeriesSave> series;    // --save-at's images, in pass order
 };
 
 // The summary as one JSON object (its keys: the README, `--stats-json`).
@@ -37,9 +39,10 @@ std::string summary_json(const RenderSummary& s);
 bool write_summary_json(const std::string& path, const RenderSummary& s);
 
 // The summary of a finished render: its request, the scene's size, the BVH, the path
-// tracer's (or a view's) counts, an MPI job's balance, the wall time and the images written.
+// tracer's (or a view's) counts, an MPI job's balance and --save-at series (`run`), the wall
+// time and the images written.
 RenderSummary render_summary(const RenderRequest& r, const Scene& scene, const Bvh& bvh,
-                             const PathStats& stats, const PathOutcome& balance, double seconds,
+                             const PathStats& stats, const PathOutcome& run, double seconds,
                              bool interrupted, int processes, std::vector<std::string> written);
 
 }  // namespace raylane::cli

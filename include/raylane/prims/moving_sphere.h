@@ -84,13 +84,26 @@ struct MovingSphere {
   // Its surfaces come from surface_ref, one hit at a time: they need the ray's time, which the
   // double lanes of the static kinds do not carry.
   static constexpr bool surface_in_lanes = false;
-  // Emitters: a moving light's points depend on the path's time, which light sampling does not
-  // take; LightSampler leaves moving lights to BSDF sampling (lights.cpp), and these give the
-  // sphere at the middle of the shutter, for the `lit` view and statistics.
+  // Emitters: the sphere's sampling (sphere.h) about the centre at the path's time, which
+  // LightSampler passes (lights.cpp: a light that moves is sampled at the path's time). The
+  // sample_area without a time, which the kinds' interface asks for, is the sphere at
+  // mid-shutter, the time the ray-casting views show.
   static double area(const Table& t, uint32_t i) { return 4 * kPi * double(t.r[i]) * t.r[i]; }
-  static AreaSample sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
-    glm::dvec3 n = sample_uniform_sphere(u1, u2);
-    return {t.center_at(i, 0.5) + n * double(t.r[i]), n};
+  static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2) {
+    return sample_area(t, i, u_part, u1, u2, 0.5);
+  }
+  static AreaSample sample_area(const Table& t, uint32_t i, double, double u1, double u2,
+                                double time) {
+    return sample_sphere_area(t.center_at(i, time), t.r[i], u1, u2);
+  }
+  static std::optional<SubtendedSample> sample_subtended(const Table& t, uint32_t i,
+                                                         const glm::dvec3& ref, double u1,
+                                                         double u2, double time) {
+    return sample_sphere_cone(t.center_at(i, time), t.r[i], ref, u1, u2);
+  }
+  static std::optional<double> subtended_solid_angle(const Table& t, uint32_t i,
+                                                     const glm::dvec3& ref, double time) {
+    return sphere_cone_solid_angle(t.center_at(i, time), t.r[i], ref);
   }
   // The course's `lit` view lights from an emitting sphere's centre: here at mid-shutter, the
   // time the ray-casting views render.

@@ -82,6 +82,13 @@ struct Sphere {
   static glm::dvec3 point_light(const Table& t, uint32_t i) { return glm::dvec3(t.center(i)); }
 };
 
+// Sphere's emitter sampling for a sphere of centre c and radius r (sphere.cpp), shared with the
+// moving sphere, whose centre is the one at the path's time.
+AreaSample sample_sphere_area(const glm::dvec3& c, double r, double u1, double u2);
+std::optional<SubtendedSample> sample_sphere_cone(const glm::dvec3& c, double r,
+                                                  const glm::dvec3& ref, double u1, double u2);
+std::optional<double> sphere_cone_solid_angle(const glm::dvec3& c, double r, const glm::dvec3& ref);
+
 // The reference kernel of a sphere of centre c and radius r, in double. The discriminant is the
 // squared distance between the ray's line and the centre subtracted from r² (Hearn–Baker), so a
 // far, small sphere does not cancel to nothing (docs/hard-cases.md S1).

@@ -9,6 +9,10 @@
 // π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
 // flux an infinite light sends through the scene; docs/design.md, "The environment light").
 //
+// A light that moves (an emitting mbsphere) is sampled where it is at the path's time: the
+// queries carry that time, and the density of a BSDF-sampled hit on it is the one at the ray's
+// time (the scene language's spec, "Beyond the course's projects", motion blur).
+//
 // Emission model: solids (spheres, boxes, cylinders) emit from their outside only; triangles
 // emit from both sides. Emitters reflect nothing. A textured emitter's radiance is Le times its
 // image at the point; its power is estimated with the image's mean.
@@ -49,6 +53,13 @@ struct LightQueries {
   // sample).
   ConeBatch cones;
   Column u_light, u_part;
+  // The path's time of each row, in [0, 1); empty unless the scene moves (a still scene stores
+  // none), and then every row is at mid-shutter, 0.5. Only moving lights read it.
+  Column time;
+  // Fills `time` from the paths' times (Wavefront::path_time) of rows [0, size()), row r being
+  // path[r]'s; clears it when the paths have none.
+  void set_times(const uint32_t* path, const std::vector<float>& path_time);
+  double time_of(std::size_t r) const { return time.empty() ? 0.5 : time[r]; }
   std::vector<PrimRef> light;
   std::array<Column, 3> le;
   // Rows [0, n), padded to a multiple of 8 lanes as ConeBatch. The columns only grow.
@@ -77,19 +88,21 @@ class LightSampler {
   explicit LightSampler(const Scene& scene);
   bool empty() const { return lights_.empty() && !env_choice_; }
   // How many of (u1, u2, u_light, u_part) sampling reads: the first two always, u_light when
-  // there is more than one light to pick, u_part when some light is not a sphere (a sphere's
-  // point needs no part). The others may hold anything.
+  // there is more than one light to pick, u_part when some light is not a (moving) sphere (a
+  // sphere's point needs no part). The others may hold anything.
   int numbers_read() const;
 
-  // A point on a light as seen from `ref`; invalid (pdf 0) when the point faces away.
-  LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1,
-                     double u2) const;
+  // A point on a light as seen from `ref` at the path's `time` (where a moving light is then);
+  // invalid (pdf 0) when the point faces away.
+  LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1, double u2,
+                     double time) const;
   // sample() for every query: sphere lights seen from outside by their cones in double lanes
   // (render/light_lanes.h, the same formulas), the rest one by one.
   void sample_many(Isa isa, LightQueries& q) const;
 
-  // The density sample() would have had for direction wi from ref, hitting `hit` on a light.
-  double pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit) const;
+  // The density sample() would have had for direction wi from ref at `time` (the ray's),
+  // hitting `hit` on a light.
+  double pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit, double time) const;
 
   // The radiance a ray sees where it hits an emitter (0 from behind a solid emitter).
   glm::dvec3 emitted(const Hit& hit) const;
@@ -121,13 +134,16 @@ class LightSampler {
   std::vector<double> choice_;     // choice probability of lights_[k]
   std::vector<glm::dvec3> le_;     // emission of lights_[k]
   std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
-  // The sample of sample_many's row r, a sphere light k's, where the kernel's answer needs more:
-  // a point inside the sphere (sampled by area) or a texture.
+  // The sample of sample_many's row r, a (moving) sphere light k's, where the kernel's answer
+  // needs more: a point inside the sphere (sampled by area) or a texture.
   LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;
   // sample_many for a scene whose one light is a sphere, without an environment.
   void sample_one_sphere(Isa isa, LightQueries& q) const;
-  // s.le times the light's texture at s.p, for a textured light.
-  void apply_texture(std::size_t k, LightSample& s) const;
+  // s.le times the light's texture at s.p, for a textured light (a moving one's at `time`).
+  void apply_texture(std::size_t k, LightSample& s, double time) const;
+  // The centre and radius of sphere light k at `time` (0.5 or anything for a still one), for
+  // the cone kernel.
+  std::pair<glm::dvec3, double> sphere_at(std::size_t k, double time) const;
   // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
   // cheaper per sample than a hash lookup.
   std::vector<std::pair<uint32_t, double>> by_bits_;

@@ -24,11 +24,9 @@ double emission_weight(const TileContext& ctx, const PathState& p, LightPdf ligh
 void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit) {
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
-  // A moving light is not sampled (LightSampler): what BSDF sampling finds of it is all of it.
-  const bool sampled = hit.prim.tag() != tag_of<MovingSphere>;
-  double w = !sampled
-                 ? 1.0
-                 : emission_weight(ctx, p, [&] { return ctx.lights.pdf(p.prev_p, ray.d, hit); });
+  double w = emission_weight(ctx, p, [&] {
+    return ctx.lights.pdf(p.prev_p, ray.d, hit, ray.time);  // a moving light's at the ray's time
+  });
   p.radiance += p.beta * le * w;
 }
 

@@ -43,12 +43,12 @@ double clock_read_seconds() {
 }
 
 // Next-event estimation's point on a light, seen from this vertex (invalid: none).
-LightSample sample_light_point(TileContext& ctx, const PathState& p, const Hit& hit,
-                               uint32_t depth) {
+LightSample sample_light_point(TileContext& ctx, const PathState& p, const Rayd& ray,
+                               const Hit& hit, uint32_t depth) {
   const auto u = draw(ctx, p, Dims::light_group(depth), kLightDrawOrder);
   bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
   PhaseClock clock(timed);
-  LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1]);
+  LightSample ls = ctx.lights.sample(hit.surface.p, u[2], u[3], u[0], u[1], ray.time);
   if (timed) {
     double t = 0;
     clock.lap(t);
@@ -96,7 +96,7 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Ra
   Bsdf bsdf(m, hit.surface.ns, -ray.d);
   if (bsdf.black()) return false;
   if (samples_lights(ctx)) {
-    LightSample ls = sample_light_point(ctx, p, hit, depth);
+    LightSample ls = sample_light_point(ctx, p, ray, hit, depth);
     if (ls.valid()) {
       BsdfEval e = bsdf.evaluate(ls.wi);
       queue_shadow_ray(ctx, path, p, ray, hit, ls, e.f, e.pdf);

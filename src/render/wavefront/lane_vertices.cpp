@@ -213,6 +213,7 @@ void hit_columns(TileContext& ctx, bool lights) {
   if (!lights) return;
   for (int k = 0; k < 3; ++k)
     std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
+  lv.light_queries.set_times(lv.path.data(), w.path_time);  // a moving light's time
 }
 
 // The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs with
