@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -86,6 +87,9 @@ TEST(WavefrontRefill, TheImageIsTheTileByTileImageBitForBit) {
     // The wavefronts did refill: paths of a tile's long tail shared their steps with the next
     // tiles', so the same rays took far fewer steps than tile by tile.
     const Rendered one = render_at(c.file, s, 1);
+    std::printf("%s: %llu steps refilled, %llu tile by tile, for %llu rays\n", c.file.c_str(),
+                (unsigned long long)one.stats.steps, (unsigned long long)tile_by_tile.stats.steps,
+                (unsigned long long)one.stats.rays());
     EXPECT_LT(double(one.stats.steps), 0.7 * double(tile_by_tile.stats.steps))
         << one.stats.steps << " steps refilled, " << tile_by_tile.stats.steps << " tile by tile";
   }
