@@ -26,8 +26,8 @@ void ConeBatch::resize(std::size_t rows) {
   }
 }
 
-void sample_cones(Isa isa, ConeBatch& batch) {
-  detail::render_lanes(isa).sample_cones(batch);
+void sample_cones(Isa isa, ConeBatch& batch, const ConeSphere* every_row) {
+  detail::render_lanes(isa).sample_cones(batch, every_row);
 }
 
 }  // namespace raylane

@@ -43,14 +43,47 @@ void sincos_2pi_lanes(const Doubles<A>& u, Doubles<A>& sin_out, Doubles<A>& cos_
   cos_out = xsimd::select(q1, -s, xsimd::select(q2, -c, xsimd::select(q3, s, c)));
 }
 
+// The sphere of rows [i, i + W): the batch's columns, or every_row's broadcast.
 template <class A>
-void sample_cones_range(ConeBatch& b) {
+struct ConeSphereLanes {
+  DoubleVec3<A> center;
+  Doubles<A> radius, choice;
+  ConeSphereLanes(const ConeBatch& b, const ConeSphere* every_row, std::size_t i) {
+    using D = Doubles<A>;
+    if (every_row) {
+      const ConeSphere& s = *every_row;
+      center = {D(s.center[0]), D(s.center[1]), D(s.center[2])};
+      radius = D(s.radius), choice = D(s.choice);
+      return;
+    }
+    center = load3<A>(b.center, i);
+    radius = D::load_unaligned(b.radius.data() + i);
+    choice = D::load_unaligned(b.choice.data() + i);
+  }
+};
+
+// ConeBatch::wi_float for rows [i, i + W): wi where pdf > 0 in a row below the batch's size,
+// else 0 (a padding row's sphere may be any, so its direction is not written).
+template <class A>
+void store_wi_float(const ConeBatch& b, std::size_t i, const DoubleVec3<A>& wi,
+                    const Doubles<A>& pdf) {
+  using D = Doubles<A>;
+  alignas(64) static constexpr double kRow[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const auto keep = (pdf > D(0.0)) & (D::load_aligned(kRow) + D(double(i)) < D(double(b.size())));
+  simd::store_narrowed<A>(b.wi_float[0] + i, xsimd::select(keep, wi.x, D(0.0)));
+  simd::store_narrowed<A>(b.wi_float[1] + i, xsimd::select(keep, wi.y, D(0.0)));
+  simd::store_narrowed<A>(b.wi_float[2] + i, xsimd::select(keep, wi.z, D(0.0)));
+}
+
+template <class A>
+void sample_cones_range(ConeBatch& b, const ConeSphere* every_row) {
   using D = Doubles<A>;
   constexpr std::size_t W = D::size;
   const D zero(0.0), one(1.0);
   for (std::size_t i = 0; i < b.size(); i += W) {
-    DoubleVec3<A> ref = load3<A>(b.ref, i), c = load3<A>(b.center, i);
-    D r = D::load_unaligned(b.radius.data() + i);
+    const ConeSphereLanes<A> sphere(b, every_row, i);
+    DoubleVec3<A> ref = load3<A>(b.ref, i), c = sphere.center;
+    D r = sphere.radius;
     DoubleVec3<A> w{c.x - ref.x, c.y - ref.y, c.z - ref.z};
     D r2 = r * r, d2 = w.x * w.x + w.y * w.y + w.z * w.z;
     auto outside = d2 > r2;
@@ -69,13 +102,15 @@ void sample_cones_range(ConeBatch& b) {
     D sin2 = local.x * local.x + local.y * local.y;
     D t_hit = d * local.z - xsimd::sqrt(xsimd::max(zero, r2 - d2 * sin2));
     DoubleVec3<A> axis{w.x / d, w.y / d, w.z / d};
-    store3<A>(b.wi, i, simd::to_world(axis, local));
+    const DoubleVec3<A> wi = simd::to_world(axis, local);
+    store3<A>(b.wi, i, wi);
     t_hit.store_unaligned(b.dist.data() + i);
     constexpr double kTwoPi = 6.283185307179586476925;
     D solid_angle = xsimd::select(outside, D(kTwoPi) * omc_max, zero);
     solid_angle.store_unaligned(b.solid_angle.data() + i);
-    D choice = D::load_unaligned(b.choice.data() + i);
-    xsimd::select(solid_angle > zero, choice / solid_angle, zero).store_unaligned(b.pdf.data() + i);
+    const D pdf = xsimd::select(solid_angle > zero, sphere.choice / solid_angle, zero);
+    pdf.store_unaligned(b.pdf.data() + i);
+    if (b.wi_float[0]) store_wi_float<A>(b, i, wi, pdf);
   }
 }
 

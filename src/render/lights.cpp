@@ -230,24 +230,23 @@ void LightQueries::set(std::size_t r, const LightSample& s) {
   cones.dist[r] = s.dist;
   for (int k = 0; k < 3; ++k)
     cones.wi[k][r] = s.wi[k], le[k][r] = s.le[k];
+  if (cones.wi_float[0])  // ConeBatch::wi_float, as the kernel writes it
+    for (int k = 0; k < 3; ++k)
+      cones.wi_float[k][r] = s.pdf > 0 ? float(s.wi[k]) : 0.0f;
 }
 
-// The one light is a sphere (and no environment): every row's cone is the same, so its
-// columns are filled rather than looked up row by row (the loops in sample_many were 5 % of
-// the course scene's render). The answers are those of the general path bit for bit: the same
-// values in the same columns, the same kernel.
+// The one light is a sphere (and no environment): every row's cone is about the same sphere,
+// which the kernel broadcasts (ConeSphere) rather than reading columns filled or looked up row
+// by row (the loops in sample_many were 5 % of the course scene's render, the fills 2 %). The
+// answers are those of the general path bit for bit: the same values, the same kernel.
 void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   ConeBatch& cb = q.cones;
   const std::size_t n = q.size();
   const SphereTable& spheres = scene_.table<Sphere>();
   const uint32_t row = lights_[0].row();
   const glm::dvec3 center(spheres.center(row));
-  for (int c = 0; c < 3; ++c)
-    std::fill_n(cb.center[std::size_t(c)].begin(), n, center[c]);
-  std::fill_n(cb.radius.begin(), n, double(spheres.r[row]));
-  std::fill_n(cb.choice.begin(), n, choice_[0]);
-  std::fill_n(q.cone_light.begin(), n, 0u);
-  sample_cones(isa, cb);
+  const ConeSphere every_row{{center.x, center.y, center.z}, double(spheres.r[row]), choice_[0]};
+  sample_cones(isa, cb, &every_row);
   std::fill_n(q.light.begin(), n, lights_[0]);
   for (int c = 0; c < 3; ++c)
     std::fill_n(q.le[std::size_t(c)].begin(), n, le_[0][c]);

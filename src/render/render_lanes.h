@@ -27,7 +27,7 @@ struct RenderLanes {
   void (*sobol_groups)(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                        const SobolNumbers& numbers);
   // sample_cones (render/light_lanes.h).
-  void (*sample_cones)(ConeBatch& batch);
+  void (*sample_cones)(ConeBatch& batch, const ConeSphere* every_row);
   // finish_vertices (render/vertex_lanes.h).
   void (*finish_vertices)(const VertexRules& rules, const ShadeBatch& bsdf,
                           const LightQueries* lights, VertexBatch& batch);

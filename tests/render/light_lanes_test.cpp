@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -96,13 +98,70 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
   }
 }
 
+// Every row about one sphere (ConeSphere) gives the answers of the same sphere in the columns,
+// bit for bit, and the float directions (ConeBatch::wi_float) are wi rounded where pdf > 0 and
+// 0 elsewhere; padding rows never get a direction.
+TEST(LightLanes, ConesAboutOneSphereAreTheColumnsAnswers) {
+  SphereTable spheres;
+  std::vector<Case> cases = random_cases(spheres, 4001, 9);
+  for (Case& c : cases)
+    c.sphere = 3;  // the refs stay where they were: some inside sphere 3, most far outside
+  const ConeSphere one{{spheres.center(3)[0], spheres.center(3)[1], spheres.center(3)[2]},
+                       double(spheres.r[3]),
+                       0.3};
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    ConeBatch want = batch_of(spheres, cases), got = want;
+    std::fill(want.choice.begin(), want.choice.begin() + std::ptrdiff_t(cases.size()), 0.3);
+    sample_cones(isa, want);
+    std::array<std::vector<float>, 3> wi_float;
+    for (int k = 0; k < 3; ++k) {
+      wi_float[k].assign(got.radius.size(), -1.0f);
+      got.wi_float[k] = wi_float[k].data();
+      std::fill(got.center[k].begin(), got.center[k].end(), 1e300);  // not to be read
+    }
+    sample_cones(isa, got, &one);
+    int failures = 0, valid = 0;
+    for (std::size_t i = 0; i < got.radius.size() && failures < 10; ++i) {
+      const bool row = i < cases.size();
+      const bool ok = row && want.pdf[i] > 0;
+      valid += ok;
+      for (int k = 0; k < 3; ++k) {
+        // A padding row is left alone or gets 0 (the kernel's last lanes), never a direction.
+        const float w = ok ? float(want.wi[k][i]) : 0.0f, got_k = wi_float[k][i];
+        const bool right = same_bits(got_k, w) || (!row && got_k == -1.0f);
+        failures += !right;
+        EXPECT_TRUE(right) << "row " << i << " component " << k << ": " << got_k;
+      }
+      if (!row) continue;
+      bool same =
+          same_bits(got.wi[0][i], want.wi[0][i]) && same_bits(got.wi[1][i], want.wi[1][i]) &&
+          same_bits(got.wi[2][i], want.wi[2][i]) && same_bits(got.dist[i], want.dist[i]) &&
+          same_bits(got.pdf[i], want.pdf[i]) && same_bits(got.solid_angle[i], want.solid_angle[i]);
+      failures += !same;
+      EXPECT_TRUE(same) << "row " << i;
+    }
+    EXPECT_GT(valid, 3000);
+  }
+}
+
 // sample_many's rows against sample() one by one, at every instruction set: the same light,
-// radiance, direction, distance and density, bit for bit; counts the kinds picked.
+// radiance, direction, distance and density, bit for bit, and the float direction
+// (ConeBatch::wi_float) rounded from it where the sample is valid, 0 where not; counts the
+// kinds picked.
 void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, int* kinds_seen) {
+  std::array<std::vector<float>, 3> wi_float;
+  for (int k = 0; k < 3; ++k) {
+    wi_float[k].assign(q.cones.radius.size(), -1.0f);
+    q.cones.wi_float[k] = wi_float[k].data();
+  }
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
     lights.sample_many(isa, q);
     for (std::size_t i = 0; i < q.size(); ++i) {
+      for (int k = 0; k < 3; ++k)
+        ASSERT_TRUE(same_bits(wi_float[k][i], q.valid(i) ? float(q.wi(i)[k]) : 0.0f))
+            << "query " << i;
       LightSample want = lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i],
                                        q.cones.u2[i], q.time_of(i));
       ASSERT_EQ(q.light[i], want.light) << "query " << i;
@@ -117,6 +176,7 @@ void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, i
           << "query " << i;
     }
   }
+  q.cones.wi_float = {};
 }
 
 // Query i: the shading point and random numbers.
@@ -149,6 +209,29 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
   expect_sample_many_is_sample(lights, q, kinds_seen);
   for (int k = 0; k < 3; ++k)
     EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
+}
+
+// The scene's one light a sphere (LightSampler's broadcast path), seen from outside and from
+// inside (by area).
+TEST(LightLanes, SampleManyIsSampleForOneSphereLight) {
+  auto parsed = parse_scene(
+      "camera 0 0 0 1\nlight 5 5 5\nsphere 0 3 0 0.5\nbrdf 0.5 0.5 0.5 0 0 0 1\n"
+      "box -4 -4 -4 8 0.1 8\n",
+      "one.scn");
+  ASSERT_TRUE(parsed.ok());
+  LightSampler lights(parsed.scene);
+  Rng rng(13);
+  LightQueries q;
+  q.resize(3001);
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
+                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
+                                              8 * rng.uniform() - 4);
+    set_query(q, i, ref, rng);
+  }
+  int kinds_seen[8] = {};
+  expect_sample_many_is_sample(lights, q, kinds_seen);
+  EXPECT_EQ(kinds_seen[std::size_t(tag_of<Sphere>)], int(q.size() * supported_isas().size()));
 }
 
 // Moving sphere lights (one textured) next to a still sphere and a box, each row at its own

@@ -30,6 +30,12 @@ struct ConeBatch {
   // outside the sphere (the caller samples by area).
   std::array<Column, 3> wi;
   Column dist, solid_angle, pdf;
+  // Optional, for the float BSDF that is evaluated toward the light next: where wi_float[0] is
+  // set, rows [0, size) of these three float columns get wi rounded to float where the sample
+  // is valid (pdf > 0) and 0 where it is not. The kernel writes them with its other outputs,
+  // saving the caller a pass that converts them (LightQueries::set keeps them for rows
+  // finished one by one). The caller points them at columns of at least the padded size.
+  std::array<float*, 3> wi_float{};
 
   std::size_t size() const { return size_; }
   // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.
@@ -39,6 +45,16 @@ struct ConeBatch {
   std::size_t size_ = 0;
 };
 
-void sample_cones(Isa isa, ConeBatch& batch);
+// The one sphere every row samples (a scene whose only light is a sphere): its centre, radius
+// and choice broadcast into the lanes, so that the batch's center, radius and choice columns
+// need no filling and are not read.
+struct ConeSphere {
+  std::array<double, 3> center;
+  double radius, choice;
+};
+
+// The cones of rows [0, batch.size()), each about its own sphere (the batch's columns) or all
+// about `every_row`.
+void sample_cones(Isa isa, ConeBatch& batch, const ConeSphere* every_row = nullptr);
 
 }  // namespace raylane

@@ -97,30 +97,25 @@ void draw_numbers(TileContext& ctx, bool lights, bool roulette) {
   sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, 3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
 }
 
-// The rows' light points (sphere lights in lanes): the float direction the BSDF is evaluated
-// toward (0 for none, and for every row without lights). The vertex lanes read the rest where
-// sample_many left it.
+// The rows' light points (sphere lights in lanes), with the float direction the BSDF is
+// evaluated toward written by the light sampler as it samples (ConeBatch::wi_float; 0 for no
+// sample, and for every row without lights). The vertex lanes read the rest where sample_many
+// left it.
 void light_columns(TileContext& ctx, bool lights) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   ShadeBatch& sb = lv.shade;
-  const std::size_t n = lv.count;
   if (!lights) {
     for (int k = 0; k < 3; ++k)
-      std::fill_n(sb.light_wi[k].begin(), n, 0.0f);
+      std::fill_n(sb.light_wi[k].begin(), lv.count, 0.0f);
     return;
   }
   PhaseClock clock(ctx.settings.time_phases);
+  ConeBatch& cones = lv.light_queries.cones;
+  cones.wi_float = {sb.light_wi[0].data(), sb.light_wi[1].data(), sb.light_wi[2].data()};
   ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
+  cones.wi_float = {};  // the columns may move before the next step's call
   clock.lap(ctx.stats.phases.lights);
-  const LightQueries& q = lv.light_queries;
-  const double* pdf = q.cones.pdf.data();
-  for (int k = 0; k < 3; ++k) {
-    const double* wi = q.cones.wi[std::size_t(k)].data();
-    float* to = sb.light_wi[std::size_t(k)].data();
-    for (std::size_t r = 0; r < n; ++r)
-      to[r] = pdf[r] > 0 ? float(wi[r]) : 0.0f;  // LightQueries::valid
-  }
 }
 
 }  // namespace
