@@ -196,6 +196,18 @@ using Doubles = xsimd::batch<double, A>;
 template <class A>
 inline constexpr int kDoubleWidth = int(Doubles<A>::size);
 
+// Lane i of a double mask as bit i.
+template <class A>
+inline uint32_t bits(const xsimd::batch_bool<double, A>& m) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    return uint32_t(__mmask8(m));
+  } else if constexpr (kDoubleWidth<A> == 4) {
+    return uint32_t(_mm256_movemask_pd(__m256d(m)));
+  } else {
+    return uint32_t(_mm_movemask_pd(__m128d(m)));
+  }
+}
+
 // Three lanes of one number type, B a batch of floats or of doubles: a point or a direction
 // per lane. The code base's one lane vector (FloatVec3 in the BSDF's float lanes, DoubleVec3 in
 // the surfaces, lights and the steps after the BSDF); the scalar vectors are GLM's
