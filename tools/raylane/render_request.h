@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "args.h"
 #include "checkpoint.h"
 #include "cluster.h"
 #include "raylane/core/enum_names.h"
@@ -104,5 +105,11 @@ std::optional<std::string> write_render_output(const std::string& out, const Ima
 // --stats under mpirun: how long the processes waited for the slowest after each pass, and
 // the tiles moved to even them out.
 void print_balance(const PathOutcome& run, int processes);
+
+// render_options.cpp: the options' specs and help, and the request they make (an error names
+// the option and what was wrong with its value).
+const std::vector<OptionSpec>& render_specs();
+const CommandHelp& render_help();
+Result<RenderRequest> read_request(const std::vector<std::string>& args);
 
 }  // namespace raylane::cli
