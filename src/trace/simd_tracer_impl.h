@@ -218,19 +218,17 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
   const Sink sink = to;
   constexpr int W = simd::kDoubleWidth<A>;
   for (std::size_t i = 0; i < rows.size(); i += W) {
-    alignas(64) uint32_t at[W], prim_rows[W];
-    alignas(64) double in[7][W];
+    alignas(64) uint32_t at[W], prim_rows[W], ray_rows[W];
+    alignas(64) double t[W];
     for (int k = 0; k < W; ++k) {
       const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
-      const uint32_t j = sink.ray_of(r);
       const Hit& h = sink.hit_of(r);
-      at[k] = r, prim_rows[k] = h.prim.row();
-      in[0][k] = rays.ox[j], in[1][k] = rays.oy[j], in[2][k] = rays.oz[j];
-      in[3][k] = rays.dx[j], in[4][k] = rays.dy[j], in[5][k] = rays.dz[j];
-      in[6][k] = h.t;
+      at[k] = r, prim_rows[k] = h.prim.row(), ray_rows[k] = sink.ray_of(r), t[k] = h.t;
     }
-    auto col = [&](int c) { return D::load_aligned(in[c]); };
-    const HitRayLanes<A> ray{{col(0), col(1), col(2)}, {col(3), col(4), col(5)}, col(6)};
+    auto col = [&](const Column<float>& c) { return simd::load_rows<A>(c.data(), ray_rows); };
+    const HitRayLanes<A> ray{{col(rays.ox), col(rays.oy), col(rays.oz)},
+                             {col(rays.dx), col(rays.dy), col(rays.dz)},
+                             D::load_aligned(t)};
     const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, ray);
     alignas(64) double out[7][W];
     const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, nullptr};

@@ -249,13 +249,24 @@ LaneVec3<B> to_world(const LaneVec3<B>& n, const LaneVec3<B>& v) {
 }
 
 // col[rows[0]], …, col[rows[W − 1]] widened to double (exactly): a table column read at one
-// row per lane, for code that runs once per hit rather than per node.
+// row per lane, for code that runs once per hit rather than per node. The gather instructions
+// (rows below 2^31): filling an array and loading it stalled on store forwarding.
+template <class A>
+inline Doubles<A> load_rows(const float* col, const uint32_t* rows) {
+  if constexpr (kDoubleWidth<A> == 8) {
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rows));
+    return Doubles<A>(
+        _mm512_maskz_cvtps_pd(__mmask8(0xFF), _mm256_i32gather_ps(col, idx, 4)));  // kAll16
+  } else if constexpr (kDoubleWidth<A> == 4) {
+    const __m128i idx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows));
+    return Doubles<A>(_mm256_cvtps_pd(_mm_i32gather_ps(col, idx, 4)));
+  } else {  // SSE4.2 has no gathers: two loads and a widening
+    return Doubles<A>(_mm_cvtps_pd(_mm_setr_ps(col[rows[0]], col[rows[1]], 0.0f, 0.0f)));
+  }
+}
 template <class A>
 inline Doubles<A> load_rows(const std::vector<float>& col, const uint32_t* rows) {
-  alignas(64) double v[8];
-  for (int k = 0; k < kDoubleWidth<A>; ++k)
-    v[k] = col[rows[k]];
-  return Doubles<A>::load_aligned(v);
+  return load_rows<A>(col.data(), rows);
 }
 
 // The square root (IEEE, correctly rounded) of double lanes; on AVX-512 the zero-masking form
