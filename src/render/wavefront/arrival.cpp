@@ -73,7 +73,7 @@ void sort_arrivals(TileContext& ctx) {
     if (int(depth) >= ctx.settings.max_depth) continue;
     p.depth = depth + 1;  // where the ray it sends on (if any) arrives
     if (lanes && ctx.lanes.materials.in_lanes[material])
-      w.lane_vertices.push(path, uint32_t(k), material, depth);
+      w.lane_vertices.push(path, uint32_t(k), material, depth, p.pixel_seed);
     else
       w.double_vertices.push(uint32_t(k), material, depth);
   }

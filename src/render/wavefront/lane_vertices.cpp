@@ -51,10 +51,11 @@ bool roulette_columns(TileContext& ctx) {
 template <class GroupOf>
 void salt_seeds(TileContext& ctx, GroupOf group_of) {
   LaneVertexQueue& lv = ctx.wave.lane_vertices;
-  const PathState* paths = ctx.wave.paths.data();
+  const uint64_t* pixel_seed = lv.pixel_seed.data();
+  const uint32_t* depth = lv.depth.data();
   uint64_t* seed = lv.sobol.seed.data();
   for (std::size_t r = 0; r < lv.count; ++r)
-    seed[r] = paths[lv.path[r]].pixel_seed ^ group_salt(group_of(lv.depth[r]));
+    seed[r] = pixel_seed[r] ^ group_salt(group_of(depth[r]));
 }
 
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
@@ -188,6 +189,7 @@ void drop_black_rows(TileContext& ctx) {
     if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
     rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
+    rows.pixel_seed[kept] = rows.pixel_seed[r];
     p.move(kept, r), ng.move(kept, r), ns.move(kept, r);
     ++kept;
   }

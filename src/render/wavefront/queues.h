@@ -113,6 +113,9 @@ struct LaneVertexQueue {
   std::vector<uint32_t> ray;       // index into the wavefront's rays and hits
   std::vector<uint32_t> material;  // the hit's material row
   std::vector<uint32_t> depth;     // the vertex's depth (its Sobol groups, its roulette)
+  // The path's PathState::pixel_seed, copied as the row is queued (the path is at hand then),
+  // so that the Sobol groups' seeds are a pass over columns, not a gather from the paths.
+  std::vector<uint64_t> pixel_seed;
   // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
@@ -124,11 +127,11 @@ struct LaneVertexQueue {
   void grow(std::size_t n) {
     if (path.size() >= n) return;
     path.resize(n), ray.resize(n), material.resize(n), depth.resize(n), cos_ns.resize(n);
-    front.resize(n);
+    front.resize(n), pixel_seed.resize(n);
   }
-  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d) {
+  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, uint64_t seed) {
     const std::size_t r = count++;
-    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d;
+    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d, pixel_seed[r] = seed;
   }
 };
 
