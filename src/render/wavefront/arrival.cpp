@@ -1,6 +1,8 @@
 // The stage after tracing: the shadow rays' answers, and where each ray arrived — the
 // environment for an escaped ray, the emission of an emitter it hit (both finish the path
 // here), or a queue of vertices to shade.
+#include <array>
+
 #include "raylane/render/vertex_steps.h"
 #include "render/wavefront/stages.h"
 
@@ -39,6 +41,22 @@ void add_escape(TileContext& ctx, PathState& p, const Rayd& ray) {
   p.radiance += p.beta * le * w;
 }
 
+// Each primitive kind's material column, taken once per wavefront: a hit's material is then
+// one load (Scene::material_of dispatches on the kind at every call).
+class MaterialColumns {
+ public:
+  explicit MaterialColumns(const Scene& scene) {
+    PrimKinds::for_each([&](auto kind) {
+      using Kind = decltype(kind);
+      of_[kind_index<Kind>()] = scene.table<Kind>().material.data();
+    });
+  }
+  uint32_t operator()(PrimRef prim) const { return of_[std::size_t(prim.tag())][prim.row()]; }
+
+ private:
+  std::array<const uint32_t*, kPrimKindCount> of_{};
+};
+
 }  // namespace
 
 void add_unblocked_shadows(TileContext& ctx) {
@@ -52,6 +70,9 @@ void sort_arrivals(TileContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
   const bool lanes = ctx.settings.shading == Shading::kFloat;
+  const MaterialColumns material_of(scene);
+  // Without an environment an escaped ray adds nothing (add_escape would find 0).
+  const bool environment = ctx.lights.environment() != nullptr;
   w.double_vertices.clear();
   if (lanes) start_lane_vertices(ctx, w.rays.size());
   for (std::size_t k = 0; k < w.rays.size(); ++k) {
@@ -59,10 +80,10 @@ void sort_arrivals(TileContext& ctx) {
     PathState& p = w.paths[path];
     Hit& hit = w.hits[k];
     if (!hit.hit()) {
-      add_escape(ctx, p, ray_of(w.rays.rays, k));
+      if (environment) add_escape(ctx, p, ray_of(w.rays.rays, k));
       continue;
     }
-    const uint32_t material = scene.material_of(hit.prim);
+    const uint32_t material = material_of(hit.prim);
     if (scene.materials[material].is_light) {  // emitters reflect nothing: the path ends
       const Rayd ray = ray_of(w.rays.rays, k);
       if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
