@@ -32,6 +32,7 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     pd.push_back(sum > 0 ? float(d / sum) : 0.0f);
     pr.push_back(sum > 0 ? float(r / sum) : 0.0f);
     pt.push_back(sum > 0 ? float(t / sum) : 0.0f);
+    has_lobes.push_back(pd.back() + pr.back() + pt.back() > 0 ? 1 : 0);
     double a = m.alpha;
     alpha.push_back(m.alpha);
     ior.push_back(m.ior);

@@ -35,8 +35,9 @@ struct LaneMaterials {
   // 2/(α + 2); read only when some material is not Phong (all_phong false).
   std::vector<float> microfacet, alpha_g2;
   bool all_phong = true;
-  std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission,
-                                  // a textured Kd)
+  std::vector<uint8_t> in_lanes;   // 0: shaded by the double Bsdf (index-matched transmission,
+                                   // a textured Kd)
+  std::vector<uint8_t> has_lobes;  // 1 where pd + pr + pt > 0 (0: the Bsdf is black)
   // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):
   // a sample's lobe number is never read (u < 1 = pd picks the diffuse lobe; black rows are
   // not shaded), and the render does not draw it.

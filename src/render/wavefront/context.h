@@ -63,9 +63,14 @@ inline bool samples_lights(const TileContext& ctx) {
   return ctx.settings.integrator != Integrator::kBrdf && !ctx.lights.empty();
 }
 
+// Whether a vertex at this depth plays Russian roulette (from bounce rr_depth on).
+inline bool has_roulette(int rr_depth, uint32_t depth) {
+  return int(depth) + 1 >= rr_depth;
+}
+
 // What the vertices of this depth follow: MIS or not, roulette or not.
 inline VertexRules vertex_rules(const TileContext& ctx, uint32_t depth) {
-  return {ctx.settings.integrator == Integrator::kMis, int(depth) + 1 >= ctx.settings.rr_depth,
+  return {ctx.settings.integrator == Integrator::kMis, has_roulette(ctx.settings.rr_depth, depth),
           kRouletteSurvival};
 }
 

@@ -37,11 +37,13 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
 bool roulette_columns(TileContext& ctx) {
   LaneVertexQueue& lv = ctx.wave.lane_vertices;
   double* survival = lv.vertices.survival.data();
+  const uint32_t* depth = lv.depth.data();
+  const int rr_depth = ctx.settings.rr_depth;  // read once: the stores below may alias it
   bool any = false;
   for (std::size_t r = 0; r < lv.count; ++r) {
-    const VertexRules rules = vertex_rules(ctx, lv.depth[r]);
-    survival[r] = rules.roulette ? rules.survival : 1.0;
-    any = any || rules.roulette;
+    const bool roulette = has_roulette(rr_depth, depth[r]);
+    survival[r] = roulette ? kRouletteSurvival : 1.0;
+    any = any || roulette;
   }
   return any;
 }
@@ -167,7 +169,7 @@ void surface_columns(TileContext& ctx) {
 // Whether row r's BSDF reflects something: a shading normal at a right angle to the ray, or not
 // finite, or a material without lobes is Bsdf::black(), as the double shading decides it.
 bool reflects(const LaneMaterials& lm, double cos_ns, uint32_t m) {
-  return cos_ns != 0 && std::isfinite(cos_ns) && lm.pd[m] + lm.pr[m] + lm.pt[m] > 0;
+  return cos_ns != 0 && std::isfinite(cos_ns) && lm.has_lobes[m];
 }
 
 // The queued rows whose BSDF reflects something, kept in order with their columns so far (the
