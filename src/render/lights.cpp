@@ -250,8 +250,10 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   std::fill_n(q.light.begin(), n, lights_[0]);
   for (int c = 0; c < 3; ++c)
     std::fill_n(q.le[std::size_t(c)].begin(), n, le_[0][c]);
+  const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
+  const double* solid_angle = cb.solid_angle.data();
   for (std::size_t r = 0; r < n; ++r)
-    if (!(cb.solid_angle[r] > 0) || textured_[0]) q.set(r, finish_sphere_row(q, r, 0));
+    if (!(solid_angle[r] > 0) || textured) q.set(r, finish_sphere_row(q, r, 0));
 }
 
 void LightSampler::sample_many(Isa isa, LightQueries& q) const {

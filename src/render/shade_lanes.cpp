@@ -44,6 +44,9 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     if (m.microfacet != Microfacet::kPhong) all_phong = false;
     // Textured Kd varies per hit: the double Bsdf shades it (issue 15 left lanes for later).
     in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
+    route.push_back(m.is_light        ? Route::kEmitter
+                    : in_lanes.back() ? Route::kLanes
+                                      : Route::kDouble);
     if (in_lanes.back() && (pr.back() > 0 || pt.back() > 0)) lobe_unread = false;
   }
 }

@@ -38,6 +38,10 @@ struct LaneMaterials {
   std::vector<uint8_t> in_lanes;   // 0: shaded by the double Bsdf (index-matched transmission,
                                    // a textured Kd)
   std::vector<uint8_t> has_lobes;  // 1 where pd + pr + pt > 0 (0: the Bsdf is black)
+  // Where a hit on the material goes when the wavefront arrives: it ends its path (an
+  // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit.
+  enum class Route : uint8_t { kEmitter, kLanes, kDouble };
+  std::vector<Route> route;
   // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):
   // a sample's lobe number is never read (u < 1 = pd picks the diffuse lobe; black rows are
   // not shaded), and the render does not draw it.

@@ -71,6 +71,7 @@ void sort_arrivals(TileContext& ctx) {
   const Scene& scene = ctx.tracer.scene();
   const bool lanes = ctx.settings.shading == Shading::kFloat;
   const MaterialColumns material_of(scene);
+  const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
   // Without an environment an escaped ray adds nothing (add_escape would find 0).
   const bool environment = ctx.lights.environment() != nullptr;
   w.double_vertices.clear();
@@ -84,7 +85,8 @@ void sort_arrivals(TileContext& ctx) {
       continue;
     }
     const uint32_t material = material_of(hit.prim);
-    if (scene.materials[material].is_light) {  // emitters reflect nothing: the path ends
+    const LaneMaterials::Route to = route[material];
+    if (to == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing: the path ends
       const Rayd ray = ray_of(w.rays.rays, k);
       if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
       add_emission(ctx, p, ray, hit);
@@ -93,7 +95,7 @@ void sort_arrivals(TileContext& ctx) {
     const uint32_t depth = p.depth;
     if (int(depth) >= ctx.settings.max_depth) continue;
     p.depth = depth + 1;  // where the ray it sends on (if any) arrives
-    if (lanes && ctx.lanes.materials.in_lanes[material])
+    if (lanes && to == LaneMaterials::Route::kLanes)
       w.lane_vertices.push(path, uint32_t(k), material, depth, p.pixel_seed);
     else
       w.double_vertices.push(uint32_t(k), material, depth);

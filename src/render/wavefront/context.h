@@ -40,7 +40,8 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_;
 };
 
-// What shading in lanes needs besides the settings (unused with Shading::kDouble).
+// What shading in lanes needs besides the settings (with Shading::kDouble, only the
+// materials' routes are read: LaneMaterials::route).
 struct LaneShading {
   const LaneMaterials& materials;
   Isa isa;
