@@ -187,6 +187,19 @@ void set_query(LightQueries& q, std::size_t i, const glm::dvec3& ref, Rng& rng) 
   q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
 }
 
+// n queries from points in the cube [-4, 4]³, one in twenty inside the sphere light of radius
+// 0.5 at (0, 3, 0) that the scenes below have (sampled by area there).
+void set_queries_around(LightQueries& q, std::size_t n, uint64_t seed) {
+  Rng rng(seed);
+  q.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
+                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
+                                              8 * rng.uniform() - 4);
+    set_query(q, i, ref, rng);
+  }
+}
+
 // A scene with a sphere, a box, a cylinder and a triangle light (the last two by area), and
 // shading points around them, some inside the sphere light (by area too).
 TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
@@ -196,15 +209,8 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
       "lights.scn");
   ASSERT_TRUE(parsed.ok());
   LightSampler lights(parsed.scene);
-  Rng rng(3);
   LightQueries q;
-  q.resize(4000);
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
-                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
-                                              8 * rng.uniform() - 4);
-    set_query(q, i, ref, rng);
-  }
+  set_queries_around(q, 4000, 3);
   int kinds_seen[8] = {};
   expect_sample_many_is_sample(lights, q, kinds_seen);
   for (int k = 0; k < 3; ++k)
@@ -220,15 +226,8 @@ TEST(LightLanes, SampleManyIsSampleForOneSphereLight) {
       "one.scn");
   ASSERT_TRUE(parsed.ok());
   LightSampler lights(parsed.scene);
-  Rng rng(13);
   LightQueries q;
-  q.resize(3001);
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    glm::dvec3 ref = i % 20 == 0 ? glm::dvec3(0, 3, 0.1 * rng.uniform())
-                                 : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4,
-                                              8 * rng.uniform() - 4);
-    set_query(q, i, ref, rng);
-  }
+  set_queries_around(q, 3001, 13);
   int kinds_seen[8] = {};
   expect_sample_many_is_sample(lights, q, kinds_seen);
   EXPECT_EQ(kinds_seen[std::size_t(tag_of<Sphere>)], int(q.size() * supported_isas().size()));
