@@ -18,7 +18,8 @@ void ConeBatch::resize(std::size_t rows) {
     for (Column* c : {&radius, &u1, &u2, &choice, &dist, &solid_angle, &pdf})
       c->resize(padded);
   }
-  // Padding rows: a unit sphere two units from the origin, finite for the kernel.
+  // Padding rows: a unit sphere two units from the origin, finite for the kernel (with a
+  // ConeSphere for every row they see that sphere instead, and may be NaN: nobody reads them).
   for (std::size_t i = rows; i < padded; ++i) {
     for (int k = 0; k < 3; ++k)
       ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;

@@ -169,9 +169,9 @@ std::size_t filter_rows_range(const RowFilter& filter, std::size_t n) {
   auto to = [](void* p, std::size_t bytes) { return static_cast<char*>(p) + bytes; };
   std::size_t m = 0, i = 0;
   for (; i + W <= n; i += W) {
-    uint32_t keep = 0;
+    uint32_t keep = 0;  // "not 0" as the scalar rows test it: a NaN flag keeps its row
     for (std::size_t j = 0; j < W; j += WD)
-      keep |= simd::bits<A>(Doubles<A>::load_unaligned(f.keep + i + j) != Doubles<A>(0.0)) << j;
+      keep |= simd::bits<A>(!(Doubles<A>::load_unaligned(f.keep + i + j) == Doubles<A>(0.0))) << j;
     for (int c = 0; c < f.columns4; ++c)
       simd::store_compressed32<A>(to(f.to4[c], 4 * m), at(f.from4[c], 4 * i), keep);
     std::size_t kept = m;

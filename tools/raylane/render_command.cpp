@@ -95,7 +95,7 @@ int render_command(const std::vector<std::string>& args) {
   if (asks_for_help(args, render_specs())) return print_help(render_help());
   Cluster cluster;
   silence_unless_root(cluster);
-  auto request = read_request(args);
+  auto request = read_render_request(args);
   if (!request) return usage_error("render", request.error());
   const RenderRequest& r = *request;
   if (!r.quiet)

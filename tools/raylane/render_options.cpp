@@ -300,7 +300,7 @@ const CommandHelp& render_help() {
   return help;
 }
 
-Result<RenderRequest> read_request(const std::vector<std::string>& args) {
+Result<RenderRequest> read_render_request(const std::vector<std::string>& args) {
   auto parsed = parse_args(args, render_specs());
   if (!parsed) return Error{parsed.error()};
   RenderRequest r;

@@ -110,6 +110,6 @@ void print_balance(const PathOutcome& run, int processes);
 // the option and what was wrong with its value).
 const std::vector<OptionSpec>& render_specs();
 const CommandHelp& render_help();
-Result<RenderRequest> read_request(const std::vector<std::string>& args);
+Result<RenderRequest> read_render_request(const std::vector<std::string>& args);
 
 }  // namespace raylane::cli

@@ -256,7 +256,7 @@ inline Doubles<A> load_rows(const float* col, const uint32_t* rows) {
   if constexpr (kDoubleWidth<A> == 8) {
     const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rows));
     return Doubles<A>(
-        _mm512_maskz_cvtps_pd(__mmask8(0xFF), _mm256_i32gather_ps(col, idx, 4)));  // kAll16
+        _mm512_maskz_cvtps_pd(__mmask8(0xFF), _mm256_i32gather_ps(col, idx, 4)));  // see kAll16
   } else if constexpr (kDoubleWidth<A> == 4) {
     const __m128i idx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows));
     return Doubles<A>(_mm256_cvtps_pd(_mm_i32gather_ps(col, idx, 4)));
