@@ -31,27 +31,12 @@ DMask<A> all_zero(const DoubleVec3<A>& v) {
   return (v.x == zero) & (v.y == zero) & (v.z == zero);
 }
 
-// The neighbours of v by one unit in the last place, as next_double_up and next_double_down.
+// The error bound of a hit point along its geometric normal, dot(|ng|, hit_point_error) as
+// offset_ray_origin weighs it, times ng: the offset before its sign. The shadow ray and the
+// next ray leave one point, so the vertex computes it once for both.
 template <class A>
-Doubles<A> next_double_lanes(const Doubles<A>& v, bool up) {
-  using D = Doubles<A>;
-  using I = xsimd::batch<int64_t, A>;
-  const double inf = std::numeric_limits<double>::infinity();
-  const I bits = xsimd::bitwise_cast<I>(v);
-  const D plus = xsimd::bitwise_cast<D>(bits + I(1)), minus = xsimd::bitwise_cast<D>(bits - I(1));
-  const D away =
-      up ? xsimd::select(v > D(0.0), plus, minus) : xsimd::select(v > D(0.0), minus, plus);
-  const D tiny(up ? std::numeric_limits<double>::denorm_min()
-                  : -std::numeric_limits<double>::denorm_min());
-  const D stepped = xsimd::select(v == D(0.0), tiny, away);
-  return xsimd::select(xsimd::isnan(v) | (v == D(up ? inf : -inf)), v, stepped);
-}
-
-// hit_point_error and offset_ray_origin (core/ray_offset.cpp).
-template <class A>
-DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& o,
-                                  const DoubleVec3<A>& d, const Doubles<A>& t,
-                                  const DoubleVec3<A>& ng, const DoubleVec3<A>& toward) {
+DoubleVec3<A> offset_along_normal(const DoubleVec3<A>& o, const DoubleVec3<A>& d,
+                                  const Doubles<A>& t, const DoubleVec3<A>& ng) {
   using D = Doubles<A>;
   const D bound(32 * kFloatUnitRoundoff);
   auto err = [&](const D& ok, const D& dk) {
@@ -59,14 +44,45 @@ DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& o
   };
   const D along = xsimd::abs(ng.x) * err(o.x, d.x) + xsimd::abs(ng.y) * err(o.y, d.y) +
                   xsimd::abs(ng.z) * err(o.z, d.z);
+  return {ng.x * along, ng.y * along, ng.z * along};
+}
+
+// p + off rounded one unit in the last place further from p, as offset_ray_origin's
+// next_double_up (off > 0) and next_double_down (off < 0); unchanged where off is 0 or NaN.
+// One step instead of both: away from p is up the magnitude where the sum has off's sign, down
+// it where not (both nonzero); a zero sum steps to the least denormal of off's sign, an infinite
+// one growing stays, and NaN stays, as the scalar functions leave them.
+template <class A>
+Doubles<A> step_off_point(const Doubles<A>& pk, const Doubles<A>& off) {
+  using D = Doubles<A>;
+  using I = xsimd::batch<int64_t, A>;
+  const D sum = pk + off;
+  const auto up = off > D(0.0), down = off < D(0.0);
+  // The sum has off's sign (nonzero, not NaN). Not `(sum > 0) ^ down`: xsimd's masks combine by
+  // &, | and ! only (docs/design.md, "xsimd's masks"; the test's infinite points caught it).
+  const auto grows = ((sum > D(0.0)) & up) | ((sum < D(0.0)) & down);
+  const I bits = xsimd::bitwise_cast<I>(sum);
+  const D stepped = xsimd::select(grows, xsimd::bitwise_cast<D>(bits + I(1)),
+                                  xsimd::bitwise_cast<D>(bits - I(1)));
+  const double least = std::numeric_limits<double>::denorm_min();
+  const D from_zero = xsimd::select(up, D(least), D(-least));
+  const auto stays =
+      xsimd::isnan(sum) | (grows & (xsimd::abs(sum) == D(std::numeric_limits<double>::infinity())));
+  const D moved = xsimd::select(sum == D(0.0), from_zero, xsimd::select(stays, sum, stepped));
+  return xsimd::select(up | down, moved, sum);
+}
+
+// offset_ray_origin (core/ray_offset.cpp) from offset_along_normal's answer: the offset turned
+// to the side of ng that `toward` leaves by.
+template <class A>
+DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& offset,
+                                  const DoubleVec3<A>& ng, const DoubleVec3<A>& toward) {
+  using D = Doubles<A>;
   const auto away = ng.x * toward.x + ng.y * toward.y + ng.z * toward.z < D(0.0);
-  auto one = [&](const D& pk, const D& nk) {
-    const D off = xsimd::select(away, -(nk * along), nk * along);
-    const D sum = pk + off;
-    return xsimd::select(off > D(0.0), next_double_lanes<A>(sum, true),
-                         xsimd::select(off < D(0.0), next_double_lanes<A>(sum, false), sum));
+  auto one = [&](const D& pk, const D& ok) {
+    return step_off_point<A>(pk, xsimd::select(away, -ok, ok));
   };
-  return {one(p.x, ng.x), one(p.y, ng.y), one(p.z, ng.z)};
+  return {one(p.x, offset.x), one(p.y, offset.y), one(p.z, offset.z)};
 }
 
 template <class A>
@@ -97,8 +113,7 @@ void store3_narrowed(std::array<std::vector<float>, 3>& c, std::size_t i, const 
 template <class A>
 void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQueries& lights,
                   VertexBatch& b, std::size_t i, const DoubleVec3<A>& beta, const DoubleVec3<A>& p,
-                  const DoubleVec3<A>& ng, const DoubleVec3<A>& o, const DoubleVec3<A>& d,
-                  const Doubles<A>& t) {
+                  const DoubleVec3<A>& ng, const DoubleVec3<A>& offset) {
   using D = Doubles<A>;
   const DoubleVec3<A> wi = load3<A>(lights.cones.wi, i), le = load3<A>(lights.le, i),
                       f = load3_widened<A>(bsdf.light_f, i);
@@ -106,7 +121,7 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
   const D bsdf_pdf = load_widened<A>(bsdf.light_pdf, i);
   const DoubleVec3<A> c = shadow_ray_contribution(rules.mis, beta, f, le, pdf, bsdf_pdf);
   store3<A>(b.shadow_c, i, c);
-  const DoubleVec3<A> from = offset_origin_lanes<A>(p, o, d, t, ng, wi);
+  const DoubleVec3<A> from = offset_origin_lanes<A>(p, offset, ng, wi);
   store3_narrowed<A>(b.shadow_o, i, from);
   // shadow_ray_tmax: the light point projected on the ray, in dot's order; inf stays inf.
   const D dist = D::load_unaligned(lights.cones.dist.data() + i);
@@ -123,7 +138,7 @@ void shadow_lanes(const VertexRules& rules, const ShadeBatch& bsdf, const LightQ
 template <class A>
 void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatch& b, std::size_t i,
                     const DoubleVec3<A>& beta, const DoubleVec3<A>& p, const DoubleVec3<A>& ng,
-                    const DoubleVec3<A>& o, const DoubleVec3<A>& d, const Doubles<A>& t) {
+                    const DoubleVec3<A>& offset) {
   using D = Doubles<A>;
   const DoubleVec3<A> wi = load3_widened<A>(bsdf.wi, i), value = load3_widened<A>(bsdf.value, i);
   const D pdf = load_widened<A>(bsdf.pdf, i);
@@ -137,7 +152,7 @@ void continue_lanes(const VertexRules& rules, const ShadeBatch& bsdf, VertexBatc
   }
   alive = alive & all_finite<A>(nb) & !all_zero<A>(nb);
   store3<A>(b.next_beta, i, nb);
-  store3_narrowed<A>(b.next_o, i, offset_origin_lanes<A>(p, o, d, t, ng, wi));
+  store3_narrowed<A>(b.next_o, i, offset_origin_lanes<A>(p, offset, ng, wi));
   as_flag<A>(alive).store_unaligned(b.alive.data() + i);
 }
 
@@ -149,11 +164,12 @@ void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
     const DoubleVec3<A> beta = load3<A>(b.beta, i), p = load3<A>(b.p, i), ng = load3<A>(b.ng, i);
     const DoubleVec3<A> o = load3<A>(b.ray_o, i), d = load3<A>(b.ray_d, i);
     const Doubles<A> t = Doubles<A>::load_unaligned(b.t.data() + i);
+    const DoubleVec3<A> offset = offset_along_normal<A>(o, d, t, ng);
     if (lights)
-      shadow_lanes<A>(rules, bsdf, *lights, b, i, beta, p, ng, o, d, t);
+      shadow_lanes<A>(rules, bsdf, *lights, b, i, beta, p, ng, offset);
     else
       Doubles<A>(0.0).store_unaligned(b.shadow_ok.data() + i);
-    continue_lanes<A>(rules, bsdf, b, i, beta, p, ng, o, d, t);
+    continue_lanes<A>(rules, bsdf, b, i, beta, p, ng, offset);
   }
 }
 

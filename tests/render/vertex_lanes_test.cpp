@@ -2,8 +2,8 @@
 // double shading takes (shadow_contribution, next_throughput, offset_ray_origin with
 // hit_point_error), bit for bit at every instruction set this CPU has, on random vertices and
 // on the edges: no light point, f = 0, no sample, roulette's threshold, overflowing
-// throughputs, normals along an axis (offsets of 0 in two components), points at 0 and
-// offsets that land on 0.
+// throughputs, normals along an axis (offsets of 0 in two components), points at 0, offsets
+// that land on 0, and infinite and NaN points.
 #include "raylane/render/vertex_lanes.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +83,14 @@ Vertex random_vertex(Rng& rng, int i) {
     v.light_wi = v.wi = to_float(normalize(glm::dvec3(1, 0.5, -0.5)));
     v.p.x = -hit_point_error(Rayd{v.o, v.d}, v.t).x;
   }
+  // Points off the end of the doubles: infinite, or not a number (one or the other: where two
+  // NaNs meet in a sum, which one's sign survives depends on the operands' order, which the
+  // compiler may swap).
+  const double inf = std::numeric_limits<double>::infinity();
+  if (i % 43 == 0)
+    v.p[i % 3] = i % 2 ? inf : -inf;
+  else if (i % 47 == 0)
+    v.p[i % 3] = std::numeric_limits<double>::quiet_NaN();
   return v;
 }
 
