@@ -14,15 +14,6 @@ namespace raylane::detail {
 template <class A>
 using U32 = simd::UInts<A>;
 
-template <class A>
-U32<A> reverse_bits_lanes(U32<A> x) {
-  x = (x >> 16) | (x << 16);
-  x = ((x & U32<A>(0xff00ff00u)) >> 8) | ((x & U32<A>(0x00ff00ffu)) << 8);
-  x = ((x & U32<A>(0xf0f0f0f0u)) >> 4) | ((x & U32<A>(0x0f0f0f0fu)) << 4);
-  x = ((x & U32<A>(0xccccccccu)) >> 2) | ((x & U32<A>(0x33333333u)) << 2);
-  return ((x & U32<A>(0xaaaaaaaau)) >> 1) | ((x & U32<A>(0x55555555u)) << 1);
-}
-
 // Laine and Karras 2011 with Burley's constants, as scramble_reversed.
 template <class A>
 U32<A> scramble_reversed_lanes(U32<A> x, const U32<A>& seed) {
@@ -75,7 +66,7 @@ template <class A>
 void store_component(SobolBatch& b, std::size_t i, uint32_t c, const U32<A>& point,
                      const U32<A>& seeds) {
   U32<A> v = scramble_reversed_lanes<A>(point, hash32_lanes<A>(seeds + U32<A>(c)));
-  reverse_bits_lanes<A>(v).store_unaligned(b.u[c].data() + i);
+  simd::reverse_bits<A>(v).store_unaligned(b.u[c].data() + i);
 }
 
 // The rows' group seeds, group_seed_of (mix64 of the pixel's seed and the group's salt) split
@@ -115,7 +106,7 @@ void sobol_groups_range(uint32_t reversed_index, uint32_t group, unsigned which,
     U32<A> seeds = U32<A>::load_unaligned(b.component.data() + i);
     U32<A> r = scramble_reversed_lanes<A>(U32<A>(reversed_index), scramble);
     // Dimension 0 is the radical inverse: in the reversed domain, the reversed index itself.
-    U32<A> radical = reverse_bits_lanes<A>(r);
+    U32<A> radical = simd::reverse_bits<A>(r);
     store_component<A>(b, i, 0, radical, seeds);
     store_component<A>(b, i, 1, superset_xor_lanes<A>(radical), seeds);
     if (which & 4u) store_component<A>(b, i, 2, table_point_lanes<A>(r, 2), seeds);

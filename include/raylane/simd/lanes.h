@@ -191,6 +191,57 @@ inline UInts<A> gather(const uint32_t* base, const UInts<A>& idx) {
   }
 }
 
+// Each lane's 32 bits in reverse order, by byte shuffles: the bytes swapped, then each byte's
+// two nibbles looked up reversed in 16-byte tables (pshufb, which SSSE3 has and so every
+// instruction set here) — 7 instructions where the shift-and-mask butterflies take 19. The
+// 256- and 512-bit shuffles work within 128-bit blocks, so the tables and the swap repeat per
+// block.
+namespace detail {
+// Byte k of the result comes from byte kSwap[k] of the lane: 3 2 1 0 per 32-bit lane.
+inline __m128i byte_swap_order() {
+  return _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12);
+}
+// The low nibble n reversed into the byte's high half, and the high nibble reversed into its low.
+inline __m128i low_nibble_reversed() {
+  return _mm_setr_epi8(0x00, char(0x80), 0x40, char(0xc0), 0x20, char(0xa0), 0x60, char(0xe0), 0x10,
+                       char(0x90), 0x50, char(0xd0), 0x30, char(0xb0), 0x70, char(0xf0));
+}
+inline __m128i high_nibble_reversed() {
+  return _mm_setr_epi8(0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7,
+                       0xf);
+}
+}  // namespace detail
+
+template <class A>
+inline UInts<A> reverse_bits(const UInts<A>& x) {
+  if constexpr (kWidth<A> == 16) {
+    const __m512i swapped =
+        _mm512_shuffle_epi8(__m512i(x), _mm512_broadcast_i32x4(detail::byte_swap_order()));
+    const __m512i nibble = _mm512_set1_epi8(0x0f);
+    const __m512i lo = _mm512_and_si512(swapped, nibble);
+    const __m512i hi = _mm512_and_si512(_mm512_srli_epi32(swapped, 4), nibble);
+    return UInts<A>(_mm512_or_si512(
+        _mm512_shuffle_epi8(_mm512_broadcast_i32x4(detail::low_nibble_reversed()), lo),
+        _mm512_shuffle_epi8(_mm512_broadcast_i32x4(detail::high_nibble_reversed()), hi)));
+  } else if constexpr (kWidth<A> == 8) {
+    const __m256i swapped =
+        _mm256_shuffle_epi8(__m256i(x), _mm256_broadcastsi128_si256(detail::byte_swap_order()));
+    const __m256i nibble = _mm256_set1_epi8(0x0f);
+    const __m256i lo = _mm256_and_si256(swapped, nibble);
+    const __m256i hi = _mm256_and_si256(_mm256_srli_epi32(swapped, 4), nibble);
+    return UInts<A>(_mm256_or_si256(
+        _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(detail::low_nibble_reversed()), lo),
+        _mm256_shuffle_epi8(_mm256_broadcastsi128_si256(detail::high_nibble_reversed()), hi)));
+  } else {
+    const __m128i swapped = _mm_shuffle_epi8(__m128i(x), detail::byte_swap_order());
+    const __m128i nibble = _mm_set1_epi8(0x0f);
+    const __m128i lo = _mm_and_si128(swapped, nibble);
+    const __m128i hi = _mm_and_si128(_mm_srli_epi32(swapped, 4), nibble);
+    return UInts<A>(_mm_or_si128(_mm_shuffle_epi8(detail::low_nibble_reversed(), lo),
+                                 _mm_shuffle_epi8(detail::high_nibble_reversed(), hi)));
+  }
+}
+
 template <class A>
 using Doubles = xsimd::batch<double, A>;
 template <class A>
