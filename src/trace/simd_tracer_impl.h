@@ -179,6 +179,7 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
 // of their inline functions: docs/design.md, "SIMD and the instruction sets".)
 template <class A>
 struct HitSink {
+  static constexpr bool kTakesRuns = false;
   Hit* hits;
   uint32_t ray_of(uint32_t r) const { return r; }
   const Hit& hit_of(uint32_t r) const { return hits[r]; }
@@ -192,6 +193,7 @@ struct HitSink {
 // ... or into row r of columns, for hit ray[r] (the render's lane rows).
 template <class A>
 struct ColumnSink {
+  static constexpr bool kTakesRuns = true;
   const uint32_t* ray;
   const Hit* hits;
   SurfaceColumns out;
@@ -204,7 +206,31 @@ struct ColumnSink {
     out.cos_ns[r] = cos_d;  // dot(d, n) = dot(n, d) bit for bit: the products commute
     out.front[r] = cos_d < 0;
   }
+  // Rows [r, r + W) at once, from lanes: store's values, each column one store. The render's
+  // rows are its rays in order, and neighbouring rays mostly meet the same kind, so a kind's
+  // rows mostly come in runs.
+  void store_run(uint32_t r, const SurfaceLanes<A>& s, const simd::Doubles<A>& cos_d) const {
+    s.p.x.store_unaligned(out.px + r), s.p.y.store_unaligned(out.py + r);
+    s.p.z.store_unaligned(out.pz + r);
+    s.n.x.store_unaligned(out.ngx + r), s.n.y.store_unaligned(out.ngy + r);
+    s.n.z.store_unaligned(out.ngz + r);
+    simd::store_narrowed<A>(out.nsx + r, s.n.x), simd::store_narrowed<A>(out.nsy + r, s.n.y);
+    simd::store_narrowed<A>(out.nsz + r, s.n.z);
+    cos_d.store_unaligned(out.cos_ns + r);
+    const uint32_t front = simd::bits<A>(cos_d < simd::Doubles<A>(0.0));
+    for (int k = 0; k < simd::kDoubleWidth<A>; ++k)
+      out.front[r + k] = (front >> k) & 1u;
+  }
 };
+
+// Whether the batch's rows are one run: at[k] = at[0] + k.
+template <int W>
+bool one_run(const uint32_t (&at)[W]) {
+  bool run = true;
+  for (int k = 1; k < W; ++k)
+    run = run && at[k] == at[0] + uint32_t(k);
+  return run;
+}
 
 // The surfaces of request rows `rows`, all on Kind, W hits per batch of double lanes; the
 // last batch repeats its last hit in the spare lanes and stores only its own.
@@ -230,10 +256,15 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
                              {col(rays.dx), col(rays.dy), col(rays.dz)},
                              D::load_aligned(t)};
     const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, ray);
-    alignas(64) double out[7][W];
-    const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, nullptr};
     const D cos_d = dot_lanes<A>(ray.d, s.n);
-    outs[6] = &cos_d;
+    if constexpr (Sink::kTakesRuns) {
+      if (i + W <= rows.size() && one_run<W>(at)) {
+        sink.store_run(at[0], s, cos_d);
+        continue;
+      }
+    }
+    alignas(64) double out[7][W];
+    const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, &cos_d};
     for (int c = 0; c < 7; ++c)
       outs[c]->store_aligned(out[c]);
     const int n = int(std::min<std::size_t>(W, rows.size() - i));

@@ -265,8 +265,9 @@ TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
 
 // surfaces() writes complete()'s surfaces into columns, for hits given by prim and t alone (the
 // packet tracer's hits are poisoned first, so nothing is read from their surfaces). The
-// request lists the hits backward, each hit ray twice in a row and every third skipped, so row
-// r is not hit r and the kinds are interleaved.
+// request lists the hits backward, every third skipped, twice over, so row r is not hit r and
+// the kinds are interleaved; a kind's rows come in runs of different hits (the lanes store a
+// whole run at once: a lane stored in the wrong row shows).
 void expect_surface_columns_are_completes(const Tracer& tracer, const std::vector<Rayd>& rays) {
   const RayStream stream = RayStream::from(rays);
   TraceScratch scratch;
@@ -274,11 +275,12 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   tracer.closest(stream, hits, 0, scratch);
   const double nan = std::nan("");
   std::vector<uint32_t> request;
-  for (std::size_t i = hits.size(); i-- > 0;) {
-    if (!hits[i].hit() || i % 3 == 0) continue;
-    if (tracer.backend() == TracerBackend::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
-    request.insert(request.end(), 2, uint32_t(i));
-  }
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = hits.size(); i-- > 0;) {
+      if (!hits[i].hit() || i % 3 == 0) continue;
+      if (tracer.backend() == TracerBackend::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
+      request.push_back(uint32_t(i));
+    }
   const std::size_t n = request.size();
   std::vector<double> p[3], ng[3], cos_ns(n);
   std::vector<float> ns[3];
