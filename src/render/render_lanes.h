@@ -31,6 +31,9 @@ struct RenderLanes {
   // finish_vertices (render/vertex_lanes.h).
   void (*finish_vertices)(const VertexRules& rules, const ShadeBatch& bsdf,
                           const LightQueries* lights, VertexBatch& batch);
+  // gather_vertex_rays (render/vertex_lanes.h).
+  void (*gather_vertex_rays)(const RayStream& rays, const uint32_t* rows, std::size_t n,
+                             VertexBatch& vertices, ShadeBatch& shade);
   // filter_rows (render/vertex_lanes.h): returns the rows kept.
   std::size_t (*filter_rows)(const RowFilter& filter, std::size_t rows);
   // pinhole_rays (render/camera_lanes.h) for the points [0, the count rounded down to the lane

@@ -22,7 +22,8 @@ void sobol_groups_and_numbers(uint32_t reversed_index, uint32_t group, unsigned 
 template <class A>
 constexpr RenderLanes render_lanes_for() {
   return {shade_lanes_range<A>,     sobol_groups_and_numbers<A>, sample_cones_range<A>,
-          finish_vertices_range<A>, filter_rows_range<A>,        pinhole_rays_range<A>};
+          finish_vertices_range<A>, gather_vertex_rays_range<A>, filter_rows_range<A>,
+          pinhole_rays_range<A>};
 }
 
 }  // namespace raylane::detail

@@ -30,6 +30,11 @@ void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
   detail::render_lanes(isa).finish_vertices(rules, bsdf, lights, batch);
 }
 
+void gather_vertex_rays(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
+                        VertexBatch& vertices, ShadeBatch& shade) {
+  detail::render_lanes(isa).gather_vertex_rays(rays, rows, n, vertices, shade);
+}
+
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
   return detail::render_lanes(isa).filter_rows(filter, rows);
 }

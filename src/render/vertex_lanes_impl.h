@@ -80,7 +80,7 @@ DoubleVec3<A> offset_origin_lanes(const DoubleVec3<A>& p, const DoubleVec3<A>& o
   using D = Doubles<A>;
   const auto away = ng.x * toward.x + ng.y * toward.y + ng.z * toward.z < D(0.0);
   auto one = [&](const D& pk, const D& ok) {
-    return step_off_point<A>(pk, xsimd::select(away, -ok, ok));
+    return step_off_point<A>(pk, xsimd::select(away, simd::negate(ok), ok));
   };
   return {one(p.x, offset.x), one(p.y, offset.y), one(p.z, offset.z)};
 }
@@ -171,6 +171,36 @@ void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
       Doubles<A>(0.0).store_unaligned(b.shadow_ok.data() + i);
     continue_lanes<A>(rules, bsdf, b, i, beta, p, ng, offset);
   }
+}
+
+// gather_vertex_rays: a batch of rows that is one run of the stream (the render's rows are its
+// rays in order, most of them going on) loads its columns whole, any other gathers them.
+template <class A>
+void gather_vertex_rays_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
+                              VertexBatch& vertices, ShadeBatch& shade) {
+  constexpr std::size_t W = Doubles<A>::size;
+  const float* from[6] = {rays.ox.data(), rays.oy.data(), rays.oz.data(),
+                          rays.dx.data(), rays.dy.data(), rays.dz.data()};
+  double* to[6] = {vertices.ray_o[0].data(), vertices.ray_o[1].data(), vertices.ray_o[2].data(),
+                   vertices.ray_d[0].data(), vertices.ray_d[1].data(), vertices.ray_d[2].data()};
+  float* wo[3] = {shade.wo[0].data(), shade.wo[1].data(), shade.wo[2].data()};
+  std::size_t i = 0;
+  for (; i + W <= n; i += W) {
+    const uint32_t* at = rows + i;
+    const bool run = simd::one_run<int(W)>(at);
+    for (int c = 0; c < 6; ++c) {
+      const Doubles<A> x =
+          run ? simd::load_widened<A>(from[c] + at[0]) : simd::load_rows<A>(from[c], at);
+      x.store_unaligned(to[c] + i);
+      if (c >= 3) simd::store_narrowed<A>(wo[c - 3] + i, simd::negate(x));  // -float(x), exactly
+    }
+  }
+  for (; i < n; ++i)
+    for (int c = 0; c < 6; ++c) {
+      const float x = from[c][rows[i]];
+      to[c][i] = x;
+      if (c >= 3) wo[c - 3][i] = -x;
+    }
 }
 
 // filter_rows: whole lane batches through the compressing stores, the last rows one by one.

@@ -223,15 +223,6 @@ struct ColumnSink {
   }
 };
 
-// Whether the batch's rows are one run: at[k] = at[0] + k.
-template <int W>
-bool one_run(const uint32_t (&at)[W]) {
-  bool run = true;
-  for (int k = 1; k < W; ++k)
-    run = run && at[k] == at[0] + uint32_t(k);
-  return run;
-}
-
 // The surfaces of request rows `rows`, all on Kind, W hits per batch of double lanes; the
 // last batch repeats its last hit in the spare lanes and stores only its own.
 // The sink is copied first: ColumnSink stores the facing through a byte pointer, which may
@@ -258,7 +249,7 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
     const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, ray);
     const D cos_d = dot_lanes<A>(ray.d, s.n);
     if constexpr (Sink::kTakesRuns) {
-      if (i + W <= rows.size() && one_run<W>(at)) {
+      if (i + W <= rows.size() && simd::one_run<W>(at)) {
         sink.store_run(at[0], s, cos_d);
         continue;
       }

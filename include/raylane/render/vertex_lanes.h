@@ -20,6 +20,7 @@
 #include "raylane/render/lights.h"
 #include "raylane/render/shade_lanes.h"
 #include "raylane/simd/isa.h"
+#include "raylane/trace/ray_stream.h"
 
 namespace raylane {
 
@@ -84,6 +85,13 @@ struct RowFilter {
   }
 };
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
+
+// The rows' rays into the batches, for the vertex steps and the BSDF: row r's ray is the
+// stream's ray rows[r] (r < n), its origin and direction widened to double (exactly) into
+// vertices.ray_o and ray_d, its direction turned around, still float, into shade.wo. Both
+// batches must have room for n rows (resize).
+void gather_vertex_rays(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
+                        VertexBatch& vertices, ShadeBatch& shade);
 
 struct VertexRules {
   bool mis = false;       // weigh the shadow ray by the power heuristic (else 1)

@@ -4,7 +4,8 @@
 // src/render/render_lanes_*.cpp, src/bvh/bin_lanes_*.cpp) and the templates they
 // instantiate; baseline code talks to them through simd/isa.h or their own headers.
 // Masks: combine them with &, | and ! only. In xsimd 8.1, `^` of two AVX-512 masks and `!=` of
-// two SSE double masks compute their OR (found by tests/trace/tracer_test.cpp).
+// two SSE double masks compute their OR (found by tests/trace/tracer_test.cpp). Where the sign
+// of a zero or a NaN must be the scalar code's, negate with simd::negate, not unary minus.
 #pragma once
 
 #include <immintrin.h>
@@ -240,6 +241,23 @@ inline UInts<A> reverse_bits(const UInts<A>& x) {
     return UInts<A>(_mm_or_si128(_mm_shuffle_epi8(detail::low_nibble_reversed(), lo),
                                  _mm_shuffle_epi8(detail::high_nibble_reversed(), hi)));
   }
+}
+
+// -x exactly, the sign bit flipped (as the scalar minus does): xsimd 8.1's unary minus computes
+// 0 − x on AVX-512, which leaves +0 at +0 and a NaN's sign as it was.
+template <class B>
+inline B negate(const B& x) {
+  return x ^ B(typename B::value_type(-0.0));
+}
+
+// Whether rows[0, W) are one run, rows[k] = rows[0] + k: then a batch's columns load and
+// store whole rather than row by row.
+template <int W>
+inline bool one_run(const uint32_t* rows) {
+  bool run = true;
+  for (int k = 1; k < W; ++k)
+    run = run && rows[k] == rows[0] + uint32_t(k);
+  return run;
 }
 
 template <class A>

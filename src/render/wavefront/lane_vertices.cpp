@@ -222,16 +222,7 @@ void path_columns(TileContext& ctx) {
   LaneVertexQueue& lv = w.lane_vertices;
   const LaneVertexQueue& rows = lv;
   const std::size_t n = lv.count;
-  const RayStream& rays = w.rays.rays;
-  const Columns3Out<double> ray_o(lv.vertices.ray_o), ray_d(lv.vertices.ray_d);
-  const Columns3Out<float> wo(lv.shade.wo);
-  for (std::size_t r = 0; r < n; ++r) {
-    const uint32_t i = rows.ray[r];
-    const float dx = rays.dx[i], dy = rays.dy[i], dz = rays.dz[i];
-    ray_o.set(r, std::array<float, 3>{rays.ox[i], rays.oy[i], rays.oz[i]});
-    ray_d.set(r, std::array<float, 3>{dx, dy, dz});
-    wo.set(r, std::array<float, 3>{-dx, -dy, -dz});
-  }
+  gather_vertex_rays(ctx.lanes.isa, w.rays.rays, rows.ray.data(), n, lv.vertices, lv.shade);
   const PathState* paths = w.paths.data();
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<double> beta(lv.vertices.beta);
