@@ -59,7 +59,7 @@ Doubles<A> step_off_point(const Doubles<A>& pk, const Doubles<A>& off) {
   const D sum = pk + off;
   const auto up = off > D(0.0), down = off < D(0.0);
   // The sum has off's sign (nonzero, not NaN). Not `(sum > 0) ^ down`: xsimd's masks combine by
-  // &, | and ! only (docs/design.md, "xsimd's masks"; the test's infinite points caught it).
+  // &, | and ! only (simd/lanes.h; the test's infinite points caught it).
   const auto grows = ((sum > D(0.0)) & up) | ((sum < D(0.0)) & down);
   const I bits = xsimd::bitwise_cast<I>(sum);
   const D stepped = xsimd::select(grows, xsimd::bitwise_cast<D>(bits + I(1)),
