@@ -39,8 +39,10 @@ void sincos_2pi_lanes(const Doubles<A>& u, Doubles<A>& sin_out, Doubles<A>& cos_
   D s = fast_math_detail::sin_poly(a), c = fast_math_detail::cos_poly(a);
   D quarter = q - D(4.0) * xsimd::floor(q * D(0.25));  // q mod 4, exact
   auto q1 = quarter == D(1.0), q2 = quarter == D(2.0), q3 = quarter == D(3.0);
-  sin_out = xsimd::select(q1, c, xsimd::select(q2, -s, xsimd::select(q3, -c, s)));
-  cos_out = xsimd::select(q1, -s, xsimd::select(q2, -c, xsimd::select(q3, s, c)));
+  // simd::negate: at u = 1/4, 1/2, 3/4 a component is a zero whose sign must be the scalar's.
+  const D minus_s = simd::negate(s), minus_c = simd::negate(c);
+  sin_out = xsimd::select(q1, c, xsimd::select(q2, minus_s, xsimd::select(q3, minus_c, s)));
+  cos_out = xsimd::select(q1, minus_s, xsimd::select(q2, minus_c, xsimd::select(q3, s, c)));
 }
 
 // The sphere of rows [i, i + W): the batch's columns, or every_row's broadcast.

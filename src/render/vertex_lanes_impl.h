@@ -192,7 +192,8 @@ void gather_vertex_rays_range(const RayStream& rays, const uint32_t* rows, std::
       const Doubles<A> x =
           run ? simd::load_widened<A>(from[c] + at[0]) : simd::load_rows<A>(from[c], at);
       x.store_unaligned(to[c] + i);
-      if (c >= 3) simd::store_narrowed<A>(wo[c - 3] + i, simd::negate(x));  // -float(x), exactly
+      if (c >= 3)
+        simd::store_narrowed<A>(wo[c - 3] + i, simd::negate(x));  // -float(x) (quiet NaNs)
     }
   }
   for (; i < n; ++i)

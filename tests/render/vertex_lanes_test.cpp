@@ -2,8 +2,9 @@
 // double shading takes (shadow_contribution, next_throughput, offset_ray_origin with
 // hit_point_error), bit for bit at every instruction set this CPU has, on random vertices and
 // on the edges: no light point, f = 0, no sample, roulette's threshold, overflowing
-// throughputs, normals along an axis (offsets of 0 in two components), points at 0, offsets
-// that land on 0, and infinite and NaN points.
+// throughputs, normals along an axis (offsets of 0 in two components), points at 0 and −0,
+// offsets that land on 0, infinite and NaN points, a NaN t, and points whose next origin lands
+// on a midpoint between two floats (where the float origin shows the double step's direction).
 #include "raylane/render/vertex_lanes.h"
 
 #include <gtest/gtest.h>
@@ -31,7 +32,29 @@ struct Vertex {
   double light_dist, light_pdf, bsdf_pdf;
   glm::dvec3 wi{}, value{};
   double pdf, u;
+  int midpoints = 0;  // next-origin components placed on a midpoint between floats (below)
 };
+
+// The next ray's offset as offset_ray_origin computes it (core/ray_offset.cpp), before the step.
+glm::dvec3 next_ray_offset(const Vertex& v) {
+  const glm::dvec3 offset = v.ng * dot(abs(v.ng), hit_point_error(Rayd{v.o, v.d}, v.t));
+  return dot(v.ng, v.wi) < 0 ? -offset : offset;
+}
+
+// Moves the point so that p + offset lands on a midpoint between two floats in each component
+// where the double sum allows it exactly. The origin is then stepped one double ulp away from p
+// and rounded to float: the step alone decides which of the two floats it becomes (without
+// one, ties go to even), so a step missed or taken the wrong way shows in the float origin.
+void place_next_origin_on_midpoints(Vertex& v) {
+  const glm::dvec3 offset = next_ray_offset(v);
+  for (int k = 0; k < 3; ++k) {
+    if (offset[k] == 0) continue;
+    const float f = float(v.p[k]);
+    const double mid = (double(f) + double(std::nextafter(f, HUGE_VALF))) / 2;  // exact
+    v.p[k] = mid - offset[k];
+    v.midpoints += v.p[k] + offset[k] == mid;
+  }
+}
 
 glm::dvec3 random_unit(Rng& rng) {
   return sample_uniform_sphere(rng.uniform(), rng.uniform());
@@ -91,6 +114,15 @@ Vertex random_vertex(Rng& rng, int i) {
     v.p[i % 3] = i % 2 ? inf : -inf;
   else if (i % 47 == 0)
     v.p[i % 3] = std::numeric_limits<double>::quiet_NaN();
+  else if (i % 59 == 0) {
+    // A point at −0 on a face along an axis: the offset's zero components (±0, turned with the
+    // side) decide the signs of the origin's zeros.
+    v.p = {-0.0, v.p.y, -0.0};
+    v.ng = {0, i % 2 ? 1.0 : -1.0, 0};
+  } else if (i % 61 == 0)
+    v.t = std::numeric_limits<double>::quiet_NaN();  // no bound on the point's error: NaN
+  else if (i % 3 == 1 && i % 31 != 0)
+    place_next_origin_on_midpoints(v);
   return v;
 }
 
@@ -141,7 +173,7 @@ glm::vec3 row(const VertexBatch::FloatColumns3& c, std::size_t i) {
 
 // Counts of what the rows exercised, so the test can require every branch.
 struct Seen {
-  int shadows = 0, no_shadow = 0, alive = 0, ended = 0, environment = 0;
+  int shadows = 0, no_shadow = 0, alive = 0, ended = 0, environment = 0, midpoints = 0;
 };
 
 void expect_rows_are_scalar(const VertexRules& batch_rules, bool mixed,
@@ -165,9 +197,11 @@ void expect_rows_are_scalar(const VertexRules& batch_rules, bool mixed,
     glm::dvec3 next{};
     bool alive = next_throughput(rules, v.beta, v.value, v.pdf, v.u, next);
     ok = ok && (b.alive[i] != 0) == alive;
-    if (alive)
+    if (alive) {
       ok = ok && same_bits(row(b.next_beta, i), next) &&
            same_bits(row(b.next_o, i), glm::vec3(offset_ray_origin(v.p, err, v.ng, v.wi)));
+      seen.midpoints += v.midpoints;
+    }
     failures += !ok;
     EXPECT_TRUE(ok) << "row " << i << ": shadow " << shadow << " alive " << alive;
     ++(shadow ? seen.shadows : seen.no_shadow);
@@ -197,6 +231,7 @@ TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
         EXPECT_GT(seen.no_shadow, 2000);
         EXPECT_GT(seen.alive, 10000);
         EXPECT_GT(seen.ended, roulette == 1 ? 4000 : roulette == 2 ? 3000 : 1000);
+        EXPECT_GT(seen.midpoints, 3000);
         // Without lights: no shadow ray anywhere, the same next rays.
         VertexBatch with_lights = b.vertex;
         finish_vertices(isa, rules, b.bsdf, nullptr, b.vertex);
@@ -289,7 +324,8 @@ TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
 // gather_vertex_rays puts row r's ray, the stream's ray rows[r], into the batches: origin and
 // direction widened exactly, the direction turned around in float, bit for bit (−0 and NaN
 // payloads too), at every instruction set: for every row count from 0 to 45, with rows in runs
-// (whole-batch loads), backward, repeated and at random (gathers), and mixed. The rows past n
+// (whole-batch loads), backward, repeated and at random (gathers), and runs of 17 broken by others
+// (both in one call at every width; the runs end at the stream's last ray). The rows past n
 // keep what they held.
 TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
   Rng rng(9);
@@ -308,10 +344,10 @@ TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
       for (int pattern = 0; pattern < 4; ++pattern) {
         std::vector<uint32_t> rows(n);
         for (std::size_t r = 0; r < n; ++r)
-          rows[r] = pattern == 0   ? uint32_t(3 + r)                         // one run
-                    : pattern == 1 ? uint32_t(kRays - 1 - r)                 // backward
-                    : pattern == 2 ? uint32_t(rng.uniform() * kRays)         // at random
-                                   : uint32_t(r % 10 < 7 ? 50 + r : r / 2);  // runs broken
+          rows[r] = pattern == 0   ? uint32_t(3 + r)                                 // one run
+                    : pattern == 1 ? uint32_t(kRays - 1 - r)                         // backward
+                    : pattern == 2 ? uint32_t(rng.uniform() * kRays)                 // at random
+                                   : uint32_t(r % 20 < 17 ? kRays - n + r : r / 2);  // runs broken
         VertexBatch vertices;
         ShadeBatch shade;
         vertices.resize(n + 9), shade.resize(n + 9);

@@ -12,6 +12,7 @@
 #include "raylane/core/warps.h"
 #include "raylane/render/rng.h"
 #include "raylane/scene/parser.h"
+#include "support/same_bits.h"
 
 namespace raylane {
 namespace {
@@ -58,9 +59,7 @@ void add_moving_spheres(Scene& scene) {
   }
 }
 
-bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
+using testing::same_bits;  // support/same_bits.h
 
 // At every instruction set the CPU has: the batch computes spheres', boxes' and cylinders'
 // surfaces in double lanes of that width (SimdTracer::surfaces), one-by-one complete() in scalar
@@ -266,8 +265,9 @@ TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
 // surfaces() writes complete()'s surfaces into columns, for hits given by prim and t alone (the
 // packet tracer's hits are poisoned first, so nothing is read from their surfaces). The
 // request lists the hits backward, every third skipped, twice over, so row r is not hit r and
-// the kinds are interleaved; a kind's rows come in runs of different hits (the lanes store a
-// whole run at once: a lane stored in the wrong row shows).
+// the kinds are interleaved; then every hit again, kind by kind, so that each kind's rows come
+// in long runs of different hits (the lanes store a whole run at once: a lane stored in the
+// wrong row shows).
 void expect_surface_columns_are_completes(const Tracer& tracer, const std::vector<Rayd>& rays) {
   const RayStream stream = RayStream::from(rays);
   TraceScratch scratch;
@@ -281,6 +281,12 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
       if (tracer.backend() == TracerBackend::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
       request.push_back(uint32_t(i));
     }
+  // A third pass lists each kind's hits together, after an odd number of rows: long runs at
+  // every lane width, starting off the lanes' alignment.
+  request.push_back(request.front());
+  for (std::size_t kind = 0; kind < kPrimKindCount; ++kind)
+    for (std::size_t i = 0; i < hits.size(); ++i)
+      if (hits[i].hit() && std::size_t(hits[i].prim.tag()) == kind) request.push_back(uint32_t(i));
   const std::size_t n = request.size();
   std::vector<double> p[3], ng[3], cos_ns(n);
   std::vector<float> ns[3];
@@ -300,8 +306,7 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
     ASSERT_TRUE(same_bits(s.p, {p[0][r], p[1][r], p[2][r]}) &&
                 same_bits(s.ng, {ng[0][r], ng[1][r], ng[2][r]}))
         << "row " << r << " kind " << int(want.prim.tag());
-    for (int k = 0; k < 3; ++k)
-      ASSERT_EQ(float(s.ns[k]), ns[k][r]) << "row " << r;
+    ASSERT_TRUE(same_bits(glm::vec3(s.ns), {ns[0][r], ns[1][r], ns[2][r]})) << "row " << r;
     const double c = dot(s.ns, ray.d);
     ASSERT_EQ(std::memcmp(&c, &cos_ns[r], sizeof c), 0) << "row " << r;
     ASSERT_EQ(front[r], want.front_face ? 1 : 0) << "row " << r;

@@ -70,7 +70,9 @@ SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
   const D cap_dist = xsimd::select(above < below, above, below);  // std::min's choice
   auto cap = (cap_dist < xsimd::abs(rlen - radius)) | !(rlen > D(0.0));
   auto lower = z < h / D(2.0);
-  auto axial = [&](const D& uk) { return xsimd::select(lower, -uk, uk); };
+  // simd::negate, not unary minus: an axis component of +0 must turn to −0 as the scalar's -u
+  // does (AVX-512's 0 − x left it +0, and n.z's sign picks the shading frame).
+  auto axial = [&](const D& uk) { return xsimd::select(lower, simd::negate(uk), uk); };
   return {p,
           {xsimd::select(cap, axial(u.x), radial.x / rlen),
            xsimd::select(cap, axial(u.y), radial.y / rlen),

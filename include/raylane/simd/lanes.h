@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 #include <xsimd/xsimd.hpp>
 
@@ -216,14 +217,16 @@ inline __m128i high_nibble_reversed() {
 template <class A>
 inline UInts<A> reverse_bits(const UInts<A>& x) {
   if constexpr (kWidth<A> == 16) {
-    const __m512i swapped =
-        _mm512_shuffle_epi8(__m512i(x), _mm512_broadcast_i32x4(detail::byte_swap_order()));
+    const __m512i swapped = _mm512_shuffle_epi8(
+        __m512i(x), _mm512_maskz_broadcast_i32x4(kAll16, detail::byte_swap_order()));
     const __m512i nibble = _mm512_set1_epi8(0x0f);
     const __m512i lo = _mm512_and_si512(swapped, nibble);
     const __m512i hi = _mm512_and_si512(_mm512_srli_epi32(swapped, 4), nibble);
     return UInts<A>(_mm512_or_si512(
-        _mm512_shuffle_epi8(_mm512_broadcast_i32x4(detail::low_nibble_reversed()), lo),
-        _mm512_shuffle_epi8(_mm512_broadcast_i32x4(detail::high_nibble_reversed()), hi)));
+        _mm512_shuffle_epi8(_mm512_maskz_broadcast_i32x4(kAll16, detail::low_nibble_reversed()),
+                            lo),
+        _mm512_shuffle_epi8(_mm512_maskz_broadcast_i32x4(kAll16, detail::high_nibble_reversed()),
+                            hi)));
   } else if constexpr (kWidth<A> == 8) {
     const __m256i swapped =
         _mm256_shuffle_epi8(__m256i(x), _mm256_broadcastsi128_si256(detail::byte_swap_order()));
@@ -247,6 +250,7 @@ inline UInts<A> reverse_bits(const UInts<A>& x) {
 // 0 − x on AVX-512, which leaves +0 at +0 and a NaN's sign as it was.
 template <class B>
 inline B negate(const B& x) {
+  static_assert(std::is_floating_point_v<typename B::value_type>, "float or double lanes");
   return x ^ B(typename B::value_type(-0.0));
 }
 
@@ -313,7 +317,7 @@ LaneVec3<B> to_world(const LaneVec3<B>& n, const LaneVec3<B>& v) {
   const B a = B(T(-1)) / (sign + n.z);
   const B b = n.x * n.y * a;
   const LaneVec3<B> s{one + sign * n.x * n.x * a, sign * b, -sign * n.x};
-  const LaneVec3<B> t{b, sign + n.y * n.y * a, -n.y};
+  const LaneVec3<B> t{b, sign + n.y * n.y * a, negate(n.y)};  // −0 for n.y = +0, as scalar
   return s * v.x + t * v.y + n * v.z;
 }
 
