@@ -9,6 +9,7 @@
 #include <string>
 
 #include "raylane/core/alloc_budget.h"
+#include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
 #include "raylane/image/input_image.h"
 #include "support/hostile_files.h"
@@ -142,6 +143,65 @@ TEST(ExrLuminanceChroma, ReadsAsItsColourNotZeros) {
   auto layer = decode_exr_layer(bytes, "");
   ASSERT_FALSE(layer);
   EXPECT_NE(layer.error().find("is subsampled"), std::string::npos) << layer.error();
+}
+
+uint32_t little_endian_u32(const std::string& b, std::size_t at) {
+  uint32_t v = 0;
+  for (int k = 3; k >= 0; --k)
+    v = v << 8 | uint8_t(b[at + std::size_t(k)]);
+  return v;
+}
+
+// Bytes from hex digits (the fuzzer's file below).
+std::string from_hex(std::string_view hex) {
+  std::string out;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
+    out += char(std::stoi(std::string(hex.substr(i, 2)), nullptr, 16));
+  return out;
+}
+
+// A luminance-chroma file found by the image fuzzer: its "compression" attribute declares 33
+// bytes, which OpenEXRCore accepts; OpenEXR 3.1's C++ reader, which decodes such files, reads
+// the one byte a compression has and goes on from there, to a "software" string declaring
+// 1,912,602,637 bytes, and resized a string to that (1.9 GB) before reading it. The header is
+// now walked first as that reader walks it: the file is refused by the compression's size;
+// with that size mended, by the string's size against the bytes left; and a string one byte
+// past the end, or of a size read as a negative int32, likewise.
+TEST(ExrLuminanceChroma, AnAttributeLargerThanTheFileIsRefusedBeforeItIsRead) {
+  const std::string bytes = from_hex(
+      "762f3101020000006368616e6e656c730063686c697374003900000042590001000000010000000200000002"
+      "0000005259000100000001000000020000000200000059000100000000000000010000000100000000636f6d"
+      "7072657373696f6e00636f6d7072657373696f6e0021000000036461746157696e646f7700626f7832690010"
+      "00000000000000000000000700000005000000646973706c617957696e646f7700626f783269001000000000"
+      "000000000000000700000005000000656e746572007632660008000000000000000000000073637265656e57"
+      "696e646f77576964746800666c6f617400040000000000803f736f66747761726500737472696e67000d0000"
+      "72007632660008000000000000000000000073637265656e57696e646f77576964746800666c6f6174000400"
+      "00000000803f0043010000000000000000000082000000785e5bfdef6dc5469e65aadf8ae4eedc39a2af17a0"
+      "a7a7af77e3faf52f33f3b9044ea9c4705cbf7ee31a909f79fdfaced56bd6ac5e7974f7ee3906ebb7c7ad5e03"
+      "e2ae29590362ac5eb3b9aaa6e60f676363724b73636353436343436323906cfcdcd1dcd456fd7a6a1d48048c"
+      "c0b8e13f906caeabade28070a1a20d8d001fd24fbc");
+  ASSERT_EQ(bytes.size(), 461u);
+  auto img = decode_exr(bytes);
+  ASSERT_FALSE(img);
+  EXPECT_NE(img.error().find("attribute \"compression\" of type compression declares 33 bytes"),
+            std::string::npos)
+      << img.error();
+  // The compression's size mended to its one byte: the C++ reader's view (it read one byte and
+  // went on), where the string's size is what is wrong.
+  const std::size_t compression_at = bytes.find(std::string("compression\0compression\0", 24)) + 24;
+  std::string mended = bytes;
+  mended[compression_at] = 1;
+  const std::size_t size_at = mended.find(std::string("software\0string\0", 16)) + 16;
+  ASSERT_EQ(little_endian_u32(mended, size_at), 1912602637u);
+  for (uint32_t size : {1912602637u, uint32_t(mended.size() - size_at - 4 + 1), 0xffffffffu}) {
+    std::string patched = mended;
+    for (int k = 0; k < 4; ++k)
+      patched[size_at + std::size_t(k)] = char((size >> (8 * k)) & 0xffu);
+    auto refused = decode_exr(patched);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find(cat("declares ", size, " bytes")), std::string::npos)
+        << refused.error();
+  }
 }
 
 }  // namespace
