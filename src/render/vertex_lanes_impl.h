@@ -11,6 +11,7 @@
 #include "raylane/core/float_util.h"
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/render/vertex_steps.h"
+#include "raylane/simd/lane_rows.h"
 #include "render/light_lanes_impl.h"
 
 namespace raylane::detail {

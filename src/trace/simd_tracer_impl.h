@@ -4,6 +4,7 @@
 
 #include <cfloat>
 
+#include "raylane/simd/lane_rows.h"
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"
 #include "raylane/trace/simd_tracer.h"
