@@ -21,13 +21,14 @@ std::vector<std::string> default_fallback_dirs() {
   return dirs;
 }
 
-// A name in `dir` that no file has yet: write_image renames over an existing file, and a
-// fallback must never replace anything.
+// A name in `dir` that no file and no link has yet: write_image renames over an existing file
+// and writes through a link (a dangling one too), and a fallback must never replace anything.
 std::string fresh_name(const std::string& dir, const std::string& stem) {
   std::error_code ec;
   for (int n = 0;; ++n) {
     fs::path p = fs::path(dir) / cat("raylane-rescue-", stem, "-", ::getpid(), "-", n, ".pfm");
-    if (!fs::exists(p, ec) && !ec) return p.string();
+    // symlink_status sets `ec` for a name that is free; only not_found means free.
+    if (fs::symlink_status(p, ec).type() == fs::file_type::not_found) return p.string();
     if (ec || n > 1000) return {};
   }
 }

@@ -70,6 +70,53 @@ TEST(CliInputs, TwoOutputsThatAreOneFileAreRefused) {
   EXPECT_FALSE(fs::exists(dir + "/a.hdr"));
 }
 
+// A link whose target does not exist yet leads to the file a write through it creates, so
+// two outputs can be one file before either is written. Each run below must be refused before
+// any work, naming the collision, and leave no file at the shared target.
+TEST(CliInputs, OutputsThatMeetThroughDanglingLinksAreRefused) {
+  std::string dir = temp_dir();
+  write_file(dir + "/s.scn", kScene);
+  fs::create_directory(dir + "/sub");
+  fs::create_symlink("sub", dir + "/dirlink");
+  fs::create_symlink("f.film", dir + "/to-film.hdr");
+  fs::create_symlink("f.film", dir + "/s.hdr");  // the default output's name
+  fs::create_symlink("a.hdr", dir + "/to-a.hdr");
+  fs::create_symlink("to-a.hdr", dir + "/chain.hdr");           // a link to a link
+  fs::create_symlink("dirlink/../a.hdr", dir + "/dotdot.hdr");  // `..` after a folder link
+  fs::create_symlink(dir + "/a.hdr", dir + "/absolute.hdr");    // an absolute target
+  fs::create_symlink("../a.hdr", dir + "/sub/up.hdr");          // read in the link's folder
+  fs::create_symlink("a.hdr", dir + "/a.albedo.pfm");           // an AOV sibling
+  fs::create_symlink("a.hdr", dir + "/a.4.hdr");                // a --save-at image
+  fs::create_symlink("f.film", dir + "/stats.json");
+  fs::create_symlink("a.hdr", dir + "/stats-a.json");
+  for (std::string args : {
+           "render s.scn --spp 1 -o to-film.hdr --checkpoint f.film",
+           "render s.scn --spp 1 --checkpoint f.film",
+           "render s.scn --spp 1 -o a.hdr -o to-a.hdr",
+           "render s.scn --spp 1 -o a.hdr -o chain.hdr",
+           "render s.scn --spp 1 -o a.hdr -o dotdot.hdr",
+           "render s.scn --spp 1 -o a.hdr -o absolute.hdr",
+           "render s.scn --spp 1 -o a.hdr -o dirlink/up.hdr",
+           "render s.scn --spp 1 -o a.hdr --aov albedo",
+           "render s.scn --spp 4 -o a.hdr --save-at 4",
+           "render s.scn --spp 1 -o a.hdr --checkpoint f.film --stats-json stats.json",
+           "render s.scn --spp 1 -o a.hdr --stats-json stats-a.json",
+       }) {
+    auto r = run_cli(args, dir);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("are one file"), std::string::npos) << args << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(dir + "/a.hdr")) << args;
+    EXPECT_FALSE(fs::exists(dir + "/f.film")) << args;
+  }
+  // A link to a different file that does not exist yet is only a name: the run goes ahead and
+  // writes through it, keeping the link.
+  fs::create_symlink("b.hdr", dir + "/to-b.hdr");
+  auto ok = run_cli("render s.scn --mode normal -o a.hdr -o to-b.hdr", dir);
+  EXPECT_EQ(ok.status, 0) << ok.out;
+  EXPECT_TRUE(fs::is_regular_file(dir + "/b.hdr"));
+  EXPECT_TRUE(fs::is_symlink(dir + "/to-b.hdr"));
+}
+
 // The film is read whole before the render starts and saved with more passes: continuing a
 // render into its own checkpoint loses nothing, so it stays allowed.
 TEST(CliInputs, ACheckpointMayContinueItsOwnResumeFilm) {

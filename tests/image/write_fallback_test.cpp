@@ -1,9 +1,11 @@
 // Nothing lost (issue 6): an image that cannot go where it was asked goes to a fallback file.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "raylane/core/strings.h"
 #include "raylane/image/write_fallback.h"
 #include "support/paths.h"
 
@@ -52,6 +54,21 @@ TEST(WriteFallback, UnwritablePathGoesToTheFallbackLosslessly) {
   ASSERT_TRUE(again) << again.error();
   EXPECT_NE(again->path, r->path);
   EXPECT_TRUE(fs::exists(r->path));
+}
+
+// A dangling link with the rescue file's name leads somewhere (here: a file the user keeps,
+// once it is written); the rescue takes another name and writes nothing through the link.
+TEST(WriteFallback, ARescueNeverWritesThroughALinkOfItsName) {
+  std::string dir = temp_dir();
+  std::ofstream(dir + "/plain") << "x";
+  fs::create_directory(dir + "/rescue");
+  fs::create_symlink(dir + "/kept.film", fs::path(dir) / "rescue" /
+                                             cat("raylane-rescue-render-", ::getpid(), "-0.pfm"));
+  auto r = write_image_or_fallback(dir + "/plain/render.png", test_image(), {}, {dir + "/rescue"});
+  ASSERT_TRUE(r) << r.error();
+  EXPECT_TRUE(r->is_fallback);
+  EXPECT_FALSE(fs::exists(dir + "/kept.film"));
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(r->path)));
 }
 
 TEST(WriteFallback, ErrorOnlyWhenNothingTakesTheImage) {

@@ -15,8 +15,14 @@ struct FileRole {
   std::string role;  // how the user named it: "the scene file", "-o", "--checkpoint", ...
 };
 
-// Whether two paths name one file: by identity when both exist, by their normalised absolute
-// paths when neither does (two outputs not yet written), never when only one exists.
+// Where a path leads: absolute, every link on the way followed (a dangling one too, to the
+// file a write through it would create), every `.` and `..` taken as the kernel takes them.
+// The path unchanged where its links loop.
+std::string final_target(const std::string& path);
+
+// Whether two paths name one file: their final targets compared by identity (device and
+// inode) when both exist, by spelling when neither does (two outputs not yet written, or a
+// link not yet written through), never when only one exists.
 bool same_file(const std::string& a, const std::string& b);
 
 // A usage error naming the first output that is an input or another output.
