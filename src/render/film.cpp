@@ -18,11 +18,13 @@ static_assert(std::endian::native == std::endian::little, "film files are little
 
 constexpr char kMagic1[8] = {'R', 'L', 'F', 'I', 'L', 'M', '1', '\0'};
 constexpr char kMagic2[8] = {'R', 'L', 'F', 'I', 'L', 'M', '2', '\0'};
+constexpr char kMagic3[8] = {'R', 'L', 'F', 'I', 'L', 'M', '3', '\0'};  // a region's film
 constexpr std::size_t kHeader1 = 32, kHeader2 = 64;
 constexpr char kAovMagic[4] = {'A', 'O', 'V', '1'};
-constexpr std::size_t kAovHeader = 8;  // the magic and the set's bits
-constexpr char kRegionMagic[4] = {'R', 'G', 'N', '1'};
-constexpr std::size_t kRegionBytes = 20;  // the magic and x0, y0, x1, y1
+constexpr std::size_t kAovHeader = 8;                   // the magic and the set's bits
+constexpr char kRegionMagic[4] = {'R', 'G', 'N', '1'};  // after whole-image sums (read only)
+constexpr std::size_t kRegionBytes = 20;                // the magic and x0, y0, x1, y1
+constexpr std::size_t kCorners = 16;  // x0, y0, x1, y1 after a third-format header
 
 // The header of either format, read into a film (sums not yet read).
 Film read_header(const char* head, bool second_format) {
@@ -66,8 +68,10 @@ Status read_aovs(std::ifstream& in, const std::string& path, uint64_t bytes, uin
   return ok_status();
 }
 
-// The region part of a film file, if the next bytes (of `bytes` left) are one; `bytes` then
-// counts what is left after it.
+Status read_corners(const char* corners, const std::string& path, Film& f);
+
+// The region part of a film file of the second format, if the next bytes (of `bytes` left) are one;
+// `bytes` then counts what is left after it.
 Status read_region(std::ifstream& in, const std::string& path, uint64_t& bytes, Film& f) {
   if (bytes < kRegionBytes) return ok_status();
   char part[kRegionBytes];
@@ -77,14 +81,33 @@ Status read_region(std::ifstream& in, const std::string& path, uint64_t& bytes, 
     return ok_status();
   }
   if (!in.read(part + 4, kRegionBytes - 4)) return Error{cat(path, ": read failed")};
+  if (Status s = read_corners(part + 4, path, f); !s) return s;
+  bytes -= kRegionBytes;
+  return ok_status();
+}
+
+// A region's corners (x0, y0, x1, y1) into the film, checked against its image.
+Status read_corners(const char* corners, const std::string& path, Film& f) {
   PixelRegion r;
-  std::memcpy(&r.x0, part + 4, 4), std::memcpy(&r.y0, part + 8, 4);
-  std::memcpy(&r.x1, part + 12, 4), std::memcpy(&r.y1, part + 16, 4);
+  std::memcpy(&r.x0, corners, 4), std::memcpy(&r.y0, corners + 4, 4);
+  std::memcpy(&r.x1, corners + 8, 4), std::memcpy(&r.y1, corners + 12, 4);
   if (Status s = check_region(r, f.width, f.height); !s)
     return Error{cat(path, ": the film's region ", s.error(), ": the film is damaged")};
   f.region = r;
-  bytes -= kRegionBytes;
   return ok_status();
+}
+
+// Whole-image sums (`channels` per pixel) cut to the film's region: a region film of the
+// second format summed every pixel of the image.
+void keep_region_only(std::vector<double>& sums, std::size_t channels, const Film& f) {
+  const PixelRegion& r = *f.region;
+  std::vector<double> kept;
+  kept.reserve(std::size_t(r.width()) * r.height() * channels);
+  for (uint32_t y = r.y0; y < r.y1; ++y) {
+    auto row = sums.begin() + std::ptrdiff_t((std::size_t(y) * f.width + r.x0) * channels);
+    kept.insert(kept.end(), row, row + std::ptrdiff_t(std::size_t(r.width()) * channels));
+  }
+  sums = std::move(kept);
 }
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): enough to tell one scene or setting from another.
@@ -108,12 +131,32 @@ struct Hasher {
 
 }  // namespace
 
+PixelRegion Film::window() const {
+  return region ? *region : PixelRegion{0, 0, width, height};
+}
+
+std::size_t Film::stored_pixels() const {
+  const PixelRegion w = window();
+  return std::size_t(w.width()) * w.height();
+}
+
+std::size_t Film::slot(std::size_t pixel) const {
+  return region_slot(region, width, pixel);
+}
+
+void Film::clear(uint32_t image_width, uint32_t image_height) {
+  width = image_width, height = image_height, passes = 0;
+  sum.assign(stored_pixels() * 3, 0.0);
+  aov_sum.assign(stored_pixels() * std::size_t(aovs.channels()), 0.0);
+}
+
 void keep_share(Film& film, const TileShare& share) {
   const std::size_t aov_channels = std::size_t(film.aovs.channels());
-  for (uint32_t y = 0; y < film.height; ++y)
-    for (uint32_t x = 0; x < film.width; ++x) {
+  const PixelRegion w = film.window();
+  std::size_t pixel = 0;  // the stored index, in the window's row order
+  for (uint32_t y = w.y0; y < w.y1; ++y)
+    for (uint32_t x = w.x0; x < w.x1; ++x, ++pixel) {
       if (share.owns(tile_of_film_pixel(film.width, film.height, x, y))) continue;
-      std::size_t pixel = std::size_t(y) * film.width + x;
       for (std::size_t k = 0; k < 3; ++k)
         film.sum[pixel * 3 + k] = 0.0;
       for (std::size_t k = 0; k < aov_channels; ++k)
@@ -122,7 +165,8 @@ void keep_share(Film& film, const TileShare& share) {
 }
 
 Image Film::image() const {
-  Image img(width, height);
+  const PixelRegion w = window();
+  Image img(w.width(), w.height());
   double scale = passes > 0 ? 1.0 / passes : 0.0;
   for (std::size_t i = 0; i < sum.size() && i < img.rgb.size(); ++i)
     img.rgb[i] = float(sum[i] * scale);
@@ -130,17 +174,21 @@ Image Film::image() const {
 }
 
 Image Film::aov_image(Aov aov) const {
-  Image img(width, height);
+  const PixelRegion w = window();
+  Image img(w.width(), w.height());
   if (!aovs.has(aov)) return img;
   const double scale = passes > 0 ? 1.0 / passes : 0.0;
   const std::size_t stride = std::size_t(aovs.channels()), at = std::size_t(aovs.offset(aov));
   const int n = aov_channels(aov);
-  for (std::size_t p = 0; p < std::size_t(width) * height && (p + 1) * stride <= aov_sum.size();
-       ++p)
+  for (std::size_t p = 0; p < stored_pixels() && (p + 1) * stride <= aov_sum.size(); ++p)
     for (int k = 0; k < 3; ++k)
       img.rgb[p * 3 + std::size_t(k)] =
           float(aov_sum[p * stride + at + std::size_t(k % n)] * scale);
   return img;
+}
+
+Image Film::screen_image() const {
+  return region ? paste_region(image(), *region, width, height) : image();
 }
 
 uint64_t scene_fingerprint(const Scene& scene) {
@@ -252,7 +300,7 @@ void identify_film(Film& film, const Scene& scene, const PathSettings& settings)
 }
 
 Status save_film(const std::string& path, const Film& film) {
-  std::string out(kMagic2, 8);
+  std::string out(film.region ? kMagic3 : kMagic2, 8);
   const FilmOrigin& o = film.origin;
   uint32_t words[4] = {film.width, film.height, uint32_t(film.passes), uint32_t(o.integrator)};
   out.append(reinterpret_cast<const char*>(words), sizeof words);
@@ -263,12 +311,11 @@ Status save_film(const std::string& path, const Film& film) {
   out.append(reinterpret_cast<const char*>(&o.rr_depth), 4);
   out.append(reinterpret_cast<const char*>(&o.sampler), 4);
   out.append(reinterpret_cast<const char*>(&o.shading), 4);
-  out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
   if (const auto& r = film.region) {
     const uint32_t corners[4] = {r->x0, r->y0, r->x1, r->y1};
-    out.append(kRegionMagic, 4);
     out.append(reinterpret_cast<const char*>(corners), sizeof corners);
   }
+  out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
   if (!film.aovs.empty()) {
     out.append(kAovMagic, 4);
     out.append(reinterpret_cast<const char*>(&film.aovs.bits), 4);
@@ -286,17 +333,18 @@ Result<Film> load_film(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char head[kHeader2];
   if (!in.read(head, kHeader1)) return Error{cat(path, ": read failed")};
-  bool second = std::memcmp(head, kMagic2, 8) == 0;
+  const bool third = std::memcmp(head, kMagic3, 8) == 0;
+  const bool second = third || std::memcmp(head, kMagic2, 8) == 0;
   if (!second && std::memcmp(head, kMagic1, 8) != 0)
     return Error{cat(path, ": expected a raylane film ('RLFILM2'), found another kind of file")};
-  const std::size_t kHeader = second ? kHeader2 : kHeader1;
-  if (second && (size < kHeader2 || !in.read(head + kHeader1, kHeader2 - kHeader1)))
-    return Error{cat(path, ": expected a 64-byte film header, found ", size, " bytes")};
+  const std::size_t kHeader = second ? kHeader2 + (third ? kCorners : 0) : kHeader1;
+  if (second && (size < kHeader || !in.read(head + kHeader1, kHeader2 - kHeader1)))
+    return Error{cat(path, ": expected a ", kHeader, "-byte film header, found ", size, " bytes")};
   Film f = read_header(head, second);
   uint32_t words[4];
   std::memcpy(words, head + 8, sizeof words);
-  uint64_t pixels = uint64_t(f.width) * f.height;
-  if (pixels == 0 || pixels > kMaxImagePixels || words[2] > (1u << 30))
+  const uint64_t image_pixels = uint64_t(f.width) * f.height;
+  if (image_pixels == 0 || image_pixels > kMaxImagePixels || words[2] > (1u << 30))
     return Error{cat(path, ": expected a film of 1 … 2^28 pixels, found ", f.width, "x", f.height,
                      " with ", words[2], " passes")};
   // The origin's enums are named in messages: a damaged header must not index past the names.
@@ -308,17 +356,30 @@ Result<Film> load_film(const std::string& path) {
                      ", a sampler below ", kSamplerNames.names.size(), " and a shading below ",
                      kShadingNames.names.size(), " in the header, found ", o.integrator, ", ",
                      o.sampler, " and ", o.shading)};
+  if (third) {
+    char corners[kCorners];
+    if (!in.read(corners, kCorners)) return Error{cat(path, ": read failed")};
+    if (Status s = read_corners(corners, path, f); !s) return Error{s.error()};
+  }
+  const uint64_t pixels = f.stored_pixels();  // before a second-format region is read: all
   const uint64_t colour_end = kHeader + pixels * 24;
   if (size != colour_end && size < colour_end + kAovHeader)
-    return Error{cat(path, ": a ", f.width, "x", f.height, " film has ", colour_end,
-                     " bytes, the file has ", size, " (too few for AOVs after the colour)")};
+    return Error{cat(path, ": a ", f.width, "x", f.height, " film",
+                     third ? cat(" of the region ", region_text(*f.region)) : std::string(),
+                     " has ", colour_end, " bytes, the file has ", size,
+                     " (too few for AOVs after the colour)")};
   f.sum.resize(pixels * 3);
   if (!in.read(reinterpret_cast<char*>(f.sum.data()), std::streamsize(pixels * 24)))
     return Error{cat(path, ": read failed")};
   uint64_t after_colour = size - colour_end;
-  if (Status s = read_region(in, path, after_colour, f); !s) return Error{s.error()};
+  if (!third)
+    if (Status s = read_region(in, path, after_colour, f); !s) return Error{s.error()};
   if (after_colour > 0) {
     if (Status s = read_aovs(in, path, after_colour, pixels, f); !s) return Error{s.error()};
+  }
+  if (f.region && !third) {
+    keep_region_only(f.sum, 3, f);
+    if (!f.aovs.empty()) keep_region_only(f.aov_sum, std::size_t(f.aovs.channels()), f);
   }
   // A film raylane wrote holds finite sums only (non-finite samples are dropped before they
   // reach it), so anything else is damage, and continuing would spread it to the image.

@@ -44,10 +44,9 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   Film own;
   Film& f = film ? *film : own;
   if (f.sum.empty()) {
-    f.width = cam.width, f.height = cam.height, f.passes = 0;
-    f.sum.assign(std::size_t(cam.width) * cam.height * 3, 0.0);
     f.aovs = settings.aovs;
-    f.aov_sum.assign(std::size_t(cam.width) * cam.height * std::size_t(f.aovs.channels()), 0.0);
+    f.region = settings.region;
+    f.clear(cam.width, cam.height);
   }
   PathStats total;
   total.passes = f.passes;

@@ -119,8 +119,10 @@ void camera_rays(const Camera& cam, uint32_t y0, uint32_t rows, std::vector<Rayd
 }
 
 // One band of rows: camera rays, shading, then the lit mode's shadow rays.
+// `image` holds the region's pixels alone when there is one (region_slot).
 void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, uint32_t y0,
-                 uint32_t rows, Image& image, RaycastStats& st) {
+                 uint32_t rows, const std::optional<PixelRegion>& region, Image& image,
+                 RaycastStats& st) {
   const Scene& scene = tracer.scene();
   std::vector<Rayd> rays, shadow_rays;
   std::vector<std::size_t> pixel;
@@ -133,8 +135,10 @@ void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, u
     glm::dvec3 c = mode == RaycastMode::kLit
                        ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
                        : shade_simple(scene, mode, hits[i]);
+    const std::size_t at = region_slot(region, scene.width, pixel[i]);
+    if (at == kNotInRegion) continue;
     for (int k = 0; k < 3; ++k)
-      image.rgb[pixel[i] * 3 + k] = float(c[k]);
+      image.rgb[at * 3 + k] = float(c[k]);
   }
   if (shadow_rays.empty()) return;
   // Shadow rays as closest-hit queries: the light is visible when the first thing met is
@@ -144,8 +148,10 @@ void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, u
   for (std::size_t q = 0; q < queries.size(); ++q) {
     const Hit& h = shadow_hits[q];
     if (h.hit() && h.prim != queries[q].light) continue;
+    const std::size_t at = region_slot(region, scene.width, queries[q].pixel);
+    if (at == kNotInRegion) continue;
     for (int k = 0; k < 3; ++k)
-      image.rgb[queries[q].pixel * 3 + k] += float(queries[q].contribution[k]);
+      image.rgb[at * 3 + k] += float(queries[q].contribution[k]);
   }
 }
 
@@ -181,7 +187,8 @@ Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats
                      const std::optional<PixelRegion>& region) {
   const Scene& scene = tracer.scene();
   Camera camera = Camera::from_scene(scene);
-  Image image(scene.width, scene.height);
+  Image image =
+      region ? Image(region->width(), region->height()) : Image(scene.width, scene.height);
   const std::ptrdiff_t bands = (scene.height + kBand - 1) / kBand;
   uint64_t camera_rays_total = 0, shadow_rays_total = 0;
   // Bands of rows over the threads; each band writes only its own pixels.
@@ -190,7 +197,7 @@ Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats
     uint32_t y0 = uint32_t(b) * kBand, rows = std::min<uint32_t>(kBand, scene.height - y0);
     if (region && !region_meets_rows(*region, scene.height, y0, rows)) continue;
     RaycastStats st;
-    render_band(tracer, camera, mode, y0, rows, image, st);
+    render_band(tracer, camera, mode, y0, rows, region, image, st);
     camera_rays_total += st.camera_rays;
     shadow_rays_total += st.shadow_rays;
   }

@@ -62,6 +62,15 @@ std::vector<float> crop(const std::vector<float>& data, uint32_t width, std::siz
   return out;
 }
 
+Image paste_region(const Image& part, const PixelRegion& r, uint32_t width, uint32_t height) {
+  Image whole(width, height);
+  for (uint32_t y = 0; y < part.height; ++y)
+    std::copy_n(part.rgb.begin() + std::ptrdiff_t(std::size_t(y) * part.width * 3),
+                std::size_t(part.width) * 3,
+                whole.rgb.begin() + std::ptrdiff_t((std::size_t(y + r.y0) * width + r.x0) * 3));
+  return whole;
+}
+
 Image crop(const Image& image, const PixelRegion& r) {
   Image out;
   out.width = r.width(), out.height = r.height();

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "raylane/core/alloc_budget.h"
+#include "raylane/image/write_image.h"
 #include "support/cli_run.h"
 #include "support/hostile_files.h"
 #include "support/paths.h"
@@ -54,6 +55,40 @@ TEST(CliHostile, AFilmAtThePixelLimitThatDoesNotFitIsRefusedBeforeRendering) {
   EXPECT_NE(normal.out.find("the 16384x16384 image needs 9.0 GiB"), std::string::npos)
       << normal.out;
   EXPECT_FALSE(fs::exists(dir + "/big.hdr"));
+}
+
+// A --region's film, AOVs, --save-at series and outputs are the region's size: a 4x4 corner
+// of a screen whose whole film would need 12 GiB renders within 512 MiB of address space, in
+// every mode, and its files are 4x4.
+TEST(CliHostile, ARegionTakesTheRegionsMemoryNotTheScreens) {
+  if (!address_space_limits_work()) GTEST_SKIP() << "sanitizer build";
+  std::string dir = temp_dir();
+  write_file(dir + "/big.scn", std::string("screen 16384 16384\n") + kScene);
+  const std::string region = " --region 8190,8190,8194,8194";
+  auto path = run_cli_within(
+      "render big.scn --spp 4 --aov albedo,normal --save-at 1,2 "
+      "--checkpoint c.film -o r.hdr -o r.exr" +
+          region,
+      dir, 512 << 10);
+  ASSERT_EQ(path.status, 0) << path.out;
+  for (const char* file : {"r.hdr", "r.exr", "r.1.hdr", "r.2.exr", "r.albedo.pfm"}) {
+    auto image = read_image(dir + "/" + file);
+    ASSERT_TRUE(image.ok()) << file << ": " << image.error();
+    EXPECT_EQ(image->width, 4u) << file;
+    EXPECT_EQ(image->height, 4u) << file;
+  }
+  EXPECT_LT(fs::file_size(dir + "/c.film"), 4096u);  // 16 pixels' sums, not 2^28
+  auto resumed = run_cli_within(
+      "render big.scn --spp 6 --aov albedo,normal --resume c.film "
+      "-o s.hdr" +
+          region,
+      dir, 512 << 10);
+  EXPECT_EQ(resumed.status, 0) << resumed.out;
+  for (const char* mode : {"normal", "lit", "depth"}) {
+    auto view = run_cli_within(std::string("render big.scn -o v.png --mode ") + mode + region, dir,
+                               512 << 10);
+    EXPECT_EQ(view.status, 0) << mode << "\n" << view.out;
+  }
 }
 
 // A texture whose pixels fit the budget once raised, but not the process: its 768 MiB of floats

@@ -65,14 +65,16 @@ uint64_t pixels_of_tiles_met(const PixelRegion& r, uint32_t width, uint32_t heig
   return n;
 }
 
+// `part` holds the region's pixels alone, in its rows; `whole` every pixel of the image.
 void expect_same_region(const std::vector<double>& whole, const std::vector<double>& part,
                         uint32_t width, std::size_t channels, const PixelRegion& r) {
-  std::size_t differing = 0;
+  ASSERT_EQ(part.size(), std::size_t(r.width()) * r.height() * channels);
+  std::size_t differing = 0, at = 0;
   for (uint32_t y = r.y0; y < r.y1; ++y)
     for (uint32_t x = r.x0; x < r.x1; ++x)
-      for (std::size_t k = 0; k < channels; ++k) {
+      for (std::size_t k = 0; k < channels; ++k, ++at) {
         std::size_t i = (std::size_t(y) * width + x) * channels + k;
-        differing += !testing::same_bits(whole[i], part[i]);
+        differing += !testing::same_bits(whole[i], part[at]);
       }
   EXPECT_EQ(differing, 0u);
 }
@@ -97,7 +99,7 @@ TEST(Region, PathPixelsAreTheWholeRendersBitForBitForEverySampler) {
       expect_same_region(whole.aov_sum, part.aov_sum, 72, std::size_t(s.aovs.channels()), r);
       // Whole tiles are traced, and no others: one camera ray per pixel of them per pass.
       EXPECT_EQ(stats.camera_rays, pixels_of_tiles_met(r, 72, 52) * 3);
-      Image cut = crop(part.image(), r);
+      Image cut = part.image();
       ASSERT_EQ(cut.width, r.width());
       ASSERT_EQ(cut.height, r.height());
       EXPECT_EQ(cut.rgb, crop(whole.image(), r).rgb);
@@ -115,7 +117,9 @@ TEST(Region, RayCastPixelsAreTheWholeViewsBitForBit) {
       SCOPED_TRACE(cat(raycast_mode_name(mode), " ", region_text(r)));
       RaycastStats stats;
       Image part = render_raycast(tracer, mode, &stats, r);
-      Image cut = crop(part, r), expected = crop(whole, r);
+      Image cut = part, expected = crop(whole, r);
+      ASSERT_EQ(cut.width, r.width());
+      ASSERT_EQ(cut.height, r.height());
       std::size_t differing = 0;
       for (std::size_t i = 0; i < cut.rgb.size(); ++i)
         differing += !testing::same_bits(cut.rgb[i], expected.rgb[i]);
@@ -183,34 +187,70 @@ TEST(Region, ChecksSayWhatIsWrong) {
 TEST(Region, FilmFilesKeepTheRegionAndRefuseADamagedOne) {
   std::string dir = testing::temp_dir();
   Film f;
-  f.width = 4, f.height = 3, f.passes = 2;
-  f.sum.assign(4 * 3 * 3, 0.25);
   f.region = PixelRegion{1, 0, 3, 2};
   f.aovs = *parse_aov_list("depth");
-  f.aov_sum.assign(4 * 3, 1.5);
+  f.clear(4, 3);
+  f.passes = 2;
+  ASSERT_EQ(f.sum.size(), 2u * 2 * 3);  // the region's pixels alone
+  for (std::size_t i = 0; i < f.sum.size(); ++i)
+    f.sum[i] = 0.25 * double(i);
+  for (std::size_t i = 0; i < f.aov_sum.size(); ++i)
+    f.aov_sum[i] = 1.5 + double(i);
   ASSERT_TRUE(save_film(dir + "/r.film", f).ok());
   auto back = load_film(dir + "/r.film");
   ASSERT_TRUE(back.ok()) << back.error();
   EXPECT_EQ(back->region, f.region);
   EXPECT_EQ(back->aov_sum, f.aov_sum);
   EXPECT_EQ(back->sum, f.sum);
+  EXPECT_EQ(testing::read_file(dir + "/r.film").size(), 64u + 16 + 4 * 3 * 8 + 8 + 4 * 8);
 
-  f.region.reset();
-  ASSERT_TRUE(save_film(dir + "/w.film", f).ok());
+  Film w = f;
+  w.region.reset();
+  w.clear(4, 3);
+  ASSERT_TRUE(save_film(dir + "/w.film", w).ok());
   auto whole = load_film(dir + "/w.film");
   ASSERT_TRUE(whole.ok()) << whole.error();
   EXPECT_FALSE(whole->region);
+  EXPECT_EQ(whole->sum.size(), 4u * 3 * 3);
 
-  // x1 = 9 of a 4-wide film: the corners sit 4·3·3·8 bytes after the 64-byte header.
+  // x1 = 9 of a 4-wide film: the corners follow the 64-byte header.
   std::string bytes = testing::read_file(dir + "/r.film");
-  const std::size_t x1_at = 64 + 4 * 3 * 3 * 8 + 4 + 8;
-  ASSERT_EQ(bytes.substr(x1_at - 12, 4), "RGN1");
-  bytes[x1_at] = 9;
+  ASSERT_EQ(bytes.substr(0, 7), "RLFILM3");
+  bytes[64 + 8] = 9;
   testing::write_file(dir + "/bad.film", bytes);
   auto bad = load_film(dir + "/bad.film");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().find("1,0,9,2 reaches past the 4x3 image"), std::string::npos)
       << bad.error();
+}
+
+// Region films of the second format summed the whole image and named the region after the
+// sums ("RGN1"); they are read as the region's pixels alone, so they resume as before.
+TEST(Region, SecondFormatRegionFilmsAreCutToTheirRegionAsRead) {
+  std::string dir = testing::temp_dir();
+  Film whole;
+  whole.aovs = *parse_aov_list("depth");
+  whole.clear(4, 3);
+  whole.passes = 1;
+  for (std::size_t i = 0; i < whole.sum.size(); ++i)
+    whole.sum[i] = double(i);
+  for (std::size_t i = 0; i < whole.aov_sum.size(); ++i)
+    whole.aov_sum[i] = 100.0 + double(i);
+  ASSERT_TRUE(save_film(dir + "/w.film", whole).ok());
+  std::string bytes = testing::read_file(dir + "/w.film");
+  const std::size_t colour_end = 64 + 4 * 3 * 3 * 8;
+  const uint32_t corners[4] = {1, 1, 3, 3};
+  std::string region("RGN1");
+  region.append(reinterpret_cast<const char*>(corners), sizeof corners);
+  bytes.insert(colour_end, region);
+  testing::write_file(dir + "/old.film", bytes);
+  auto old = load_film(dir + "/old.film");
+  ASSERT_TRUE(old.ok()) << old.error();
+  ASSERT_EQ(old->region, (PixelRegion{1, 1, 3, 3}));
+  // Pixel (x, y) of the image held sums 3·(4y + x) + k; the region's rows are y = 1, 2.
+  const std::vector<double> expected = {15, 16, 17, 18, 19, 20, 27, 28, 29, 30, 31, 32};
+  EXPECT_EQ(old->sum, expected);
+  EXPECT_EQ(old->aov_sum, (std::vector<double>{105, 106, 109, 110}));
 }
 
 }  // namespace

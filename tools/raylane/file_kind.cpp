@@ -41,6 +41,10 @@ constexpr Magic kMagics[] = {
     {{"RLFILM2\0", 8},
      "a raylane film",
      "continue it with `raylane render SCENE --resume %s`; `raylane info %s` shows what it holds"},
+    {{"RLFILM3\0", 8},
+     "a raylane film of a --region",
+     "continue it with `raylane render SCENE --region ... --resume %s`; `raylane info %s` shows "
+     "what it holds"},
     {{"RAYSET1\0", 8}, "a ray set (.rays)", "`raylane trace MESH %s` traces it (docs/ray-sets.md)"},
     {"TRISOUP1", "a triangle soup (.tris)",
      "`raylane trace %s RAYS` traces a ray set against it (docs/ray-sets.md)"},

@@ -34,7 +34,7 @@ bool is_film_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char head[7] = {};
   return in.read(head, 7) && std::string_view(head, 6) == "RLFILM" &&
-         (head[6] == '1' || head[6] == '2');
+         (head[6] >= '1' && head[6] <= '3');
 }
 
 int info_film(const std::string& path) {

@@ -57,14 +57,4 @@ Image crop_to_region(Image image, const std::optional<PixelRegion>& region) {
   return crop(image, *region);
 }
 
-void crop_to_region(PathOutcome& out, const std::optional<PixelRegion>& region) {
-  if (!region) return;
-  const uint32_t width = out.image.width;
-  out.image = crop(out.image, *region);
-  for (auto& [path, image] : out.aov_images)
-    image = crop(image, *region);
-  for (ExrLayer& layer : out.exr_layers)
-    layer.data = crop(layer.data, width, layer.channels.size(), *region);
-}
-
 }  // namespace raylane::cli

@@ -25,7 +25,4 @@ Status region_fits(const std::optional<PixelRegion>& region, const Scene& scene)
 // The region of an image the size of the screen; without a region, the image.
 Image crop_to_region(Image image, const std::optional<PixelRegion>& region);
 
-// A path render's images and EXR layers, cut to the region.
-void crop_to_region(PathOutcome& out, const std::optional<PixelRegion>& region);
-
 }  // namespace raylane::cli

@@ -158,7 +158,7 @@ int render_command(const std::vector<std::string>& args) {
   } else {
     RaycastStats stats;
     const auto& region = r.path_settings.region;
-    image = crop_to_region(render_raycast(tracer, r.mode, &stats, region), region);
+    image = render_raycast(tracer, r.mode, &stats, region);  // the region's size
     rays = stats.camera_rays + stats.shadow_rays;
     path_stats.camera_rays = stats.camera_rays, path_stats.shadow_rays = stats.shadow_rays;
     what = std::string(raycast_mode_name(r.mode));

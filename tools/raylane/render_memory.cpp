@@ -28,11 +28,17 @@ uint64_t bytes_per_pixel(const RenderRequest& r, bool distributed) {
 }  // namespace
 
 Status render_fits_in_memory(const RenderRequest& r, const Scene& scene, bool distributed) {
-  uint64_t pixels = uint64_t(scene.width) * scene.height;
-  uint64_t bytes = pixels * bytes_per_pixel(r, distributed);
-  std::string what = r.path ? cat("a ", scene.width, "x", scene.height, " render (its film",
+  // A --region's film, AOVs and images hold the region's pixels alone.
+  const auto& region = r.path_settings.region;
+  const uint32_t width = region ? region->width() : scene.width;
+  const uint32_t height = region ? region->height() : scene.height;
+  uint64_t bytes = uint64_t(width) * height * bytes_per_pixel(r, distributed);
+  std::string size =
+      region ? cat(width, "x", height, " region of the ", scene.width, "x", scene.height, " screen")
+             : cat(width, "x", height);
+  std::string what = r.path ? cat("a ", size, " render (its film",
                                   r.path_settings.aovs.empty() ? "" : ", AOVs", " and images)")
-                            : cat("the ", scene.width, "x", scene.height, " image");
+                            : cat("the ", size, " image");
   return check_memory(bytes, what);
 }
 

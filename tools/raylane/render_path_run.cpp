@@ -204,8 +204,7 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
   out.image = film->image();
   for (const auto& [path, aov] : r.aov_outputs)
     out.aov_images.emplace_back(path, film->aov_image(aov));
-  out.exr_layers = exr_layers_of(*film);
-  crop_to_region(out, settings.region);
+  out.exr_layers = exr_layers_of(*film);  // a --region's film holds the region alone
   return out;
 }
 

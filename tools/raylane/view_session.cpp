@@ -123,7 +123,7 @@ void ViewSession::set_mode(const ViewMode& mode) {
   if (mode == mode_) return;
   mode_ = mode;
   view_stale_ = true;
-  if (!mode_ && film_.passes > 0) image_ = film_.image();
+  if (!mode_ && film_.passes > 0) image_ = film_.screen_image();
 }
 
 void ViewSession::reset_film() {
@@ -139,7 +139,8 @@ void ViewSession::render_pass() {
   settings.region = request_.region;
   PathStats stats;
   auto start = Clock::now();
-  image_ = render_path(*world_->tracer, settings, &stats, &film_);
+  render_path(*world_->tracer, settings, &stats, &film_);
+  image_ = film_.screen_image();  // a --region's film holds the region alone
   mrays_per_second_ = stats.rays() / std::max(1e-9, seconds_since(start)) * 1e-6;
   previewing_ = false;
 }
@@ -148,6 +149,7 @@ void ViewSession::render_view(RaycastMode mode) {
   RaycastStats stats;
   auto start = Clock::now();
   image_ = render_raycast(*world_->tracer, mode, &stats, request_.region);
+  if (request_.region) image_ = paste_region(image_, *request_.region, width(), height());
   mrays_per_second_ =
       (stats.camera_rays + stats.shadow_rays) / std::max(1e-9, seconds_since(start)) * 1e-6;
 }
@@ -167,7 +169,7 @@ bool ViewSession::step(bool moving) {
   }
   if (film_.passes >= request_.spp_limit) {
     if (!previewing_) return false;
-    image_ = film_.image();
+    image_ = film_.screen_image();
     previewing_ = false;
     return true;
   }
@@ -186,7 +188,7 @@ std::string ViewSession::scene_lines() const {
 Result<std::string> ViewSession::save(double exposure) {
   if (!mode_ && (film_.passes == 0 || previewing_)) {
     if (film_.passes == 0) render_pass();
-    image_ = film_.image();
+    image_ = film_.screen_image();
     previewing_ = false;
   }
   if (mode_ && view_stale_) step(false);

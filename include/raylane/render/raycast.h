@@ -40,8 +40,8 @@ struct RaycastStats {
 
 // Renders every pixel; camera rays go out in 4×4-pixel tiles (coherent packets), rows are
 // stored top row first (Image's convention). With a region, only the bands of rows that meet it
-// are traced (each whole, so its packets and pixels are those of a whole render); the image
-// keeps the screen's size, zero elsewhere.
+// are traced (each whole, so its packets and pixels are those of a whole render), and the image
+// is the region's alone.
 Image render_raycast(const Tracer& tracer, RaycastMode mode, RaycastStats* stats = nullptr,
                      const std::optional<PixelRegion>& region = std::nullopt);
 

@@ -45,6 +45,23 @@ bool region_meets_rows(const PixelRegion& r, uint32_t height, uint32_t y, uint32
 // Tiles outside the region go round-robin too; no process renders them.
 TileShare region_share(const TileShare& all, const PixelRegion& r, uint32_t width, uint32_t height);
 
+constexpr std::size_t kNotInRegion = ~std::size_t(0);
+
+// Where a region-sized buffer keeps pixel `pixel` (y·width + x, top row first) of a
+// `width`-wide image: its index in the region's rows, kNotInRegion outside it; the pixel
+// itself without a region.
+inline std::size_t region_slot(const std::optional<PixelRegion>& r, uint32_t width,
+                               std::size_t pixel) {
+  if (!r) return pixel;
+  const std::size_t x = pixel % width, y = pixel / width;
+  if (x < r->x0 || x >= r->x1 || y < r->y0 || y >= r->y1) return kNotInRegion;
+  return (y - r->y0) * r->width() + (x - r->x0);
+}
+
+// A region's image put in its place in a width × height image, black elsewhere (the inverse
+// of crop, for a viewer that shows the whole screen).
+Image paste_region(const Image& part, const PixelRegion& r, uint32_t width, uint32_t height);
+
 // The region of an image, or of `channels` interleaved floats per pixel of a `width`-wide
 // image (rows top first, as both store them).
 Image crop(const Image& image, const PixelRegion& r);

@@ -132,7 +132,9 @@ void add_camera_aovs(const TileContext& ctx, Film& film) {
   for (std::size_t k = 0; k < w.camera_rays; ++k) {
     const Hit& h = hits[k];
     if (!h.hit()) continue;
-    double* out = &film.aov_sum[w.paths[w.rays.path[k]].pixel * stride];
+    const std::size_t at = film.slot(w.paths[w.rays.path[k]].pixel);
+    if (at == Film::kNotStored) continue;
+    double* out = &film.aov_sum[at * stride];
     auto add = [&](Aov a, const glm::dvec3& v) {
       if (!set.has(a)) return;
       double* at = out + set.offset(a);

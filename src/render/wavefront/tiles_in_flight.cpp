@@ -111,8 +111,10 @@ void add_to_film(TileContext& ctx, const TileInFlight& tile, Film& f) {
       ++ctx.stats.nonfinite_samples;
       continue;
     }
+    const std::size_t at = f.slot(p.pixel);
+    if (at == Film::kNotStored) continue;  // outside the region, in one of its tiles
     for (int k = 0; k < 3; ++k)
-      f.sum[p.pixel * 3 + k] += p.radiance[k];
+      f.sum[at * 3 + k] += p.radiance[k];
   }
 }
 
