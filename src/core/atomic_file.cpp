@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <new>
 
 #include "raylane/core/strings.h"
 
@@ -61,10 +62,21 @@ const char* unwritable_kind(const fs::path& target) {
   return nullptr;
 }
 
+// The writer's status; memory that runs out while it encodes is a failed write like a full
+// disk (the caller removes the temporary file and tries elsewhere), not an exception that
+// leaves the temporary file behind.
+Status run_writer(const std::function<Status(std::FILE*)>& write, std::FILE* f) {
+  try {
+    return write(f);
+  } catch (const std::bad_alloc&) {
+    return Error{"out of memory while encoding it"};
+  }
+}
+
 Status write_in_place(const fs::path& target, const std::function<Status(std::FILE*)>& write) {
   std::FILE* f = std::fopen(target.c_str(), "wb");
   if (!f) return Error{cat("cannot open ", in_quotes(target.string()), ": ", errno_text())};
-  Status s = write(f);
+  Status s = run_writer(write, f);
   bool flushed = std::fflush(f) == 0;
   bool closed = std::fclose(f) == 0;
   if (s && !(flushed && closed)) s = Error{cat("write failed: ", errno_text())};
@@ -104,7 +116,7 @@ Status write_file_atomically(const std::string& path,
   std::string temp = temp_path_for(target.string());
   std::FILE* f = std::fopen(temp.c_str(), "wbx");
   if (!f) return Error{cat("cannot create ", in_quotes(temp), ": ", errno_text())};
-  Status s = write(f);
+  Status s = run_writer(write, f);
   bool flushed = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
   bool closed = std::fclose(f) == 0;
   if (s && !(flushed && closed)) s = Error{cat("write failed: ", errno_text())};

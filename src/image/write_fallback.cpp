@@ -9,8 +9,6 @@
 
 namespace raylane {
 
-namespace {
-
 namespace fs = std::filesystem;
 
 std::vector<std::string> default_fallback_dirs() {
@@ -21,19 +19,18 @@ std::vector<std::string> default_fallback_dirs() {
   return dirs;
 }
 
-// A name in `dir` that no file and no link has yet: write_image renames over an existing file
-// and writes through a link (a dangling one too), and a fallback must never replace anything.
-std::string fresh_name(const std::string& dir, const std::string& stem) {
+// write_image renames over an existing file and writes through a link (a dangling one too),
+// so a name is free only when nothing at all holds it.
+std::string fresh_rescue_name(const std::string& dir, const std::string& stem,
+                              const std::string& extension) {
   std::error_code ec;
   for (int n = 0;; ++n) {
-    fs::path p = fs::path(dir) / cat("raylane-rescue-", stem, "-", ::getpid(), "-", n, ".pfm");
+    fs::path p = fs::path(dir) / cat("raylane-rescue-", stem, "-", ::getpid(), "-", n, extension);
     // symlink_status sets `ec` for a name that is free; only not_found means free.
     if (fs::symlink_status(p, ec).type() == fs::file_type::not_found) return p.string();
     if (ec || n > 1000) return {};
   }
 }
-
-}  // namespace
 
 Result<SavedImage> write_image_or_fallback(const std::string& path, const Image& image,
                                            const WriteOptions& options,
@@ -45,7 +42,7 @@ Result<SavedImage> write_image_or_fallback(const std::string& path, const Image&
   if (stem.empty()) stem = "image";
   std::string errors = cat(path, ": ", first.error());
   for (const auto& dir : fallback_dirs) {
-    std::string candidate = fresh_name(dir, stem);
+    std::string candidate = fresh_rescue_name(dir, stem, ".pfm");
     if (candidate.empty()) continue;
     // PFM: lossless floats, and no encoder that could fail where the first format did.
     Status s = write_image(candidate, image, options);

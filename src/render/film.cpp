@@ -1,7 +1,9 @@
 #include "raylane/render/film.h"
 
 #include <bit>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -315,14 +317,19 @@ Status save_film(const std::string& path, const Film& film) {
     const uint32_t corners[4] = {r->x0, r->y0, r->x1, r->y1};
     out.append(reinterpret_cast<const char*>(corners), sizeof corners);
   }
-  out.append(reinterpret_cast<const char*>(film.sum.data()), film.sum.size() * sizeof(double));
-  if (!film.aovs.empty()) {
-    out.append(kAovMagic, 4);
-    out.append(reinterpret_cast<const char*>(&film.aovs.bits), 4);
-    out.append(reinterpret_cast<const char*>(film.aov_sum.data()),
-               film.aov_sum.size() * sizeof(double));
-  }
-  return write_file_atomically(path, out);
+  // The sums go to the file straight from the film: a copy of them in memory would double
+  // what a checkpoint of a large film needs.
+  return write_file_atomically(path, [&](std::FILE* f) -> Status {
+    auto put = [f](const void* data, std::size_t bytes) {
+      return std::fwrite(data, 1, bytes, f) == bytes;
+    };
+    bool ok = put(out.data(), out.size()) && put(film.sum.data(), film.sum.size() * 8);
+    if (ok && !film.aovs.empty())
+      ok = put(kAovMagic, 4) && put(&film.aovs.bits, 4) &&
+           put(film.aov_sum.data(), film.aov_sum.size() * 8);
+    if (!ok) return Error{cat("write failed: ", std::strerror(errno))};
+    return ok_status();
+  });
 }
 
 Result<Film> load_film(const std::string& path) {

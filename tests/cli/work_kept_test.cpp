@@ -97,6 +97,42 @@ TEST(CliWorkKept, SigtermAndSigusr1WriteTheImageSoFarLikeCtrlC) {
   }
 }
 
+// The output's folder disappears while the render runs (the first saved checkpoint says it
+// has started): the image goes to a rescue file, the film is kept beside it, the status is 1,
+// and the kept film, resumed with the pass count the message gives, writes the same image
+// without rendering.
+TEST(CliWorkKept, AnOutputLostAtWriteTimeKeepsTheImageAndTheFilm) {
+  std::string dir = temp_dir();
+  std::ofstream(dir + "/s.scn") << kTinyScene;
+  std::filesystem::create_directory(dir + "/out");
+  const std::string cmd =
+      "cd '" + dir + "' && { timeout -k 5 60 '" + cli_path() +
+      "' render s.scn --spp 1000000 --time 3 --checkpoint c.film --checkpoint-every 0 "
+      "-o out/a.pfm > log 2>&1 & pid=$!; until [ -e c.film ]; do sleep 0.02; done; "
+      "rm -rf out; wait $pid; echo $? > status; }";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string log = read_file(dir + "/log");
+  EXPECT_EQ(std::atoi(read_file(dir + "/status").c_str()), 1) << log;
+  const std::string image_tag = "the image is saved as ", film_tag = "film is kept as ";
+  auto image_at = log.find(image_tag), film_at = log.find(film_tag);
+  ASSERT_NE(image_at, std::string::npos) << log;
+  ASSERT_NE(film_at, std::string::npos) << log;
+  auto name_after = [&](std::size_t at) {
+    return log.substr(at, log.find_first_of(":\n", at) - at);
+  };
+  const std::string rescue_image = name_after(image_at + image_tag.size());
+  const std::string rescue_film = name_after(film_at + film_tag.size());
+  auto spp_at = log.find("--spp ", film_at);
+  ASSERT_NE(spp_at, std::string::npos) << log;
+  const int spp = std::atoi(log.c_str() + spp_at + 6);
+  EXPECT_GE(spp, 1);
+  auto again = run_cli(
+      "render s.scn -q -o again.pfm --spp " + std::to_string(spp) + " --resume " + rescue_film,
+      dir);
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_EQ(read_file(dir + "/again.pfm"), read_file(dir + "/" + rescue_image));
+}
+
 TEST(CliWorkKept, BareRaylanePrintsTheUsageAndWritesNothing) {
   std::string dir = temp_dir();
   auto r = run_cli("", dir);

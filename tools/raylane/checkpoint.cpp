@@ -1,9 +1,11 @@
 #include "checkpoint.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "raylane/core/atomic_file.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/write_fallback.h"
 
 namespace raylane::cli {
 
@@ -52,6 +54,25 @@ void Checkpointer::save(const Film& film) {
   last_ = std::chrono::steady_clock::now();
   if (Status s = save_film(*options_.checkpoint, film); !s)
     std::fprintf(stderr, "raylane: checkpoint not saved: %s\n", s.error().c_str());
+}
+
+Result<std::string> save_rescue_film(Film& film, const Scene& scene, const PathSettings& settings,
+                                     const std::string& output) {
+  identify_film(film, scene, settings);
+  const std::filesystem::path out(output);
+  std::vector<std::string> dirs = default_fallback_dirs();
+  dirs.insert(dirs.begin(), out.has_parent_path() ? out.parent_path().string() : ".");
+  std::string stem = out.stem().string();
+  if (stem.empty()) stem = "render";
+  std::string errors;
+  for (const std::string& dir : dirs) {
+    std::string path = fresh_rescue_name(dir, stem, ".film");
+    if (path.empty()) continue;
+    Status s = save_film(path, film);
+    if (s) return path;
+    errors += cat(errors.empty() ? "" : "; ", path, ": ", s.error());
+  }
+  return Error{cat("the film could not be saved anywhere (", errors, ")")};
 }
 
 }  // namespace raylane::cli

@@ -35,4 +35,11 @@ class Checkpointer {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// A path render whose files could not all be written keeps its film: saved, identified so that
+// --resume takes it, as `raylane-rescue-<stem>-<pid>-<n>.film` in the folder of `output`, else
+// the working directory, else the system's temporary folder. The path saved, or an error
+// naming every place tried.
+Result<std::string> save_rescue_film(Film& film, const Scene& scene, const PathSettings& settings,
+                                     const std::string& output);
+
 }  // namespace raylane::cli

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "render_request.h"
 
 namespace {
 
@@ -64,13 +65,19 @@ int run(const std::vector<std::string>& args) {
 }  // namespace
 
 // Sizes an input announces are checked before they are allocated (a film, textures, meshes
-// within their budget); an allocation that fails all the same ends in this message, exit 2,
-// never in std::terminate's abort.
+// within their budget, and what writing a render's files takes); an allocation that fails all
+// the same ends in this message, naming the files written before it, exit 2, never in
+// std::terminate's abort.
 int main(int argc, char** argv) {
   try {
     return run(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::bad_alloc&) {
-    std::fputs("raylane: out of memory; nothing written\n", stderr);
+    const std::vector<std::string>& written = raylane::cli::files_written();
+    std::string files;
+    for (const std::string& f : written)
+      files += (files.empty() ? "" : ", ") + f;
+    std::fprintf(stderr, "raylane: out of memory; %s\n",
+                 written.empty() ? "nothing written" : ("written before it: " + files).c_str());
     return raylane::cli::kExitUsage;
   }
 }

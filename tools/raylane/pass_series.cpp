@@ -136,26 +136,47 @@ void PassSeries::write(const Film& film, int passes) {
   wopts.metadata.push_back(cat("RAYLANE_SPP=", passes));
   for (std::string& line : path_metadata(r_.path_settings))
     wopts.metadata.push_back(std::move(line));
-  WriteOptions exr_wopts = wopts;
-  exr_wopts.exr_layers = exr_layers_of(film);
-  const Image image = film.image();
-  std::vector<std::pair<std::string, Image>> files;
-  std::vector<std::string> colour = outputs_at(r_, passes);
-  for (const std::string& out : colour)
-    files.emplace_back(out, Image());
-  for (const auto& [out, aov] : aov_siblings(colour, r_.path_settings.aovs))
-    files.emplace_back(out, film.aov_image(aov));
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    const std::string& out = files[i].first;
-    const Image& file_image = i < colour.size() ? image : files[i].second;
-    if (auto path = write_render_output(out, file_image, is_exr(out) ? exr_wopts : wopts, failed_))
-      save.outputs.push_back(*path);
-  }
+  save.outputs = write_film_outputs(outputs_at(r_, passes), film, wopts, failed_);
   std::fflush(stdout);
   saves_.push_back(std::move(save));
   writing_cpu_ += process_cpu_seconds() - cpu;
   writing_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() - wall;
+}
+
+std::vector<std::string> write_film_outputs(const std::vector<std::string>& colour,
+                                            const Film& film, const WriteOptions& options,
+                                            bool& failed) {
+  std::vector<std::string> written;
+  auto keep = [&](std::optional<std::string> path) {
+    if (path) written.push_back(std::move(*path));
+  };
+  {
+    const Image image = film.image();
+    for (const std::string& out : colour) {
+      if (!is_exr(out) || film.aovs.empty()) {
+        keep(write_render_output(out, image, options, failed));
+        continue;
+      }
+      WriteOptions with_layers = options;
+      with_layers.exr_layers = exr_layers_of(film);
+      keep(write_render_output(out, image, with_layers, failed));
+    }
+  }
+  for (const auto& [out, aov] : aov_siblings(colour, film.aovs))
+    keep(write_render_output(out, film.aov_image(aov), options, failed));
+  return written;
+}
+
+namespace {
+std::vector<std::string>& written_so_far() {
+  static std::vector<std::string> files;
+  return files;
+}
+}  // namespace
+
+const std::vector<std::string>& files_written() {
+  return written_so_far();
 }
 
 std::optional<std::string> write_render_output(const std::string& out, const Image& image,
@@ -172,6 +193,7 @@ std::optional<std::string> write_render_output(const std::string& out, const Ima
     failed = true;
   }
   std::printf("%s\n", saved->path.c_str());
+  written_so_far().push_back(saved->path);
   return saved->path;
 }
 

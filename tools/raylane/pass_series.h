@@ -62,6 +62,15 @@ class PassSeries {
   double writing_seconds_ = 0, writing_cpu_ = 0;
 };
 
+// Writes a path render's `colour` outputs and their --aov siblings from the film, one image at
+// a time: the colour image once, each AOV's image and an EXR's layers only while its file is
+// written. Writing then needs little beside the film (render_memory.cpp counts it), where
+// making every image first held them all at once. Returns the paths written (rescue files
+// where they replaced an output); `failed` as write_render_output sets it.
+std::vector<std::string> write_film_outputs(const std::vector<std::string>& colour,
+                                            const Film& film, const WriteOptions& options,
+                                            bool& failed);
+
 // This process's CPU time so far, user and system, all threads (getrusage).
 double process_cpu_seconds();
 

@@ -80,6 +80,22 @@ bool outputs_writable(const RenderRequest& r) {
   return ok;
 }
 
+// Files that could not be written lose nothing: the film is saved beside them, and the user
+// is told how to write the images from it without rendering again.
+void keep_film(const RenderRequest& r, const Scene& scene, Film& film) {
+  auto kept = save_rescue_film(film, scene, r.path_settings, r.outputs.front());
+  if (!kept) {
+    std::fprintf(stderr, "raylane: %s\n", kept.error().c_str());
+    return;
+  }
+  const auto& region = r.path_settings.region;
+  std::fprintf(stderr,
+               "raylane: the render's film is kept as %s: this run's options with `--resume %s "
+               "--spp %d%s` write its images again without rendering\n",
+               kept->c_str(), quote_path(*kept).c_str(), film.passes,
+               region ? cat(" --region ", region_text(*region)).c_str() : "");
+}
+
 // Under mpirun only rank 0 speaks: the others' messages would repeat its own (every process
 // reads the same scene and options), so their stdout and stderr go to /dev/null. If that
 // cannot be opened, the messages repeat; nothing else changes.
@@ -129,9 +145,8 @@ int render_command(const std::vector<std::string>& args) {
   auto start = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   std::string what;
-  Image image;
-  std::vector<std::pair<std::string, Image>> aov_images;  // path, image
-  std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
+  Image image;  // a ray-casting view's
+  Film film;    // a path render's: its files are written from it
   int spp = 1;
   PathStats path_stats;
   PathOutcome balance;  // the MPI job's wait and tile moves (--stats), the --save-at series
@@ -140,9 +155,7 @@ int render_command(const std::vector<std::string>& args) {
     PathOutcome run = run_path(r, tracer, cluster);
     if (run.status != kExitOk) return run.status;
     if (!cluster.root()) return cluster.root_status(kExitOk);
-    image = std::move(run.image);
-    aov_images = std::move(run.aov_images);
-    exr_layers = std::move(run.exr_layers);
+    film = std::move(run.film);
     path_stats = run.stats;
     balance.wait_seconds = run.wait_seconds, balance.busy_seconds = run.busy_seconds;
     balance.tiles_moved = run.tiles_moved, balance.balances = run.balances;
@@ -179,29 +192,28 @@ int render_command(const std::vector<std::string>& args) {
   int status = kExitOk;
   // A render is never dropped: an output that fails now (the folder was removed, the disk
   // filled up) goes to a rescue file instead, whose path is printed; the status says so.
-  // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
-  Image view = r.path ? Image() : viewable(image, r.mode);
-  std::vector<std::pair<std::string, const Image*>> files;
-  std::vector<std::string> written;  // for --stats-json
-  for (const auto& out : r.outputs) {
-    bool eight_bit = format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
-    files.emplace_back(out, eight_bit && !r.path ? &view : &image);
-  }
-  for (const auto& [out, aov_image] : aov_images)
-    files.emplace_back(out, &aov_image);
-  WriteOptions exr_wopts = wopts;
-  exr_wopts.exr_layers = std::move(exr_layers);
   bool failed = series_failed;
-  for (const auto& [out, file_image] : files)
-    if (auto path = write_render_output(out, *file_image, is_exr(out) ? exr_wopts : wopts, failed))
-      written.push_back(*path);
+  std::vector<std::string> written;  // for --stats-json
+  if (r.path) {
+    written = write_film_outputs(r.outputs, film, wopts, failed);
+  } else {
+    // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
+    const Image view = viewable(image, r.mode);
+    for (const auto& out : r.outputs) {
+      bool eight_bit = format_from_path(out).ok() && *format_from_path(out) == ImageFormat::kPng;
+      if (auto path = write_render_output(out, eight_bit ? view : image, wopts, failed))
+        written.push_back(*path);
+    }
+  }
   if (failed) status = kExitFailure;
+  if (failed && r.path) keep_film(r, *scene, film);
+  const PixelRegion shown = r.path ? film.window() : PixelRegion{0, 0, image.width, image.height};
   if (!r.quiet) {
     std::fprintf(stderr,
                  "rendered %ux%u%s (%s) in %.3f s: %s, %.2f Mrays/s; %s tracer, %s, %s; BVH of "
                  "%s built in %.3f s\n",
-                 image.width, image.height,
-                 image.width == scene->width && image.height == scene->height
+                 shown.width(), shown.height(),
+                 shown.width() == scene->width && shown.height() == scene->height
                      ? ""
                      : cat(" of ", scene->width, "x", scene->height).c_str(),
                  what.c_str(), seconds, counted(rays, "ray").c_str(), rays / seconds * 1e-6,

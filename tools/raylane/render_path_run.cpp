@@ -201,10 +201,7 @@ PathOutcome run_path(const RenderRequest& r, const Tracer& tracer, const Cluster
   out.tiles_moved = balancer.tiles_moved(), out.balances = balancer.balances();
   out.interrupted = loop.interrupted_run();
   if (!cluster.root()) return out;
-  out.image = film->image();
-  for (const auto& [path, aov] : r.aov_outputs)
-    out.aov_images.emplace_back(path, film->aov_image(aov));
-  out.exr_layers = exr_layers_of(*film);  // a --region's film holds the region alone
+  out.film = std::move(*film);  // a --region's film holds the region alone
   return out;
 }
 

@@ -72,10 +72,8 @@ struct SeriesSave {
 
 // A path render's results on rank 0 (other ranks hold their own share's only).
 struct PathOutcome {
-  Image image;
+  Film film;  // the whole render's sums on rank 0: the files are written from it
   PathStats stats;
-  std::vector<std::pair<std::string, Image>> aov_images;  // --aov sibling files: path, image
-  std::vector<ExrLayer> exr_layers;                       // the AOVs, for EXR outputs
   int status = 0;            // kExitUsage when the film to resume cannot be used
   bool interrupted = false;  // Ctrl-C on any process stopped it
   // An MPI job's balance, summed over its processes (printed by --stats).
@@ -101,6 +99,10 @@ Status render_fits_in_memory(const RenderRequest& r, const Scene& scene, bool di
 // (pass_series.cpp).
 std::optional<std::string> write_render_output(const std::string& out, const Image& image,
                                                const WriteOptions& options, bool& failed);
+
+// Every file write_render_output wrote in this process, in order: what an out-of-memory
+// failure that still escapes names as written (main.cpp).
+const std::vector<std::string>& files_written();
 
 // --stats under mpirun: how long the processes waited for the slowest after each pass, and
 // the tiles moved to even them out.

@@ -26,4 +26,13 @@ Result<SavedImage> write_image_or_fallback(const std::string& path, const Image&
                                            const WriteOptions& options = {},
                                            std::vector<std::string> fallback_dirs = {});
 
+// Where rescue files go when no folders are named: the working directory, then the system's
+// temporary folder.
+std::vector<std::string> default_fallback_dirs();
+
+// `<dir>/raylane-rescue-<stem>-<pid>-<n><extension>` for the first n that no file and no link
+// holds yet (empty if none could be found): a rescue never replaces anything.
+std::string fresh_rescue_name(const std::string& dir, const std::string& stem,
+                              const std::string& extension);
+
 }  // namespace raylane
