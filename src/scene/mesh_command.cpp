@@ -80,6 +80,21 @@ struct MeshTextures {
   }
 };
 
+// "skipped 2 faces of 'm.obj' that name a vertex, texture coordinate or normal it does not
+// have (lines 6, 9)": at most five lines named, then how many more. (Lines and points, which
+// raylane drops anyway, are counted with the faces.)
+std::string obj_drop_warning(const std::vector<uint64_t>& lines, const std::string& name) {
+  std::string listed;
+  for (std::size_t i = 0; i < lines.size() && i < 5; ++i)
+    listed += cat(i ? ", " : "", lines[i]);
+  if (lines.size() > 5) listed += cat(" and ", lines.size() - 5, " more");
+  const bool one = lines.size() == 1;
+  return cat("skipped ", lines.size(), one ? " face" : " faces", " of ", quote_path(name),
+             one ? " that names" : " that name",
+             " a vertex, texture coordinate or normal it does not have (line", one ? " " : "s ",
+             listed, ")");
+}
+
 }  // namespace
 
 bool mesh_command(Scene& s, const Line& line, ParseState& state) {
@@ -128,6 +143,8 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   if (stats->degenerate_dropped > 0)
     state.diagnostics.warning(line.at(1), cat("skipped ", stats->degenerate_dropped,
                                               " zero-area triangles of ", quote_path(name)));
+  if (const auto& lines = stats->obj_lines_dropped; !lines.empty())
+    state.diagnostics.warning(line.at(1), obj_drop_warning(lines, name));
   if (s.materials[mat].is_light)  // its copies emit too
     for (uint32_t r = first_row; r < table.size(); ++r)
       s.lights.push_back(PrimRef(tag_of<Triangle>, r));

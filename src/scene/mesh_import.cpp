@@ -1,6 +1,7 @@
 #include "raylane/scene/mesh_import.h"
 
 #include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <new>
@@ -15,6 +17,7 @@
 
 #include "mesh_append.h"
 #include "mesh_repair.h"
+#include "obj_filter.h"
 #include "raylane/core/alloc_budget.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/limits.h"
@@ -92,12 +95,25 @@ class GuardedIOSystem final : public Assimp::DefaultIOSystem {
     }
     // Assimp opens a file more than once (to detect its format, then to read it): each file
     // is recorded, and adds to the budget, once.
-    if (std::find(opened_.begin(), opened_.end(), file) == opened_.end()) {
+    const bool first_time = std::find(opened_.begin(), opened_.end(), file) == opened_.end();
+    if (first_time) {
       opened_.emplace_back(file);
       if (budget_) budget_->grow(kImportBytesPerFileByte * *size);
     }
+    if (is_obj(file))
+      if (Assimp::IOStream* kept = open_obj_without_bad_elements(file, first_time)) return kept;
     return DefaultIOSystem::Open(file, mode);
   }
+
+  static bool is_obj(const char* file) {
+    std::string ext = std::filesystem::path(file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".obj";
+  }
+
+  // The lines of an OBJ file whose elements were dropped (obj_filter.h).
+  const std::vector<uint64_t>& obj_lines_dropped() const { return obj_lines_dropped_; }
 
   const std::vector<std::string>& opened() const { return opened_; }
   // "; a.mtl: not a regular file (a FIFO)" for each refusal, to append to Assimp's message.
@@ -109,7 +125,23 @@ class GuardedIOSystem final : public Assimp::DefaultIOSystem {
   }
 
  private:
+  // The OBJ file as Assimp should read it: without the faces that name an element outside its
+  // lists, which would make Assimp refuse the whole file. Nothing when none are dropped (or the
+  // file cannot be read: Assimp's own open says why).
+  Assimp::IOStream* open_obj_without_bad_elements(const char* file, bool first_time) {
+    auto bytes = read_input_file(file, kMaxMeshFileBytes, "the mesh");
+    if (!bytes) return nullptr;
+    ObjFiltered kept = drop_elements_out_of_range(*bytes);
+    if (kept.lines.empty()) return nullptr;
+    if (first_time) obj_lines_dropped_ = kept.lines;
+    texts_.push_back(std::move(kept.text));
+    const std::string& text = texts_.back();
+    return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  }
+
   std::vector<std::string> opened_, refused_;
+  std::deque<std::string> texts_;  // the filtered OBJ texts, alive while the importer reads
+  std::vector<uint64_t> obj_lines_dropped_;
   AllocBudget* budget_ = nullptr;
 };
 
@@ -346,6 +378,7 @@ Result<MeshImportStats> import_mesh_file(const std::string& path, const MeshPlac
   auto stats = convert_or_fail(*scene, path, placement, material, table, choose);
   if (!stats) return Error{stats.error()};
   stats->files = io->opened();
+  stats->obj_lines_dropped = io->obj_lines_dropped();
   return stats;
 }
 
@@ -358,11 +391,16 @@ Result<MeshImportStats> import_mesh_memory(const std::string& bytes, const std::
   configure(importer);
   std::string hint = std::filesystem::path(name).extension().string();
   if (!hint.empty()) hint.erase(0, 1);
-  auto scene = read_within_budget(importer, name, bytes.size(), nullptr, [&] {
-    return importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str());
+  ObjFiltered kept;
+  if (GuardedIOSystem::is_obj(name.c_str())) kept = drop_elements_out_of_range(bytes);
+  const std::string& read = kept.lines.empty() ? bytes : kept.text;
+  auto scene = read_within_budget(importer, name, read.size(), nullptr, [&] {
+    return importer.ReadFileFromMemory(read.data(), read.size(), 0, hint.c_str());
   });
   if (!scene) return Error{scene.error()};
-  return convert_or_fail(*scene, name, placement, material, table);
+  auto stats = convert_or_fail(*scene, name, placement, material, table);
+  if (stats) stats->obj_lines_dropped = std::move(kept.lines);
+  return stats;
 }
 
 }  // namespace raylane

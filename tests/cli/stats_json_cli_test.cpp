@@ -65,6 +65,24 @@ TEST(CliStatsJson, ARayCastViewHasNoPhasesAndNoIntegrator) {
 }
 
 // Checked before any work, like the images: never over an input, never into a missing folder.
+// File names are bytes; JSON is UTF-8. Bytes that are no UTF-8 become U+FFFD, well-formed
+// names (an accent, a CJK character) stay as they are, and the file is valid UTF-8 by iconv's
+// reading (glibc's decoder, independent of ours).
+TEST(CliStatsJson, OutputNamesThatAreNotUtf8KeepTheFileJson) {
+  std::string dir = dir_with_scene(kScene);
+  auto r = run_cli(
+      "render s.scn --mode normal -q --stats-json s.json -o '\xff\xc0\x80.pfm' "
+      "-o '\xed\xa0\x80x.pfm' -o 'caf\xc3\xa9\xe6\x97\xa5.pfm'",
+      dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::string json = read_file(dir + "/s.json");
+  EXPECT_NE(json.find("\"\\ufffd\\ufffd\\ufffd.pfm\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"\\ufffd\\ufffd\\ufffdx.pfm\""), std::string::npos) << json;  // a surrogate
+  EXPECT_NE(json.find("\"caf\xc3\xa9\xe6\x97\xa5.pfm\""), std::string::npos) << json;
+  auto valid = run_cli("--version && iconv -f UTF-8 -t UTF-8 s.json > /dev/null", dir);
+  EXPECT_EQ(valid.status, 0) << valid.out;
+}
+
 TEST(CliStatsJson, AFileThatCannotBeWrittenIsAUsageErrorBeforeAnyWork) {
   std::string dir = dir_with_scene(kScene);
   std::string scene = read_file(dir + "/s.scn");

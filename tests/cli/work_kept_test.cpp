@@ -133,6 +133,27 @@ TEST(CliWorkKept, AnOutputLostAtWriteTimeKeepsTheImageAndTheFilm) {
   EXPECT_EQ(read_file(dir + "/again.pfm"), read_file(dir + "/" + rescue_image));
 }
 
+// A resumed render goes on saving into the film it continues, so stopping it loses nothing
+// of what it added; --no-checkpoint leaves the film as it was.
+TEST(CliWorkKept, AResumedRenderSavesIntoTheFilmItContinues) {
+  std::string dir = temp_dir();
+  std::ofstream(dir + "/s.scn") << kTinyScene;
+  ASSERT_EQ(run_cli("render s.scn -q --spp 2 --checkpoint f.film -o a.hdr", dir).status, 0);
+  auto resumed = run_cli("render s.scn -q --spp 5 --resume f.film -o b.hdr", dir);
+  ASSERT_EQ(resumed.status, 0) << resumed.out;
+  EXPECT_NE(run_cli("info f.film", dir).out.find("spp: 5"), std::string::npos);
+  auto left = run_cli("render s.scn -q --spp 7 --resume f.film --no-checkpoint -o c.hdr", dir);
+  ASSERT_EQ(left.status, 0) << left.out;
+  EXPECT_NE(run_cli("info f.film", dir).out.find("spp: 5"), std::string::npos);
+  // The film at 5 passes continued to 7 is the 7-pass render, and saved says so.
+  ASSERT_EQ(run_cli("render s.scn -q --spp 7 --resume f.film -o d.hdr", dir).status, 0);
+  EXPECT_EQ(read_file(dir + "/c.hdr"), read_file(dir + "/d.hdr"));
+  EXPECT_NE(run_cli("info f.film", dir).out.find("spp: 7"), std::string::npos);
+  auto both =
+      run_cli("render s.scn --spp 9 --resume f.film --no-checkpoint --checkpoint g.film", dir);
+  EXPECT_EQ(both.status, 2) << both.out;
+}
+
 TEST(CliWorkKept, BareRaylanePrintsTheUsageAndWritesNothing) {
   std::string dir = temp_dir();
   auto r = run_cli("", dir);

@@ -76,6 +76,9 @@ void mesh_seeds(const fs::path& dir) {
   put(dir / "ascii.ply", std::string(1, '\0') + kPlyAscii);
   put(dir / "binary.ply", std::string(1, '\0') + ply_binary());
   put(dir / "square.obj", std::string(1, '\1') + kObj);
+  // Faces naming a vertex, texture coordinate or normal the file lacks: dropped, not refused.
+  put(dir / "missing_elements.obj",
+      std::string(1, '\1') + kObj + "vt 0 0\nf 1 2 9\nf -9 1 2\nf 1/3 2/1 3/1\nf 1//4 2//1 3//1\n");
   // A header longer than the first 64 KiB raylane once read of a mesh (issue 34).
   put(dir / "long_header.ply",
       std::string(1, '\0') + raylane::testing::ply_with_long_header(70000));

@@ -121,6 +121,36 @@ TEST(MeshImport, ZeroAreaTrianglesAreDroppedWithAWarning) {
   EXPECT_NE(testing::warnings(p)[0].find("skipped 1 zero-area triangles"), std::string::npos);
 }
 
+// Assimp refuses a whole OBJ file for one index outside its lists; raylane drops those faces,
+// as docs/scene-language.md says, and names their lines. Kept: positive and negative indices
+// in range, "v//vn" and "v/vt" forms. Dropped: a vertex past the end, a negative index reaching
+// before the first vertex, a texture coordinate and a normal past the end, index 0.
+TEST(MeshImport, ObjFacesNamingMissingElementsAreDroppedWithTheirLines) {
+  std::string dir = temp_dir();
+  write_file(dir + "/m.obj",
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\n"
+             "f 1 2 3\n"           // 7: kept
+             "f -3 -1 -2\n"        // 8: kept (vertices 2, 4, 3)
+             "f 1//1 2//1 4//1\n"  // 9: kept
+             "f 1/1 2/1 3/1\n"     // 10: kept
+             "f 2 4 9\n"           // 11: vertex 9 of 4
+             "f -5 1 2\n"          // 12: before the first vertex
+             "f 1/2 2/1 3/1\n"     // 13: texture coordinate 2 of 1
+             "f 1//1 2//7 3//1\n"  // 14: normal 7 of 1
+             "f 0 1 2\n");         // 15: index 0
+  write_file(dir + "/s.scn",
+             "camera 0 0 5 1\nscreen 4 3\nbrdf 1 1 1 0 0 0 1\nmesh m.obj 0 0 0 1\n");
+  auto p = load_scene_file(dir + "/s.scn");
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  EXPECT_EQ(p.scene.table<Triangle>().size(), 4u);
+  ASSERT_EQ(testing::warnings(p).size(), 1u);
+  EXPECT_NE(testing::warnings(p)[0].find("s.scn:4:6: warning: skipped 5 faces of"),
+            std::string::npos)
+      << testing::warnings(p)[0];
+  EXPECT_NE(testing::warnings(p)[0].find("(lines 11, 12, 13, 14, 15)"), std::string::npos)
+      << testing::warnings(p)[0];
+}
+
 TEST(MeshImport, EmittingMeshTrianglesAreLights) {
   auto p = testing::parse("camera 0 0 5 1\nlight 1 1 1\nmesh " + source_path("scenes/letterX.ply") +
                           " 0 0 0 1\n");

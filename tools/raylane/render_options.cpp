@@ -22,8 +22,9 @@ namespace {
 
 // Options that only the path tracer reads: given with a ray-casting view, they do nothing.
 constexpr std::string_view kPathOnlyOptions[] = {
-    "spp",        "integrator", "sampler",          "shading", "seed", "max-depth", "time",
-    "checkpoint", "resume",     "checkpoint-every", "stats",   "aov",  "balance",   "save-at"};
+    "spp",       "integrator", "sampler",    "shading", "seed",
+    "max-depth", "time",       "checkpoint", "resume",  "checkpoint-every",
+    "stats",     "aov",        "balance",    "save-at", "no-checkpoint"};
 
 // An option of `raylane render`: how it is written and described, and what it does to the
 // request. Values are applied in the table's order, each option's values in the order given.
@@ -174,10 +175,17 @@ const std::vector<RenderOption>& render_options() {
        set_checkpoint_every},
       {{"resume", 0, "FILE", false,
         "path: continue a saved film up to --spp; the same scene, --seed,\n"
-        "--integrator and --max-depth give the uninterrupted run's image",
+        "--integrator and --max-depth give the uninterrupted run's image.\n"
+        "Without --checkpoint, the run goes on saving into FILE",
         "none"},
        [](R& r, V v) {
          r.checkpoints.resume = v;
+         return ok_status();
+       }},
+      {{"no-checkpoint", 0, "", false,
+        "path: with --resume, leave the film as it is (save nothing)", ""},
+       [](R& r, V) {
+         r.no_checkpoint = true;
          return ok_status();
        }},
       {{"save-at", 0, "LIST", false,
@@ -311,6 +319,17 @@ Result<RenderRequest> read_render_request(const std::vector<std::string>& args) 
     if (given == parsed->values.end()) continue;
     for (const std::string& value : given->second)
       if (Status s = o.apply(r, value); !s) return Error{s.error()};
+  }
+  if (r.no_checkpoint && r.checkpoints.checkpoint)
+    return Error{"--no-checkpoint and --checkpoint ask for opposite things: give one"};
+  // A resumed render keeps saving into the film it continues: interrupted, it loses nothing
+  // of what it added.
+  if (r.checkpoints.resume && !r.checkpoints.checkpoint && !r.no_checkpoint) {
+    r.checkpoints.checkpoint = r.checkpoints.resume;
+    if (Status s = check_writable(*r.checkpoints.resume); !s)
+      return Error{cat("cannot write the --resume film ", *r.checkpoints.resume, " (", s.error(),
+                       "): a resumed render saves into it; --no-checkpoint leaves it as it is, "
+                       "--checkpoint FILE saves elsewhere")};
   }
   if (r.checkpoints.checkpoint) {
     if (Status s = check_writable(*r.checkpoints.checkpoint); !s)

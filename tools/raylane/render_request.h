@@ -38,7 +38,8 @@ struct RenderRequest {
   double exposure = 0;
   int threads = 0;
   bool also_png = false, lenient = false, quiet = false;
-  std::vector<std::string> overrides;                    // --set lines
+  bool no_checkpoint = false;          // --no-checkpoint: a --resume film is not saved again
+  std::vector<std::string> overrides;  // --set lines
   uint64_t image_memory = kDefaultImageMemory;           // --image-memory, in bytes
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;

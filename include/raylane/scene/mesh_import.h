@@ -28,6 +28,8 @@ struct MeshImportStats {
   uint32_t degenerate_dropped = 0;  // zero-area triangles (after placement, in float) skipped
   std::vector<std::string> files;   // every file read: the mesh and what it names (mtllib, ...)
   bool has_uv = false;              // every triangle came with texture coordinates
+  // An OBJ file's lines whose faces named an element outside its lists, dropped (1-based).
+  std::vector<uint64_t> obj_lines_dropped;
 };
 
 // The diffuse texture one of a mesh file's materials names.
