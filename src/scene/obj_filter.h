@@ -1,7 +1,7 @@
 // OBJ faces that name a vertex, texture coordinate or normal outside the file's lists. Assimp's
 // OBJ importer refuses the whole file for one such index ("OBJ: vertex index out of range");
 // raylane drops those faces instead, as it drops other unusable faces (docs/scene-language.md,
-// "What is dropped"), and says which lines it dropped.
+// "Meshes", its paragraph "What is dropped"), and says which lines it dropped.
 #pragma once
 
 #include <cstdint>

@@ -51,8 +51,8 @@ std::string quoted_name(const std::string& path) {
 // Models `assimp info` refuses that raylane reads, with their triangles: an empty STL solid
 // beside a real one fails Assimp's validation, and raylane drops it first; an OBJ cube whose
 // faces name vertices 12 and 0 of 8 keeps its four other quads (eight triangles, one of them
-// of zero area), the two faces dropped with a warning (docs/scene-language.md, "What is
-// dropped").
+// of zero area), the two faces dropped with a warning (docs/scene-language.md,
+// "Meshes", its paragraph "What is dropped").
 const std::map<std::string, uint32_t> kReadBeyondAssimpInfo = {
     {"STL/triangle_with_empty_solid.stl", 1}, {"invalid/malformed.obj", 7}};
 

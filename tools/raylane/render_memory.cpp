@@ -20,8 +20,8 @@ namespace {
 //   copy); while the files are written (one at a time, write_film_outputs), the colour image,
 //   the larger of one AOV's image and an EXR's AOV layers, and the encoder's copy of every
 //   channel (OpenEXR's half or float rows; 8-bit PNG and RGBE take less). Checkpoints and
-//   --resume stream the sums, with no copy. Measured: 35 bytes a pixel without AOVs, 178 with
-//   all four written as half EXR layers; counted: 60 and 208.
+//   --resume stream the sums, with no copy. The measured and the counted bytes stand side by
+//   side in docs/design.md, "Memory".
 // - ray casting: the image, its viewable copy (depth and ids mapped) and the writer's copy.
 uint64_t bytes_per_pixel(const RenderRequest& r, bool distributed) {
   constexpr uint64_t kImage = 3 * sizeof(float);
