@@ -1,7 +1,7 @@
-// Whole path-traced renders, timed (issue 14's yardstick): samples per second — pixels ×
-// passes over wall time — of the course scene, its glass and mirror variants, the course scene
-// with the Stanford bunny on its table (tools/make_bunny writes the mesh) and a large mesh (the
-// benchmark's 1.31M-triangle displaced icosphere, glossy, under a sphere light), per
+// Whole path-traced renders, timed (docs/benchmarks.md, "Render timings"): samples per second —
+// pixels × passes over wall time — of the course scene, its glass and mirror variants, the course
+// scene with the Stanford bunny on its table (tools/make_bunny writes the mesh) and a large mesh
+// (the benchmark's 1.31M-triangle displaced icosphere, glossy, under a sphere light), per
 // integrator, on 1 and all threads, with the BVH `raylane render` builds (render_bvh_config).
 // One pass at the scene's own resolution per iteration, each with its own seed, so every
 // iteration does the same kind of work. The `/phases` rows time the render's phases as

@@ -1,5 +1,5 @@
-// The benchmark scenes (issue 5): made by raylane's own code at bench time, so nothing large
-// is committed and nothing is downloaded except through the package manager.
+// The benchmark scenes (docs/benchmarks.md, "Scenes"): made by raylane's own code at bench time, so
+// nothing large is committed and nothing is downloaded except through the package manager.
 #pragma once
 
 #include <memory>

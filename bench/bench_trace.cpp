@@ -1,6 +1,6 @@
-// raylane's benchmark suite (issue 5): rays per second of every tracer on identical ray sets
-// of every benchmark scene, at 1 thread and at all threads, after checking each tracer's
-// answers against the double-precision reference; and BVH build time and memory next to
+// raylane's benchmark suite (docs/benchmarks.md, "Programs"): rays per second of every tracer on
+// identical ray sets of every benchmark scene, at 1 thread and at all threads, after checking each
+// tracer's answers against the double-precision reference; and BVH build time and memory next to
 // Embree's. `tools/bench_table` runs it with repetitions and prints the median table;
 // `bench_trace --export=DIR` writes the triangle scenes and their ray sets as files.
 #include <benchmark/benchmark.h>

@@ -1,8 +1,8 @@
-// The speed-versus-error table of the packet kernels (issue 5, item 8): for each primitive
-// kind, on random inputs and on the hard cases of docs/hard-cases.md, and for each instruction
-// set, the distribution of the hit distance's error against the double reference (run on the
-// same float inputs, converted exactly: docs/hard-cases.md §0), hit/miss disagreements, and the
-// speed of the packet tracer on that ray set. Each ray is classified by the error bounds of
+// The speed-versus-error table of the packet kernels (docs/benchmarks.md, "Kernel accuracy"): for
+// each primitive kind, on random inputs and on the hard cases of docs/hard-cases.md, and for each
+// instruction set, the distribution of the hit distance's error against the double reference (run
+// on the same float inputs, converted exactly: docs/hard-cases.md §0), hit/miss disagreements, and
+// the speed of the packet tracer on that ray set. Each ray is classified by the error bounds of
 // tests/support/error_bands (compiled into this program): "in band" counts the rays whose
 // answer rounding may flip, "flips outside band" the disagreements on clear rays (kernel bugs),
 // and the last column how much of its t bound a clear hit's error uses.

@@ -1,7 +1,7 @@
 // Collapsing the binary BVH into 8-wide nodes of least expected wide-node visits (below). The
 // greedy rule it replaced (Wald et al. 2008, "Getting Rid of Packets", §3: open the largest
-// child until the node is full) left the lattice's wide nodes a third full (bench/README.md,
-// issue 17's eighth sitting).
+// child until the node is full) left the lattice's wide nodes far from full (bench/README.md,
+// "The lattice's bytes per primitive, the 8-wide collapse by least visits").
 #include <algorithm>
 #include <array>
 #include <limits>

@@ -42,7 +42,8 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     microfacet.push_back(float(int(m.microfacet)));
     alpha_g2.push_back(float(2 / (a + 2)));
     if (m.microfacet != Microfacet::kPhong) all_phong = false;
-    // Textured Kd varies per hit: the double Bsdf shades it (issue 15 left lanes for later).
+    // Textured Kd varies per hit and the lane kernels read Kd per material, so the double Bsdf
+    // shades it (docs/design.md, "Shading in lanes").
     in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
     route.push_back(m.is_light        ? Route::kEmitter
                     : in_lanes.back() ? Route::kLanes

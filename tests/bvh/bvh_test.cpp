@@ -186,7 +186,8 @@ TEST(Bvh, EmptySceneGivesEmptyBvh) {
   EXPECT_FALSE(closest_hit_bvh_ref(s, bvh, {{0, 0, 0}, {0, 0, 1}}).hit());
 }
 
-// docs/hard-cases.md / issue 6: all primitives at one point; huge coordinates.
+// docs/hard-cases.md, "B2. Flat boxes and axis-aligned geometry (zero-thickness BVH nodes)":
+// all primitives at one point; huge coordinates.
 TEST(Bvh, DegenerateInputsBuildWithBoundedDepth) {
   Scene s;
   s.materials.push_back(Material{});
@@ -283,10 +284,11 @@ TEST(BvhTraversal, AxisParallelRaysOverFlatGeometry) {
   expect_bvh_equals_brute_force(s, bvh, rays);
 }
 
-// Issue 17's memory target: BVH + tables of a sphere scene within Embree's 42 bytes per sphere.
-// With a sphere test priced as a node visit (sah_test_cost 1.0) the SAH made leaves of one
-// sphere, 88 B each; the kernel's measured cost (0.3, sphere.h) gives leaves of several, which
-// traversal must still answer like the brute force.
+// The memory target (bench/README.md, "Against the tracer's speed and memory targets"): BVH +
+// tables of a sphere scene within Embree's 42 bytes per sphere. With a sphere test priced as a node
+// visit (sah_test_cost 1.0) the SAH made leaves of one sphere, 88 B each; the kernel's measured
+// cost (0.3, sphere.h) gives leaves of several, which traversal must still answer like the brute
+// force.
 TEST(BvhTraversal, SphereLeavesHoldSeveralAndStayExact) {
   Scene s;
   s.materials.push_back(Material{});

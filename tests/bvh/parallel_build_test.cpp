@@ -1,7 +1,7 @@
 // The parallel top levels of the build (src/bvh/parallel_split.h): two threads build the same
 // tree as one, node for node in the same array, and the tree is valid, on scenes large enough that
 // the root's levels are binned and partitioned in chunks. The SAH cost stays within a stated bound
-// of the builder before it (issue 17).
+// of the builder before it (bench/README.md, "BVH builds, import memory, 10M triangles").
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -93,7 +93,7 @@ TEST(BvhParallelBuild, TwoThreadsBuildTheSameValidTreeAsOne) {
   EXPECT_EQ(a.stats.depth, b.stats.depth);
 }
 
-// The SAH cost of the builder before issue 17's (commit dd65599, double-precision bin
+// The SAH cost of the builder before the parallel one (commit dd65599, double-precision bin
 // indices, AoS records) on the same scene: the new one may not be worse by more than 0.1 %
 // (it bins in float, which may move a centroid near a bin edge; it agreed to 1e-14). Only a
 // scene made without random numbers: random_scene's draws are arguments of one call, whose

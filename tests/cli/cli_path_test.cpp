@@ -65,7 +65,8 @@ TEST(CliPath, FilesAreIdenticalForAnyThreadCountAndConvert) {
 
 // The first SIGINT ends the render after the pass in flight: a valid image with the samples
 // taken so far in its header, and exit status 130; the --checkpoint film is saved then too,
-// and resuming it gives exactly the file of an uninterrupted render (issue 6).
+// and resuming it gives exactly the file of an uninterrupted render (docs/design.md,
+// "Determinism").
 TEST(CliPath, SigintWritesTheImageAndCheckpointSoFarAndExits130) {
   std::string dir = temp_dir(), out = dir + "/int.hdr", exe = cli_path();
   std::string scene = source_path("scenes/testscene.scn"), film = dir + "/int.film";

@@ -1,7 +1,8 @@
-// Hostile input through the program (issue 34): a film or a texture that does not fit in memory
-// is refused before it is allocated, naming what and how much (never std::bad_alloc's abort);
-// a decompression bomb is refused by the image memory budget, which --image-memory raises;
-// `info` reads image headers only; an output through a symbolic link keeps the link.
+// Hostile input through the program (docs/design.md, "Memory" and "Images in"): a film or a texture
+// that does not fit in memory is refused before it is allocated, naming what and how much (never
+// std::bad_alloc's abort); a decompression bomb is refused by the image memory budget, which
+// --image-memory raises; `info` reads image headers only; an output through a symbolic link keeps
+// the link.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,6 +1,6 @@
-// Inputs are read, never eaten (issue 13): an output that is an input or another output is a
-// usage error before any work, compared by file identity; a path that is no regular file
-// (FIFO, directory) is an error naming it, never a hang.
+// Inputs are read, never eaten (README.md, "Using it"): an output that is an input or another
+// output is a usage error before any work, compared by file identity; a path that is no regular
+// file (FIFO, directory) is an error naming it, never a hang.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

@@ -1,7 +1,7 @@
-// Messages that say what happened (issue 37): a file of another kind given as the scene gets
-// one line naming its kind; `raylane info FILM` shows the film; a rejected camera line is one
-// error; usage errors name the command's help; flags that do nothing for the outputs warn;
-// counts of one are singular.
+// Messages that say what happened (docs/scene-language.md, "Error classes"): a file of another kind
+// given as the scene gets one line naming its kind; `raylane info FILM` shows the film; a rejected
+// camera line is one error; usage errors name the command's help; flags that do nothing for the
+// outputs warn; counts of one are singular.
 #include <gtest/gtest.h>
 
 #include <algorithm>

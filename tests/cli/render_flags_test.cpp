@@ -1,5 +1,5 @@
-// What render's flags promise (issue 13): --time is a budget, a --resume film that holds
-// enough passes and path-only flags in a ray-casting view are said, not silently ignored.
+// What render's flags promise (README.md, "Using it"): --time is a budget, a --resume film that
+// holds enough passes and path-only flags in a ray-casting view are said, not silently ignored.
 #include <gtest/gtest.h>
 
 #include <fstream>

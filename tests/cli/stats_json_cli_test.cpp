@@ -1,5 +1,5 @@
-// `raylane render --stats-json FILE` (issue 37): the summary and the phases as one JSON
-// object, with the numbers the render's own counts give, checked before any work like every
+// `raylane render --stats-json FILE` (README.md, "Using it"): the summary and the phases as one
+// JSON object, with the numbers the render's own counts give, checked before any work like every
 // output.
 #include <gtest/gtest.h>
 

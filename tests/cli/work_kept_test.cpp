@@ -1,4 +1,4 @@
-// Work is never thrown away (issue 34, class 8): a --checkpoint film that exists is refused
+// Work is never thrown away (README.md, "Using it"): a --checkpoint film that exists is refused
 // unless it is the film resumed, SIGTERM and SIGUSR1 stop a render like Ctrl-C (the image so far
 // written), and bare `raylane` prints the usage instead of rendering over ./testscene.hdr.
 #include <gtest/gtest.h>

@@ -79,7 +79,8 @@ void mesh_seeds(const fs::path& dir) {
   // Faces naming a vertex, texture coordinate or normal the file lacks: dropped, not refused.
   put(dir / "missing_elements.obj",
       std::string(1, '\1') + kObj + "vt 0 0\nf 1 2 9\nf -9 1 2\nf 1/3 2/1 3/1\nf 1//4 2//1 3//1\n");
-  // A header longer than the first 64 KiB raylane once read of a mesh (issue 34).
+  // A header longer than the first 64 KiB raylane once read of a mesh (docs/scene-language.md,
+  // "Limits").
   put(dir / "long_header.ply",
       std::string(1, '\0') + raylane::testing::ply_with_long_header(70000));
 }
@@ -132,8 +133,8 @@ void image_seeds(const fs::path& dir) {
   put(dir / "small.bmp", std::string(1, '\0') + bmp_2x2());
   put(dir / "float.exr", std::string(1, '\0') + exr_seed(false));
   put(dir / "half.exr", std::string(1, '\0') + exr_seed(true));
-  // Issue 34: a PNG bomb (4096² 1-bit pixels in 13 KB, past the image memory budget once
-  // decoded) and a luminance-chroma EXR (Y full, RY and BY subsampled).
+  // Hostile images (docs/design.md, "Images in"): a PNG bomb (4096² 1-bit pixels in 13 KB, past the
+  // image memory budget once decoded) and a luminance-chroma EXR (Y full, RY and BY subsampled).
   put(dir / "bomb.png", std::string(1, '\0') + raylane::testing::png_zero_bomb(4096, 4096));
   put(dir / "yc.exr",
       std::string(1, '\0') + raylane::testing::exr_luminance_chroma(8, 6, [](int x, int y) {

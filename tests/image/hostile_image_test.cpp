@@ -1,6 +1,6 @@
-// Hostile images (issue 34): a decompression bomb is refused from its header before it is
-// decoded, a file is read whole only after its first bytes are an image's, `info` reads
-// headers only, and an OpenEXR luminance-chroma file reads as its colour, never as zeros.
+// Hostile images (docs/design.md, "Images in"): a decompression bomb is refused from its header
+// before it is decoded, a file is read whole only after its first bytes are an image's, `info`
+// reads headers only, and an OpenEXR luminance-chroma file reads as its colour, never as zeros.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
-// Variants of the formats raylane reads that once came back wrong (issue 34, class 9): a grey
-// PFM (`Pf`), a BMP stored top row first (negative height), a PFM whose scale is NaN.
+// Variants of the formats raylane reads that once came back wrong (docs/design.md, "Images in"): a
+// grey PFM (`Pf`), a BMP stored top row first (negative height), a PFM whose scale is NaN.
 #include <gtest/gtest.h>
 
 #include <cstring>

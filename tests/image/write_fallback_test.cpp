@@ -1,4 +1,5 @@
-// Nothing lost (issue 6): an image that cannot go where it was asked goes to a fallback file.
+// Nothing lost (docs/scene-language.md, "Output"): an image that cannot go where it was asked goes
+// to a fallback file.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -1,6 +1,6 @@
-// AOVs of the path render (render/aov.h, issue 16 item 3): summed at the colour's samples,
-// equal to the ray-cast views where a pixel sees one surface, carried by a resumed film bit for
-// bit, and independent of the thread count.
+// AOVs of the path render (render/aov.h; docs/scene-language.md, "AOVs: albedo, normal, depth,
+// position"): summed at the colour's samples, equal to the ray-cast views where a pixel sees one
+// surface, carried by a resumed film bit for bit, and independent of the thread count.
 #include <gtest/gtest.h>
 #include <omp.h>
 

@@ -92,7 +92,7 @@ TEST(Raycast, ImageIsTheSameForAnyThreadCount) {
   omp_set_num_threads(threads);
 }
 
-// PNG views of depth and id (issue 13: they were all white, or two flat colours): depth spans
+// PNG views of depth and id (they were once all white, or two flat colours): depth spans
 // 0.1 … 1 over the hits, ids get colours that tell neighbouring rows apart, misses stay black.
 TEST(Raycast, DepthAndIdAreMappedForViewing) {
   Image depth(3, 1);

@@ -1,6 +1,6 @@
-// Every real model in, every file Assimp refuses out (issue 13): for each model of Debian's
-// assimp-testmodels, a one-line scene that loads it gives what Assimp's own `assimp info`
-// gave (tests/data/assimp_corpus.tsv, written by tools/make_assimp_corpus): the same
+// Every real model in, every file Assimp refuses out (docs/scene-language.md, "Meshes"): for each
+// model of Debian's assimp-testmodels, a one-line scene that loads it gives what Assimp's own
+// `assimp info` gave (tests/data/assimp_corpus.tsv, written by tools/make_assimp_corpus): the same
 // triangles, less the zero-area ones raylane drops and reports; a clear error naming the file
 // where Assimp refuses it; "has no faces" where it holds only points or lines.
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
-// Hostile scenes and meshes (issue 34): what is stored is finite after rounding to float and
-// after a mesh's placement, for every kind; a PLY header longer than 64 KiB is read to its end,
-// up to a documented limit; the textures and the environment share one image memory budget.
+// Hostile scenes and meshes (docs/scene-language.md, "Limits"; docs/design.md, "Images in"): what
+// is stored is finite after rounding to float and after a mesh's placement, for every kind; a PLY
+// header longer than 64 KiB is read to its end, up to a documented limit; the textures and the
+// environment share one image memory budget.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -1,8 +1,8 @@
-// Imports are bounded by what the file holds (issue 13): files of a few hundred bytes whose
-// headers announce 10^8 elements made Assimp allocate gigabytes before reading them. Within
-// raylane's allocation budget (256 MiB plus 64 bytes per byte read) they are an error that
-// names the file, and real files still load (the corpus test). PLY files never reach Assimp:
-// raylane's reader checks a list's length against the bytes left before reading it.
+// Imports are bounded by what the file holds (docs/scene-language.md, "Error classes"): files of a
+// few hundred bytes whose headers announce 10^8 elements made Assimp allocate gigabytes before
+// reading them. Within raylane's allocation budget (256 MiB plus 64 bytes per byte read) they are
+// an error that names the file, and real files still load (the corpus test). PLY files never reach
+// Assimp: raylane's reader checks a list's length against the bytes left before reading it.
 #include <gtest/gtest.h>
 
 #include <cstring>

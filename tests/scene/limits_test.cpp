@@ -1,5 +1,5 @@
-// Sizes that come from input (issue 6, "Limits"): big files parse completely and correctly,
-// and every size is checked before anything is allocated for it.
+// Sizes that come from input (docs/scene-language.md, "Limits"): big files parse completely and
+// correctly, and every size is checked before anything is allocated for it.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -1,5 +1,5 @@
-// `--set LINE` (issue 16, item 4): scene lines read after the file's own, under the file's
-// rules, with diagnostics that name the override ("--set:N:COL").
+// `--set LINE` (docs/scene-language.md, "--set"): scene lines read after the file's own, under the
+// file's rules, with diagnostics that name the override ("--set:N:COL").
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -143,7 +143,7 @@ TEST(Parser, TinyNumbers) {
   EXPECT_NEAR(p.scene.camera->rotation[0][0], 1.0 / 3, 1e-12);
 }
 
-// Invisible bytes are shown escaped, pointed at and explained (issue 13).
+// Invisible bytes are shown escaped, pointed at and explained (docs/scene-language.md, "Numbers").
 TEST(Parser, InvisibleBytesAreShownAndExplained) {
   auto nbsp = parse(std::string(kCameraLine) + "sphere 0 0 0\xC2\xA0 1\n");
   EXPECT_THAT(errors(nbsp),

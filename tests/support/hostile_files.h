@@ -1,6 +1,6 @@
-// Hostile inputs built in the test (issue 34), shared by the tests and the fuzzers' seeds: a
-// PNG decompression bomb, a PLY whose header is longer than any buffer, an OpenEXR
-// luminance-chroma file.
+// Hostile inputs built in the test (docs/design.md, "Images in"), shared by the tests and the
+// fuzzers' seeds: a PNG decompression bomb, a PLY whose header is longer than any buffer, an
+// OpenEXR luminance-chroma file.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,8 @@
-// Deeply degenerate geometry (issue 6, "Limits"): everything at one point, 10^5 coincident
-// triangles, coordinates near ±1e30. The BVH must build within its stack depth, and the packet
-// tracer must answer every ray (no crash, no hang, no NaN) as the double reference does.
+// Deeply degenerate geometry (docs/hard-cases.md, "B2. Flat boxes and axis-aligned geometry
+// (zero-thickness BVH nodes)" and "B7. Large coordinates and the slab test"): everything at one
+// point, 10^5 coincident triangles, coordinates near ±1e30. The BVH must build within its stack
+// depth, and the packet tracer must answer every ray (no crash, no hang, no NaN) as the double
+// reference does.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,7 +1,8 @@
 // What a file given as the scene is when it is not a scene: a film, a mesh, an image, a ray
 // set, another renderer's scene, binary data or a directory. Such a file read as scene lines
 // gives a screenful of "unknown command" errors over escaped bytes; one line that names what
-// the file looks like, and what raylane does with it, says more (issue 37).
+// the file looks like, and what raylane does with it, says more (docs/scene-language.md, "Error
+// classes").
 #pragma once
 
 #include <optional>

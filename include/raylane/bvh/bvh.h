@@ -69,8 +69,8 @@ struct Bvh {
   std::vector<BvhNode> nodes;  // nodes[0] is the root (a leaf if the scene is tiny)
   // The contents of the leaves that hold more than one kind, sorted by kind (rows are the
   // scene's rows after permutation). A leaf of one kind needs none: it names its first row
-  // (BvhNode::index), 4 bytes a primitive saved on most scenes (bench/README.md, issue 17's
-  // ninth sitting).
+  // (BvhNode::index), 4 bytes a primitive saved on most scenes (bench/README.md, "Quantised wide
+  // nodes (not kept), leaves of one kind without refs").
   std::vector<PrimRef> refs;
   // source_rows[k][r]: the row that row r of kind k's table had before the build permuted it
   // (to report results in the input's order, e.g. triangle indices of a soup). Not used by

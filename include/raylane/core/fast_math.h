@@ -1,8 +1,9 @@
 // sin and cos of the azimuth every warp draws, without libm's general path (reduction of huge
-// arguments): libm's sincos was 9 % of a render's profile (issue 14), this is half its cost.
-// Double precision with a stated error bound, checked against long double in
-// fast_math_test.cpp. (libm's pow stays: per call it is faster than a polynomial exp2/log2 in
-// double in scalar code; the lobes call it less often instead, see Bsdf::evaluate.)
+// arguments): libm's sincos weighed on a render's profile, and this costs half as much
+// (docs/design.md, "The course's rendering model"). Double precision with a stated error bound,
+// checked against long double in fast_math_test.cpp. (libm's pow stays: per call it is faster than
+// a polynomial exp2/log2 in double in scalar code; the lobes call it less often instead, see
+// Bsdf::evaluate.)
 #pragma once
 
 #include <cmath>

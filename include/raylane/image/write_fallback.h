@@ -1,6 +1,6 @@
 // Writing the result of a long render so it is never lost: if the requested file cannot be
 // written (a folder removed, a disk full, a permission changed while rendering), the image
-// goes to a fallback file whose path the caller prints (issue 6, "Nothing lost").
+// goes to a fallback file whose path the caller prints (docs/scene-language.md, "Output").
 #pragma once
 
 #include <string>

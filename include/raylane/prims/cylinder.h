@@ -27,8 +27,9 @@ namespace raylane {
 // rounded to float, and the axis is u·h, which double holds exactly (two 24-bit significands).
 // The float kernel reads b, u, h, r; the reference, the bounds and the surfaces take the same
 // u·h in double, so all of them see one cylinder. Not storing the given axis as well saves 12
-// of a row's 36 bytes (bench/README.md, issue 17's eighth sitting); the cylinder then differs
-// from one through the given float axis by the rounding of u and h, a few ulps of |a|.
+// of a row's 36 bytes (bench/README.md, "The lattice's bytes per primitive, the 8-wide collapse
+// by least visits"); the cylinder then differs from one through the given float axis by the
+// rounding of u and h, a few ulps of |a|.
 struct CylinderTable {
   std::vector<float> bx, by, bz;  // base centre
   std::vector<float> r;

@@ -60,10 +60,10 @@ struct Sphere {
   static constexpr int param_count = 4;
   static constexpr bool two_sided = false;
   // A node visit tests two child boxes; the sphere kernel (sphere_packet.h) is one dot-product
-  // chain and a division before its early out, about a third of that. Measured (bench/README.md,
-  // issue 17's fourth sitting): at 1.0 the SAH made leaves of one sphere (88 B per sphere, 64 of
-  // them nodes); at 0.3 the sphereflake traces 1.14-1.17x faster on primary, shadow and diffuse
-  // rays, builds 1.3x faster and needs 37.5 B per sphere (Embree 42.5).
+  // chain and a division before its early out, about a third of that. At 1.0 the SAH made leaves
+  // of one sphere, most of a sphere's bytes then nodes; at 0.3 the sphereflake traces primary,
+  // shadow and diffuse rays faster, builds faster and needs fewer bytes per sphere than Embree
+  // (the figures: bench/README.md, "The SAH sweep, a sphere's test cost, memory per sphere").
   static constexpr double sah_test_cost = 0.3;
   // The SIMD tracer computes its hits' surfaces in double lanes (sphere_packet.h, surface_lanes).
   static constexpr bool surface_in_lanes = true;

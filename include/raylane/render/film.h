@@ -1,7 +1,7 @@
 // The path tracer's film: per-pixel sums of radiance over the passes taken, so a render can
 // be saved (`--checkpoint`) and continued later (`--resume`) to exactly the image an
 // uninterrupted run gives: pass k of tile t always draws from the stream (seed, t, k), and the
-// sums are added in the same order (issue 6, "Nothing lost").
+// sums are added in the same order (docs/design.md, "Determinism").
 #pragma once
 
 #include <cstdint>

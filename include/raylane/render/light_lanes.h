@@ -1,8 +1,9 @@
 // Points on sphere lights by the cone each subtends (Sphere::sample_subtended), for a whole
-// wavefront's vertices at once in double SIMD lanes (issue 14: the scalar routine and its warps
-// were 11 % of a render). The formulas are the scalar ones, in the same precision: the lanes
-// change the speed, not the error analysis (tests/render/light_lanes_test.cpp holds them to the
-// scalar routine). LightSampler::sample_many routes sphere lights here.
+// wavefront's vertices at once in double SIMD lanes (the scalar routine and its warps were a
+// large share of a render's profile: docs/design.md, "Shading in lanes"). The formulas are the
+// scalar ones, in the same precision: the lanes change the speed, not the error analysis
+// (tests/render/light_lanes_test.cpp holds them to the scalar routine). LightSampler::sample_many
+// routes sphere lights here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table

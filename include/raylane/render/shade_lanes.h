@@ -1,5 +1,5 @@
 // The course's BSDF (render/bsdf.h) for a whole wavefront of shading points at once, in float
-// SIMD lanes (issue 14; docs/design.md, "Shading in lanes"): each point's sample of the next
+// SIMD lanes (docs/design.md, "Shading in lanes"): each point's sample of the next
 // direction and its evaluation toward a sampled light point, with every lobe computed in every
 // lane and the lane's choice selected, so that lanes never diverge. The double-precision Bsdf
 // stays the reference (tests/render/shade_lanes_test.cpp holds the lanes to it) and shades

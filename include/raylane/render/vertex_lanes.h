@@ -1,7 +1,7 @@
-// What a wavefront's vertices do after their BSDF (issue 14, item 2), in double SIMD lanes:
-// the contribution and origin of each vertex's shadow ray toward its light point, and its next
-// throughput (Russian roulette included) and ray origin. These are the path tracer's scalar
-// steps (queue_shadow_ray, continue_path, offset_ray_origin, hit_point_error) in their order
+// What a wavefront's vertices do after their BSDF (docs/design.md, "Shading in lanes"), in double
+// SIMD lanes: the contribution and origin of each vertex's shadow ray toward its light point, and
+// its next throughput (Russian roulette included) and ray origin. These are the path tracer's
+// scalar steps (queue_shadow_ray, continue_path, offset_ray_origin, hit_point_error) in their order
 // and precision, so the lanes give their answers bit for bit (tests/render/vertex_lanes_test.cpp)
 // and the error analysis of the ray offsets (docs/hard-cases.md §5) is unchanged.
 //

@@ -1,7 +1,7 @@
-// The render loop's transcendentals in float lanes (issue 14): sin and cos of a turn, log2,
-// exp2 and pow for the Phong lobe, each with a stated error bound that tests/simd/
-// lane_math_test.cpp checks against double. Written for any lane width, like the kernels;
-// include only from per-ISA translation units (simd/lanes.h).
+// The render loop's transcendentals in float lanes (docs/design.md, "Shading in lanes"): sin and
+// cos of a turn, log2, exp2 and pow for the Phong lobe, each with a stated error bound that
+// tests/simd/lane_math_test.cpp checks against double. Written for any lane width, like the
+// kernels; include only from per-ISA translation units (simd/lanes.h).
 //
 // Bounds, for results of normal size (below 2^-126 results flush to 0):
 //   sincos_2pi: absolute error ≤ 3·2^-24 (the reduction is exact; the polynomials' truncation

@@ -39,7 +39,8 @@ template <class A, bool kSameSides, class Planes>
   const SlabSides<A>& sides = r.sides;
   F t0 = r.tmin, t1 = tfar;
   // Inlined by force: GCC 12 called this lambda out of line once `plane` was a parameter, its
-  // accumulators through memory (primary rays 0.55-0.85x, bench/README.md, issue 39).
+  // accumulators through memory, and primary rays lost much of their speed (bench/README.md,
+  // "Packets of mixed directions over the 8-wide tree").
   auto axis = [&](int k, const F& o, const F& inv) __attribute__((always_inline)) {
     F near, far;
     if constexpr (kSameSides) {
@@ -139,7 +140,7 @@ inline bool left_child_nearer(const BvhNode& n, const RayPacket<A>& r, const sim
 // blocker anywhere along the segment is found just as well from the light's end (triangles
 // are two-sided, and a closed solid is hit where the ray leaves it). It pays on every mesh and
 // costs a little where shadow rays end on a light sphere, the farthest box along every segment
-// (the figures: bench/README.md, "Issue 17, third sitting").
+// (the figures: bench/README.md, "Embree's robust mode, occlusion packets far child first").
 template <class A, bool kAnyHit, bool kSameSides>
 inline bool left_child_first(const BvhNode& n, const RayPacket<A>& r, const simd::Mask<A>& lanes,
                              const ChildOverlap<A>& left, const ChildOverlap<A>& right) {

@@ -5,8 +5,9 @@
 // them finishes its subtree alone over the same tree (trace/ray_traverse.h). The binary walk
 // it replaces took a step per binary node, each a node's load and a branch on the lanes
 // entered, and handed lanes over only where a binary node roots a wide one (bench/README.md,
-// issue 39's first sitting). Closest hit only: coherent packets and occlusion keep the binary
-// walk (trace/packet_traverse.h). Included only by the per-ISA translation units.
+// "Packets of mixed directions over the 8-wide tree"). Closest hit only: coherent packets and
+// occlusion keep the binary walk (trace/packet_traverse.h). Included only by the per-ISA
+// translation units.
 #pragma once
 
 #include <limits>
@@ -86,7 +87,8 @@ inline int entered_children(const WideNode& n, const RayPacket<A>& r, const simd
 // once at most this many lanes enter a wide node, each of them finishes that subtree alone
 // (trace/ray_traverse.h). The threshold is the best one measured per instruction set; coherent
 // packets and occlusion do not hand over, as every threshold tried lost there (the figures:
-// bench/README.md, "Issue 39, first sitting" and "Issue 17, first sitting").
+// bench/README.md, "Packets of mixed directions over the 8-wide tree" and "Hybrid packets for
+// incoherent rays").
 template <class A>
 inline constexpr int kSingleRayLanes = simd::kWidth<A> >= 16 ? simd::kWidth<A> / 8 : 1;
 
