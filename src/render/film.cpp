@@ -265,11 +265,15 @@ void hash_scene(Hasher& h, const Scene& scene) {
   }
   PrimKinds::for_each([&](auto kind) {
     // Moving spheres only when there are some: films from before them still fit.
-    if constexpr (std::is_same_v<decltype(kind), MovingSphere>)
-      if (scene.table<MovingSphere>().size() == 0) return;
+    // CSG blocks likewise, and their leaves and programs beside the rows.
+    using Kind = decltype(kind);
+    if constexpr (std::is_same_v<Kind, MovingSphere> || std::is_same_v<Kind, Csg>)
+      if (scene.table<Kind>().size() == 0) return;
     // columns() hands out references for writing too; here they are only read.
-    std::apply([&](const auto&... c) { (h.column(c), ...); },
-               const_cast<Scene&>(scene).table<decltype(kind)>().columns());
+    auto& table = const_cast<Scene&>(scene).table<Kind>();
+    std::apply([&](const auto&... c) { (h.column(c), ...); }, table.columns());
+    if constexpr (requires { table.part_columns(); })
+      std::apply([&](const auto&... c) { (h.column(c), ...); }, table.part_columns());
   });
 }
 

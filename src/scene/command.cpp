@@ -189,9 +189,12 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state);
 bool texture_command(Scene& s, const Line& line, ParseState& state);
 bool environment_command(Scene& s, const Line& line, ParseState& state);
 bool microfacet_command(Scene& s, const Line& line, ParseState& state);
+bool csg_command(Scene& s, const Line& line, ParseState& state);
+bool is_csg_word(std::string_view word);
 
 bool Scene::command(const Line& line, ParseState& state) {
   std::string_view word = line.tokens[0].text;
+  if (state.csg_block || is_csg_word(word)) return csg_command(*this, line, state);
   if (word == "screen") return screen_command(*this, line, state);
   if (word == "camera") return camera_command(*this, line, state);
   if (word == "ambient") return ambient_command(*this, line, state);

@@ -168,6 +168,7 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
       read_line(o, loc, state, out);
     }
   }
+  csg_end_of_input(state);
   out.diagnostics = std::move(state.diagnostics);
   out.input_files = std::move(state.input_files);
   out.meshes = std::move(state.meshes);

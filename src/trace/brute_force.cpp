@@ -18,8 +18,8 @@ Hit closest_hit_ref(const Scene& scene, const Rayd& ray) {
     using Kind = decltype(kind);
     const auto& table = scene.table<Kind>();
     for (uint32_t row = 0; row < table.size(); ++row) {
-      double t = intersect_ref(table, row, ray);
-      PrimRef ref(tag_of<Kind>, row);
+      auto [t, hit_row] = hit_ref<Kind>(table, row, ray);
+      PrimRef ref(tag_of<Kind>, hit_row);
       if (t < best.t || (t == best.t && t < ray.tmax && ref < best.prim)) {
         best.t = t;
         best.prim = ref;

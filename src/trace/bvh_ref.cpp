@@ -20,11 +20,10 @@ bool visit_leaf(const Scene& scene, const Bvh& bvh, const BvhNode& leaf, const R
   bool stop = false;
   for_each_run(bvh, leaf, [&](PrimRef head, uint32_t rows) {
     for (uint32_t i = 0; i < rows && !stop; ++i) {
-      PrimRef ref(head.tag(), head.row() + i);
-      double t = dispatch(ref.tag(), [&](auto kind) {
-        return intersect_ref(scene.table<decltype(kind)>(), ref.row(), ray);
+      RowHit h = dispatch(head.tag(), [&](auto kind) {
+        return hit_ref<decltype(kind)>(scene.table<decltype(kind)>(), head.row() + i, ray);
       });
-      stop = t < ray.tmax && on_hit(ref, t);
+      stop = h.t < ray.tmax && on_hit(PrimRef(head.tag(), h.row), h.t);
     }
   });
   return stop;

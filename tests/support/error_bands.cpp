@@ -283,6 +283,24 @@ PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray) 
   return classify_sphere(c, Ec, s.r[row], ray, intersect_ref(s, row, ray));
 }
 
+PrimVerdict classify(const CsgTable& c, uint32_t row, const Rayd& ray) {
+  PrimVerdict out;
+  out.t_ref = intersect_ref(c, row, ray);
+  for (uint32_t i = c.leaf_begin[row]; i < c.leaf_begin[row] + c.leaf_count[row]; ++i) {
+    uint32_t r = c.leaf_row[i];
+    PrimVerdict v = c.leaf_kind[i] == kCsgSphere ? classify(c.spheres, r, ray)
+                    : c.leaf_kind[i] == kCsgBox  ? classify(c.boxes, r, ray)
+                                                 : classify(c.cylinders, r, ray);
+    if (v.cls != RayClass::kClearMiss) {
+      out.cls = RayClass::kBand;
+      out.t = Interval::everything();
+      out.decisive = {0, 1};
+      return out;
+    }
+  }
+  return out;
+}
+
 // Box kernel (box.h): per axis t = fl(fl(bound − o)·fl(1/d)), three roundings: γ3|t| (pbrt-v4
 // Bounds3::IntersectP; Ize 2013, "Robust BVH Ray Traversal"). A zero component gives ±inf or
 // NaN exactly as in the reference (0·inf only when o lies in the plane; both skip it). Entry

@@ -51,6 +51,9 @@ PrimVerdict classify(const BoxTable& b, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const CylinderTable& c, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const TriangleTable& t, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray);
+// CSG blocks: a clear miss when every leaf clearly misses the ray's range; anything else is
+// left to the band (tests/prims/csg_packet_test.cpp judges blocks leaf by leaf).
+PrimVerdict classify(const CsgTable& c, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const Scene& scene, PrimRef prim, const Rayd& ray);
 
 // The verdict for a closest-hit query on a whole scene. kClearHit: every primitive is a clear

@@ -59,6 +59,22 @@ void add_moving_spheres(Scene& scene) {
   }
 }
 
+// CSG blocks in the room too (bitten spheres, drilled boxes), so that every tracer's answers
+// cover them: their hits name leaves, and their subtracted leaves' normals are turned around.
+void add_csg_blocks(Scene& scene) {
+  for (int i = 0; i < 3; ++i) {
+    double x = 2.5 + 3 * i, y = 7, z = 3.5;
+    CsgTable draft;
+    if (i % 2 == 0)
+      draft.add_leaf<Sphere>(std::array<double, 4>{x, y, z, 0.7}, 0);
+    else
+      draft.add_leaf<Box>(std::array<double, 6>{x - 0.6, y - 0.6, z - 0.6, 1.2, 1.2, 1.2}, 0);
+    draft.add_leaf<Cylinder>(std::array<double, 7>{x, y - 1, z + 0.2, 0, 2, 0, 0.3}, 0);
+    draft.add_code(kCsgDifference);
+    scene.table<Csg>().append_block(draft);
+  }
+}
+
 using testing::same_bits;  // support/same_bits.h
 
 // At every instruction set the CPU has: the batch computes spheres', boxes' and cylinders'
@@ -93,6 +109,7 @@ TEST(Tracer, BatchSurfacesAndFacingAreTheOneByOneAnswers) {
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
   add_moving_spheres(parsed.scene);
+  add_csg_blocks(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
@@ -196,6 +213,7 @@ void with_every_tracer(
   ParsedScene parsed = load_builtin_scene();
   ASSERT_TRUE(parsed.ok());
   add_moving_spheres(parsed.scene);
+  add_csg_blocks(parsed.scene);
   change(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   const Scene& scene = parsed.scene;

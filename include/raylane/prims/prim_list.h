@@ -25,6 +25,7 @@
 
 #include "raylane/core/prim_ref.h"
 #include "raylane/prims/box.h"
+#include "raylane/prims/csg.h"
 #include "raylane/prims/cylinder.h"
 #include "raylane/prims/moving_sphere.h"
 #include "raylane/prims/sphere.h"
@@ -54,7 +55,7 @@ struct KindList {
 };
 
 // New kinds go last: a kind's tag is its position, and the tags of the others stay as they were.
-using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle, MovingSphere>;
+using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle, MovingSphere, Csg>;
 using PrimTables = PrimKinds::Tables;
 inline constexpr std::size_t kPrimKindCount = PrimKinds::size;
 static_assert(kPrimKindCount <= (std::size_t(1) << PrimRef::kTagBits),
@@ -104,6 +105,22 @@ inline bool kind_two_sided(PrimTag tag) {
 }
 inline double kind_sah_test_cost(PrimTag tag) {
   return dispatch(tag, [](auto kind) { return decltype(kind)::sah_test_cost; });
+}
+
+// A reference hit on row `row` of Kind: its t and the row the hit names, which is the row itself
+// unless the kind's hits name a part of it (a CSG block's leaf: Kind::hit_ref).
+struct RowHit {
+  double t;
+  uint32_t row;
+};
+template <class Kind>
+RowHit hit_ref(const typename Kind::Table& table, uint32_t row, const Rayd& ray) {
+  if constexpr (requires { Kind::hit_ref(table, row, ray); }) {
+    auto h = Kind::hit_ref(table, row, ray);
+    return {h.t, h.row};
+  } else {
+    return {intersect_ref(table, row, ray), row};
+  }
 }
 
 // "sphere#12", or "none".

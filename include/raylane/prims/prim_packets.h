@@ -3,6 +3,7 @@
 #pragma once
 
 #include "raylane/prims/box_packet.h"
+#include "raylane/prims/csg_packet.h"
 #include "raylane/prims/cylinder_packet.h"
 #include "raylane/prims/moving_sphere_packet.h"
 #include "raylane/prims/sphere_packet.h"

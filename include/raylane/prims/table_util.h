@@ -47,6 +47,8 @@ std::size_t table_bytes(Table& t) {
   std::size_t bytes = std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.columns());
   if constexpr (requires { t.optional_columns(); })
     bytes += std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.optional_columns());
+  if constexpr (requires { t.part_columns(); })  // beside the rows, never permuted (csg.h)
+    bytes += std::apply([](auto&... c) { return (column_bytes(c) + ...); }, t.part_columns());
   return bytes;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,6 +18,7 @@ namespace raylane {
 
 struct Line;
 struct Token;
+struct CsgOpen;  // a csg block being read (csg_command.cpp)
 
 // Files that exist only in memory, by name (the built-in scene's meshes).
 using MemoryFiles = std::vector<std::pair<std::string, std::string>>;
@@ -54,10 +56,15 @@ struct ParseState {
   // The last camera line that was rejected (line 0: none): its error already says what is
   // wrong, so no "no camera line" follows it.
   FileLoc camera_rejected_at;
+  // The csg block whose `end` has not been read yet; null outside a block.
+  std::shared_ptr<CsgOpen> csg_block;
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);
 };
+
+// At the end of the input: a csg block still open is a problem at its `csg` line.
+void csg_end_of_input(ParseState& state);
 
 // For a command that may be given once: a repeat warns "the last one wins" and names the
 // first; `seen` becomes this line.
