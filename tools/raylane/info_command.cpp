@@ -33,6 +33,27 @@ void print_tables(Scene& s) {
                 s.table<Triangle>().t0u.size() * 6 * sizeof(float));
 }
 
+// Each csg block in the order written: its leaves, its postfix program, its bounds.
+void print_csg_blocks(const Scene& s) {
+  const CsgTable& c = s.table<Csg>();
+  static constexpr const char* kLeafNames[] = {"sphere", "box", "cylinder"};
+  for (uint32_t b = 0; b < c.size(); ++b) {
+    std::printf("csg block %u: %u leaves (", b, c.leaf_count[b]);
+    for (uint32_t i = 0; i < c.leaf_count[b]; ++i)
+      std::printf("%s%s", i ? " " : "", kLeafNames[c.leaf_kind[c.leaf_begin[b] + i]]);
+    std::printf("), program");
+    for (uint32_t code : c.program_of(b)) {
+      if (code < kCsgMaxLeaves)
+        std::printf(" %u", code);
+      else
+        std::printf(" %s", std::string(csg_code_name(code)).c_str());
+    }
+    Bounds3f bb = c.bounds(b);
+    std::printf(", bounds (%g %g %g) to (%g %g %g)\n", bb.lo.x, bb.lo.y, bb.lo.z, bb.hi.x, bb.hi.y,
+                bb.hi.z);
+  }
+}
+
 void print_textures(const Scene& s) {
   if (s.textures.empty()) return;
   std::size_t total = 0;
@@ -151,6 +172,7 @@ int info_command(const std::vector<std::string>& args) {
   print_bounds("bounds", s.bounds());
   print_meshes(loaded->meshes);
   print_tables(s);
+  print_csg_blocks(s);
   print_materials(s);
   print_textures(s);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
