@@ -12,10 +12,12 @@
 #include <sstream>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/render/camera.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/simd_tracer.h"
 #include "support/error_bands.h"
+#include "support/paths.h"
 #include "support/random_scene.h"
 
 namespace raylane {
@@ -194,6 +196,37 @@ TEST_P(CsgPacketTest, OcclusionAgreesWithTheReference) {
     EXPECT_EQ(hits.prim[i] != PrimRef::kInvalidBits, any_hit_ref(s, rays[i])) << i;
   }
   EXPECT_GT(checked, 4000);
+}
+
+// The depth image of scenes/csg.scn (the spec's examples): where the kernel and the reference
+// see the same leaf, t agrees to 1e-4 relative; the pixels where they see different surfaces
+// (silhouettes, coincident edges) are few.
+TEST_P(CsgPacketTest, DepthImageOfTheExamplesAgreesWithTheReference) {
+  auto p = load_scene_file(testing::source_path("scenes/csg.scn"));
+  ASSERT_TRUE(p.ok());
+  Bvh bvh = build_bvh_and_reorder(p.scene, kWithWideNodes);
+  Camera cam = Camera::from_scene(p.scene);
+  std::vector<Rayd> rays;
+  for (uint32_t y = 0; y < cam.height; ++y)
+    for (uint32_t x = 0; x < cam.width; ++x)
+      rays.push_back(round_to_float(cam.ray_through(x + 0.5, y + 0.5)));
+  HitStream hits;
+  tracer().closest(p.scene, bvh, RayStream::from(rays), hits);
+  int csg_pixels = 0, other_surface = 0, t_off = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    Hit ref = closest_hit_ref(p.scene, rays[i]);
+    if (ref.hit() && ref.prim.tag() == tag_of<Csg>) ++csg_pixels;
+    if (hits.prim[i] != ref.prim.bits()) {
+      ++other_surface;
+      continue;
+    }
+    if (ref.hit()) t_off += std::abs(hits.t[i] - ref.t) > 1e-4 * ref.t;
+  }
+  std::printf("[ depth    ] %zu pixels, %d on csg blocks, %d seeing another surface\n", rays.size(),
+              csg_pixels, other_surface);
+  EXPECT_GT(csg_pixels, int(rays.size()) / 10);
+  EXPECT_EQ(t_off, 0);
+  EXPECT_LT(other_surface, int(rays.size()) / 1000);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIsa, CsgPacketTest,
