@@ -12,10 +12,12 @@
 #include <sstream>
 
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/ray_offset.h"
 #include "raylane/render/camera.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/simd_tracer.h"
+#include "raylane/trace/tracer.h"
 #include "support/error_bands.h"
 #include "support/paths.h"
 #include "support/random_scene.h"
@@ -41,9 +43,11 @@ const char* kBlocks =
     "csg\nbox -3 -1 -1 2 2 2\nsphere -2 0 0 2\ndifference\nend\n"           // B ⊃ A
     "csg\nsphere 0 4 0 1.2\nsphere 0 4 0 0.8\ndifference\nbox -2 4 -2 4 2 4\ndifference\nend\n"
     // (B ∩ C) ∪ A, B ∩ C empty: B's top coincides with A's, and only A's bounds the solid.
-    "csg\nbox 3 3 -1 1 1 1\nbox 8 8 8 1 1 1\nintersect\nbox 3 3 -1 2 2 1\nunion\nend\n"
-    // Blocks overlapping blocks, in both orders: a block's farther boundary must not replace
-    // a nearer hit already found.
+    "csg\nbox 3 3 -1 1 1 1\nbox 8 8 8 1 1 1\nintersect\nbox 3 3 -1 2 2 1\nunion\nend\n";
+
+// Blocks overlapping blocks, in both orders: a block's farther boundary must not replace a
+// nearer hit already found.
+const char* kOverlapping =
     "csg\nsphere 8 4 0 1\nend\ncsg\nbox 7.5 3.5 -0.5 1.2 1 1\nend\n"
     "csg\nbox 11.5 3.5 -0.5 1.2 1 1\nend\ncsg\nsphere 12 4 0 1\nend\n";
 
@@ -63,8 +67,9 @@ std::string thirty_leaves() {
   return s.str();
 }
 
-Scene csg_scene() {
-  auto p = parse_scene(std::string(kBlocks) + thirty_leaves(), "csg.scn");
+Scene csg_scene(bool overlapping = true) {
+  auto p = parse_scene(std::string(kBlocks) + (overlapping ? kOverlapping : "") + thirty_leaves(),
+                       "csg.scn");
   EXPECT_TRUE(p.ok());
   return std::move(p.scene);
 }
@@ -227,6 +232,39 @@ TEST_P(CsgPacketTest, DepthImageOfTheExamplesAgreesWithTheReference) {
   EXPECT_GT(csg_pixels, int(rays.size()) / 10);
   EXPECT_EQ(t_off, 0);
   EXPECT_LT(other_surface, int(rays.size()) / 1000);
+}
+
+// Secondary rays from the blocks' surfaces with the render's offsets (core/ray_offset.h):
+// one continuing into the solid must meet its boundary from inside (a front face or a miss
+// would be a leak through the surface it entered), one reflected off it must not meet a
+// surface from inside (acne on the surface it left).
+TEST_P(CsgPacketTest, SecondaryRaysNeitherLeakNorReHitWithTheRenderOffsets) {
+  Scene s = csg_scene(/*overlapping=*/false);  // solids apart: inside one is inside no other
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
+  Tracer tracer(s, bvh, TracerBackend::kPacket, GetParam().isa);
+  std::vector<Rayd> first = rays_at(s, 20000, 5), into, out;
+  std::vector<Hit> hits;
+  tracer.closest(first, hits);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    const Hit& h = hits[i];
+    if (!h.hit() || h.prim.tag() != tag_of<Csg> || !h.front_face) continue;
+    glm::dvec3 err = hit_point_error(first[i], h.t), n = h.surface.ng, d = normalize(first[i].d);
+    into.push_back({offset_ray_origin(h.surface.p, err, n, -n), d});
+    out.push_back({offset_ray_origin(h.surface.p, err, n, n), d - 2 * dot(d, n) * n});
+  }
+  std::vector<Hit> in_hits, out_hits;
+  tracer.closest(into, in_hits);
+  tracer.closest(out, out_hits);
+  int leaks = 0, acne = 0;
+  for (const Hit& h : in_hits)
+    leaks += !h.hit() || h.front_face;
+  for (const Hit& h : out_hits)
+    acne += h.hit() && !h.front_face;
+  std::printf("[ offsets  ] %zu rays into the solids, %d leaking; %zu reflected, %d re-hitting\n",
+              into.size(), leaks, out.size(), acne);
+  EXPECT_GT(into.size(), 2000u);
+  EXPECT_EQ(leaks, 0);
+  EXPECT_EQ(acne, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIsa, CsgPacketTest,
