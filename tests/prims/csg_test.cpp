@@ -41,6 +41,20 @@ TEST(CsgRef, ALensIsWhereBothSpheresAre) {
   EXPECT_EQ(Csg::hit_ref(c, 0, ray({0.9, 0, 5}, {0, 0, -1})).t, kInf);
 }
 
+// A transmissive lens works as any solid: a ray enters through one sphere's surface, facing it,
+// and the ray refracted inside leaves through the other's, from inside.
+TEST(CsgRef, ALensIsLeftThroughTheOtherSphere) {
+  CsgTable c = blocks("csg\nsphere 0 0 -0.5 1\nsphere 0 0 0.5 1\nintersect\nend\n");
+  Rayd in = ray({0, 0, 5}, {0, 0, -1});
+  Csg::LeafHit h = Csg::hit_ref(c, 0, in);
+  EXPECT_LT(dot(surface_ref(c, h.row, in, h.t).ng, in.d), 0);  // entering
+  Rayd inside = ray(in.at(h.t), {0.1, 0, -1}, 1e-9);           // bent toward the axis
+  Csg::LeafHit out = Csg::hit_ref(c, 0, inside);
+  EXPECT_EQ(out.row, 1u);
+  EXPECT_GT(dot(surface_ref(c, out.row, inside, out.t).ng, inside.d), 0);  // leaving
+  EXPECT_NEAR(inside.at(out.t).z, -0.5, 0.01);
+}
+
 TEST(CsgRef, AMinusAIsEmpty) {
   CsgTable c = blocks(
       "csg\nsphere 0 0 0 1\nsphere 0 0 0 1\ndifference\nend\n"
