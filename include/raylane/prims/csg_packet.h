@@ -4,9 +4,10 @@
 // Rays in lanes, one block at a time: each leaf's interval per lane (the float operations of its
 // own kind's kernel), then Roth's classification (Roth 1982, "Ray casting for modeling solids")
 // swept over the events in lanes: each step takes every lane's next leaf end beyond where it
-// stands, classifies the points just before and just after it by the block's program — one
-// mask per leaf, the program's operators as mask operations — and stops the lanes where the two
-// differ. A lane steps at most twice per leaf; nothing is allocated.
+// stands, classifies the points just after it by the block's program — one mask per leaf, the
+// program's operators as mask operations — and stops the lanes where that differs from the
+// classification just after tmin (until the first boundary, the points just before an end are
+// classified so). A lane steps at most twice per leaf; nothing is allocated.
 #pragma once
 
 #include "raylane/prims/csg_leaf_lanes.h"
@@ -47,19 +48,27 @@ simd::Mask<A> csg_classify_lanes(std::span<const uint32_t> program, const simd::
 
 // The leaf seen where the lanes of `at_boundary` cross the boundary at t, as the reference
 // chooses it (csg.cpp, leaf_at): the first leaf whose crossing alone changes the
-// classification, else the first with an end at t.
+// classification, else the first with an end at t. Where one leaf alone has an end at t (all
+// but coincident faces), it is that leaf, with no classification.
 template <class A>
 simd::Ints<A> csg_leaf_at(std::span<const uint32_t> program, const simd::Floats<A>* t0,
                           const simd::Floats<A>* t1, uint32_t n, const simd::Floats<A>& t,
                           const simd::Mask<A>& at_boundary, const simd::Mask<A>& before) {
   using I = simd::Ints<A>;
   I leaf(0), first(0);
-  simd::Mask<A> chosen = at_boundary & !at_boundary, has_first = chosen;
+  const simd::Mask<A> none = at_boundary & !at_boundary;
+  simd::Mask<A> has_first = none, twice = none, chosen = none;
+  auto ends_at = [&](uint32_t i) { return at_boundary & ((t0[i] == t) | (t1[i] == t)); };
   for (uint32_t i = 0; i < n; ++i) {
-    simd::Mask<A> ends = at_boundary & ((t0[i] == t) | (t1[i] == t));
-    if (simd::none<A>(ends)) continue;
+    simd::Mask<A> ends = ends_at(i);
+    twice = twice | (ends & has_first);
     first = simd::select<A>(ends & !has_first, I(int32_t(i)), first);
     has_first = has_first | ends;
+  }
+  if (simd::none<A>(twice)) return first;
+  for (uint32_t i = 0; i < n; ++i) {
+    simd::Mask<A> ends = ends_at(i);
+    if (simd::none<A>(ends)) continue;
     simd::Mask<A> alone = csg_classify_lanes<A>(program, t0, t1, t, false, i);
     simd::Mask<A> pick = ends & !chosen & csg_differ<A>(alone, before);
     leaf = simd::select<A>(pick, I(int32_t(i)), leaf);
@@ -83,6 +92,9 @@ inline void csg_block_lanes(const CsgTable& c, uint32_t block, const simd::Mask<
   simd::Mask<A> live = lanes;
   F at = r.tmin;
   const simd::Ints<A> base(prim_bits(tag_of<Csg>, first));
+  // Until the first boundary the classification is the one just after tmin, so the first end
+  // after which it differs from that one is the boundary: one classification per step.
+  const simd::Mask<A> before = csg_classify_lanes<A>(program, t0, t1, at, true, kCsgMaxLeaves);
   for (uint32_t step = 0; step <= 2 * n; ++step) {
     F next = inf;  // each lane's first leaf end beyond `at`; ends that are NaN never are
     for (uint32_t i = 0; i < n; ++i) {
@@ -91,7 +103,6 @@ inline void csg_block_lanes(const CsgTable& c, uint32_t block, const simd::Mask<
     }
     live = live & (next < h.t);
     if (simd::none<A>(live)) return;
-    simd::Mask<A> before = csg_classify_lanes<A>(program, t0, t1, next, false, kCsgMaxLeaves);
     simd::Mask<A> after = csg_classify_lanes<A>(program, t0, t1, next, true, kCsgMaxLeaves);
     simd::Mask<A> boundary = live & csg_differ<A>(before, after);
     if (simd::any<A>(boundary)) {
