@@ -55,6 +55,16 @@ TEST(CsgCommand, ABlockIsOneRowWithItsLeavesAndPostfixProgram) {
   EXPECT_EQ(p.scene.table<Sphere>().size() + p.scene.table<Box>().size(), 0u);
 }
 
+TEST(CsgCommand, AMicrofacetLineInsideChangesTheCurrentMaterial) {
+  auto p =
+      parse(scene("csg\nsphere 0 0 0 1\nbrdf 0.2 0.2 0.2 0.5 0.5 0.5 100\nmicrofacet ggx\n"
+                  "sphere 1 0 0 1\nunion\nend\n"));
+  ASSERT_TRUE(p.ok()) << errors(p)[0];
+  const CsgTable& c = p.scene.table<Csg>();
+  EXPECT_EQ(p.scene.materials[c.material[0]].microfacet, Microfacet::kPhong);
+  EXPECT_EQ(p.scene.materials[c.material[1]].microfacet, Microfacet::kGgx);
+}
+
 TEST(CsgCommand, SynonymsAreTheSameOperators) {
   auto p =
       parse(scene("csg\nsphere 0 0 0 1\nsphere 1 0 0 1\nintersection\n"
