@@ -2,8 +2,10 @@
 // each block; a bad block stops a render with status 2 and its message, and --lenient skips it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "support/cli_run.h"
 #include "support/paths.h"
@@ -43,6 +45,30 @@ TEST(CsgCli, ABadBlockStopsTheRenderAndLenientSkipsIt) {
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("skipped the csg block opened at line 4 whole"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir + "/bad.png"));
+}
+
+// The path tracer on the glass lens, the drilled box and the bitten sphere: every pixel finite.
+TEST(CsgCli, ThePathTracedExamplesAreFinite) {
+  std::string dir = temp_dir();
+  testing::CliRun r = run_cli(
+      "render " + source_path("scenes/csg.scn") + " --spp 8 --set 'screen 64 48' -o csg.pfm", dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(dir + "/csg.pfm", std::ios::binary);
+  std::string magic, scale;
+  int w = 0, h = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();  // the newline after the scale
+  ASSERT_EQ(magic, "PF");
+  ASSERT_EQ(w * h, 64 * 48);
+  std::vector<float> rgb(std::size_t(w) * h * 3);
+  in.read(reinterpret_cast<char*>(rgb.data()), std::streamsize(rgb.size() * sizeof(float)));
+  ASSERT_TRUE(in.good());
+  int lit = 0;
+  for (float v : rgb) {
+    ASSERT_TRUE(std::isfinite(v));
+    lit += v > 0;
+  }
+  EXPECT_GT(lit, int(rgb.size()) / 4);
 }
 
 }  // namespace
