@@ -143,6 +143,22 @@ std::optional<BenchScene> make_testscene() {
   return b;
 }
 
+// A CSG lens — the intersection of two unit spheres 0.8 apart on z, a rim of radius 0.6 — seen
+// along z, and the plain sphere of radius 0.6 that fills the same pixels: the issue's measure
+// of what a block's sweep costs over its leaves' own tests (docs/scene-language.md, "CSG
+// blocks"). Shadow rays aim at a point beside the camera.
+std::optional<BenchScene> make_lens_or_sphere(bool lens) {
+  const std::string solid =
+      lens ? "csg\nsphere 0 0 0.8 1\nsphere 0 0 -0.8 1\nintersect\nend\n" : "sphere 0 0 0 0.6\n";
+  ParsedScene p = parse_scene("camera 0 0 2.2 0.3\nbrdf 0.5 0.5 0.5 0 0 0 1\n" + solid,
+                              lens ? "csglens.scn" : "lenssphere.scn");
+  if (!p.ok()) return std::nullopt;
+  BenchScene b{lens ? "csglens" : "lenssphere", std::move(p.scene), {}, {}, 0};
+  b.scene.width = kWidth, b.scene.height = kHeight;
+  b.light = {1.0, 1.0, 3.0};
+  return b;
+}
+
 std::optional<BenchScene> make_icosphere() {
   BenchScene b;
   b.name = "icosphere";
@@ -169,7 +185,8 @@ void set_bunny_path(std::string path) {
 }
 
 std::vector<std::string> bench_scene_names() {
-  return {"testscene", "bunny", "engine", "icosphere", "sphereflake", "lattice"};
+  return {"testscene",   "bunny",   "engine",  "icosphere",
+          "sphereflake", "lattice", "csglens", "lenssphere"};
 }
 
 CameraSpec look_at(const glm::dvec3& eye, const glm::dvec3& target, double ry) {
@@ -200,6 +217,7 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
   if (name == "icosphere") b = make_icosphere();
   if (name == "sphereflake") b = make_sphereflake();
   if (name == "lattice") b = make_lattice();
+  if (name == "csglens" || name == "lenssphere") b = make_lens_or_sphere(name == "csglens");
   if (!b) {
     if (why && why->empty()) *why = "no such scene or it failed to build: " + name;
     return nullptr;

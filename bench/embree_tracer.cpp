@@ -126,6 +126,7 @@ RTCScene build(const Scene& scene, EmbreeMode mode, double* seconds) {
   add_spheres(s, scene.table<Sphere>());
   UserGeometry<Box>::add(s, scene);
   UserGeometry<Cylinder>::add(s, scene);
+  UserGeometry<Csg>::add(s, scene);  // Embree has no CSG: raylane's reference in user geometry
   add_triangles(s, scene.table<Triangle>());
   auto start = std::chrono::steady_clock::now();
   rtcCommitScene(s);
