@@ -350,7 +350,8 @@ Result<Film> load_film(const std::string& path) {
     return Error{cat(path, ": expected a raylane film ('RLFILM2'), found another kind of file")};
   const std::size_t kHeader = second ? kHeader2 + (third ? kCorners : 0) : kHeader1;
   if (second && (size < kHeader || !in.read(head + kHeader1, kHeader2 - kHeader1)))
-    return Error{cat(path, ": expected a ", kHeader, "-byte film header, found ", size, " bytes")};
+    return Error{
+        cat(path, ": expected a film header of ", kHeader, " bytes, found ", size, " bytes")};
   Film f = read_header(head, second);
   uint32_t words[4];
   std::memcpy(words, head + 8, sizeof words);
