@@ -157,16 +157,6 @@ Result<InputImageInfo> probe_pfm(std::string_view bytes) {
   return info;
 }
 
-const std::array<float, 256>& srgb_table() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i)
-      t[i] = float(srgb_to_linear(i / 255.0));
-    return t;
-  }();
-  return table;
-}
-
 Result<Image> to_linear(const InputImageInfo& info, const stb::Pixels& px) {
   Image img(info.width, info.height);
   const std::size_t n = img.rgb.size();
@@ -177,23 +167,41 @@ Result<Image> to_linear(const InputImageInfo& info, const stb::Pixels& px) {
     for (std::size_t i = 0; i < n; ++i)
       img.rgb[i] = float(srgb_to_linear(px.u16[i] / 65535.0));
   } else {
-    const auto& table = srgb_table();
+    const auto& table = srgb8_table();
     for (std::size_t i = 0; i < n; ++i)
       img.rgb[i] = table[px.u8[i]];
   }
   return img;
 }
 
+// The 8- and 16-bit samples (or stb's floats) of a JPEG, PNG, BMP or TGA file, 3 a pixel.
 // libjpeg's memory: a progressive file keeps every coefficient (2 bytes each, 64 per 8×8 block
 // and component: 6 bytes per pixel at 4:4:4), plus row buffers; 16 bytes per pixel bound it.
-Result<Image> decode_jpeg(std::string_view bytes, const InputImageInfo& info) {
-  jpeg::Header h{info.width, info.height, info.channels};
-  uint64_t budget = uint64_t(info.width) * info.height * 16 + (1u << 20);
+// stb holds the file's compressed data, the decoded samples in their stored channels and then
+// in 3, each at most twice over while its buffer grows: 8 samples of 4 bytes per pixel and 4
+// bytes per file byte bound all of that.
+Result<stb::Pixels> decode_samples(std::string_view bytes, const InputImageInfo& info) {
   stb::Pixels px;
   std::string why;
-  if (!jpeg::decode(bytes, h, budget, px.u8, why))
-    return Error{cat("cannot decode the JPEG data: ", why)};
-  return to_linear(info, px);
+  if (info.format == InputFormat::kJpeg) {
+    jpeg::Header h{info.width, info.height, info.channels};
+    uint64_t budget = uint64_t(info.width) * info.height * 16 + (1u << 20);
+    if (!jpeg::decode(bytes, h, budget, px.u8, why))
+      return Error{cat("cannot decode the JPEG data: ", why)};
+    return px;
+  }
+  stb::Header h{int(info.width), int(info.height), info.channels, info.is_16bit, info.is_float};
+  uint64_t budget = uint64_t(info.width) * info.height * 32 + 4 * bytes.size() + (1u << 20);
+  if (!stb::decode(bytes, h, budget, px, why))
+    return Error{cat("cannot decode the ", input_format_name(info.format), " data: ", why)};
+  return px;
+}
+
+// 8-bit sRGB samples, kept as they are (image/texels.h): every format stb or libjpeg decodes
+// but 16-bit PNG and stb's float formats.
+bool stored_as_srgb8(const InputImageInfo& info) {
+  return !info.is_float && !info.is_16bit && info.format != InputFormat::kHdr &&
+         info.format != InputFormat::kPfm && info.format != InputFormat::kExr;
 }
 
 Status check_pixels(const Image& img) {
@@ -293,39 +301,97 @@ std::string image_memory_error(uint64_t needed, uint64_t memory_left, std::strin
              bytes_text(memory_left), " (--image-memory MIB raises it)");
 }
 
-Result<Image> decode_input_image(std::string_view bytes, std::string_view name,
-                                 uint64_t memory_left) {
+uint64_t image_memory_mib(uint64_t bytes) {
+  return (bytes + (uint64_t(1) << 20) - 1) >> 20;
+}
+
+std::optional<std::string> decode_ratio_error(uint64_t needed, uint64_t file_bytes,
+                                              uint64_t suffice, std::string_view what) {
+  if (needed <= kBombFloorBytes || needed / std::max<uint64_t>(file_bytes, 1) <= kMaxDecodeRatio)
+    return std::nullopt;
+  return cat(what, " takes ", bytes_text(needed), " from a file of ", file_bytes, " bytes",
+             ", more than ", kMaxDecodeRatio,
+             " times its size, as only decompression bombs and nearly blank images do; "
+             "--image-memory ",
+             image_memory_mib(suffice), " reads it");
+}
+
+namespace {
+
+// The probe and the memory check both decoders start with.
+Result<InputImageInfo> probe_within(std::string_view bytes, std::string_view name,
+                                    uint64_t memory_left, bool memory_chosen, bool texels) {
   auto info = probe_input_image(bytes, name);
-  if (!info) return Error{info.error()};
-  uint64_t needed = decode_bytes(*info, bytes.size());
+  if (!info) return info;
+  uint64_t needed =
+      texels ? decode_texels_bytes(*info, bytes.size()) : decode_bytes(*info, bytes.size());
   std::string what = cat("decoding its ", info->width, "x", info->height, " pixels");
+  if (!memory_chosen)
+    if (auto bomb = decode_ratio_error(needed, bytes.size(), needed, what)) return Error{*bomb};
   if (needed > memory_left) return Error{image_memory_error(needed, memory_left, what)};
   if (Status s = check_memory(needed, what); !s) return Error{s.error()};
+  return info;
+}
+
+// Every format as linear float RGB.
+Result<Image> decode_floats(std::string_view bytes, const InputImageInfo& info) {
   Result<Image> img = Error{""};
-  if (info->format == InputFormat::kPfm) {
+  if (info.format == InputFormat::kPfm) {
     img = decode_pfm(bytes);
-  } else if (info->format == InputFormat::kHdr) {
+  } else if (info.format == InputFormat::kHdr) {
     img = decode_hdr(bytes);
-  } else if (info->format == InputFormat::kExr) {
+  } else if (info.format == InputFormat::kExr) {
     img = decode_exr(bytes);
-  } else if (info->format == InputFormat::kJpeg) {
-    img = decode_jpeg(bytes, *info);
   } else {
-    stb::Header h{int(info->width), int(info->height), info->channels, info->is_16bit,
-                  info->is_float};
-    // stb holds the file's compressed data, the decoded samples in their stored channels and
-    // then in 3, each at most twice over while its buffer grows: 8 samples of 4 bytes per pixel
-    // and 4 bytes per file byte bound all of that.
-    uint64_t budget = uint64_t(info->width) * info->height * 32 + 4 * bytes.size() + (1u << 20);
-    stb::Pixels px;
-    std::string why;
-    if (!stb::decode(bytes, h, budget, px, why))
-      return Error{cat("cannot decode the ", input_format_name(info->format), " data: ", why)};
-    img = to_linear(*info, px);
+    auto px = decode_samples(bytes, info);
+    if (!px) return Error{px.error()};
+    img = to_linear(info, *px);
   }
   if (!img) return img;
   if (auto s = check_pixels(*img); !s) return Error{s.error()};
   return img;
+}
+
+}  // namespace
+
+uint64_t stored_texel_bytes(const InputImageInfo& info) {
+  uint64_t pixels = uint64_t(info.width) * info.height;
+  bool packed = stored_as_srgb8(info) || info.format == InputFormat::kHdr;
+  return pixels * (packed ? 4 : 12);
+}
+
+uint64_t decode_texels_bytes(const InputImageInfo& info, uint64_t file_bytes) {
+  uint64_t pixels = uint64_t(info.width) * info.height;
+  if (info.format == InputFormat::kHdr)  // one row of RGBE planes besides the texels
+    return file_bytes + stored_texel_bytes(info) + 4 * uint64_t(info.width);
+  if (stored_as_srgb8(info)) {  // the samples as decode_bytes counts them, then 4 bytes each
+    uint64_t working = info.format == InputFormat::kJpeg ? 9 : 7;
+    return file_bytes + pixels * (working + 4);
+  }
+  // The floats, then their halves beside them while they are made.
+  return decode_bytes(info, file_bytes) + pixels * 6;
+}
+
+Result<Image> decode_input_image(std::string_view bytes, std::string_view name,
+                                 uint64_t memory_left, bool memory_chosen) {
+  auto info = probe_within(bytes, name, memory_left, memory_chosen, false);
+  if (!info) return Error{info.error()};
+  return decode_floats(bytes, *info);
+}
+
+Result<TexelImage> decode_input_texels(std::string_view bytes, std::string_view name,
+                                       uint64_t memory_left, bool memory_chosen) {
+  auto info = probe_within(bytes, name, memory_left, memory_chosen, true);
+  if (!info) return Error{info.error()};
+  if (info->format == InputFormat::kHdr) return decode_rgbe_texels(bytes);
+  if (stored_as_srgb8(*info)) {
+    auto px = decode_samples(bytes, *info);
+    if (!px) return Error{px.error()};
+    return srgb8_texels(info->width, info->height, px->u8);
+  }
+  auto img = decode_floats(bytes, *info);
+  if (!img) return Error{img.error()};
+  return float_texels(std::move(*img));
 }
 
 namespace {
@@ -373,14 +439,33 @@ Result<InputImageInfo> read_input_image_info(const std::string& path, uint64_t m
   return info;
 }
 
-Result<Image> read_input_image(const std::string& path, uint64_t memory_left) {
+namespace {
+
+template <class Decode>
+auto read_and_decode(const std::string& path, uint64_t memory_left, Decode decode)
+    -> decltype(decode(std::string_view(), path)) {
   auto head = read_image_head(path);
   if (!head) return Error{head.error()};
   auto bytes = read_whole_image(path, head->file_bytes, memory_left);
   if (!bytes) return Error{bytes.error()};
-  auto img = decode_input_image(*bytes, path, memory_left);
+  auto img = decode(*bytes, path);
   if (!img) return Error{cat(path, ": ", img.error())};
   return img;
+}
+
+}  // namespace
+
+Result<Image> read_input_image(const std::string& path, uint64_t memory_left, bool memory_chosen) {
+  return read_and_decode(path, memory_left, [&](std::string_view b, std::string_view n) {
+    return decode_input_image(b, n, memory_left, memory_chosen);
+  });
+}
+
+Result<TexelImage> read_input_texels(const std::string& path, uint64_t memory_left,
+                                     bool memory_chosen) {
+  return read_and_decode(path, memory_left, [&](std::string_view b, std::string_view n) {
+    return decode_input_texels(b, n, memory_left, memory_chosen);
+  });
 }
 
 }  // namespace raylane

@@ -192,11 +192,14 @@ Result<RgbeSize> probe_rgbe(std::string_view bytes) {
   return size;
 }
 
-Result<RgbeFile> decode_rgbe(std::string_view bytes) {
+namespace {
+
+// The header and every scanline, each handed to on_row(y, ch) as its 4 channel planes
+// (R, G, B, E, w bytes each) as it decodes.
+template <class OnRow>
+Status read_rgbe(std::string_view bytes, RgbeFile& f, uint32_t& w, uint32_t& h, OnRow on_row) {
   Reader r{bytes};
-  RgbeFile f;
-  uint32_t w = 0, h = 0;
-  if (Status s = read_header(r, f, w, h); !s) return Error{s.error()};
+  if (Status s = read_header(r, f, w, h); !s) return s;
   // The fewest bytes a row can take: one header and runs of at most 127 per channel when it
   // is run-length encoded, 4 bytes a pixel when it is flat. A header that announces more rows
   // than the bytes left can hold is refused before the row buffer is sized from it.
@@ -206,19 +209,51 @@ Result<RgbeFile> decode_rgbe(std::string_view bytes) {
     return Error{cat("the header announces ", w, "x", h, " pixels, at least ", min_row * h,
                      " bytes of data, and ", r.left(), " bytes follow it")};
   std::vector<uint8_t> ch(std::size_t(w) * 4);
-  f.image.width = w;
-  f.image.height = 0;
-  // Rows are appended as they decode, so memory grows only with data actually present.
   for (uint32_t y = 0; y < h; ++y) {
     if (Status s = read_scanline(r, w, ch); !s) return Error{cat(s.error(), " (row ", y, ")")};
+    on_row(y, ch);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<RgbeFile> decode_rgbe(std::string_view bytes) {
+  RgbeFile f;
+  uint32_t w = 0, h = 0;
+  // Rows are appended as they decode, so memory grows only with data actually present.
+  Status s = read_rgbe(bytes, f, w, h, [&](uint32_t y, const std::vector<uint8_t>& ch) {
+    f.image.width = w;
     for (uint32_t x = 0; x < w; ++x) {
       glm::vec3 c =
           rgbe_to_float({ch[x], ch[w + x], ch[2 * std::size_t(w) + x], ch[3 * std::size_t(w) + x]});
       f.image.rgb.insert(f.image.rgb.end(), {c.x, c.y, c.z});
     }
     f.image.height = y + 1;
-  }
+  });
+  if (!s) return Error{s.error()};
   return f;
+}
+
+Result<TexelImage> decode_rgbe_texels(std::string_view bytes) {
+  RgbeFile f;
+  TexelImage t;
+  t.format = TexelFormat::kRgbe;
+  uint32_t w = 0, h = 0;
+  Status s = read_rgbe(bytes, f, w, h, [&](uint32_t y, const std::vector<uint8_t>& ch) {
+    t.width = w;
+    // The header's size was checked against the data that follows it before the first row.
+    if (y == 0) t.packed.reserve(std::size_t(w) * h);
+    for (uint32_t x = 0; x < w; ++x) {
+      std::size_t k = x;
+      t.packed.push_back(uint32_t(ch[k]) | uint32_t(ch[w + k]) << 8 |
+                         uint32_t(ch[2 * std::size_t(w) + k]) << 16 |
+                         uint32_t(ch[3 * std::size_t(w) + k]) << 24);
+    }
+    t.height = y + 1;
+  });
+  if (!s) return Error{s.error()};
+  return t;
 }
 
 }  // namespace raylane

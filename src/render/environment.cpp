@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "raylane/render/texel_lookup.h"
+
 namespace raylane {
 
 namespace {
@@ -49,6 +51,23 @@ Image sanitized(Image image) {
 
 // The cell of x ∈ [0, 1) among n, against the same edges k/n (rounded) that sampling keeps x
 // between: x·n alone may round across an edge.
+// A scene's texels as the constructor takes them: present, at least 1×1, with the buffer its
+// format and size need.
+bool usable(const std::shared_ptr<const TexelImage>& t) {
+  if (!t || t->empty()) return false;
+  std::size_t n = t->texel_count();
+  switch (t->format) {
+    case TexelFormat::kSrgb8:
+    case TexelFormat::kRgbe:
+      return t->packed.size() == n;
+    case TexelFormat::kHalf:
+      return t->half.size() == 3 * n;
+    case TexelFormat::kFloat:
+      return t->rgb.size() == 3 * n;
+  }
+  return false;
+}
+
 uint32_t cell_of(double x, uint32_t n) {
   uint32_t c = std::min(n - 1, uint32_t(x * n));
   if (c > 0 && x < double(c) / n) return c - 1;
@@ -104,16 +123,22 @@ double PiecewiseConstant1D::pdf(double x) const {
 
 // --- PiecewiseConstant2D ---
 
-PiecewiseConstant2D::PiecewiseConstant2D(const std::vector<double>& f, uint32_t nu, uint32_t nv) {
+PiecewiseConstant2D::PiecewiseConstant2D(const std::vector<double>& f, uint32_t nu, uint32_t nv)
+    : PiecewiseConstant2D(nu, nv, [&](uint32_t v, std::vector<double>& row) {
+        for (uint32_t u = 0; u < row.size(); ++u) {
+          std::size_t k = std::size_t(v) * row.size() + u;
+          row[u] = k < f.size() ? f[k] : 0.0;
+        }
+      }) {}
+
+PiecewiseConstant2D::PiecewiseConstant2D(
+    uint32_t nu, uint32_t nv, const std::function<void(uint32_t, std::vector<double>&)>& fill) {
   nu = std::max(nu, 1u), nv = std::max(nv, 1u);
   conditional_.reserve(nv);
   std::vector<double> row_weights(nv);
   for (uint32_t v = 0; v < nv; ++v) {
     std::vector<double> row(nu, 0.0);
-    for (uint32_t u = 0; u < nu; ++u) {
-      std::size_t k = std::size_t(v) * nu + u;
-      if (k < f.size()) row[u] = f[k];
-    }
+    fill(v, row);
     conditional_.emplace_back(std::move(row));
     row_weights[v] = conditional_.back().integral();
   }
@@ -151,14 +176,20 @@ std::size_t PiecewiseConstant2D::bytes() const {
 // --- EnvironmentMap ---
 
 EnvironmentMap::EnvironmentMap(Image image, double scale, const glm::dmat3& rotation)
-    : image_(sanitized(std::move(image))),
+    : EnvironmentMap(std::make_shared<const TexelImage>(float_texels(sanitized(std::move(image)))),
+                     scale, rotation) {}
+
+EnvironmentMap::EnvironmentMap(std::shared_ptr<const TexelImage> texels, double scale,
+                               const glm::dmat3& rotation)
+    : texels_(usable(texels) ? std::move(texels)
+                             : std::make_shared<const TexelImage>(float_texels(Image(1, 1)))),
       scale_(scale > 0 && std::isfinite(scale) ? scale : 0.0),
       rotation_(rotation) {
   build_distribution();
 }
 
 glm::dvec3 EnvironmentMap::texel(uint32_t x, uint32_t y) const {
-  return glm::dvec3(image_.at(x, y));
+  return glm::dvec3(texels_->at(x, y));
 }
 
 glm::dvec3 EnvironmentMap::to_image(const glm::dvec3& d) const {
@@ -178,16 +209,8 @@ EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const glm::dvec3& d) {
 }
 
 glm::dvec3 EnvironmentMap::radiance_uv(double u, double v) const {
-  if (!(std::isfinite(u) && std::isfinite(v))) return {0, 0, 0};
-  const uint32_t w = image_.width, h = image_.height;
-  // Texel centres sit at (i + 0.5)/w: interpolate between the two around x (and y).
-  double x = (u - std::floor(u)) * w - 0.5, y = std::clamp(v, 0.0, 1.0) * h - 0.5;
-  double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
-  uint32_t xa = wrap(int64_t(x0), w), xb = wrap(int64_t(x0) + 1, w);
-  uint32_t ya = clamp_index(int64_t(y0), h), yb = clamp_index(int64_t(y0) + 1, h);
-  glm::dvec3 top = texel(xa, ya) * (1 - fx) + texel(xb, ya) * fx;
-  glm::dvec3 bottom = texel(xa, yb) * (1 - fx) + texel(xb, yb) * fx;
-  return (top * (1 - fy) + bottom * fy) * scale_;
+  LinearRgb<double> c = environment_texel_lookup<double>(*texels_, u, v);
+  return glm::dvec3(c.r, c.g, c.b) * scale_;
 }
 
 glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& dir_world) const {
@@ -227,7 +250,7 @@ double EnvironmentMap::power_estimate(double scene_radius) const {
 }
 
 std::size_t EnvironmentMap::bytes() const {
-  return sizeof(*this) + image_.rgb.capacity() * sizeof(float) + distribution_.bytes();
+  return sizeof(*this) + texels_->bytes() + distribution_.bytes();
 }
 
 // The sampling weights. The lookup is bilinear, so a texel lights the cells around its own
@@ -240,45 +263,43 @@ std::size_t EnvironmentMap::bytes() const {
 // Rec. 709's are too). Times sin θ of the row's centre, the Jacobian of (u, v) ↦ ω up to the
 // constant 2π² (pbrt-v4 likewise takes the Jacobian at the cell centre).
 void EnvironmentMap::build_distribution() {
-  const uint32_t w = image_.width, h = image_.height;
-  std::vector<double> lum(std::size_t(w) * h), across(std::size_t(w) * h);
-  for (uint32_t y = 0; y < h; ++y)
+  const uint32_t w = texels_->width, h = texels_->height;
+  // Row by row, three rows of the horizontally filtered luminance at a time: the tables are the
+  // only arrays of the image's size held besides the texels.
+  auto across_row = [&](uint32_t y, std::vector<double>& out) {
+    std::vector<double> lum(w);
     for (uint32_t x = 0; x < w; ++x)
-      lum[std::size_t(y) * w + x] = rec709_luminance(texel(x, y));
-  for (uint32_t y = 0; y < h; ++y)
-    for (uint32_t x = 0; x < w; ++x) {
-      const double* row = &lum[std::size_t(y) * w];
-      across[std::size_t(y) * w + x] =
-          kSide * row[wrap(int64_t(x) - 1, w)] + kCentre * row[x] + kSide * row[wrap(x + 1, w)];
-    }
-  std::vector<double> weight(std::size_t(w) * h);
+      lum[x] = rec709_luminance(texel(x, y));
+    for (uint32_t x = 0; x < w; ++x)
+      out[x] =
+          kSide * lum[wrap(int64_t(x) - 1, w)] + kCentre * lum[x] + kSide * lum[wrap(x + 1, w)];
+  };
+  std::vector<double> row_mean(h, 0.0);
   for (uint32_t y = 0; y < h; ++y) {
-    const double* up = &across[std::size_t(clamp_index(int64_t(y) - 1, h)) * w];
-    const double* mid = &across[std::size_t(y) * w];
-    const double* down = &across[std::size_t(clamp_index(int64_t(y) + 1, h)) * w];
+    for (uint32_t x = 0; x < w; ++x)
+      row_mean[y] += rec709_luminance(texel(x, y));
+    row_mean[y] /= w;
+  }
+  std::vector<double> up(w), mid(w), down(w);
+  distribution_ = PiecewiseConstant2D(w, h, [&](uint32_t y, std::vector<double>& weight) {
+    across_row(clamp_index(int64_t(y) - 1, h), up);
+    across_row(y, mid);
+    across_row(clamp_index(int64_t(y) + 1, h), down);
     // The scale only multiplies the density's weights (it cancels), so it enters as "black
     // or not": multiplying by it could overflow for a huge s.
     double sin_theta = scale_ > 0 ? std::sin(kPi * (y + 0.5) / h) : 0.0;
     for (uint32_t x = 0; x < w; ++x)
-      weight[std::size_t(y) * w + x] =
-          (kSide * up[x] + kCentre * mid[x] + kSide * down[x]) * sin_theta;
-  }
-  distribution_ = PiecewiseConstant2D(weight, w, h);
-  luminance_integral_ = scale_ * luminance_sphere_integral(lum);
+      weight[x] = (kSide * up[x] + kCentre * mid[x] + kSide * down[x]) * sin_theta;
+  });
+  luminance_integral_ = scale_ * luminance_sphere_integral(row_mean);
 }
 
 // ∫ lum(E(ω)) dω over the sphere for the bilinear map, exactly: over a whole turn in u the
 // interpolation between texel centres integrates to the row's mean, so ∫ E du is the linear
 // interpolation of the row means in v (constant above the first and below the last centre,
 // as the lookup clamps), integrated against dω = 2π² sin(πv) du dv in closed form.
-double EnvironmentMap::luminance_sphere_integral(const std::vector<double>& lum) const {
-  const uint32_t w = image_.width, h = image_.height;
-  std::vector<double> mean(h, 0.0);
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x)
-      mean[y] += lum[std::size_t(y) * w + x];
-    mean[y] /= w;
-  }
+double EnvironmentMap::luminance_sphere_integral(const std::vector<double>& mean) const {
+  const uint32_t h = texels_->height;
   auto centre = [&](uint32_t y) { return (y + 0.5) / h; };
   double total = band_integral(0, centre(0), mean[0], mean[0]);
   for (uint32_t y = 0; y + 1 < h; ++y)

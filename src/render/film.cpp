@@ -129,6 +129,17 @@ struct Hasher {
     value(c.size());
     bytes(c.data(), c.size() * sizeof(T));
   }
+  // Texels as the float column of RGB they decode to, whatever their storage: a film saved
+  // before textures were kept compactly still fits the same scene.
+  void texels(const TexelImage& t) {
+    value(t.texel_count() * 3);
+    for (uint32_t y = 0; y < t.height; ++y)
+      for (uint32_t x = 0; x < t.width; ++x) {
+        glm::vec3 c = t.at(x, y);
+        float rgb[3] = {c.x, c.y, c.z};
+        bytes(rgb, sizeof rgb);
+      }
+  }
 };
 
 }  // namespace
@@ -256,12 +267,12 @@ void hash_scene(Hasher& h, const Scene& scene) {
     if (m.microfacet != Microfacet::kPhong) h.value(m.microfacet);  // likewise
   }
   if (const auto& env = scene.environment) {
-    h.value(env->scale), h.value(env->rotation), h.value(env->image.width);
-    h.value(env->image.height), h.column(env->image.rgb);
+    h.value(env->scale), h.value(env->rotation), h.value(env->texels->width);
+    h.value(env->texels->height), h.texels(*env->texels);
   }
   for (const Texture& t : scene.textures) {
-    h.value(t.image.width), h.value(t.image.height);
-    h.column(t.image.rgb);
+    h.value(t.texels.width), h.value(t.texels.height);
+    h.texels(t.texels);
   }
   PrimKinds::for_each([&](auto kind) {
     // Moving spheres only when there are some: films from before them still fit.

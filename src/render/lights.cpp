@@ -102,7 +102,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double env_power = 0;
   if (scene.environment) {
     const EnvironmentSpec& e = *scene.environment;
-    env_.emplace(e.image, e.scale, e.rotation);
+    env_.emplace(e.texels, e.scale, e.rotation);
     Bounds3f b = scene.bounds();
     double radius = b.empty() ? 1.0 : 0.5 * length(glm::dvec3(b.hi) - glm::dvec3(b.lo));
     env_power = env_->can_sample() ? env_->power_estimate(std::max(radius, 1e-3)) : 0.0;

@@ -13,7 +13,7 @@ glm::dvec3 texture_factor(const Scene& scene, const Material& m, PrimRef prim,
                           const Surface& surface) {
   if (m.texture < 0) return {1, 1, 1};
   TexCoord t = texcoord_of(scene, prim, surface);
-  return texture_lookup(scene.textures[m.texture].image, t.u, t.v);
+  return texture_lookup(scene.textures[m.texture].texels, t.u, t.v);
 }
 
 glm::dvec3 albedo_at(const Scene& scene, PrimRef prim, const Surface& surface) {

@@ -1,4 +1,5 @@
 // The `mesh file tx ty tz s <orientation>` command: find the file, import it, place it.
+#include <algorithm>
 #include <filesystem>
 
 #include "raylane/core/strings.h"
@@ -12,7 +13,8 @@ namespace raylane {
 
 // texture_command.cpp: the row of Scene::textures for an image file, read once; for an image
 // embedded in a mesh file, decoded once.
-Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path);
+Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path,
+                             const FileLoc& at, bool of_mesh);
 Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTexture& t);
 
 namespace {
@@ -45,19 +47,22 @@ struct MeshTextures {
   Scene& scene;
   ParseState& state;
   const Line& line;
-  uint32_t material;                                  // the line's material
-  uint32_t next_index;                                // the index the next copy gets
-  std::vector<std::pair<uint32_t, uint32_t>> copies;  // (texture row, material index)
+  uint32_t material;                                         // the line's material
+  uint32_t next_index;                                       // the index the next copy gets
+  std::vector<std::pair<uint32_t, uint32_t>> copies;         // (texture row, material index)
+  std::vector<std::string> named;                            // each texture the file names, once
+  std::vector<std::pair<std::string, std::string>> dropped;  // (name, why), once each
 
   uint32_t choose(const MeshTexture& texture) {
     if (texture.name.empty()) return material;
-    std::string mesh = line.tokens[1].name();
+    bool first = std::find(named.begin(), named.end(), texture.name) == named.end();
+    if (first) named.push_back(texture.name);
+    for (const auto& [name, why] : dropped)
+      if (name == texture.name) return material;  // refused once already: not read again
     auto row = texture.embedded ? embedded_texture_row(scene, state, texture)
-                                : texture_row(scene, state, texture.name);
+                                : texture_row(scene, state, texture.name, line.at(1), true);
     if (!row) {
-      warn(cat("mesh ", quote_path(mesh), texture.embedded ? " embeds texture " : " names texture ",
-               quote_path(texture.name), ", which cannot be used: ", row.error(),
-               "; the mesh renders untextured"));
+      dropped.emplace_back(texture.name, row.error());
       return material;
     }
     for (const auto& [tex, index] : copies)
@@ -67,6 +72,22 @@ struct MeshTextures {
   }
 
   void warn(std::string message) { state.diagnostics.warning(line.at(1), std::move(message)); }
+
+  // One warning for the textures dropped: how many of how many, which and why, and what the
+  // triangles that named them show instead.
+  void warn_dropped() {
+    if (dropped.empty()) return;
+    std::string mesh = quote_path(line.tokens[1].name());
+    std::string which;
+    for (const auto& [name, why] : dropped)
+      which += cat(which.empty() ? "" : "; ", quote_path(name), " (", why, ")");
+    bool all = dropped.size() == named.size();
+    warn(cat("mesh ", mesh, ": ", dropped.size(), " of its ", counted(named.size(), "texture"),
+             all ? " cannot be used, so the mesh renders untextured: "
+                 : " cannot be used, so the triangles whose materials name ",
+             all ? "" : (dropped.size() == 1 ? "it" : "them"),
+             all ? "" : " render untextured with the line's material: ", which));
+  }
 
   // After a successful import: the copies, in the order their indices were given.
   void add_copies() {
@@ -119,7 +140,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   bool had_material = state.current_material.has_value();
   uint32_t mat = had_material ? *state.current_material : uint32_t(s.materials.size());
   uint32_t first_copy = uint32_t(s.materials.size()) + (had_material ? 0 : 1);
-  MeshTextures textures{s, state, line, mat, first_copy, {}};
+  MeshTextures textures{s, state, line, mat, first_copy, {}, {}, {}};
   auto stats = import(state, name, placement, mat, table,
                       [&](const MeshTexture& texture) { return textures.choose(texture); });
   if (!stats) {
@@ -140,6 +161,7 @@ bool mesh_command(Scene& s, const Line& line, ParseState& state) {
     state.current_material = mat;
   }
   textures.add_copies();
+  textures.warn_dropped();
   if (stats->degenerate_dropped > 0)
     state.diagnostics.warning(line.at(1), cat("skipped ", stats->degenerate_dropped,
                                               " zero-area triangles of ", quote_path(name)));

@@ -4,7 +4,9 @@
 #include <filesystem>
 
 #include "raylane/core/input_file.h"
+#include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/input_image.h"
 
 namespace raylane {
 
@@ -24,6 +26,22 @@ void finish(ParsedScene& out, ParseState& state, const std::string& filename) {
       out.diagnostics.warning(mesh.loc, cat("mesh ", quote_path(mesh.file),
                                             " has no texture coordinates: its textured material "
                                             "reads the texture at (0, 0)"));
+  // One figure that reads every image, so that one retry with it renders.
+  const SceneImageMemory& images = out.images;
+  if (images.first_refused.line != 0 && !state.options.image_headers_only) {
+    // The image memory given is named only when it is short: a bomb is refused at any.
+    std::string given = images.wanted > state.options.image_memory
+                            ? cat(", and ", bytes_text(state.options.image_memory), " is given")
+                            : std::string();
+    std::string msg = cat("the scene's textures and environment need ", bytes_text(images.wanted),
+                          " of image memory in all", given, ": --image-memory ",
+                          image_memory_mib(images.wanted), " reads them");
+    if (state.options.lenient) {
+      out.diagnostics.warning(images.first_refused, std::move(msg));
+    } else {
+      out.diagnostics.error(images.first_refused, std::move(msg));
+    }
+  }
   if (state.screen_at.line == 0)
     out.diagnostics.warning({filename, 0, 0}, "no screen line: using 400x300");
   // A rejected camera line's error says it all, unless --lenient made it a warning.
@@ -172,6 +190,7 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
   out.diagnostics = std::move(state.diagnostics);
   out.input_files = std::move(state.input_files);
   out.meshes = std::move(state.meshes);
+  out.images = std::move(state.images);
   finish(out, state, filename);
   return out;
 }

@@ -1,8 +1,10 @@
 // The `texture file` and `environment file s <orientation>` commands, and what they share with
 // meshes that name their own textures: finding an input next to the scene file, reading each image
 // once.
+#include <algorithm>
 #include <filesystem>
 
+#include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/input_image.h"
 #include "raylane/scene/mesh_import.h"
@@ -44,42 +46,101 @@ uint64_t memory_left(const ParseState& state) {
   return used < limit ? limit - used : 0;
 }
 
-// The image at `path` within the image memory the scene has left, which it then takes; only
-// its size when the options ask for headers only. `extra` bytes per pixel are what the reader of
-// the image builds from it besides (the environment's sampling tables).
-Result<Image> read_scene_image(ParseState& state, const std::string& path, uint64_t extra = 0) {
-  if (state.options.image_headers_only) {
-    auto info = read_input_image_info(path, memory_left(state));
-    if (!info) return Error{info.error()};
-    Image sized;
-    sized.width = info->width, sized.height = info->height;
-    return sized;
-  }
-  auto image = read_input_image(path, memory_left(state));
-  if (!image) return image;
-  uint64_t kept =
-      image->rgb.size() * sizeof(float) + extra * uint64_t(image->width) * image->height;
-  if (kept > memory_left(state))
-    return Error{cat(path, ": ", image_memory_error(kept, memory_left(state), "keeping it"))};
-  state.image_memory_used += kept;
-  return image;
+// What reading the image at `path` takes, from its header: its texels and the decoder's peak.
+struct ImageNeeds {
+  SceneImage image;
+  uint64_t decode = 0, file_bytes = 0;
+};
+
+Result<ImageNeeds> image_needs(const ParseState& state, const std::string& path, uint64_t extra) {
+  auto info = read_input_image_info(path, memory_left(state));
+  if (!info) return Error{info.error()};
+  auto size = regular_file_size(path);
+  if (!size) return Error{cat(path, ": ", size.error())};
+  ImageNeeds n;
+  n.image.file = path;
+  n.image.width = info->width, n.image.height = info->height;
+  n.image.kept = stored_texel_bytes(*info) + extra * uint64_t(info->width) * info->height;
+  n.file_bytes = *size;
+  n.decode = decode_texels_bytes(*info, *size);
+  n.image.peak = std::max(n.decode, n.image.kept);
+  return n;
 }
 
-// The environment's importance sampling: a luminance and a CDF entry (doubles) per pixel, and
-// the copy of the image the light keeps.
-constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double) + 3 * sizeof(float);
+// Why `render` refuses the image, or "": the decompression-bomb rule unless the user chose the
+// image memory, then the image memory left.
+std::string refusal(const ParseState& state, const ImageNeeds& n) {
+  std::string what = cat("reading its ", n.image.width, "x", n.image.height, " pixels");
+  if (!state.options.image_memory_chosen)
+    if (auto bomb = decode_ratio_error(n.decode, n.file_bytes, state.images.wanted, what))
+      return *bomb;
+  if (n.image.peak > memory_left(state))
+    return image_memory_error(n.image.peak, memory_left(state), what);
+  return "";
+}
+
+// The texels at `path` within the image memory the scene has left, which they then take.
+// Every image is checked from its header first and recorded (ParseState::images). A refused
+// `texture` or `environment` line is an error, after which the scene cannot render, so the
+// rest are read to their headers only, to find the image memory that reads them all; a refused
+// texture of a mesh file is dropped (the caller warns), as is any image under --lenient. Only
+// headers are read when the options ask for them (`raylane info`), and a refusal is then
+// recorded, not an error. `extra` bytes per pixel are what the reader of the image builds from
+// it besides (the environment's sampling tables).
+Result<TexelImage> read_scene_texels(ParseState& state, const std::string& path, const FileLoc& at,
+                                     SceneImage::Kind kind, uint64_t extra = 0) {
+  auto needs = image_needs(state, path, extra);
+  if (!needs) return Error{needs.error()};
+  SceneImageMemory& mem = state.images;
+  mem.wanted = std::max(mem.wanted, state.image_memory_used + needs->image.peak);
+  needs->image.kind = kind;
+  needs->image.refused = refusal(state, *needs);
+  const bool refused = !needs->image.refused.empty();
+  const bool fatal = kind != SceneImage::kMeshTexture && !state.options.lenient;
+  if (refused && fatal && mem.first_refused.line == 0) mem.first_refused = at;
+  const uint64_t left = memory_left(state);
+  mem.images.push_back(needs->image);
+  if (refused && !state.options.image_headers_only) {
+    // Counted as if read when the scene cannot render (the figure after counts it); dropped
+    // otherwise.
+    if (fatal) state.image_memory_used += needs->image.kept;
+    return Error{cat(path, ": ", needs->image.refused)};
+  }
+  state.image_memory_used += needs->image.kept;
+  if (state.options.image_headers_only || mem.first_refused.line != 0) {
+    TexelImage sized;
+    sized.width = needs->image.width, sized.height = needs->image.height;
+    return sized;
+  }
+  auto texels = read_input_texels(path, left, state.options.image_memory_chosen);
+  if (!texels) {
+    state.image_memory_used -= needs->image.kept;
+    return texels;
+  }
+  // Float files that turn out to be halves take less than their header promised.
+  uint64_t kept = texels->bytes() + extra * texels->texel_count();
+  state.image_memory_used -= needs->image.kept - std::min(kept, needs->image.kept);
+  mem.images.back().kept = kept;
+  return texels;
+}
+
+// The environment's importance sampling: a weight and a CDF entry (doubles) per pixel. The
+// light shares the scene's texels.
+constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double);
 
 }  // namespace
 
 // The row of Scene::textures holding the image at `path`, read now if it is new.
-Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path) {
+Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& path,
+                             const FileLoc& at, bool of_mesh) {
   for (const auto& [file, row] : state.texture_files)
     if (file == path) return row;
-  auto image = read_scene_image(state, path);
-  if (!image) return Error{image.error()};
+  auto texels =
+      read_scene_texels(state, path, at, of_mesh ? SceneImage::kMeshTexture : SceneImage::kTexture);
+  if (!texels) return Error{texels.error()};
   s.textures.push_back(state.options.image_headers_only
-                           ? Texture{path, std::move(*image), glm::dvec3(0, 0, 0)}
-                           : make_texture(path, std::move(*image)));
+                           ? Texture{path, std::move(*texels), glm::dvec3(0, 0, 0)}
+                           : make_texture(path, std::move(*texels)));
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(path, row);
   state.input_files.push_back(path);
@@ -89,19 +150,23 @@ Result<uint32_t> texture_row(Scene& s, ParseState& state, const std::string& pat
 Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTexture& t) {
   for (const auto& [file, row] : state.texture_files)
     if (file == t.name) return row;
-  Result<Image> image = Error{"it is empty or has more than 2^28 pixels"};
+  Result<TexelImage> texels = Error{"it is empty or has more than 2^28 pixels"};
   if (t.texels != nullptr) {
-    image = *t.texels;
+    texels = float_texels(*t.texels);
   } else if (!t.file_bytes.empty()) {
     // The extension names the format for TGA only; the others are known by their contents.
-    image = decode_input_image(t.file_bytes, cat("embedded.", t.extension), memory_left(state));
+    texels = decode_input_texels(t.file_bytes, cat("embedded.", t.extension), memory_left(state),
+                                 state.options.image_memory_chosen);
   }
-  if (!image) return Error{image.error()};
-  uint64_t kept = image->rgb.size() * sizeof(float);
+  if (!texels) return Error{texels.error()};
+  uint64_t kept = texels->bytes();
   if (kept > memory_left(state))
     return Error{image_memory_error(kept, memory_left(state), "keeping it")};
   state.image_memory_used += kept;
-  s.textures.push_back(make_texture(t.name, std::move(*image)));
+  state.images.wanted = std::max(state.images.wanted, state.image_memory_used);
+  state.images.images.push_back(
+      {t.name, SceneImage::kMeshTexture, texels->width, texels->height, kept, kept, ""});
+  s.textures.push_back(make_texture(t.name, std::move(*texels)));
   uint32_t row = uint32_t(s.textures.size() - 1);
   state.texture_files.emplace_back(t.name, row);
   return row;
@@ -125,7 +190,7 @@ bool texture_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(1), cat("texture ", where_looked(state, name)));
     return false;
   }
-  auto row = texture_row(s, state, *path);
+  auto row = texture_row(s, state, *path, line.at(1), false);
   if (!row) {
     state.problem(line.at(1), cat("cannot use texture ", quote_path(name), ": ", row.error()));
     return false;
@@ -158,15 +223,17 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
     state.problem(line.at(1), cat("environment ", where_looked(state, name)));
     return false;
   }
-  auto image = read_scene_image(state, *path, kEnvironmentExtraBytes);
-  if (!image) {
+  auto texels =
+      read_scene_texels(state, *path, line.at(1), SceneImage::kEnvironment, kEnvironmentExtraBytes);
+  if (!texels) {
     state.problem(line.at(1),
-                  cat("cannot use environment ", quote_path(name), ": ", image.error()));
+                  cat("cannot use environment ", quote_path(name), ": ", texels.error()));
     return false;
   }
   note_repeat(state.environment_at, line, state);
   state.input_files.push_back(*path);
-  s.environment = EnvironmentSpec{*path, std::move(*image), *scale, *rotation};
+  s.environment = EnvironmentSpec{*path, std::make_shared<const TexelImage>(std::move(*texels)),
+                                  *scale, *rotation};
   return true;
 }
 

@@ -27,8 +27,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     }
   }
   auto info = raylane::probe_input_image(bytes, name);
-  auto image = raylane::decode_input_image(bytes, name);
+  auto image = raylane::decode_input_image(bytes, name, raylane::kDefaultImageMemory);
   if (!image) return 0;
+  // The compact texels a scene keeps decode to exactly the float image (image/texels.h).
+  auto texels = raylane::decode_input_texels(bytes, name, raylane::kDefaultImageMemory);
+  if (texels && raylane::to_float_image(*texels).rgb != image->rgb) std::abort();
   if (!info) std::abort();  // decoding succeeded where probing failed
   if (image->width != info->width || image->height != info->height) std::abort();
   if (uint64_t(image->width) * image->height > raylane::kMaxImagePixels) std::abort();

@@ -34,12 +34,21 @@ TEST(ImageMemory, APngBombIsRefusedFromItsHeaderBeforeDecoding) {
   std::string bomb = testing::png_zero_bomb(8192, 8192);
   EXPECT_LT(bomb.size(), 60000u);  // 64 Mi samples in 53 KB: the per-byte bound lets it through
   AllocBudget budget(1 << 20);
-  auto img = decode_input_image(bomb, "bomb.png");
+  // At the default image memory, however large, the ratio rule refuses it.
+  auto img = decode_input_image(bomb, "bomb.png", uint64_t(64) << 30);
   ASSERT_FALSE(img);
-  EXPECT_NE(img.error().find("decoding its 8192x8192 pixels takes 1.2 GiB; the image memory "
-                             "left is 192.0 MiB (--image-memory MIB raises it)"),
+  EXPECT_NE(img.error().find("decoding its 8192x8192 pixels takes 1.2 GiB from a file of " +
+                             std::to_string(bomb.size()) + " bytes, more than 1024 times its size"),
             std::string::npos)
       << img.error();
+  EXPECT_NE(img.error().find("--image-memory 1217 reads it"), std::string::npos) << img.error();
+  // An image memory the user chose lifts the rule; the memory left still decides.
+  auto chosen = decode_input_image(bomb, "bomb.png", kDefaultImageMemory, true);
+  ASSERT_FALSE(chosen);
+  EXPECT_NE(chosen.error().find("decoding its 8192x8192 pixels takes 1.2 GiB; the image memory "
+                                "left is 192.0 MiB (--image-memory MIB raises it)"),
+            std::string::npos)
+      << chosen.error();
   EXPECT_LT(budget.peak(), 1u << 20);
 }
 
@@ -73,7 +82,7 @@ TEST(ImageMemory, AFileIsReadWholeOnlyAfterItsMagicBytes) {
       << zeros.error();
   auto info = read_input_image_info(dir + "/zeros.png");
   EXPECT_FALSE(info);
-  auto longer = read_input_image(dir + "/long.png");
+  auto longer = read_input_image(dir + "/long.png", kDefaultImageMemory);
   ASSERT_FALSE(longer);
   EXPECT_NE(longer.error().find("reading the file takes 300.0 MiB; the image memory left is "
                                 "192.0 MiB"),

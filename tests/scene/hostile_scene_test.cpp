@@ -111,9 +111,9 @@ TEST(ImageMemory, TexturesAndTheEnvironmentShareOneBudget) {
   write_file(dir + "/a.png", testing::png_zero_bomb(512, 512));
   write_file(dir + "/b.png", testing::png_zero_bomb(512, 512));
   ParseOptions options;
-  // Decoding a 512² PNG takes 4.8 MiB (decode_bytes), keeping it 3 MiB of floats: 7 MiB hold
-  // one, not the second beside it.
-  options.image_memory = 7 << 20;
+  // Reading a 512² PNG peaks at 2.75 MiB (decode_texels_bytes), keeping it takes 1 MiB of
+  // 8-bit texels: 3.5 MiB hold one, not the second beside it.
+  options.image_memory = 7 << 19;
   EXPECT_TRUE(load(dir, "texture a.png\n", options).ok());
   auto both = load(dir, "texture a.png\nbrdf 1 1 1 0 0 0 1\ntexture b.png\n", options);
   EXPECT_THAT(first_error(both), HasSubstr("s.scn:5:9: cannot use texture 'b.png'"));

@@ -142,4 +142,22 @@ std::string exr_luminance_chroma(int w, int h, const std::function<glm::vec3(int
   return out.bytes;
 }
 
+std::string flat_hdr(uint32_t w, uint32_t h) {
+  std::string row = {2, 2, char(w >> 8), char(w & 0xff)};
+  // Mantissas 128 and exponent 129: 128 · 2^(129 − 136) = 1 in each channel.
+  for (char value : {char(128), char(128), char(128), char(129)})
+    for (uint32_t left = w; left > 0;) {
+      uint32_t n = left < 127 ? left : 127;
+      row += char(128 + n);
+      row += value;
+      left -= n;
+    }
+  std::string out = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(h) + " +X " +
+                    std::to_string(w) + "\n";
+  out.reserve(out.size() + row.size() * h);
+  for (uint32_t y = 0; y < h; ++y)
+    out += row;
+  return out;
+}
+
 }  // namespace raylane::testing

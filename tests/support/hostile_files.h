@@ -16,6 +16,11 @@ namespace raylane::testing {
 // samples, take about 53 KB.
 std::string png_zero_bomb(uint32_t w, uint32_t h);
 
+// A Radiance HDR sky of w×h pixels of radiance 1, every row run-length encoded (runs of 127,
+// Radiance's "new" RLE, so w is 8..32767): an 8192×4096 sky in 2.1 MB, as a real one's size
+// order, without holding its floats.
+std::string flat_hdr(uint32_t w, uint32_t h);
+
 // A binary PLY of one triangle whose header holds `comment_bytes` of comment lines first.
 std::string ply_with_long_header(std::size_t comment_bytes);
 

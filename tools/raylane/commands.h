@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "raylane/core/memory.h"
 #include "raylane/scene/parser.h"
 
 namespace raylane::cli {
@@ -23,8 +24,9 @@ int view_command(const std::vector<std::string>& args);  // the interactive view
 // How a command loads its scene besides --lenient and --set: the image memory (--image-memory)
 // and whether images are read only to their headers (`raylane info`).
 struct SceneImages {
-  uint64_t memory = kDefaultImageMemory;
+  uint64_t memory = default_image_memory();
   bool headers_only = false;
+  bool chosen = false;  // by --image-memory: the decompression-bomb rule is lifted
 };
 
 // Loads SCENE (or the built-in default when none is given), printing every diagnostic to
@@ -35,12 +37,15 @@ std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& 
                                               const std::vector<std::string>& overrides = {},
                                               SceneImages images = {});
 
-// --image-memory MIB: its help, and the value read into bytes.
+// --image-memory MIB: its help, its default as help shows it, and the value read into bytes
+// (`chosen` becomes true: the user's figure lifts the decompression-bomb rule).
 inline constexpr const char* kImageMemoryHelp =
-    "what decoding the scene's textures and environment may take in all,\n"
-    "in MiB (decoded pixels and the decoders' memory, counted from each\n"
-    "header before decoding)";
-Status read_image_memory_option(const std::string& value, uint64_t& bytes);
+    "what reading images may take in all, in MiB: decoded texels, the\n"
+    "decoders' memory and the environment's sampling tables, counted\n"
+    "from each header before decoding. Setting it also lifts the rule\n"
+    "that refuses an image decoding to over 1024 times its file's size";
+inline constexpr const char* kImageMemoryDefault = "half the memory available";
+Status read_image_memory_option(const std::string& value, uint64_t& bytes, bool& chosen);
 
 // The --set option's help, shared by the commands that load a scene.
 inline constexpr const char* kSetOptionHelp =

@@ -17,9 +17,10 @@ namespace {
 const std::vector<OptionSpec> kConvertOptions = {
     {"exposure", 0, "E", false, "PNG exposure in stops (pixel · 2^E)", "0"},
     {"half", 0, "", false, "EXR: 16-bit half channels instead of 32-bit float", ""},
+    {"image-memory", 0, "MIB", false, kImageMemoryHelp, kImageMemoryDefault},
 };
 const CommandHelp kConvertHelp{
-    "raylane convert IN OUT [--exposure E] [--half]",
+    "raylane convert IN OUT [--exposure E] [--half] [--image-memory MIB]",
     "Writes the image IN (.hdr, .pfm, .exr, or .png, .jpg, .tga, .bmp read as linear RGB) as\n"
     "OUT, in the format OUT's extension names: .hdr, .pfm, .png (8-bit sRGB) or .exr (RGB,\n"
     "float or --half). From .exr to .exr, the layers (render's --aov: albedo.R, ...) and the\n"
@@ -41,6 +42,10 @@ int convert_command(const std::vector<std::string>& args) {
     opts.exposure = *v;
   }
   opts.exr_half = parsed->has("half");
+  ImageMemoryOption memory;
+  if (auto v = parsed->last("image-memory"))
+    if (Status s = read_image_memory_option(*v, memory.bytes, memory.chosen); !s)
+      return usage_error("convert", s.error());
   auto format = format_from_path(out);
   if (!format) return usage_error("convert", format.error());
   if (opts.exr_half && *format != ImageFormat::kExr)
@@ -49,7 +54,16 @@ int convert_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "raylane: warning: --exposure does nothing unless OUT is a .png file\n");
   if (Status s = check_outputs_apart({{in, "the input image"}}, {{out, "the output"}}); !s)
     return usage_error("convert", s.error());
-  auto image = read_any_image(in);
+  auto header = read_any_header(in);
+  if (!header) {
+    std::fprintf(stderr, "raylane: %s\n", header.error().c_str());
+    return kExitUsage;
+  }
+  if (Status s = check_images_memory({*header}, 0, memory); !s) {
+    std::fprintf(stderr, "raylane: %s: %s\n", in.c_str(), s.error().c_str());
+    return kExitUsage;
+  }
+  auto image = read_any_image(*header);
   if (!image) {
     std::fprintf(stderr, "raylane: %s\n", image.error().c_str());
     return kExitUsage;

@@ -23,14 +23,16 @@ const std::vector<OptionSpec> kDiffOptions = {
      "also write the per-pixel relative error sqrt(mean of (a−b)²/(b²+0.01))\n"
      "as an image (.hdr, .pfm, .exr keep it; as .png, 1 or more is white)",
      "none"},
+    {"image-memory", 0, "MIB", false, kImageMemoryHelp, kImageMemoryDefault},
 };
 const CommandHelp kDiffHelp{
-    "raylane diff IMAGE REFERENCE [--tol T] [--heatmap FILE]",
+    "raylane diff IMAGE REFERENCE [--tol T] [--heatmap FILE] [--image-memory MIB]",
     "Prints how far IMAGE is from REFERENCE (the same size; .hdr, .pfm, .exr, or .png, .jpg,\n"
     ".tga, .bmp read as linear RGB) on one line of names and numbers: rmse, relmse (mean of\n"
     "(a−b)²/(b²+0.01)), mean_abs and max_abs over all channels, and max_x, max_y, max_channel:\n"
     "where the largest difference is (pixel column and row from the top left, channel 0-2).\n"
-    "Exit status 1 when the RMSE is over T.",
+    "Exit status 1 when the RMSE is over T. The sizes are compared from the headers, before\n"
+    "any pixel is decoded.",
     &kDiffOptions, ""};
 
 // --heatmap: checked before any work, like every output (never over an input).
@@ -59,20 +61,37 @@ int diff_command(const std::vector<std::string>& args) {
   }
   const std::string& a_path = parsed->positional[0];
   const std::string& ref_path = parsed->positional[1];
+  ImageMemoryOption memory;
+  if (auto v = parsed->last("image-memory"))
+    if (Status s = read_image_memory_option(*v, memory.bytes, memory.chosen); !s)
+      return usage_error("diff", s.error());
   auto heatmap = parsed->last("heatmap");
   if (heatmap)
     if (Status s = check_heatmap(*heatmap, a_path, ref_path); !s)
       return usage_error("diff", s.error());
-  auto a = read_any_image(a_path);
-  auto ref = read_any_image(ref_path);
+  // Headers first: images of different sizes, or too large, are refused before decoding.
+  auto ha = read_any_header(a_path);
+  auto href = read_any_header(ref_path);
+  for (const auto* h : {&ha, &href}) {
+    if (h->ok()) continue;
+    std::fprintf(stderr, "raylane: %s\n", h->error().c_str());
+    return kExitUsage;
+  }
+  if (ha->width != href->width || ha->height != href->height) {
+    std::fprintf(stderr, "raylane: %s is %ux%u and %s is %ux%u: images of different sizes\n",
+                 a_path.c_str(), ha->width, ha->height, ref_path.c_str(), href->width,
+                 href->height);
+    return kExitUsage;
+  }
+  if (Status s = check_images_memory({*ha, *href}, heatmap ? ha->float_bytes() : 0, memory); !s) {
+    std::fprintf(stderr, "raylane: %s\n", s.error().c_str());
+    return kExitUsage;
+  }
+  auto a = read_any_image(*ha);
+  auto ref = read_any_image(*href);
   for (const auto* img : {&a, &ref}) {
     if (img->ok()) continue;
     std::fprintf(stderr, "raylane: %s\n", img->error().c_str());
-    return kExitUsage;
-  }
-  if (a->width != ref->width || a->height != ref->height) {
-    std::fprintf(stderr, "raylane: %s is %ux%u and %s is %ux%u: images of different sizes\n",
-                 a_path.c_str(), a->width, a->height, ref_path.c_str(), ref->width, ref->height);
     return kExitUsage;
   }
   auto d = compare(*a, *ref);

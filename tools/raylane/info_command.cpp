@@ -6,7 +6,9 @@
 #include "commands.h"
 #include "film_info.h"
 #include "raylane/bvh/bvh.h"
+#include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
+#include "raylane/image/input_image.h"
 #include "raylane/prims/table_util.h"
 #include "raylane/scene/mesh_import.h"
 #include "raylane/simd/isa.h"
@@ -54,18 +56,29 @@ void print_csg_blocks(const Scene& s) {
   }
 }
 
-void print_textures(const Scene& s) {
-  if (s.textures.empty()) return;
-  std::size_t total = 0;
-  std::printf("textures: %zu\n", s.textures.size());
-  for (std::size_t i = 0; i < s.textures.size(); ++i) {
-    const Texture& t = s.textures[i];
-    std::size_t bytes = std::size_t(t.image.width) * t.image.height * 3 * sizeof(float);
-    total += bytes;
-    std::printf("  %2zu %u x %u, %zu bytes: %s\n", i, t.image.width, t.image.height, bytes,
-                quote_path(t.file).c_str());
+// The environment and every texture: size, what render keeps of it and the most its reading
+// holds, and why render would refuse it (a mesh file's texture: drop it). Returns how many
+// `texture` and `environment` lines render would refuse.
+int print_images(const SceneImageMemory& mem, const SceneImages& options) {
+  if (mem.images.empty()) return 0;
+  std::printf("images: %zu, %s of image memory to read them all; %s %s\n", mem.images.size(),
+              bytes_text(mem.wanted).c_str(), bytes_text(options.memory).c_str(),
+              options.chosen ? "given (--image-memory)" : "by default (half the memory available)");
+  int refused = 0;
+  for (const SceneImage& img : mem.images) {
+    const bool of_mesh = img.kind == SceneImage::kMeshTexture;
+    std::printf("  %-12s %u x %u, keeps %s, reading peaks at %s: %s\n",
+                img.kind == SceneImage::kEnvironment ? "environment"
+                : of_mesh                            ? "mesh texture"
+                                                     : "texture",
+                img.width, img.height, bytes_text(img.kept).c_str(), bytes_text(img.peak).c_str(),
+                quote_path(img.file).c_str());
+    if (img.refused.empty()) continue;
+    if (!of_mesh) ++refused;
+    std::printf("    warning: render %s it: %s\n", of_mesh ? "drops" : "refuses",
+                img.refused.c_str());
   }
-  std::printf("  total %zu bytes\n", total);
+  return refused;
 }
 
 void print_materials(const Scene& s) {
@@ -89,10 +102,11 @@ void print_materials(const Scene& s) {
 
 const std::vector<OptionSpec> kInfoOptions = {
     {"lenient", 0, "", false, "skip bad scene lines with a warning instead of failing", ""},
+    {"image-memory", 0, "MIB", false, kImageMemoryHelp, kImageMemoryDefault},
     {"set", 0, "LINE", true, kSetOptionHelp, ""},
 };
 const CommandHelp kInfoHelp{
-    "raylane info [SCENE | MESH | FILM] [--lenient] [--set LINE]...",
+    "raylane info [SCENE | MESH | FILM] [--lenient] [--set LINE]... [--image-memory MIB]",
     "Prints what raylane modelled from SCENE (default: the built-in course test scene): the\n"
     "screen and camera, the scene's bounds and each mesh's triangles and bounds, rows and bytes\n"
     "of each primitive table, materials, lights, the BVH (nodes, depth, SAH cost, bytes, build\n"
@@ -100,8 +114,10 @@ const CommandHelp kInfoHelp{
     "prints the mesh's triangles, the zero-area ones dropped, its bounds and the files read.\n"
     "Given a film (--checkpoint), its size, spp, seed, integrator, sampler and AOVs.",
     &kInfoOptions,
-    "Textures and the environment are read to their headers only: their sizes and the bytes\n"
-    "they take when rendered, with no pixel decoded."};
+    "Textures and the environment are read to their headers only: their sizes, the bytes\n"
+    "render keeps of each and the most its reading holds, with no pixel decoded, and a\n"
+    "warning for each image render refuses at this --image-memory; info then exits with\n"
+    "status 2, naming the --image-memory that reads them all."};
 
 }  // namespace
 
@@ -158,8 +174,12 @@ int info_command(const std::vector<std::string>& args) {
   std::vector<std::string> overrides;
   if (parsed->has("set")) overrides = parsed->values.at("set");
   // Headers only: info says what a render would model without decoding a pixel.
-  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides,
-                                   {kDefaultImageMemory, true});
+  SceneImages images;
+  images.headers_only = true;
+  if (auto v = parsed->last("image-memory"))
+    if (Status st = read_image_memory_option(*v, images.memory, images.chosen); !st)
+      return usage_error("info", st.error());
+  auto loaded = load_scene_for_cli(path, parsed->has("lenient"), false, overrides, images);
   if (!loaded) return kExitUsage;
   Scene& s = loaded->scene;
   std::printf("scene: %s\n", path ? path->c_str() : kBuiltinSceneName);
@@ -174,7 +194,7 @@ int info_command(const std::vector<std::string>& args) {
   print_tables(s);
   print_csg_blocks(s);
   print_materials(s);
-  print_textures(s);
+  int refused = print_images(loaded->images, images);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());
   Bvh bvh = build_bvh_and_reorder(s, render_bvh_config(s));
   const BvhStats& b = bvh.stats;
@@ -196,6 +216,13 @@ int info_command(const std::vector<std::string>& args) {
   for (Isa isa : supported_isas())
     std::printf(" %s", std::string(isa_name(isa)).c_str());
   std::printf("\n");
+  if (refused > 0 && !parsed->has("lenient")) {
+    std::fprintf(
+        stderr, "raylane: render refuses %s for image memory: --image-memory %llu reads %s\n",
+        counted(refused, "image").c_str(),
+        (unsigned long long)image_memory_mib(loaded->images.wanted), refused == 1 ? "it" : "them");
+    return kExitUsage;
+  }
   return kExitOk;
 }
 

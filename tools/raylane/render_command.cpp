@@ -117,8 +117,8 @@ int render_command(const std::vector<std::string>& args) {
   if (!r.quiet)
     for (const std::string& w : r.warnings)
       std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
-  auto parsed =
-      load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides, {r.image_memory, false});
+  auto parsed = load_scene_for_cli(r.scene_path, r.lenient, r.quiet, r.overrides,
+                                   {r.image_memory, false, r.image_memory_chosen});
   if (int bad = cluster.first_failure(parsed.has_value()); bad >= 0) {
     if (bad > 0) std::fprintf(stderr, "raylane: rank %d cannot load the scene\n", bad);
     return kExitUsage;

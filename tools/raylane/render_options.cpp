@@ -236,8 +236,10 @@ const std::vector<RenderOption>& render_options() {
          r.lenient = true;
          return ok_status();
        }},
-      {{"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
-       [](R& r, V v) { return read_image_memory_option(v, r.image_memory); }},
+      {{"image-memory", 0, "MIB", false, kImageMemoryHelp, kImageMemoryDefault},
+       [](R& r, V v) {
+         return read_image_memory_option(v, r.image_memory, r.image_memory_chosen);
+       }},
       {{"set", 0, "LINE", true, kSetOptionHelp, ""},
        [](R& r, V v) {
          r.overrides.push_back(v);

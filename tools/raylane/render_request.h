@@ -10,6 +10,7 @@
 #include "checkpoint.h"
 #include "cluster.h"
 #include "raylane/core/enum_names.h"
+#include "raylane/core/memory.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
 #include "raylane/image/write_image.h"
@@ -40,7 +41,8 @@ struct RenderRequest {
   bool also_png = false, lenient = false, quiet = false;
   bool no_checkpoint = false;          // --no-checkpoint: a --resume film is not saved again
   std::vector<std::string> overrides;  // --set lines
-  uint64_t image_memory = kDefaultImageMemory;           // --image-memory, in bytes
+  uint64_t image_memory = default_image_memory();        // --image-memory, in bytes
+  bool image_memory_chosen = false;                      // --image-memory given
   std::vector<std::pair<std::string, Aov>> aov_outputs;  // --aov: sibling PFM files
   bool exr_half = false;
   bool spp_given = false;

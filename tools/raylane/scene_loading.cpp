@@ -16,10 +16,11 @@ int usage_error(const std::string& command, const std::string& message) {
   return kExitUsage;
 }
 
-Status read_image_memory_option(const std::string& value, uint64_t& bytes) {
+Status read_image_memory_option(const std::string& value, uint64_t& bytes, bool& chosen) {
   long mib = 0;
   if (Status s = read_int_option("image-memory", value, 1, long(1) << 30, mib); !s) return s;
   bytes = uint64_t(mib) << 20;
+  chosen = true;
   return ok_status();
 }
 
@@ -34,6 +35,7 @@ std::optional<ParsedScene> load_scene_for_cli(const std::optional<std::string>& 
   }
   ParseOptions opts;
   opts.image_memory = images.memory;
+  opts.image_memory_chosen = images.chosen;
   opts.image_headers_only = images.headers_only;
   opts.lenient = lenient;
   opts.overrides = overrides;

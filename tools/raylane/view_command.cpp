@@ -21,7 +21,7 @@ const std::vector<OptionSpec>& view_specs() {
       {"spp-limit", 0, "N", false,
        "path: stop adding passes when the film holds N samples per pixel", "4096"},
       {"threads", 0, "N", false, "worker threads, 0 = all cores", "0"},
-      {"image-memory", 0, "MIB", false, kImageMemoryHelp, "192"},
+      {"image-memory", 0, "MIB", false, kImageMemoryHelp, kImageMemoryDefault},
       {"pfm", 0, "", false,
        "S also writes view-NNNN.pfm (32-bit float: what raylane diff compares exactly)", ""},
       {"region", 0, "X0,Y0,X1,Y1", false,
@@ -63,7 +63,8 @@ Result<ViewRequest> read_view_request(const std::vector<std::string>& args) {
     if (Status s = read_int_option("spp-limit", *v, 1, 1 << 24, r.spp_limit); !s)
       return Error{s.error()};
   if (auto v = parsed->last("image-memory"))
-    if (Status s = read_image_memory_option(*v, r.image_memory); !s) return Error{s.error()};
+    if (Status s = read_image_memory_option(*v, r.image_memory, r.image_memory_chosen); !s)
+      return Error{s.error()};
   if (auto v = parsed->last("region"))
     if (Status s = read_region_option(*v, r.region); !s) return Error{s.error()};
   if (auto v = parsed->last("threads"))
@@ -91,8 +92,9 @@ int view_command(const std::vector<std::string>& args) {
                  "(without one, try xvfb-run raylane view, or raylane render)\n");
     return kExitUsage;
   }
-  auto parsed = load_scene_for_cli(request->scene_path, request->lenient, /*quiet=*/false,
-                                   request->overrides, {request->image_memory, false});
+  auto parsed =
+      load_scene_for_cli(request->scene_path, request->lenient, /*quiet=*/false, request->overrides,
+                         {request->image_memory, false, request->image_memory_chosen});
   if (!parsed) return kExitUsage;
   if (Status s = region_fits(request->region, parsed->scene); !s)
     return usage_error("view", s.error());

@@ -12,6 +12,7 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/limits.h"
+#include "raylane/core/memory.h"
 #include "raylane/render/film.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
@@ -27,7 +28,8 @@ struct ViewRequest {
   int threads = 0;        // 0: all cores
   bool save_pfm = false;  // saves also write view-NNNN.pfm (32-bit float: exact comparisons)
   std::optional<PixelRegion> region;  // --region: rendered alone (black around it), and saved
-  uint64_t image_memory = kDefaultImageMemory;  // --image-memory, in bytes
+  uint64_t image_memory = default_image_memory();  // --image-memory, in bytes
+  bool image_memory_chosen = false;                // --image-memory given
 };
 
 // The largest window: a larger screen is shown scaled down to fit, keeping its shape (the

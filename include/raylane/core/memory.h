@@ -20,6 +20,19 @@ struct MemoryRoom {
 };
 MemoryRoom memory_room();
 
+// The memory this process can have now: the machine's available memory (MemAvailable of
+// /proc/meminfo: free RAM and the caches the kernel can drop; sysinfo's free RAM where it cannot
+// be read) and free swap, within what `ulimit -v` and `ulimit -d` leave.
+MemoryRoom memory_available();
+
+// The image memory a command has when --image-memory is not given (docs/scene-language.md,
+// "Image memory"): half of memory_available() when the command first asks, leaving the other
+// half to the film, the tables and the BVH; never below kDefaultImageMemory (core/limits.h),
+// which a machine that cannot have it refuses through check_memory anyway.
+uint64_t default_image_memory();
+// The same rule for `available` bytes.
+uint64_t default_image_memory_of(uint64_t available);
+
 // An error unless `bytes` more fit in memory_room(): "WHAT needs 6.0 GiB; this process can have
 // 1.2 GiB more (ulimit -v)".
 Status check_memory(uint64_t bytes, std::string_view what);

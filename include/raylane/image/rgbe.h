@@ -12,6 +12,7 @@
 
 #include "raylane/core/error.h"
 #include "raylane/image/image.h"
+#include "raylane/image/texels.h"
 
 namespace raylane {
 
@@ -30,6 +31,9 @@ struct RgbeFile {
 
 // Reads a whole file. Hostile input gives an error, never a crash or a huge allocation.
 Result<RgbeFile> decode_rgbe(std::string_view bytes);
+// The same pixels as their RGBE bytes (image/texels.h, TexelFormat::kRgbe): 4 bytes a pixel
+// where the float image takes 12, and decoding to exactly the floats decode_rgbe returns.
+Result<TexelImage> decode_rgbe_texels(std::string_view bytes);
 
 // The size the header announces (checked as decode_rgbe checks it), without a pixel decoded:
 // `bytes` may be the file's beginning only.

@@ -12,12 +12,15 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "raylane/core/rotation.h"
 #include "raylane/core/vec_math.h"
 #include "raylane/core/warps.h"
 #include "raylane/image/image.h"
+#include "raylane/image/texels.h"
 
 namespace raylane {
 
@@ -70,6 +73,10 @@ class PiecewiseConstant2D {
   PiecewiseConstant2D() = default;
   // f: nu·nv weights, row-major (f[iv·nu + iu]), finite and ≥ 0.
   PiecewiseConstant2D(const std::vector<double>& f, uint32_t nu, uint32_t nv);
+  // The same, each row's nu weights written by fill(iv, row) in turn, so that no nu·nv array
+  // of weights is held besides the tables.
+  PiecewiseConstant2D(uint32_t nu, uint32_t nv,
+                      const std::function<void(uint32_t, std::vector<double>&)>& fill);
 
   // u2 picks the row (marginal), u1 the column within it (conditional).
   Sample sample(double u1, double u2) const;
@@ -101,6 +108,10 @@ class EnvironmentMap {
   // buffer does not match its size, becomes a black 1×1 map; a negative or non-finite texel
   // becomes 0; a scale that is not finite and > 0 makes the map black.
   EnvironmentMap(Image image, double scale, const glm::dmat3& rotation);
+  // The scene's texels, shared rather than copied; a null, empty or mis-sized one becomes a
+  // black 1×1 map as above (the image reader has checked the texels' values).
+  EnvironmentMap(std::shared_ptr<const TexelImage> texels, double scale,
+                 const glm::dmat3& rotation);
 
   // s·E(d) for a ray leaving the scene along dir_world (any length > 0): bilinear between
   // texel centres, repeating in u (across φ = 0) and clamped in v (at the poles), as the
@@ -128,11 +139,12 @@ class EnvironmentMap {
   // The mean of s·lum(E) over the sphere, ∫ s·lum(E) dω / 4π.
   double average_luminance() const { return luminance_integral_ / (4 * kPi); }
 
-  uint32_t width() const { return image_.width; }
-  uint32_t height() const { return image_.height; }
+  uint32_t width() const { return texels_->width; }
+  uint32_t height() const { return texels_->height; }
+  const TexelImage& texels() const { return *texels_; }
   double scale() const { return scale_; }
   const glm::dmat3& rotation() const { return rotation_; }
-  // Memory held: the image and the sampling tables.
+  // Memory held: the texels (shared with the scene) and the sampling tables.
   std::size_t bytes() const;
 
  private:
@@ -145,10 +157,10 @@ class EnvironmentMap {
   glm::dvec3 to_image(const glm::dvec3& d_world) const;  // Rᵀ·d: R is orthonormal
   glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
   void build_distribution();
-  // ∫ lum(E) dω over the sphere (unscaled), from the texels' luminances lum (row-major).
-  double luminance_sphere_integral(const std::vector<double>& lum) const;
+  // ∫ lum(E) dω over the sphere (unscaled), from the rows' mean luminances.
+  double luminance_sphere_integral(const std::vector<double>& row_mean) const;
 
-  Image image_;
+  std::shared_ptr<const TexelImage> texels_;
   double scale_;
   glm::dmat3 rotation_{1.0};
   PiecewiseConstant2D distribution_;  // ∝ cell-average luminance × sin θ of the row centre

@@ -12,6 +12,7 @@
 
 #include "raylane/core/error.h"
 #include "raylane/core/limits.h"
+#include "raylane/core/memory.h"
 #include "raylane/scene/mesh_summary.h"
 
 namespace raylane {
@@ -30,14 +31,37 @@ struct ParseOptions {
   // the last camera or screen wins, with a warning. Diagnostics name them "--set:N:COL", N
   // counting the overrides from 1.
   std::vector<std::string> overrides;
-  // What decoding the scene's textures and environment may take in all (core/limits.h).
-  uint64_t image_memory = kDefaultImageMemory;
+  // What decoding the scene's textures and environment may take in all (core/limits.h), and
+  // whether the user chose it (--image-memory), which lifts the decompression-bomb rule.
+  uint64_t image_memory = default_image_memory();
+  bool image_memory_chosen = false;
   // Read only the images' headers (`raylane info`): textures and the environment get their
   // size but no pixels (an Image whose rgb is empty), so such a scene describes, never renders.
   bool image_headers_only = false;
 };
 
 inline constexpr const char* kOverridesName = "--set";
+
+// One image a scene reads (a texture or its environment), as its header describes it, for the
+// image-memory checks and `raylane info`.
+struct SceneImage {
+  // A mesh file's texture: render drops it when refused, and goes on.
+  enum Kind { kTexture, kEnvironment, kMeshTexture };
+  std::string file;
+  Kind kind = kTexture;
+  uint32_t width = 0, height = 0;
+  uint64_t kept = 0;    // its texels (and the environment's sampling tables) once read
+  uint64_t peak = 0;    // the most its reading holds at once, its texels included
+  std::string refused;  // why `render` refuses it; empty when it fits
+};
+
+struct SceneImageMemory {
+  std::vector<SceneImage> images;
+  // The image memory that reads every image so far: the largest of each image's peak above
+  // the images kept before it. The figure a refusal's message gives.
+  uint64_t wanted = 0;
+  FileLoc first_refused;  // the first `texture` or `environment` line refused (line 0: none)
+};
 
 struct ParseState {
   ParseOptions options;
@@ -51,6 +75,7 @@ struct ParseState {
   FileLoc microfacet_at;                        // and where that line is
   std::vector<std::pair<std::string, uint32_t>> texture_files;  // file found → Scene::textures row
   uint64_t image_memory_used = 0;  // by the textures and the environment read so far
+  SceneImageMemory images;         // each image's needs, and what they all need
   // Where each command that may be given once was first seen; line 0: not yet.
   FileLoc screen_at, camera_at, ambient_at, lens_at, environment_at;
   // The last camera line that was rejected (line 0: none): its error already says what is

@@ -17,6 +17,7 @@ struct ParsedScene {
   // (outputs must be none of them).
   std::vector<std::string> input_files;
   std::vector<MeshSummary> meshes;  // one per `mesh` line, in order
+  SceneImageMemory images;          // the textures and the environment, as read or refused
   bool ok() const { return diagnostics.error_count() == 0; }
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -30,12 +31,13 @@ struct LensSpec {
   double focus = 1;
 };
 
-// An environment light (`environment file s <orientation>`): the image as read (linear RGB,
-// top row first), its scale s > 0 and the orientation R that turns the image's directions
-// into the world (docs/scene-language.md, "Equirectangular environment mapping").
+// An environment light (`environment file s <orientation>`): the image as read (texels, top row
+// first; shared with the light that samples it, never copied), its scale s > 0 and the
+// orientation R that turns the image's directions into the world (docs/scene-language.md,
+// "Equirectangular environment mapping").
 struct EnvironmentSpec {
   std::string file;
-  Image image;
+  std::shared_ptr<const TexelImage> texels;  // never null; no texels when only the header was read
   double scale = 1;
   glm::dmat3 rotation{1.0};
 };
