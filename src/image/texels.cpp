@@ -33,15 +33,19 @@ uint32_t texel_bytes(TexelFormat f) {
   return 12;
 }
 
-const std::array<float, 256>& srgb8_table() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i)
-      t[i] = float(srgb_to_linear(i / 255.0));
-    return t;
-  }();
-  return table;
-}
+const std::array<float, 256> kSrgb8ToLinear = [] {
+  std::array<float, 256> t{};
+  for (int i = 0; i < 256; ++i)
+    t[i] = float(srgb_to_linear(i / 255.0));
+  return t;
+}();
+
+const std::array<float, 256> kRgbeScale = [] {
+  std::array<float, 256> t{};
+  for (int e = 1; e < 256; ++e)
+    t[e] = std::ldexp(1.0f, e - 136);
+  return t;
+}();
 
 // A half holds f exactly when f is 0, a subnormal half (m · 2^-24, m < 1024) or a normal half
 // (exponent −14…15, the float's mantissa zero below its top 10 bits). IEEE 754-2008 §3.6.

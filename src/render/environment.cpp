@@ -22,9 +22,6 @@ uint32_t wrap(int64_t i, uint32_t n) {
   int64_t m = i % int64_t(n);
   return uint32_t(m < 0 ? m + n : m);
 }
-uint32_t clamp_index(int64_t i, uint32_t n) {
-  return uint32_t(std::clamp<int64_t>(i, 0, int64_t(n) - 1));
-}
 
 // ∫ m(v)·2π² sin(πv) dv over [va, vb] for m linear from ma at va to mb at vb, in closed form:
 // ∫ sin(πv) dv = −cos(πv)/π and ∫ v sin(πv) dv = (sin(πv) − πv cos(πv))/π².
@@ -264,32 +261,36 @@ std::size_t EnvironmentMap::bytes() const {
 // constant 2π² (pbrt-v4 likewise takes the Jacobian at the cell centre).
 void EnvironmentMap::build_distribution() {
   const uint32_t w = texels_->width, h = texels_->height;
-  // Row by row, three rows of the horizontally filtered luminance at a time: the tables are the
-  // only arrays of the image's size held besides the texels.
+  // Row by row: each row's luminance is decoded once, into its mean and its horizontally
+  // filtered row, of which three are held at a time (rows y − 1, y, y + 1, clamped); the
+  // tables are the only arrays of the image's size besides the texels.
+  std::vector<double> row_mean(h, 0.0), lum(w);
   auto across_row = [&](uint32_t y, std::vector<double>& out) {
-    std::vector<double> lum(w);
     for (uint32_t x = 0; x < w; ++x)
       lum[x] = rec709_luminance(texel(x, y));
+    for (uint32_t x = 0; x < w; ++x)
+      row_mean[y] += lum[x];
+    row_mean[y] /= w;
     for (uint32_t x = 0; x < w; ++x)
       out[x] =
           kSide * lum[wrap(int64_t(x) - 1, w)] + kCentre * lum[x] + kSide * lum[wrap(x + 1, w)];
   };
-  std::vector<double> row_mean(h, 0.0);
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x)
-      row_mean[y] += rec709_luminance(texel(x, y));
-    row_mean[y] /= w;
-  }
   std::vector<double> up(w), mid(w), down(w);
+  across_row(0, mid);
+  up = mid;  // row −1 clamps to row 0
   distribution_ = PiecewiseConstant2D(w, h, [&](uint32_t y, std::vector<double>& weight) {
-    across_row(clamp_index(int64_t(y) - 1, h), up);
-    across_row(y, mid);
-    across_row(clamp_index(int64_t(y) + 1, h), down);
+    if (y + 1 < h) {
+      across_row(y + 1, down);
+    } else {
+      down = mid;  // row h clamps to row h − 1
+    }
     // The scale only multiplies the density's weights (it cancels), so it enters as "black
     // or not": multiplying by it could overflow for a huge s.
     double sin_theta = scale_ > 0 ? std::sin(kPi * (y + 0.5) / h) : 0.0;
     for (uint32_t x = 0; x < w; ++x)
       weight[x] = (kSide * up[x] + kCentre * mid[x] + kSide * down[x]) * sin_theta;
+    std::swap(up, mid);
+    std::swap(mid, down);
   });
   luminance_integral_ = scale_ * luminance_sphere_integral(row_mean);
 }

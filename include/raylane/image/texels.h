@@ -28,9 +28,15 @@ const char* texel_format_name(TexelFormat f);
 // The bytes one texel takes in the format.
 uint32_t texel_bytes(TexelFormat f);
 
-// The sRGB decoding table: entry i is the linear value of the encoded byte i (IEC 61966-2-1),
-// the float srgb_to_linear(i / 255.0) rounds to.
-const std::array<float, 256>& srgb8_table();
+// The decoding tables, filled before main (texels.cpp), so that a lookup reads them without a
+// guard: the sRGB table's entry i is the linear value of the encoded byte i (IEC 61966-2-1), the
+// float srgb_to_linear(i / 255.0) rounds to; the RGBE table's entry E is 2^(E − 136) as Radiance
+// scales a mantissa byte (image/rgbe.h, rgbe_to_float), and 0 for E = 0.
+extern const std::array<float, 256> kSrgb8ToLinear;
+extern const std::array<float, 256> kRgbeScale;
+inline const std::array<float, 256>& srgb8_table() {
+  return kSrgb8ToLinear;
+}
 
 // IEEE 754 binary16 → binary32, exactly (every half is a float).
 inline float half_to_float(uint16_t h) {
@@ -84,16 +90,7 @@ struct TexelImage {
 
   // Radiance's decoding (image/rgbe.h, rgbe_to_float): mantissa · 2^(E − 136), 0 when E = 0.
   static glm::vec3 rgbe_texel(uint32_t p) {
-    uint32_t e = p >> 24;
-    if (e == 0) return {0, 0, 0};
-    // 2^(E − 136) as a float: biased exponent E − 9, a normal float for E ≥ 10.
-    uint32_t bits = (e - 9) << 23;
-    float f;
-    if (e >= 10) {
-      std::memcpy(&f, &bits, sizeof f);
-    } else {
-      f = std::ldexp(1.0f, int(e) - 136);
-    }
+    float f = kRgbeScale[p >> 24];
     return {float(p & 0xff) * f, float((p >> 8) & 0xff) * f, float((p >> 16) & 0xff) * f};
   }
 };
