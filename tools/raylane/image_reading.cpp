@@ -12,10 +12,15 @@ namespace raylane::cli {
 
 namespace {
 
-bool is_own_format(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool is_own_format(const std::string& path) {
+  std::string ext = lower_extension(path);
   return ext == ".hdr" || ext == ".pfm" || ext == ".exr";
 }
 
@@ -24,7 +29,13 @@ bool is_own_format(const std::string& path) {
 Result<ImageHeader> read_any_header(const std::string& path) {
   // The header alone: a file is read whole only when its first bytes do not hold the header.
   auto info = read_input_image_info(path, UINT64_MAX);
-  if (!info) return Error{info.error()};
+  if (!info) {
+    // An EXR's errors read as its reader's always have: "cannot read 'x.exr': ...".
+    std::string why = info.error(), prefix = path + ": ";
+    if (why.rfind(prefix, 0) == 0 && lower_extension(path) == ".exr")
+      return Error{cat("cannot read ", quote_path(path), ": ", why.substr(prefix.size()))};
+    return Error{why};
+  }
   auto size = regular_file_size(path);
   if (!size) return Error{cat(path, ": ", size.error())};
   ImageHeader h{path, info->width, info->height, 0, *size};
