@@ -112,6 +112,32 @@ TEST(Texels, AHalfExrIsKeptInHalvesAndAFloatOneInFloats) {
 }
 
 // The asset of the report: a 4096² 8-bit texture, kept in 64 MiB (it took 192 as floats).
+// A truncated uncompressed TGA (2050x2, 14 bytes of pixels): stb ignores the short read of a
+// row, so its rows were whatever the heap held, and the float reader and the texels disagreed
+// (found by the image fuzzer). Rows never read are black, and every decode is the same.
+TEST(Texels, ATruncatedTgaDecodesTheSameEveryTime) {
+  const unsigned char file[] = {0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+                                0x00, 0x00, 0x02, 0x08, 0x02, 0x00, 0x18, 0x28, 0x5a, 0x5a,
+                                0x00, 0xa0, 0x00, 0xc0, 0x50, 0x78, 0x5a, 0x78, 0x50, 0x5a};
+  const std::string_view bytes(reinterpret_cast<const char*>(file), sizeof file);
+  // Dirty the heap with the sizes the decoder allocates, so leftovers would show.
+  for (int i = 0; i < 4; ++i) {
+    std::vector<unsigned char> junk(2050 * 2 * 3, 0xAB);
+    volatile unsigned char sink = junk[std::size_t(i)];
+    (void)sink;
+  }
+  auto image = decode_input_image(bytes, "input.tga", kDefaultImageMemory);
+  ASSERT_TRUE(image.ok()) << image.error();
+  ASSERT_EQ(image->width, 2050u);
+  auto texels = decode_input_texels(bytes, "input.tga", kDefaultImageMemory);
+  ASSERT_TRUE(texels.ok()) << texels.error();
+  EXPECT_EQ(to_float_image(*texels).rgb, image->rgb);
+  std::size_t black = 0;
+  for (std::size_t i = 30; i < image->rgb.size(); ++i)
+    black += image->rgb[i] == 0.0f;
+  EXPECT_EQ(black, image->rgb.size() - 30);  // nothing past the file's bytes but black
+}
+
 TEST(Texels, A4kPngTextureTakesFourBytesATexel) {
   Image src(4096, 4096);
   for (uint32_t y = 0; y < 4096; ++y)
