@@ -276,9 +276,10 @@ void hash_scene(Hasher& h, const Scene& scene) {
   }
   PrimKinds::for_each([&](auto kind) {
     // Moving spheres only when there are some: films from before them still fit.
-    // CSG blocks likewise, and their leaves and programs beside the rows.
+    // CSG and SDF blocks likewise, and their leaves and programs beside the rows.
     using Kind = decltype(kind);
-    if constexpr (std::is_same_v<Kind, MovingSphere> || std::is_same_v<Kind, Csg>)
+    if constexpr (std::is_same_v<Kind, MovingSphere> || std::is_same_v<Kind, Csg> ||
+                  std::is_same_v<Kind, Sdf>)
       if (scene.table<Kind>().size() == 0) return;
     // columns() hands out references for writing too; here they are only read.
     auto& table = const_cast<Scene&>(scene).table<Kind>();

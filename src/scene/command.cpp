@@ -191,10 +191,16 @@ bool environment_command(Scene& s, const Line& line, ParseState& state);
 bool microfacet_command(Scene& s, const Line& line, ParseState& state);
 bool csg_command(Scene& s, const Line& line, ParseState& state);
 bool is_csg_word(std::string_view word);
+bool sdf_command(Scene& s, const Line& line, ParseState& state);
+bool is_sdf_word(std::string_view word);
 
 bool Scene::command(const Line& line, ParseState& state) {
   std::string_view word = line.tokens[0].text;
-  if (state.csg_block || is_csg_word(word)) return csg_command(*this, line, state);
+  // An open block reads its lines; `end` and the operators go to the one open (csg first: an
+  // sdf-only line in a csg block is an error there).
+  if (state.csg_block) return csg_command(*this, line, state);
+  if (state.sdf_block || is_sdf_word(word)) return sdf_command(*this, line, state);
+  if (is_csg_word(word)) return csg_command(*this, line, state);
   if (word == "screen") return screen_command(*this, line, state);
   if (word == "camera") return camera_command(*this, line, state);
   if (word == "ambient") return ambient_command(*this, line, state);

@@ -5,9 +5,8 @@
 #include <array>
 #include <span>
 
+#include "block_lines.h"
 #include "raylane/core/strings.h"
-#include "raylane/scene/parse_state.h"
-#include "raylane/scene/scene.h"
 
 namespace raylane {
 
@@ -31,40 +30,6 @@ std::optional<uint32_t> operator_code(std::string_view w) {
   return std::nullopt;
 }
 
-std::string opened_at(const CsgOpen& b, const Line& line) {
-  return b.at.file == line.loc.file ? cat("line ", b.at.line) : to_string(b.at);
-}
-
-std::string solids(uint32_t n) {
-  return cat(n, n == 1 ? " solid" : " solids");
-}
-
-bool no_parameters(const Line& line, ParseState& state) {
-  if (line.tokens.size() == 1) return true;
-  state.problem(line.at(1),
-                cat(line.tokens[0].text, " takes no parameters, found ", line.tokens.size() - 1));
-  return false;
-}
-
-// The material a leaf takes: the current one, which must not emit (a light's area could not be
-// sampled on a solid whose surface is only known along rays); the default grey one, with a
-// warning, before any material line (as for any shape).
-std::optional<uint32_t> leaf_material(Scene& s, const Line& line, ParseState& state) {
-  if (!state.current_material) {
-    state.diagnostics.warning(line.at(0), cat(line.tokens[0].text,
-                                              " before any material line: using grey diffuse "
-                                              "(Kd 0.5, no specular)"));
-    s.materials.push_back(Material::default_grey());
-    state.current_material = uint32_t(s.materials.size() - 1);
-  }
-  if (s.materials[*state.current_material].is_light) {
-    state.problem(line.at(0), cat("a csg leaf cannot emit: expected a brdf material, found the "
-                                  "light made by the latest light line"));
-    return std::nullopt;
-  }
-  return state.current_material;
-}
-
 template <class Kind>
 bool leaf_line(Scene& s, CsgOpen& b, const Line& line, ParseState& state) {
   auto v = parse_numbers(line, 1, Kind::param_count, true, state);
@@ -80,7 +45,7 @@ bool leaf_line(Scene& s, CsgOpen& b, const Line& line, ParseState& state) {
     state.problem(line.at(1 + std::max(err->param, 0)), err->message);
     return false;
   }
-  auto mat = leaf_material(s, line, state);
+  auto mat = leaf_material(s, line, state, "a csg");
   if (!mat) return false;
   b.draft.add_leaf<Kind>(params, *mat);
   ++b.depth;
@@ -105,7 +70,7 @@ bool operator_line(CsgOpen& b, uint32_t code, const Line& line, ParseState& stat
 void end_line(Scene& s, CsgOpen& b, const Line& line, ParseState& state) {
   bool ok = no_parameters(line, state);
   if (b.depth != 1) {
-    state.problem(line.at(0), cat("end of the csg block opened at ", opened_at(b, line),
+    state.problem(line.at(0), cat("end of the csg block opened at ", opened_at(b.at, line),
                                   ": expected exactly 1 solid on its stack, found ", b.depth));
     ok = false;
   }
@@ -117,7 +82,7 @@ void end_line(Scene& s, CsgOpen& b, const Line& line, ParseState& state) {
   if (!ok || b.bad) {
     if (state.options.lenient)
       state.diagnostics.warning(line.at(0), cat("skipped the csg block opened at ",
-                                                opened_at(b, line), " whole: it has errors"));
+                                                opened_at(b.at, line), " whole: it has errors"));
     return;
   }
   if (!table.append_block(b.draft))
@@ -139,15 +104,22 @@ bool line_in_block(Scene& s, CsgOpen& b, const Line& line, ParseState& state) {
     state.csg_block = std::move(open);
     return ok;
   }
+  if (w.starts_with("smooth") || w == "torus") {
+    state.problem(line.at(0), cat(w,
+                                  " belongs to sdf blocks only: not allowed inside the csg "
+                                  "block opened at ",
+                                  opened_at(b.at, line)));
+    return false;
+  }
   if (w == "csg" || w == "sdf") {
     state.problem(line.at(0), cat("a ", w,
                                   " block cannot be nested: expected end of the csg "
                                   "block opened at ",
-                                  opened_at(b, line), ", found ", w));
+                                  opened_at(b.at, line), ", found ", w));
     return false;
   }
   state.problem(line.at(0), cat(in_quotes(w), " is not allowed inside the csg block opened at ",
-                                opened_at(b, line),
+                                opened_at(b.at, line),
                                 ": expected sphere, box, cylinder, brdf, "
                                 "microfacet, union, intersect, difference or end"));
   return false;
@@ -181,7 +153,7 @@ bool csg_command(Scene& s, const Line& line, ParseState& state) {
     state.csg_block->bad = !ok;
     return ok;
   }
-  state.problem(line.at(0), cat(w, " outside a block: expected a csg line before it"));
+  state.problem(line.at(0), cat(w, " outside a block: expected a csg or sdf line before it"));
   return false;
 }
 

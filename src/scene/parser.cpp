@@ -187,6 +187,7 @@ ParsedScene parse_scene(std::string_view text, const std::string& filename,
     }
   }
   csg_end_of_input(state);
+  sdf_end_of_input(out.scene, state);
   out.diagnostics = std::move(state.diagnostics);
   out.input_files = std::move(state.input_files);
   out.meshes = std::move(state.meshes);

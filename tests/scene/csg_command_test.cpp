@@ -117,9 +117,10 @@ TEST(CsgCommand, EndWithOtherThanOneSolidIsAnError) {
 
 TEST(CsgCommand, EndOrOperatorOutsideABlockIsAnError) {
   auto p = parse(scene("end\ndifference\n"));
-  EXPECT_THAT(errors(p),
-              ElementsAre("t.scn:4:1: end outside a block: expected a csg line before it",
-                          "t.scn:5:1: difference outside a block: expected a csg line before it"));
+  EXPECT_THAT(
+      errors(p),
+      ElementsAre("t.scn:4:1: end outside a block: expected a csg or sdf line before it",
+                  "t.scn:5:1: difference outside a block: expected a csg or sdf line before it"));
 }
 
 TEST(CsgCommand, AFileEndingInsideABlockIsAnErrorAtItsCsgLine) {

@@ -301,6 +301,17 @@ PrimVerdict classify(const CsgTable& c, uint32_t row, const Rayd& ray) {
   return out;
 }
 
+PrimVerdict classify(const SdfTable& s, uint32_t row, const Rayd& ray) {
+  PrimVerdict out;
+  out.t_ref = intersect_ref(s, row, ray);
+  if (out.t_ref < std::numeric_limits<double>::infinity()) {
+    out.cls = RayClass::kBand;
+    out.t = Interval::everything();
+    out.decisive = {0, 1};
+  }
+  return out;
+}
+
 // Box kernel (box.h): per axis t = fl(fl(bound − o)·fl(1/d)), three roundings: γ3|t| (pbrt-v4
 // Bounds3::IntersectP; Ize 2013, "Robust BVH Ray Traversal"). A zero component gives ±inf or
 // NaN exactly as in the reference (0·inf only when o lies in the plane; both skip it). Entry

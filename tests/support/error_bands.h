@@ -54,6 +54,10 @@ PrimVerdict classify(const MovingSphereTable& s, uint32_t row, const Rayd& ray);
 // CSG blocks: a clear miss when every leaf clearly misses the ray's range; anything else is
 // left to the band (tests/prims/csg_packet_test.cpp judges blocks leaf by leaf).
 PrimVerdict classify(const CsgTable& c, uint32_t row, const Rayd& ray);
+// SDF blocks: the lanes march by the double reference (sdf_packet.h), so a reference miss is a
+// clear miss; a hit is left to the band (tests/trace/sdf_packet_test.cpp holds the lanes to the
+// reference's t rounded to float).
+PrimVerdict classify(const SdfTable& s, uint32_t row, const Rayd& ray);
 PrimVerdict classify(const Scene& scene, PrimRef prim, const Rayd& ray);
 
 // The verdict for a closest-hit query on a whole scene. kClearHit: every primitive is a clear

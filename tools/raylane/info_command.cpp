@@ -56,6 +56,32 @@ void print_csg_blocks(const Scene& s) {
   }
 }
 
+// Each sdf block in the order written: its leaves, its postfix program (a smooth operator with
+// its k), its bounds (widened by k).
+void print_sdf_blocks(const Scene& s) {
+  const SdfTable& t = s.table<Sdf>();
+  static constexpr const char* kLeafNames[] = {"sphere", "box", "cylinder", "torus"};
+  for (uint32_t row = 0; row < t.size(); ++row) {
+    const uint32_t b = t.block[row];
+    std::printf("sdf block %u: %u leaves (", b, t.leaf_count[b]);
+    for (uint32_t i = 0; i < t.leaf_count[b]; ++i)
+      std::printf("%s%s", i ? " " : "", kLeafNames[t.leaf_kind[t.leaf_begin[b] + i]]);
+    std::printf("), program");
+    for (uint32_t j = t.program_begin[b]; j < t.program_begin[b] + t.program_count[b]; ++j) {
+      const uint32_t code = t.program[j];
+      if (code < kSdfMaxLeaves)
+        std::printf(" %u", code);
+      else if (sdf_is_smooth(code))
+        std::printf(" %s(k %g)", std::string(sdf_code_name(code)).c_str(), t.program_k[j]);
+      else
+        std::printf(" %s", std::string(sdf_code_name(code)).c_str());
+    }
+    Bounds3f bb = t.bounds(row);
+    std::printf(", bounds (%g %g %g) to (%g %g %g)\n", bb.lo.x, bb.lo.y, bb.lo.z, bb.hi.x, bb.hi.y,
+                bb.hi.z);
+  }
+}
+
 // The environment and every texture: size, what render keeps of it and the most its reading
 // holds, and why render would refuse it (a mesh file's texture: drop it). Returns how many
 // `texture` and `environment` lines render would refuse.
@@ -193,6 +219,7 @@ int info_command(const std::vector<std::string>& args) {
   print_meshes(loaded->meshes);
   print_tables(s);
   print_csg_blocks(s);
+  print_sdf_blocks(s);
   print_materials(s);
   int refused = print_images(loaded->images, images);
   std::printf("lights: %zu emitting primitives\n", s.lights.size());

@@ -28,6 +28,7 @@
 #include "raylane/prims/csg.h"
 #include "raylane/prims/cylinder.h"
 #include "raylane/prims/moving_sphere.h"
+#include "raylane/prims/sdf.h"
 #include "raylane/prims/sphere.h"
 #include "raylane/prims/triangle.h"
 
@@ -55,7 +56,7 @@ struct KindList {
 };
 
 // New kinds go last: a kind's tag is its position, and the tags of the others stay as they were.
-using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle, MovingSphere, Csg>;
+using PrimKinds = KindList<Sphere, Box, Cylinder, Triangle, MovingSphere, Csg, Sdf>;
 using PrimTables = PrimKinds::Tables;
 inline constexpr std::size_t kPrimKindCount = PrimKinds::size;
 static_assert(kPrimKindCount <= (std::size_t(1) << PrimRef::kTagBits),

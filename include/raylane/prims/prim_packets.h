@@ -6,5 +6,6 @@
 #include "raylane/prims/csg_packet.h"
 #include "raylane/prims/cylinder_packet.h"
 #include "raylane/prims/moving_sphere_packet.h"
+#include "raylane/prims/sdf_packet.h"
 #include "raylane/prims/sphere_packet.h"
 #include "raylane/prims/triangle_packet.h"

@@ -20,6 +20,8 @@ namespace raylane {
 struct Line;
 struct Token;
 struct CsgOpen;  // a csg block being read (csg_command.cpp)
+struct SdfOpen;  // an sdf block being read (sdf_command.cpp)
+struct Scene;
 
 // Files that exist only in memory, by name (the built-in scene's meshes).
 using MemoryFiles = std::vector<std::pair<std::string, std::string>>;
@@ -83,6 +85,8 @@ struct ParseState {
   FileLoc camera_rejected_at;
   // The csg block whose `end` has not been read yet; null outside a block.
   std::shared_ptr<CsgOpen> csg_block;
+  // The sdf block whose `end` has not been read yet; null outside a block.
+  std::shared_ptr<SdfOpen> sdf_block;
 
   // Reports a problem with the line: an error, or a warning under --lenient.
   void problem(const FileLoc& loc, std::string message);
@@ -90,6 +94,8 @@ struct ParseState {
 
 // At the end of the input: a csg block still open is a problem at its `csg` line.
 void csg_end_of_input(ParseState& state);
+// Likewise for an sdf block, whose leaves written so far are dropped from the scene.
+void sdf_end_of_input(Scene& s, ParseState& state);
 
 // For a command that may be given once: a repeat warns "the last one wins" and names the
 // first; `seen` becomes this line.
