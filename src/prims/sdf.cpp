@@ -219,7 +219,10 @@ Sdf::LeafHit Sdf::hit_ref(const SdfTable& s, uint32_t row, const Rayd& ray) {
 // Quilez's tetrahedron ("normals for an SDF", iquilezles.org): four samples at p + h·k_i, k_i
 // four alternate corners of the cube (±1, ±1, ±1); weighted by k_i they sum to 4h·∇f + O(h³).
 // h is the hit tolerance there: far above the distance's rounding, and small against the
-// features the march resolves at all.
+// features the march resolves at all. The march stops up to the tolerance off the surface, far
+// more than a secondary ray's offset (core/ray_offset.h), so the point is moved onto the
+// surface by Newton steps along the normal, d/|∇f| each (a smooth minimum's gradient is
+// shorter than 1 in the blend); a few leave it within the distance's rounding.
 Surface surface_ref(const SdfTable& s, uint32_t leaf, const Rayd& ray, double t) {
   const uint32_t blk = s.leaf_block[leaf];
   const glm::dvec3 p = ray.at(t);
@@ -231,8 +234,12 @@ Surface surface_ref(const SdfTable& s, uint32_t leaf, const Rayd& ray, double t)
     g += ki * sdf_distance_ref(s, blk, p + ki * h);
   double gl = length(g);
   glm::dvec3 n = gl > 0 && std::isfinite(gl) ? g / gl : -normalize(ray.d);
-  double d = sdf_distance_ref(s, blk, p);
-  glm::dvec3 on = std::isfinite(d) ? p - n * d : p;
+  const double slope = gl / (4 * h);  // |∇f|: the samples sum to 4h·∇f
+  glm::dvec3 on = p;
+  for (int i = 0; i < 4 && gl > 0 && std::isfinite(gl); ++i) {
+    double d = sdf_distance_ref(s, blk, on);
+    if (std::isfinite(d)) on -= n * (d / slope);
+  }
   return {on, n, n};
 }
 
