@@ -75,6 +75,24 @@ void add_csg_blocks(Scene& scene) {
   }
 }
 
+// SDF blocks too (tori, spheres melted by a smooth union), in front of the CSG blocks: their
+// hits name the leaf nearest the point, their surfaces come from the distance's gradient.
+void add_sdf_blocks(Scene& scene) {
+  SdfTable& t = scene.table<Sdf>();
+  for (int i = 0; i < 3; ++i) {
+    double x = 2.5 + 3 * i, y = 5.5, z = 3.5;
+    t.begin_block();
+    if (i % 2 == 0) {
+      t.add_torus(std::array<double, 8>{x, y, z, 0, 1, 0.3, 0.5, 0.2}, 0);
+    } else {
+      t.add_leaf<Sphere>(std::array<double, 4>{x - 0.3, y, z, 0.4}, 0);
+      t.add_leaf<Sphere>(std::array<double, 4>{x + 0.3, y, z, 0.4}, 0);
+      t.add_code(kSdfSmoothUnion, 0.3f);
+    }
+    t.end_block();
+  }
+}
+
 using testing::same_bits;  // support/same_bits.h
 
 // At every instruction set the CPU has: the batch computes spheres', boxes' and cylinders'
@@ -110,6 +128,7 @@ TEST(Tracer, BatchSurfacesAndFacingAreTheOneByOneAnswers) {
   ASSERT_TRUE(parsed.ok());
   add_moving_spheres(parsed.scene);
   add_csg_blocks(parsed.scene);
+  add_sdf_blocks(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(isa_name(isa));
@@ -214,6 +233,7 @@ void with_every_tracer(
   ASSERT_TRUE(parsed.ok());
   add_moving_spheres(parsed.scene);
   add_csg_blocks(parsed.scene);
+  add_sdf_blocks(parsed.scene);
   change(parsed.scene);
   Bvh bvh = build_bvh_and_reorder(parsed.scene);
   const Scene& scene = parsed.scene;
