@@ -1,4 +1,4 @@
-// What `csg` and `sdf` blocks (docs/scene-language.md, "The last final projects") read alike:
+// What `csg` and `sdf` blocks (docs/scene-language.md, "CSG blocks", "SDF blocks") read alike:
 // where a block was opened, counts of solids, operator and `end` lines without parameters,
 // and the material a leaf takes.
 #pragma once

@@ -1,4 +1,4 @@
-// `sdf` … `end` blocks (docs/scene-language.md, "The last final projects"): leaves and
+// `sdf` … `end` blocks (docs/scene-language.md, "SDF blocks"): leaves and
 // operators are written into the SDF table's columns beside its rows as they are read, and
 // `end` appends the block's row when the block is sound. Every problem is reported at its
 // line; a block with one is dropped whole (under --lenient: with a warning at its `end`).

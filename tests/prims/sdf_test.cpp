@@ -1,5 +1,5 @@
-// The SDF reference marcher (sdf.h, sdf.cpp) on the hard cases of docs/scene-language.md, "The
-// last final projects": against analytic answers, an independent root finder, the CSG block of
+// The SDF reference marcher (sdf.h, sdf.cpp) on the hard cases of docs/scene-language.md, "SDF
+// blocks": against analytic answers, an independent root finder, the CSG block of
 // the same lines, grazing rays, rays from inside, far and tiny shapes, invalid rays.
 #include <gtest/gtest.h>
 

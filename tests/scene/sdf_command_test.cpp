@@ -1,4 +1,4 @@
-// `sdf` … `end` blocks (docs/scene-language.md, "The last final projects"): the rows, leaves and
+// `sdf` … `end` blocks (docs/scene-language.md, "SDF blocks"): the rows, leaves and
 // programs they make, and every error the section lists.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Signed-distance blocks: `sdf` … `end` (docs/scene-language.md, "The last final projects").
+// Signed-distance blocks: `sdf` … `end` (docs/scene-language.md, "SDF blocks").
 // The table, the kind's traits and its double reference marcher (sdf.cpp); the program and the
 // leaves' distances in sdf_program.h, the packet route in sdf_packet.h.
 //

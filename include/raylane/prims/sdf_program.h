@@ -1,4 +1,4 @@
-// Signed-distance blocks' program (docs/scene-language.md, "The last final projects"): the
+// Signed-distance blocks' program (docs/scene-language.md, "SDF blocks"): the
 // codes, the exact distances of the leaves and the operators that combine them, written once
 // over the number type (double for the reference marcher, float for lanes).
 //
