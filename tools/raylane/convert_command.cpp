@@ -60,7 +60,10 @@ int convert_command(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (Status s = check_images_memory({*header}, 0, memory); !s) {
-    std::fprintf(stderr, "raylane: %s: %s\n", in.c_str(), s.error().c_str());
+    // The decoding-ratio rule's message names the file already.
+    const bool named = s.error().rfind(in + ":", 0) == 0;
+    std::fprintf(stderr, "raylane: %s%s%s\n", named ? "" : in.c_str(), named ? "" : ": ",
+                 s.error().c_str());
     return kExitUsage;
   }
   auto image = read_any_image(*header);
