@@ -21,17 +21,21 @@ bool index_matched_transmission(const Material& m) {
 
 }  // namespace
 
+LobeChances lobe_chances(const glm::vec3& kd, const glm::vec3& ks, const glm::vec3& kt) {
+  double d = length(glm::dvec3(kd)), r = length(glm::dvec3(ks)), t = length(glm::dvec3(kt));
+  double sum = d + r + t;
+  if (!(sum > 0)) return {};
+  return {float(d / sum), float(r / sum), float(t / sum)};
+}
+
 LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
   // Row 0 must exist: the batch's padding rows gather from it.
   std::vector<Material> rows = materials.empty() ? std::vector<Material>{Material{}} : materials;
   for (const Material& m : rows) {
     for (int k = 0; k < 3; ++k)
       kd[k].push_back(m.kd[k]), ks[k].push_back(m.ks[k]);
-    double d = length(glm::dvec3(m.kd)), r = length(glm::dvec3(m.ks)), t = length(glm::dvec3(m.kt));
-    double sum = d + r + t;
-    pd.push_back(sum > 0 ? float(d / sum) : 0.0f);
-    pr.push_back(sum > 0 ? float(r / sum) : 0.0f);
-    pt.push_back(sum > 0 ? float(t / sum) : 0.0f);
+    const LobeChances c = lobe_chances(m.kd, m.ks, m.kt);
+    pd.push_back(c.pd), pr.push_back(c.pr), pt.push_back(c.pt);
     has_lobes.push_back(pd.back() + pr.back() + pt.back() > 0 ? 1 : 0);
     double a = m.alpha;
     alpha.push_back(m.alpha);
@@ -42,9 +46,11 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     microfacet.push_back(float(int(m.microfacet)));
     alpha_g2.push_back(float(2 / (a + 2)));
     if (m.microfacet != Microfacet::kPhong) all_phong = false;
-    // Textured Kd varies per hit and the lane kernels read Kd per material, so the double Bsdf
-    // shades it (docs/design.md, "Shading in lanes").
-    in_lanes.push_back(index_matched_transmission(m) || m.texture >= 0 ? 0 : 1);
+    // A Dirac lobe stays with the double Bsdf (docs/design.md, "Shading in lanes"); a textured
+    // Kd is shaded in lanes from its rows' own Kd.
+    in_lanes.push_back(index_matched_transmission(m) ? 0 : 1);
+    textured.push_back(m.texture >= 0 ? 1 : 0);
+    any_textured = any_textured || (m.texture >= 0 && !m.is_light && in_lanes.back());
     route.push_back(m.is_light        ? Route::kEmitter
                     : in_lanes.back() ? Route::kLanes
                                       : Route::kDouble);
@@ -59,9 +65,9 @@ void ShadeBatch::resize(std::size_t rows) {
   // next tile's filled 40 columns again.
   if (material.size() < padded) {
     material.resize(padded, 0);
-    for (Column* c : {&u_lobe, &u1, &u2, &pdf, &light_pdf})
+    for (Column* c : {&u_lobe, &u1, &u2, &pdf, &light_pdf, &pd_at, &pr_at, &pt_at})
       c->resize(padded, 0.5f);
-    for (auto* v : {&n, &wo, &light_wi, &wi, &value, &light_f})
+    for (auto* v : {&n, &wo, &light_wi, &wi, &value, &light_f, &kd_at})
       for (int k = 0; k < 3; ++k)
         (*v)[k].resize(padded, k == 2 ? 1.0f : 0.0f);
   }
@@ -70,9 +76,10 @@ void ShadeBatch::resize(std::size_t rows) {
   for (std::size_t i = rows; i < padded; ++i) {
     material[i] = 0;
     u_lobe[i] = u1[i] = u2[i] = 0.5f;
+    pd_at[i] = pr_at[i] = pt_at[i] = 0.0f;  // black: its lanes are not live
     for (int k = 0; k < 3; ++k) {
       n[k][i] = wo[k][i] = k == 2 ? 1.0f : 0.0f;
-      light_wi[k][i] = 0.0f;
+      light_wi[k][i] = kd_at[k][i] = 0.0f;
     }
   }
 }

@@ -81,15 +81,21 @@ struct LaneBsdf {
   LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i, const F<A>& u0) {
     auto idx = simd::load<A>(b.material.data() + i);
     auto gather = [&](const std::vector<float>& col) { return simd::gather<A>(col.data(), idx); };
-    pd = gather(m.pd), pr = gather(m.pr), pt = gather(m.pt);
+    // A textured scene's rows carry their own Kd and lobe probabilities (ShadeBatch::per_row_kd).
+    const bool rows = b.per_row_kd;
+    auto own_or_gather = [&](const ShadeBatch::Column& own, const std::vector<float>& col) {
+      return rows ? simd::load<A>(own.data() + i) : gather(col);
+    };
+    pd = own_or_gather(b.pd_at, m.pd), pr = own_or_gather(b.pr_at, m.pr);
+    pt = own_or_gather(b.pt_at, m.pt);
     // Only the batch's own rows decide: its padding gathers material 0, which may be black or
     // an emitter (pd = 0) and would send every wavefront's last batch the general way.
-    const std::size_t rows = b.size() - i, W = std::size_t(simd::kWidth<A>);
-    const M<A> own = simd::first_lanes<A>(int(rows < W ? rows : W));
+    const std::size_t left = b.size() - i, W = std::size_t(simd::kWidth<A>);
+    const M<A> own = simd::first_lanes<A>(int(left < W ? left : W));
     diffuse_only_ = simd::none<A>(((pr > F<A>(0.0f)) | (pt > F<A>(0.0f))) & own);
     all_diffuse_ = diffuse_only_ && simd::none<A>((!(u0 < pd)) & own);
     for (int k = 0; k < 3; ++k)
-      kd[k] = gather(m.kd[k]), ks[k] = F<A>(0.0f);
+      kd[k] = own_or_gather(b.kd_at[k], m.kd[k]), ks[k] = F<A>(0.0f);
     F<A> ior(1.0f);
     alpha = d_scale = pm_scale = g1_scale = F<A>(0.0f);
     if (!all_diffuse_) {
@@ -123,8 +129,8 @@ struct LaneBsdf {
   }
 
   // GGX's and Beckman's D, p(m) and G in their lanes, the Phong values kept in the others.
-  void other_microfacets(const FloatVec3<A>& m, const F<A>& cos_i, const F<A>& om, const F<A>& im, F<A>& d,
-                         F<A>& pm, F<A>& g) const {
+  void other_microfacets(const FloatVec3<A>& m, const F<A>& cos_i, const F<A>& om, const F<A>& im,
+                         F<A>& d, F<A>& pm, F<A>& g) const {
     const M<A> phong = microfacet == F<A>(0.0f), ggx = microfacet == F<A>(1.0f);
     F<A> dm, pmm;
     microfacet_lanes::density<A>(ggx, dot(m, n), alpha_g2, dm, pmm);
@@ -212,7 +218,8 @@ LaneEval<A> LaneBsdf<A>::evaluate_diffuse(const FloatVec3<A>& wi) const {
 // Bsdf::sample: u0 picks the lobe; (u1, u2) warp a cosine-weighted direction (Malley) or a
 // microfacet normal by the course's cos θm = u1^(1/(α+1)) (sampling.h), reflected or refracted.
 template <class A>
-FloatVec3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2, M<A>& valid) const {
+FloatVec3<A> LaneBsdf<A>::sample(const F<A>& u0, const F<A>& u1, const F<A>& u2,
+                                 M<A>& valid) const {
   const F<A> zero(0.0f), one(1.0f);
   simd::LaneSinCos<A> phi = simd::sincos_2pi<A>(u2);
   M<A> diffuse = u0 < pd;

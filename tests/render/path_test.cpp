@@ -363,8 +363,11 @@ TEST(PathTracer, GlassAndMirrorRenderFinite) {
 // channel within 3 standard errors of the difference. The standard errors come from the
 // spread of the 16 seeds' means; that they are below 0.5 % of the mean shows the test could
 // see a bias of a few percent (a lobe's factor lost, a density off).
-TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
-  auto p = load_scene_file(testing::source_path("scenes/testscene.scn"));
+// The course scene, and with its floor and a ball textured (whose Kd the lanes take per row).
+class FloatShading : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FloatShading, HasTheDoubleShadingsMean) {
+  auto p = load_scene_file(testing::source_path(GetParam()));
   ASSERT_TRUE(p.ok());
   p.scene.width = 32, p.scene.height = 24;
   Bvh bvh = build_bvh_and_reorder(p.scene);
@@ -400,6 +403,10 @@ TEST(PathTracer, FloatShadingHasTheDoubleShadingsMean) {
     EXPECT_LT(sigma, 0.005 * mean[0][k]) << "channel " << k;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(PathTracer, FloatShading,
+                         ::testing::Values("scenes/testscene.scn",
+                                           "scenes/testscene-textured.scn"));
 
 }  // namespace
 }  // namespace raylane

@@ -333,6 +333,75 @@ TEST(ShadeLanes, DiffuseBatchesAreTheGeneralPathsAnswers) {
   }
 }
 
+// A textured scene's rows carry their own Kd (the material's times the image at the hit) and
+// lobe probabilities: each row's evaluation and sample are the double Bsdf's for its material
+// with that Kd, within the float bound; untextured rows in the same batch keep their
+// material's. Textured materials of every lobe mixture, with factors from black to white.
+TEST(ShadeLanes, TexturedRowsAreTheDoubleBsdfOfTheirOwnKd) {
+  std::vector<Material> materials = test_materials();
+  const std::size_t untextured = materials.size();
+  for (std::size_t m = 0; m < untextured; ++m) {
+    materials.push_back(materials[m]);
+    materials.back().texture = 0;
+    if (materials.back().kd == glm::vec3(0, 0, 0)) materials.back().kd = {0.6f, 0.6f, 0.6f};
+  }
+  LaneMaterials lane_materials(materials);
+  ASSERT_TRUE(lane_materials.any_textured);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    ShadeBatch b = random_batch(1 << 15, int(materials.size()), 5);
+    b.per_row_kd = true;
+    std::vector<Material> row_material(b.size());
+    Rng rng(6);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      Material m = materials[b.material[i]];
+      if (m.texture >= 0) {  // a texel: black one row in 16, else any colour
+        bool black = rng.uniform() < 1.0 / 16;
+        for (int k = 0; k < 3; ++k)
+          m.kd[k] = float(double(m.kd[k]) * (black ? 0.0 : rng.uniform()));
+      }
+      row_material[i] = m;
+      set3(b.kd_at, i, m.kd);
+      LobeChances c = lobe_chances(m.kd, m.ks, m.kt);
+      b.pd_at[i] = c.pd, b.pr_at[i] = c.pr, b.pt_at[i] = c.pt;
+    }
+    shade_lanes(isa, lane_materials, b);
+    std::size_t compared = 0, samples = 0, agree = 0, black_rows = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const Material& m = row_material[i];
+      glm::dvec3 ns = column3(b.n, i), wo = column3(b.wo, i), wi = column3(b.light_wi, i);
+      Bsdf bsdf(m, ns, wo);
+      if (bsdf.black()) {
+        ++black_rows;
+        ASSERT_EQ(b.pdf[i], 0.0f) << "row " << i;
+        ASSERT_EQ(b.light_pdf[i], 0.0f) << "row " << i;
+        continue;
+      }
+      if (near_a_branch(m, ns, wo, wi)) continue;
+      ++compared;
+      BsdfEval ref = bsdf.evaluate(wi);
+      double bound = evaluation_bound(m, ns, wo, wi);
+      double scale = std::max({ref.f.x, ref.f.y, ref.f.z});
+      for (int k = 0; k < 3; ++k)
+        ASSERT_LE(std::abs(b.light_f[k][i] - ref.f[k]), bound * scale + kFlushed)
+            << "row " << i << " channel " << k;
+      ASSERT_LE(std::abs(b.light_pdf[i] - ref.pdf), bound * ref.pdf + kFlushed) << "row " << i;
+      BsdfSample s = bsdf.sample(b.u_lobe[i], b.u1[i], b.u2[i]);
+      if (s.valid() && near_a_branch(m, ns, wo, s.wi)) continue;
+      ++samples;
+      if ((b.pdf[i] > 0) != s.valid()) continue;
+      ++agree;
+      if (!s.valid()) continue;
+      ASSERT_LE(length(column3(b.wi, i) - s.wi),
+                direction_bound(m, ns, wo, b.u_lobe[i], b.u1[i], b.u2[i]))
+          << "row " << i;
+    }
+    EXPECT_GT(compared, b.size() / 2);
+    EXPECT_GT(black_rows, 0u);
+    EXPECT_GE(agree, samples - samples / 1000) << agree << " of " << samples;
+  }
+}
+
 TEST(ShadeLanes, IndexMatchedTransmissionStaysWithTheDoubleBsdf) {
   LaneMaterials m({make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.0f),
                    make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.5f),
@@ -348,10 +417,11 @@ TEST(ShadeLanes, LobeNumberIsUnreadOnlyWhenEveryLaneMaterialIsDiffuseAlone) {
   const Material black = make_material({0, 0, 0}, {0, 0, 0}, 10);
   const Material glossy = make_material({0.4f, 0.3f, 0.2f}, {0.3f, 0.3f, 0.3f}, 30);
   const Material glass = make_material({0, 0, 0}, {0, 0, 0}, 50, {0.9f, 0.8f, 0.9f}, 1.33f);
-  Material textured_glossy = glossy;
-  textured_glossy.texture = 0;  // shaded by the double Bsdf
-  const Material matched = make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.0f);  // too
-  EXPECT_TRUE(LaneMaterials({diffuse, black, textured_glossy, matched}).lobe_unread);
+  Material textured_glossy = glossy, textured_diffuse = diffuse;
+  textured_glossy.texture = textured_diffuse.texture = 0;  // shaded in lanes, from Kd per row
+  const Material matched = make_material({0, 0, 0}, {0, 0, 0}, 10, {1, 1, 1}, 1.0f);  // double
+  EXPECT_TRUE(LaneMaterials({diffuse, black, textured_diffuse, matched}).lobe_unread);
+  EXPECT_FALSE(LaneMaterials({diffuse, textured_glossy}).lobe_unread);
   EXPECT_FALSE(LaneMaterials({diffuse, glossy}).lobe_unread);
   EXPECT_FALSE(LaneMaterials({glass, diffuse}).lobe_unread);
 

@@ -20,6 +20,13 @@
 
 namespace raylane {
 
+// The lobe probabilities a material's Kd, Ks and Kt give (|Kd|/s, |Ks|/s, |Kt|/s with s their
+// sum, all 0 for a black material), as the double Bsdf computes them, rounded to float.
+struct LobeChances {
+  float pd = 0, pr = 0, pt = 0;
+};
+LobeChances lobe_chances(const glm::vec3& kd, const glm::vec3& ks, const glm::vec3& kt);
+
 // The scene's materials as float columns the lanes gather from, with what Bsdf's constructor
 // derives per hit computed once per material.
 struct LaneMaterials {
@@ -35,8 +42,11 @@ struct LaneMaterials {
   // 2/(α + 2); read only when some material is not Phong (all_phong false).
   std::vector<float> microfacet, alpha_g2;
   bool all_phong = true;
-  std::vector<uint8_t> in_lanes;   // 0: shaded by the double Bsdf (index-matched transmission,
-                                   // a textured Kd)
+  std::vector<uint8_t> in_lanes;  // 0: shaded by the double Bsdf (index-matched transmission)
+  // 1 where Kd is textured: its rows carry their own Kd and lobe probabilities
+  // (ShadeBatch::per_row_kd), Kd times the image at the hit.
+  std::vector<uint8_t> textured;
+  bool any_textured = false;
   std::vector<uint8_t> has_lobes;  // 1 where pd + pr + pt > 0 (0: the Bsdf is black)
   // Where a hit on the material goes when the wavefront arrives: it ends its path (an
   // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit.
@@ -58,6 +68,12 @@ struct ShadeBatch {
   std::array<Column, 3> n, wo;     // unit shading normal (out of the solid), unit wo
   Column u_lobe, u1, u2;           // the BSDF sample's numbers in [0, 1)
   std::array<Column, 3> light_wi;  // a unit direction to evaluate, or 0 for none
+  // Each row's own Kd and lobe probabilities, read instead of its material's where per_row_kd
+  // is set (a scene with a textured material: every row's, untextured ones copied from their
+  // material, so that a batch reads one kind of column).
+  bool per_row_kd = false;
+  std::array<Column, 3> kd_at;
+  Column pd_at, pr_at, pt_at;
   // Outputs of the sample: direction, f·|cos θi| and density (0: no sample).
   std::array<Column, 3> wi, value;
   Column pdf;

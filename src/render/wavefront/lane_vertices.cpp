@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "raylane/render/bsdf.h"
+#include "raylane/render/texturing.h"
 #include "render/wavefront/stages.h"
 
 namespace raylane::path_detail {
@@ -215,6 +216,38 @@ void hit_columns(TileContext& ctx, bool lights) {
   lv.light_queries.set_times(lv.path.data(), w.path_time);  // a moving light's time
 }
 
+// A textured scene's rows' own Kd and lobe probabilities (ShadeBatch::per_row_kd): a textured
+// material's Kd times its image at the hit, as the double shading makes it (texture_factor on
+// the same point and normal, so the same Kd in float), the others their material's.
+void texture_columns(TileContext& ctx) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  ShadeBatch& sb = lv.shade;
+  const LaneMaterials& lm = ctx.lanes.materials;
+  sb.per_row_kd = lm.any_textured;
+  if (!lm.any_textured) return;
+  const Scene& scene = ctx.tracer.scene();
+  const VertexBatch& vb = lv.vertices;
+  const Columns3Out<float> kd(sb.kd_at);
+  for (std::size_t r = 0; r < lv.count; ++r) {
+    const uint32_t m = lv.material[r];
+    if (!lm.textured[m]) {
+      kd.set(r, glm::vec3(lm.kd[0][m], lm.kd[1][m], lm.kd[2][m]));
+      sb.pd_at[r] = lm.pd[m], sb.pr_at[r] = lm.pr[m], sb.pt_at[r] = lm.pt[m];
+      continue;
+    }
+    const Material& material = scene.materials[m];
+    const glm::dvec3 p(vb.p[0][r], vb.p[1][r], vb.p[2][r]);
+    const glm::dvec3 ng(vb.ng[0][r], vb.ng[1][r], vb.ng[2][r]);
+    const PrimRef prim = w.hits[lv.ray[r]].prim;
+    const glm::vec3 textured(glm::dvec3(material.kd) *
+                             texture_factor(scene, material, prim, Surface{p, ng, ng}));
+    kd.set(r, textured);
+    const LobeChances c = lobe_chances(textured, material.ks, material.kt);
+    sb.pd_at[r] = c.pd, sb.pr_at[r] = c.pr, sb.pt_at[r] = c.pt;
+  }
+}
+
 // The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs with
 // Beer's law on the segment just travelled into the columns.
 void path_columns(TileContext& ctx) {
@@ -251,6 +284,7 @@ void shade_lane_vertices(TileContext& ctx) {
   if (lights) lv.light_queries.resize(lv.count);
   if (sobol) lv.sobol.resize(lv.count);
   hit_columns(ctx, lights);
+  texture_columns(ctx);
   path_columns(ctx);
   rules.roulette = roulette_columns(ctx);
   draw_numbers(ctx, lights, rules.roulette);
