@@ -92,6 +92,33 @@ PiecewiseConstant1D::PiecewiseConstant1D(std::vector<double> f) : func_(std::mov
   // the search in sample_continuous can never land in it; the last entry is sum/sum = 1.
   for (double& c : cdf_)
     c /= sum;
+  const uint32_t g = (uint32_t(n) + kCellsPerGuide - 1) / kCellsPerGuide;
+  guide_.resize(std::size_t(g) + 1);
+  for (uint32_t k = 0; k <= g; ++k)
+    guide_[k] = cell_at(double(k) / g);
+}
+
+// The cell i with cdf[i] ≤ u < cdf[i + 1] (cells of zero weight have empty steps and are
+// passed over), by a search of the whole CDF: cdf[0] = 0 ≤ u and u < 1 = cdf[n] bound it.
+uint32_t PiecewiseConstant1D::cell_at(double u) const {
+  return cell_within(u, 0, size() - 1);
+}
+
+// cell_at(u), searching cells [lo, hi] only: the caller knows cdf[lo] ≤ u < cdf[hi + 1].
+uint32_t PiecewiseConstant1D::cell_within(double u, uint32_t lo, uint32_t hi) const {
+  auto first = cdf_.begin() + lo, last = cdf_.begin() + hi + 2;
+  auto it = std::upper_bound(first, last, u);
+  return uint32_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin() - 1, 0, size() - 1));
+}
+
+inline std::pair<uint32_t, uint32_t> PiecewiseConstant1D::guided_cells(double u) const {
+  const uint32_t g = uint32_t(guide_.size() - 1), n = size();
+  const uint32_t k = std::min(g - 1, uint32_t(u * g));
+  uint32_t lo = guide_[k], hi = guide_[k + 1];
+  // u·g may round across an entry's edge k/g: widen to the whole CDF then (rare).
+  if (cdf_[lo] > u) lo = 0;
+  if (hi + 1 < n && cdf_[hi + 1] <= u) hi = n - 1;
+  return {lo, hi};
 }
 
 double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* cell) const {
@@ -102,9 +129,16 @@ double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* c
     if (cell) *cell = std::min(n - 1, uint32_t(u * n));
     return u;
   }
-  // The cell i with cdf[i] ≤ u < cdf[i + 1]: cdf[0] = 0 ≤ u and u < 1 = cdf[n] bound it.
-  auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  uint32_t i = uint32_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin() - 1, 0, n - 1));
+  const auto [lo, hi] = guided_cells(u);
+  // The last cell i in [lo, hi] with cdf[i] ≤ u (cdf[lo] ≤ u), by a binary search whose steps
+  // are selects rather than branches: the search's branches, taken at random, were mispredicted
+  // and threw away the loads that the next rows had started.
+  uint32_t i = lo;
+  for (uint32_t len = hi - lo + 1; len > 1;) {
+    const uint32_t half = len / 2;
+    i = cdf_[i + half] <= u ? i + half : i;
+    len -= half;
+  }
   double du = (u - cdf_[i]) / (cdf_[i + 1] - cdf_[i]);  // the step is > 0 (see the constructor)
   if (pdf) *pdf = func_[i] / integral_;
   if (cell) *cell = i;
@@ -150,6 +184,19 @@ PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) co
   // The joint density f / ∫∫f, written as pdf() writes it so the two agree bit for bit.
   s.pdf = (pdf_v > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
   return s;
+}
+
+void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const double* u2,
+                                      Sample* out) const {
+  // The marginal's density rides in out[i].pdf between the two passes.
+  for (std::size_t i = 0; i < n; ++i)
+    out[i].v = marginal_.sample_continuous(u2[i], &out[i].pdf, &out[i].cell_v);
+  for (std::size_t i = 0; i < n; ++i) {
+    Sample& s = out[i];
+    double pdf_u = 0;
+    s.u = conditional_[s.cell_v].sample_continuous(u1[i], &pdf_u, &s.cell_u);
+    s.pdf = (s.pdf > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
+  }
 }
 
 double PiecewiseConstant2D::pdf(double u, double v) const {
@@ -216,9 +263,19 @@ glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& dir_world) const {
 }
 
 EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
+  return direction_of(distribution_.sample(u1, u2));
+}
+
+void EnvironmentMap::sample_many(EnvironmentBatch& b) const {
+  const std::size_t n = b.u1.size();
+  distribution_.sample_many(n, b.u1.data(), b.u2.data(), b.uv.data());
+  for (std::size_t i = 0; i < n; ++i)
+    b.out[i] = direction_of(b.uv[i]);
+}
+
+EnvironmentSample EnvironmentMap::direction_of(const PiecewiseConstant2D::Sample& uv) const {
   EnvironmentSample s;
   s.wi = rotation_ * glm::dvec3(0, 0, 1);
-  PiecewiseConstant2D::Sample uv = distribution_.sample(u1, u2);
   if (!(uv.pdf > 0)) return s;
   double phi = 2 * kPi * uv.u, theta = kPi * uv.v;
   double sin_theta = std::sin(theta);
@@ -232,9 +289,17 @@ EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
 
 double EnvironmentMap::pdf(const glm::dvec3& dir_world) const {
   if (!can_sample()) return 0;
-  ImagePoint p = to_image_point(to_image(dir_world));
+  return pdf_at(to_image_point(to_image(dir_world)));
+}
+
+double EnvironmentMap::pdf_at(const ImagePoint& p) const {
   if (!(p.sin_theta > 0)) return 0;
   return distribution_.pdf(p.u, p.v) / (2 * kPi * kPi * p.sin_theta);
+}
+
+EnvironmentMap::Seen EnvironmentMap::seen(const glm::dvec3& dir_world) const {
+  ImagePoint p = to_image_point(to_image(dir_world));
+  return {radiance_uv(p.u, p.v), can_sample() ? pdf_at(p) : 0.0};
 }
 
 // Φ = π r² ∫ s·lum(E(ω)) dω: the light arriving from each direction ω is a parallel beam, and

@@ -154,8 +154,23 @@ std::size_t LightSampler::pick(double u_light) const {
 }
 
 LightSample LightSampler::sample_environment(double u1, double u2) const {
+  return environment_light_sample(env_->sample(u1, u2));
+}
+
+void LightSampler::sample_environment_rows(LightQueries& q) const {
+  const std::vector<uint32_t>& rows = q.environment_rows;
+  if (rows.empty()) return;
+  EnvironmentBatch& b = q.environment;
+  b.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    b.u1[i] = q.cones.u1[rows[i]], b.u2[i] = q.cones.u2[rows[i]];
+  env_->sample_many(b);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    q.set(rows[i], environment_light_sample(b.out[i]));
+}
+
+LightSample LightSampler::environment_light_sample(const EnvironmentSample& e) const {
   LightSample s;
-  EnvironmentSample e = env_->sample(u1, u2);
   if (!e.valid()) return s;
   s.wi = e.wi;
   s.dist = std::numeric_limits<double>::infinity();
@@ -265,11 +280,18 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   // radius and choice for the cone kernel. The other rows get a unit sphere two units above
   // their point, so that their lanes stay finite (what the kernel makes of them is overwritten
   // below).
+  bool any_cone = false;
+  q.environment_rows.clear();
   for (std::size_t r = 0; r < n; ++r) {
     std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
+    const bool environment = k == lights_.size() && env_choice_ > 0;
+    if (environment) q.environment_rows.push_back(uint32_t(r));
     bool cone = k < lights_.size() &&
                 (lights_[k].tag() == tag_of<Sphere> || lights_[k].tag() == tag_of<MovingSphere>);
-    q.cone_light[r] = cone ? uint32_t(k) : LightQueries::kNoCone;
+    q.cone_light[r] = cone          ? uint32_t(k)
+                      : environment ? LightQueries::kEnvironment
+                                    : LightQueries::kNoCone;
+    any_cone = any_cone || cone;
     auto [center, radius] =
         cone ? sphere_at(k, q.time_of(r))
              : std::pair<glm::dvec3, double>(q.ref(r) + glm::dvec3(0, 0, 2), 1.0);
@@ -278,9 +300,11 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     cb.radius[r] = radius;
     cb.choice[r] = cone ? choice_[k] : 1.0;
   }
-  sample_cones(isa, cb);  // direction, distance and density of every cone row
+  // Direction, distance and density of every cone row (none under an environment alone).
+  if (any_cone) sample_cones(isa, cb);
   for (std::size_t r = 0; r < n; ++r) {
     const uint32_t k = q.cone_light[r];
+    if (k == LightQueries::kEnvironment) continue;  // sampled together below
     if (k == LightQueries::kNoCone) {
       q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r], q.time_of(r)));
       continue;
@@ -291,6 +315,7 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     if (cb.solid_angle[r] > 0 && !textured_[k]) continue;  // the kernel's answer stands
     q.set(r, finish_sphere_row(q, r, k));
   }
+  sample_environment_rows(q);
 }
 
 LightSample LightSampler::finish_sphere_row(const LightQueries& q, std::size_t r,

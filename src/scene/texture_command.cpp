@@ -124,9 +124,9 @@ Result<TexelImage> read_scene_texels(ParseState& state, const std::string& path,
   return texels;
 }
 
-// The environment's importance sampling: a weight and a CDF entry (doubles) per pixel. The
-// light shares the scene's texels.
-constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double);
+// The environment's importance sampling: a weight and a CDF entry (doubles) per pixel, and its
+// guide table's share (render/environment.h). The light shares the scene's texels.
+constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double) + 1;
 
 }  // namespace
 

@@ -57,6 +57,60 @@ void expect_fits(const EnvironmentMap& env, uint64_t seed) {
   EXPECT_GT(r.p_value, kLevel) << "chi2 = " << r.statistic << " with " << r.dof << " dof";
 }
 
+// The cell a CDF inversion must land in: the i with cdf[i] ≤ u < cdf[i + 1], cdf being the
+// running sums over the total, as PiecewiseConstant1D builds it, found by a linear scan.
+uint32_t cell_by_scan(const std::vector<double>& f, double u) {
+  double total = 0;
+  for (double w : f)
+    total += w;
+  double sum = 0;
+  uint32_t last = 0;
+  for (uint32_t i = 0; i < f.size(); ++i) {
+    if (sum / total <= u && f[i] > 0) last = i;
+    sum += f[i];
+  }
+  return last;
+}
+
+// The guide table (render/environment.h) only narrows the search: every u lands in the cell a
+// scan of the whole CDF finds, for weights with empty cells, one spike holding almost all the
+// weight (many cells between two guide entries), and any size; u at every CDF step, just below
+// it, and at random.
+TEST(EnvironmentSampling, GuidedInversionFindsTheScansCell) {
+  Rng rng(42);
+  for (uint32_t n : {1u, 2u, 3u, 5u, 17u, 64u, 1000u}) {
+    for (int shape = 0; shape < 3; ++shape) {
+      std::vector<double> f(n);
+      for (uint32_t i = 0; i < n; ++i) {
+        double w = rng.uniform();
+        f[i] = shape == 1 && rng.uniform() < 0.5 ? 0.0 : w;
+        if (shape == 2) f[i] = i == n / 2 ? 1e6 : 1e-3 * w;
+      }
+      if (std::all_of(f.begin(), f.end(), [](double w) { return w == 0; })) f[0] = 1;
+      PiecewiseConstant1D d(f);
+      std::vector<double> us;
+      double sum = 0, total = 0;
+      for (double w : f)
+        total += w;
+      for (double w : f) {
+        sum += w;
+        us.push_back(sum / total), us.push_back(std::nextafter(sum / total, 0.0));
+      }
+      for (int k = 0; k < 2000; ++k)
+        us.push_back(rng.uniform());
+      us.push_back(0.0), us.push_back(kBelowOne);
+      for (double u : us) {
+        if (!(u < 1)) continue;
+        uint32_t cell = 0;
+        double pdf = 0;
+        d.sample_continuous(u, &pdf, &cell);
+        ASSERT_EQ(cell, cell_by_scan(f, u)) << "n " << n << " shape " << shape << " u " << u;
+        ASSERT_GT(pdf, 0);
+      }
+    }
+  }
+}
+
 TEST(EnvironmentSampling, SunMapFollowsItsPdf) {
   // A sun 125 times the sky's brightness: ~40 % of the samples land in its 3×3 cells.
   expect_fits(EnvironmentMap(testing::sun_map(50), 1, glm::dmat3(1.0)), 1);

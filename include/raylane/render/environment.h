@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "raylane/core/rotation.h"
@@ -51,11 +52,26 @@ class PiecewiseConstant1D {
   double integral() const { return integral_; }
   uint32_t size() const { return uint32_t(func_.size()); }
   // The memory the tables hold, for memory reports.
-  std::size_t bytes() const { return (func_.capacity() + cdf_.capacity()) * sizeof(double); }
+  std::size_t bytes() const {
+    return (func_.capacity() + cdf_.capacity()) * sizeof(double) +
+           guide_.capacity() * sizeof(uint32_t);
+  }
+  // One guide entry per this many cells (kGuideBytesPerCell = 4 / this: what it adds a cell).
+  static constexpr uint32_t kCellsPerGuide = 4;
 
  private:
+  uint32_t cell_at(double u) const;
+  uint32_t cell_within(double u, uint32_t lo, uint32_t hi) const;
+  // The cells [lo, hi] that hold the u of [k/g, (k+1)/g) for g guide entries.
+  std::pair<uint32_t, uint32_t> guided_cells(double u) const;
+
   std::vector<double> func_;  // the weights
   std::vector<double> cdf_;   // n + 1 values from 0 to exactly 1 (all 0 when integral_ is 0)
+  // The guide table (Chen and Asau 1974, "On generating random variates from an empirical
+  // distribution"; Devroye 1986, §III.2.4): entry k is the cell whose CDF step holds u = k/g,
+  // so that the search for u's cell runs over the few cells between two entries rather than
+  // all n: the same cell as a search of the whole CDF, at a quarter of a word per cell.
+  std::vector<uint32_t> guide_;
   double integral_ = 0;
 };
 
@@ -80,6 +96,10 @@ class PiecewiseConstant2D {
 
   // u2 picks the row (marginal), u1 the column within it (conditional).
   Sample sample(double u1, double u2) const;
+  // sample(u1[i], u2[i]) into out[i] for i < n: every row's marginal, then every row's
+  // conditional, so that the table reads of many rows overlap (one row's chain of dependent
+  // loads left the processor waiting on memory).
+  void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out) const;
   // The density sample() has at (u, v); 0 outside [0, 1)².
   double pdf(double u, double v) const;
   // ∫∫ f over [0, 1)²: 0 means nothing can be sampled.
@@ -100,6 +120,14 @@ struct EnvironmentSample {
   bool valid() const { return pdf > 0; }
 };
 
+// Many rows' numbers and samples (EnvironmentMap::sample_many), reused between calls.
+struct EnvironmentBatch {
+  std::vector<double> u1, u2;
+  std::vector<PiecewiseConstant2D::Sample> uv;
+  std::vector<EnvironmentSample> out;
+  void resize(std::size_t n) { u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n); }
+};
+
 class EnvironmentMap {
  public:
   // image: linear RGB, top row first, at least 1×1, every value finite and ≥ 0 (the image
@@ -117,6 +145,13 @@ class EnvironmentMap {
   // texel centres, repeating in u (across φ = 0) and clamped in v (at the poles), as the
   // scene language's textures filter.
   glm::dvec3 radiance(const glm::dvec3& dir_world) const;
+  // radiance(dir_world) and pdf(dir_world) at once, the direction turned into the image's
+  // coordinates once (its arc tangents and square roots were half an escaped ray's cost).
+  struct Seen {
+    glm::dvec3 le{};
+    double pdf = 0;
+  };
+  Seen seen(const glm::dvec3& dir_world) const;
   // s·E at image coordinates (u, v) ∈ [0, 1)²: the same filter, without the direction.
   glm::dvec3 radiance_uv(double u, double v) const;
 
@@ -125,6 +160,9 @@ class EnvironmentMap {
   // dω = sin θ dθ dφ = 2π² sin θ du dv (PBRT 3rd ed. §14.2.4). Invalid (pdf 0) when the map
   // is black or the point falls exactly on a pole (sin θ = 0).
   EnvironmentSample sample(double u1, double u2) const;
+  // sample() for each of the batch's rows (its u1, u2 into its out), the same answers; the
+  // tables are read a stage at a time across the rows.
+  void sample_many(EnvironmentBatch& b) const;
   // The density sample() has for dir_world (any length > 0), for MIS weights: 0 when the map
   // is black, at the poles, or for a zero vector.
   double pdf(const glm::dvec3& dir_world) const;
@@ -154,8 +192,11 @@ class EnvironmentMap {
     double u, v, sin_theta;
   };
   static ImagePoint to_image_point(const glm::dvec3& d_image);
+  double pdf_at(const ImagePoint& p) const;              // pdf() of a direction's image point
   glm::dvec3 to_image(const glm::dvec3& d_world) const;  // Rᵀ·d: R is orthonormal
   glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
+  // The direction, radiance and solid-angle density of a point the distribution sampled.
+  EnvironmentSample direction_of(const PiecewiseConstant2D::Sample& uv) const;
   void build_distribution();
   // ∫ lum(E) dω over the sphere (unscaled), from the rows' mean luminances.
   double luminance_sphere_integral(const std::vector<double>& row_mean) const;

@@ -72,9 +72,12 @@ struct LightQueries {
   // Row r's outputs from one sample.
   void set(std::size_t r, const LightSample& s);
   // Which light each row picked, when it is a sphere light sampled by its cone (sample_many's
-  // scratch; kNoCone otherwise).
-  static constexpr uint32_t kNoCone = ~0u;
+  // scratch; kEnvironment for the environment, kNoCone for any other light).
+  static constexpr uint32_t kNoCone = ~0u, kEnvironment = ~0u - 1;
   std::vector<uint32_t> cone_light;
+  // The rows that picked the environment, and their samples (sample_many's scratch).
+  std::vector<uint32_t> environment_rows;
+  EnvironmentBatch environment;
 
  private:
   static glm::dvec3 column3(const std::array<Column, 3>& c, std::size_t r) {
@@ -115,6 +118,13 @@ class LightSampler {
   double environment_pdf(const glm::dvec3& d) const {
     return env_choice_ * (env_ ? env_->pdf(d) : 0.0);
   }
+  // escaped(d) and environment_pdf(d) at once.
+  EnvironmentMap::Seen escaped_with_pdf(const glm::dvec3& d) const {
+    if (!env_) return {};
+    EnvironmentMap::Seen s = env_->seen(d);
+    s.pdf *= env_choice_;
+    return s;
+  }
   const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
 
  private:
@@ -126,6 +136,10 @@ class LightSampler {
 
   // The environment's direction for the numbers u1, u2 (choice: its choice probability).
   LightSample sample_environment(double u1, double u2) const;
+  // The light sample of an environment sample (its density times the choice's).
+  LightSample environment_light_sample(const EnvironmentSample& e) const;
+  // sample_many's rows that picked the environment (q.environment_rows), all at once.
+  void sample_environment_rows(LightQueries& q) const;
 
   std::optional<EnvironmentMap> env_;
   double env_choice_ = 0;  // its choice probability; it is light index lights_.size()

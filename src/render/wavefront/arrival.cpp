@@ -35,10 +35,10 @@ void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hi
 // What a path gains when its ray leaves the scene: the environment (its density for MIS is the
 // environment's).
 void add_escape(TileContext& ctx, PathState& p, const Rayd& ray) {
-  glm::dvec3 le = ctx.lights.escaped(ray.d);
-  if (le == glm::dvec3(0, 0, 0)) return;
-  double w = emission_weight(ctx, p, [&] { return ctx.lights.environment_pdf(ray.d); });
-  p.radiance += p.beta * le * w;
+  const EnvironmentMap::Seen seen = ctx.lights.escaped_with_pdf(ray.d);
+  if (seen.le == glm::dvec3(0, 0, 0)) return;
+  double w = emission_weight(ctx, p, [&] { return seen.pdf; });
+  p.radiance += p.beta * seen.le * w;
 }
 
 // Each primitive kind's material column, taken once per wavefront: a hit's material is then
