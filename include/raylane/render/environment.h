@@ -10,6 +10,7 @@
 // d_world = R·d_image. The top row therefore looks along R·(0, 0, 1).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -51,6 +52,15 @@ class PiecewiseConstant1D {
   // ∫₀¹ f = Σ f / n, the normaliser (and the 2-D marginal's weight of this row).
   double integral() const { return integral_; }
   uint32_t size() const { return uint32_t(func_.size()); }
+  // Asks the caches for the guide entry sample_continuous(u) reads first, and then, once that
+  // has arrived, for the CDF and weight it leads to: sample_many's rows, a few rows ahead.
+  void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(u)); }
+  void prefetch_cells(double u) const {
+    if (guide_.empty()) return;
+    const uint32_t lo = guide_[guide_index(u)];
+    __builtin_prefetch(cdf_.data() + lo);
+    __builtin_prefetch(func_.data() + lo);
+  }
   // The memory the tables hold, for memory reports.
   std::size_t bytes() const {
     return (func_.capacity() + cdf_.capacity()) * sizeof(double) +
@@ -61,6 +71,11 @@ class PiecewiseConstant1D {
 
  private:
   uint32_t cell_at(double u) const;
+  // The guide entry below u (0 without a guide table).
+  uint32_t guide_index(double u) const {
+    const std::size_t g = guide_.size();
+    return g < 2 ? 0 : std::min(uint32_t(g - 2), uint32_t(u * double(g - 1)));
+  }
   uint32_t cell_within(double u, uint32_t lo, uint32_t hi) const;
   // The cells [lo, hi] that hold the u of [k/g, (k+1)/g) for g guide entries.
   std::pair<uint32_t, uint32_t> guided_cells(double u) const;
@@ -197,6 +212,7 @@ class EnvironmentMap {
   glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
   // The direction, radiance and solid-angle density of a point the distribution sampled.
   EnvironmentSample direction_of(const PiecewiseConstant2D::Sample& uv) const;
+  void prefetch_texels(double u, double v) const;  // sample_many's rows ahead
   void build_distribution();
   // ∫ lum(E) dω over the sphere (unscaled), from the rows' mean luminances.
   double luminance_sphere_integral(const std::vector<double>& row_mean) const;
