@@ -5,8 +5,9 @@
 //
 // Sources: Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction through
 // Rough Surfaces": D (eqs. 33 and 25), the Smith G1 (eqs. 34 and 27, the rational fit for
-// Beckman) and the warps of m with density D(m)·cos θm (eqs. 35 and 28). The lane kernel has
-// its own float transcription (src/render/microfacet_lanes_impl.h), tested against these.
+// Beckman) and the warps of m with density D(m)·cos θm (eqs. 35 and 28). The formulas are
+// written once over the number type (render/microfacet_steps.h): these are their double
+// instantiation, the lane kernel's (src/render/microfacet_lanes_impl.h) their float lanes.
 #pragma once
 
 #include "raylane/core/vec_math.h"

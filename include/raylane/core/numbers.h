@@ -1,0 +1,47 @@
+// The number-type layer: the operations a step written once over its number type N calls, as
+// Num<N>'s static functions, so that one text serves the double reference (N = double), its
+// scalar float twin (N = float) and the float SIMD lanes (N = a batch of floats; the
+// specialisation lives in simd/lane_numbers.h, for per-ISA translation units only). The shape
+// is Mitsuba 3's: its Dr.Jit functions take scalars and arrays alike (Jakob et al., "Dr.Jit: A
+// Just-In-Time Compiler for Differentiable Rendering", 2022). A class template rather than
+// overloads: a specialisation declared after a step's template is still found where the step is
+// instantiated, and this header needs no xsimd.
+//
+// Scalar versions call libm (the reference keeps its numbers); the lanes' versions carry the
+// error bounds of simd/lane_math.h. Limits that depend on the type's range are members too.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace raylane {
+
+template <class N>
+struct Num;
+
+template <class T>
+struct ScalarNum {
+  using Mask = bool;
+  static T select(bool c, T a, T b) { return c ? a : b; }
+  static T max(T a, T b) { return std::max(a, b); }
+  static T min(T a, T b) { return std::min(a, b); }
+  static T sqrt(T x) { return std::sqrt(x); }
+  static T abs(T x) { return std::abs(x); }
+  // e^-x for x ≥ 0.
+  static T exp_neg(T x) { return std::exp(-x); }
+  // ln(1 − u) for u in [0, 1]: −inf at 1.
+  static T log_one_minus(T u) { return std::log1p(-std::min(u, T(1))); }
+};
+
+template <>
+struct Num<double> : ScalarNum<double> {
+  // Where e^-x is taken as 0: e^-700 ≈ 1e-304, below anything a cos⁻⁴ can lift into range.
+  static constexpr double kExpNegCutoff = 700;
+};
+
+template <>
+struct Num<float> : ScalarNum<float> {
+  static constexpr float kExpNegCutoff = 80;  // e^-80 < 2e-35, near float's smallest normal
+};
+
+}  // namespace raylane
