@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "raylane/render/bsdf_steps.h"
 #include "raylane/render/microfacet.h"
 #include "raylane/render/sampling.h"
 
@@ -13,15 +14,9 @@ glm::dvec3 reflect(const glm::dvec3& wo, const glm::dvec3& m) {
   return 2 * dot(wo, m) * m - wo;
 }
 
-// Walter et al. 2007, eq. 27: the rational approximation of the Smith G1 of the Beckmann
-// lobe, used for the Phong lobe through the substitution a = √(α/2 + 1)/tan θv.
+// The Phong lobe's Smith G1 (render/bsdf_steps.h).
 double g1(double cos_v, double cos_vm, double alpha) {
-  if (!(cos_vm * cos_v > 0)) return 0.0;  // the microfacet is back-facing from v
-  double sin_v = std::sqrt(std::max(0.0, 1 - cos_v * cos_v));
-  if (sin_v == 0) return 1.0;
-  double a = std::sqrt(0.5 * alpha + 1) * std::abs(cos_v) / sin_v;
-  if (a > 1.6) return 1.0;
-  return (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
+  return bsdf_steps::rational_smith_g1(cos_v, cos_vm, std::sqrt(0.5 * alpha + 1));
 }
 
 }  // namespace
@@ -44,9 +39,7 @@ Bsdf::Bsdf(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo)
 }
 
 glm::dvec3 Bsdf::schlick(double cos_om) const {
-  double x = 1 - std::min(1.0, std::abs(cos_om)), x2 = x * x;
-  double c = x2 * x2 * x;  // (1 − cos)^5 by multiplication: std::pow does not inline it
-  return ks_ + (glm::dvec3(1, 1, 1) - ks_) * c;
+  return ks_ + (glm::dvec3(1, 1, 1) - ks_) * bsdf_steps::schlick_weight(cos_om);
 }
 
 double Bsdf::smith_g(const glm::dvec3& wi, const glm::dvec3& m) const {

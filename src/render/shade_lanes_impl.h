@@ -5,8 +5,10 @@
 // reaches a result (selects, never multiplications by a mask).
 #pragma once
 
+#include "raylane/render/bsdf_steps.h"
 #include "raylane/render/shade_lanes.h"
 #include "raylane/simd/lane_math.h"
+#include "raylane/simd/lane_numbers.h"
 #include "render/microfacet_lanes_impl.h"
 
 namespace raylane::detail {
@@ -49,18 +51,10 @@ struct LaneEval {
   F<A> f[3], pdf;
 };
 
-// Walter et al. 2007, eq. 27 for the Phong lobe, as g1() in bsdf.cpp: 0 for a back-facing
-// microfacet, 1 where a = √(α/2+1)·cot θv exceeds 1.6 (or sin θv = 0: a = inf), else the
-// rational approximation.
+// The Phong lobe's Smith G1 (render/bsdf_steps.h), g1_scale = √(α/2 + 1) per material.
 template <class A>
 F<A> g1(const F<A>& cos_v, const F<A>& cos_vm, const F<A>& g1_scale) {
-  const F<A> one(1.0f);
-  F<A> sin_v = xsimd::sqrt(xsimd::max(F<A>(0.0f), one - cos_v * cos_v));
-  F<A> a = g1_scale * xsimd::abs(cos_v) / sin_v;
-  F<A> r =
-      (F<A>(3.535f) * a + F<A>(2.181f) * a * a) / (one + F<A>(2.276f) * a + F<A>(2.577f) * a * a);
-  r = simd::select(a > F<A>(1.6f), one, r);
-  return simd::select(cos_vm * cos_v > F<A>(0.0f), r, F<A>(0.0f));
+  return bsdf_steps::rational_smith_g1(cos_v, cos_vm, g1_scale);
 }
 
 // One batch of W shading points: the material's columns gathered, and what Bsdf's constructor
@@ -172,7 +166,7 @@ LaneEval<A> LaneBsdf<A>::evaluate(const FloatVec3<A>& wi) const {
   F<A> om = dot(wo, m), im = dot(wi, m);
   F<A> g = g1<A>(cos_i, im, g1_scale) * g1<A>(cos_o, om, g1_scale);
   if (!phong_only_) other_microfacets(m, cos_i, om, im, d, pm, g);
-  F<A> x = one - xsimd::min(one, xsimd::abs(om)), x2 = x * x, c5 = x2 * x2 * x;  // Schlick
+  F<A> c5 = bsdf_steps::schlick_weight(om);
   M<A> refr = refracts(om);
   // Reflection (Bsdf::evaluate_reflection): diffuse, the reflection lobe with F, and what
   // total internal reflection sends back of the transmission lobe with 1 − F.
