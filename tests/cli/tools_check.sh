@@ -58,6 +58,30 @@ awk -F, 'NR > 1 { if (!($3 > 0 && $4 > 0) || ($1 == m && $4 < cpu)) exit 1; m = 
 [ -z "$(ls series | grep -v -x -e ref.pfm -e converge.csv -e converge.dat -e converge.png)" ] ||
   fail "converge --series left $(ls series)"
 
+# Variants on one plot (issue 49): two --variant line sets of one scene at chosen --passes,
+# each against its own reference; then two scenes. A bad --variant or --passes is refused.
+"$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
+  --ref-spp 8 --passes 4,1 --methods mis --out variants --variant 'plain:' \
+  --variant 'grey: ambient 0.5 0.5 0.5; screen 24 18' >variants.out 2>&1 ||
+  { cat variants.out; fail "converge --variant exits $?"; }
+[ "$(cut -d, -f1,2,7 variants/converge.csv | tr -d '\r' | tr '\n' ' ')" = \
+  "method,spp,variant mis,1,plain mis,4,plain mis,1,grey mis,4,grey " ] ||
+  fail "variants: $(cat variants/converge.csv)"
+cmp -s variants/ref-plain.pfm variants/ref-grey.pfm && fail "the variants share a reference"
+grep -q "^grey .*4 spp" variants.out || fail "variants' lines: $(cat variants.out)"
+"$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" "$source_dir/scenes/box.scn" \
+  --raylane "$build/raylane" --ref-spp 4 --passes 1 --methods mis --out scenes >scenes.out 2>&1 ||
+  { cat scenes.out; fail "converge with two scenes exits $?"; }
+[ -f scenes/ref-sphere.pfm ] && [ -f scenes/ref-box.pfm ] || fail "two scenes: $(ls scenes)"
+[ "$(cut -d, -f7 scenes/converge.csv | tr -d '\r' | tr '\n' ' ')" = "variant sphere box " ] ||
+  fail "two scenes: $(cat scenes/converge.csv)"
+! "$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
+  --variant 'no colon' >bad.out 2>&1 || fail "a --variant without a colon was taken"
+grep -q "expected --variant 'NAME: LINE; LINE'" bad.out || fail "bad --variant: $(cat bad.out)"
+! "$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
+  --passes 0,8 >bad.out 2>&1 || fail "--passes 0 was taken"
+grep -q "expected sample counts >= 1" bad.out || fail "bad --passes: $(cat bad.out)"
+
 # bench_trace: its help, the bunny of its own build tree, another with --bunny.
 bench=$build/bench/bench_trace
 "$bench" --help >bench.help || fail "bench_trace --help exits $?"
