@@ -95,4 +95,29 @@ fi
 "$bench" $filter --bunny="$source_dir/scenes/letterX.ply" >bunny.out 2>&1 ||
   fail "bench_trace --bunny: $(cat bunny.out)"
 grep -q 'prims=4 ' bunny.out || fail "bench_trace --bunny did not read the file: $(cat bunny.out)"
-echo "converge, bench_table and bench_trace: help, programs as options, plot, bunny"
+# A user's own ray set (--rays, --mesh; docs/ray-sets.md's formats, written here byte by byte):
+# 64 triangles in a row and 65 rays down onto them, traced by every tracer under one name
+# after the reference check; one of the two options alone is refused.
+python3 - <<'PY'
+import struct
+tris = b"TRISOUP1" + struct.pack("<II", 64, 0)
+for i in range(64):
+    tris += struct.pack("<9f", 3 * i - 1, -1, i, 3 * i + 1, -1, i, 3 * i, 1, i)
+open("row.tris", "wb").write(tris)
+rays = b"RAYSET1\0" + struct.pack("<IIII", 65, 0, 0, 0) + bytes(8)
+for i in range(65):
+    rays += struct.pack("<8f", 3 * i if i < 64 else -50, 0, 100, 0, 0, -1, 0, float("inf"))
+open("down.rays", "wb").write(rays)
+PY
+"$bench" --rays=down.rays --mesh=row.tris --benchmark_filter='trace/row/down/.*/threads:1/' \
+  --benchmark_min_time=0.001 >user.out 2>&1 || fail "bench_trace --rays: $(cat user.out)"
+grep -E -q 'trace/row/down/raylane-render/threads:1/.* disagree=0 .*rays=65 ' user.out ||
+  fail "bench_trace --rays: $(cat user.out)"
+if grep -q 'trace/testscene/.*/embree-1/' <("$bench" --benchmark_list_tests); then
+  grep -E -q 'trace/row/down/embree-16/threads:1/.* disagree=0 ' user.out ||
+    fail "Embree did not trace the user's rays: $(cat user.out)"
+fi
+! "$bench" --rays=down.rays >alone.out 2>&1 || fail "--rays without --mesh was taken"
+grep -q 'expected --rays=FILE and --mesh=FILE together' alone.out || fail "$(cat alone.out)"
+
+echo "converge, bench_table and bench_trace: help, programs as options, plot, bunny, user rays"
