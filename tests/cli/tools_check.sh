@@ -95,6 +95,22 @@ fi
 "$bench" $filter --bunny="$source_dir/scenes/letterX.ply" >bunny.out 2>&1 ||
   fail "bench_trace --bunny: $(cat bunny.out)"
 grep -q 'prims=4 ' bunny.out || fail "bench_trace --bunny did not read the file: $(cat bunny.out)"
+# bench_table's "raylane best" counts the render's own tracer: a kept run (--from-json) where
+# raylane-render is raylane's fastest shows it there, with its counters.
+python3 - <<'PY'
+import json
+def run(tracer, rays_per_s, **counters):
+    name = "trace/s/primary/%s/threads:1/real_time" % tracer
+    return dict(name=name, run_name=name, run_type="iteration", **{"rays/s": rays_per_s}, **counters)
+json.dump({"context": {}, "benchmarks": [
+    run("raylane-render", 3e6, **{"nodes/ray": 5.0, "lanes_used": 0.5}),
+    run("raylane-avx2", 2e6, **{"nodes/ray": 9.0, "lanes_used": 0.9}),
+    run("embree-16", 4e6)]}, open("kept.json", "w"))
+PY
+"$source_dir/tools/bench_table" --from-json kept.json >kept.out 2>&1 || fail "bench_table: $(cat kept.out)"
+grep -q '^| s | primary | 1 | 3.00 | 0.75 | 3.00 (render) | 5.0 | 50 % |' kept.out ||
+  fail "raylane best leaves out the render's tracer: $(cat kept.out)"
+
 # A user's own ray set (--rays, --mesh; docs/ray-sets.md's formats, written here byte by byte):
 # 64 triangles in a row and 65 rays down onto them, traced by every tracer under one name
 # after the reference check; one of the two options alone is refused.
