@@ -9,6 +9,7 @@
 #include "icosphere.h"
 #include "raylane/scene/mesh_import.h"
 #include "raylane/scene/parser.h"
+#include "raylane/trace/ray_set_io.h"
 
 namespace raylane::bench {
 
@@ -168,6 +169,29 @@ std::optional<BenchScene> make_icosphere() {
   return b;
 }
 
+// A user's mesh (bench_trace --mesh): a .tris soup in its file order, or any mesh file Assimp
+// reads, as `raylane trace` loads them, so the rays of a user's .rays set meet the same
+// triangles. Shadow rays are not made for it (its sets are the user's).
+std::optional<BenchScene> make_user_mesh(const std::string& path, std::string* why) {
+  BenchScene b;
+  b.name = std::filesystem::path(path).stem().string();
+  b.scene.materials.push_back(Material::default_grey());
+  TriangleTable& t = b.scene.table<Triangle>();
+  Status read = ok_status();
+  if (std::filesystem::path(path).extension() == ".tris") {
+    auto n = read_triangle_soup(path, 0, t);
+    if (!n) read = Error{n.error()};
+  } else {
+    auto n = import_mesh_file(path, MeshPlacement{}, 0, t);
+    if (!n) read = Error{n.error()};
+  }
+  if (!read) {
+    if (why) *why = read.error();
+    return std::nullopt;
+  }
+  return b;
+}
+
 }  // namespace
 
 std::string bunny_path() {
@@ -218,6 +242,8 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
   if (name == "sphereflake") b = make_sphereflake();
   if (name == "lattice") b = make_lattice();
   if (name == "csglens" || name == "lenssphere") b = make_lens_or_sphere(name == "csglens");
+  if (name.rfind(kUserMeshPrefix, 0) == 0)
+    b = make_user_mesh(name.substr(kUserMeshPrefix.size()), why);
   if (!b) {
     if (why && why->empty()) *why = "no such scene or it failed to build: " + name;
     return nullptr;

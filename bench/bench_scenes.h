@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "raylane/bvh/bvh.h"
@@ -37,7 +38,9 @@ std::string bunny_path();
 void set_bunny_path(std::string path);
 
 // Builds the scene (and its BVH), or says why it cannot (e.g. a package is not installed).
-// Cached: the same object is returned for the same name.
+// Cached: the same object is returned for the same name. A name kUserMeshPrefix + PATH is a
+// user's mesh file (bench_trace --mesh): a .tris soup or any mesh file Assimp reads.
+inline constexpr std::string_view kUserMeshPrefix = "mesh:";
 const BenchScene* bench_scene(const std::string& name, std::string* why = nullptr);
 
 // A camera at `eye` looking at `target`, z up, vertical half-angle tangent `ry`.

@@ -10,7 +10,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "bench_scenes.h"
@@ -41,12 +43,9 @@ void use_threads(int threads) {
   }
 }
 
-void trace_rays(benchmark::State& state, const std::string& scene, RayKind kind,
-                const std::string& tracer, int threads) {
-  std::string why;
-  const BenchScene* b = bench_scene(scene, &why);
-  if (!b) return state.SkipWithError(why.c_str());
-  const RaySet& set = bench_rays(*b, kind);
+// One tracer on one ray set of one scene: checked against the reference, counted, timed.
+void trace_set(benchmark::State& state, const BenchScene* b, const RaySet& set,
+               const std::string& tracer, int threads) {
   BenchTracer t = bench_tracer(*b, tracer);
   use_threads(threads);
   HitStream hits;
@@ -73,6 +72,66 @@ void trace_rays(benchmark::State& state, const std::string& scene, RayKind kind,
   state.counters["rays"] = double(set.rays.size());
   state.counters["rays/s"] = benchmark::Counter(
       double(set.rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void trace_rays(benchmark::State& state, const std::string& scene, RayKind kind,
+                const std::string& tracer, int threads) {
+  std::string why;
+  const BenchScene* b = bench_scene(scene, &why);
+  if (!b) return state.SkipWithError(why.c_str());
+  trace_set(state, b, bench_rays(*b, kind), tracer, threads);
+}
+
+// A user's own ray set against a user's mesh (--rays and --mesh, or RAYLANE_BENCH_RAYS and
+// RAYLANE_BENCH_MESH): every tracer, Embree's included, on the user's rays, in the same table.
+struct UserSet {
+  std::string mesh, rays;
+};
+
+UserSet& user_set() {
+  static UserSet u;
+  return u;
+}
+
+// The user's rays, read once (the file's checks: docs/ray-sets.md); null with the reason.
+const RaySet* user_rays(std::string* why) {
+  static std::optional<RaySet> set;
+  static std::string error;
+  if (!set && error.empty()) {
+    auto file = read_ray_set(user_set().rays);
+    if (file)
+      set = RaySet{std::move(file->rays), file->occlusion()};
+    else
+      error = file.error();
+  }
+  *why = error;
+  return set ? &*set : nullptr;
+}
+
+void trace_user_rays(benchmark::State& state, const std::string& tracer, int threads) {
+  std::string why;
+  const BenchScene* b = bench_scene(std::string(kUserMeshPrefix) + user_set().mesh, &why);
+  if (!b) return state.SkipWithError(why.c_str());
+  const RaySet* set = user_rays(&why);
+  if (!set) return state.SkipWithError(why.c_str());
+  trace_set(state, b, *set, tracer, threads);
+}
+
+// trace/<mesh>/<rays>/<tracer>/threads:N, the file stems in the scene's and the kind's places
+// (tools/bench_table reads them as such).
+void register_user_set() {
+  const UserSet& u = user_set();
+  const std::string stem = std::filesystem::path(u.mesh).stem().string() + "/" +
+                           std::filesystem::path(u.rays).stem().string();
+  const int all = omp_get_num_procs();
+  for (const std::string& tracer : bench_tracer_names())
+    for (int threads : {1, all}) {
+      std::string name = "trace/" + stem + "/" + tracer + "/threads:" + std::to_string(threads);
+      benchmark::RegisterBenchmark(name.c_str(), trace_user_rays, tracer, threads)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+      if (all == 1) break;
+    }
 }
 
 std::size_t table_bytes_of(Scene& s) {
@@ -125,6 +184,7 @@ void build_embree(benchmark::State& state, const std::string& scene) {
 }
 
 void register_all() {
+  if (!user_set().rays.empty()) register_user_set();
   const int all = omp_get_num_procs();
   for (const std::string& scene : bench_scene_names()) {
     for (RayKind kind : {RayKind::kPrimary, RayKind::kShadow, RayKind::kDiffuse})
@@ -199,9 +259,36 @@ tools/bench_table runs it with repetitions and prints the median table (bench/RE
                  exit; DIR is made if missing
   --bunny=FILE   the bunny's PLY (default: bench-data/bunny.ply of the build tree this program
                  is in, where tools/make_bunny writes it; without it the bunny is skipped)
+  --rays=FILE    also trace a user's ray set (.rays, docs/ray-sets.md) with every tracer,
+                 Embree's included, against --mesh, as trace/<mesh>/<rays>/<tracer>/threads:N
+                 (default: none; environment: RAYLANE_BENCH_RAYS, so tools/bench_table runs it)
+  --mesh=FILE    the triangles of --rays: a .tris soup or any mesh file Assimp reads, as
+                 `raylane trace` reads them (default: none; environment: RAYLANE_BENCH_MESH)
 
 Google Benchmark's own flags follow, e.g. --benchmark_filter=REGEX:
 )";
+
+// --rays and --mesh, or their environment variables; false (with a message) when only one of
+// the two is given.
+bool read_user_set(int argc, char** argv) {
+  auto& u = raylane::bench::user_set();
+  if (const char* r = std::getenv("RAYLANE_BENCH_RAYS")) u.rays = r;
+  if (const char* m = std::getenv("RAYLANE_BENCH_MESH")) u.mesh = m;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--rays=", 0) == 0) u.rays = a.substr(7);
+    if (a.rfind("--mesh=", 0) == 0) u.mesh = a.substr(7);
+  }
+  if (u.rays.empty() == u.mesh.empty()) return true;
+  std::fprintf(stderr,
+               "bench_trace: expected --rays=FILE and --mesh=FILE together, found only %s\n",
+               u.rays.empty() ? "--mesh" : "--rays");
+  return false;
+}
+
+bool ours(const std::string& a) {
+  return a.rfind("--bunny=", 0) == 0 || a.rfind("--rays=", 0) == 0 || a.rfind("--mesh=", 0) == 0;
+}
 
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
@@ -209,14 +296,15 @@ int main(int argc, char** argv) {
     if (a == "--help" || a == "-h") std::fputs(kUsage, stdout);
     if (a.rfind("--bunny=", 0) == 0) raylane::bench::set_bunny_path(a.substr(8));
   }
+  if (!read_user_set(argc, argv)) return 2;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a.rfind("--export=", 0) == 0) return raylane::bench::export_sets(a.substr(9));
   }
-  // --bunny is ours: Google Benchmark would reject it as unrecognised.
+  // --bunny, --rays and --mesh are ours: Google Benchmark would reject them as unrecognised.
   int kept = 1;
   for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]).rfind("--bunny=", 0) != 0) argv[kept++] = argv[i];
+    if (!ours(argv[i])) argv[kept++] = argv[i];
   argc = kept;
   raylane::bench::register_all();
   benchmark::Initialize(&argc, argv);

@@ -372,9 +372,10 @@ Result<Image> decode_exr(std::string_view bytes) {
     if (!l->info.has_rgb && !l->info.has_y)
       return Error{"the EXR file has no R, G, B or Y channel"};
     if (has_subsampled(*l)) {
-      auto img = exr_detail::decode_rgba_interface(bytes);
       // OpenEXR's C++ reader parses the header again: a damaged header it reads differently
-      // from the core reader (a fuzzer found one) is refused, not handed on at another size.
+      // from the core reader (a fuzzer found one) is refused before it allocates by its window
+      // (exr_rgba.cpp, window_problem), and a decode at another size is not handed on.
+      auto img = exr_detail::decode_rgba_interface(bytes, l->info.width, l->info.height);
       if (img && (img->width != l->info.width || img->height != l->info.height))
         return Error{cat("the EXR header reads as ", l->info.width, "x", l->info.height, " and as ",
                          img->width, "x", img->height, "; the file is damaged")};

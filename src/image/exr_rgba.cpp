@@ -2,6 +2,7 @@
 
 #include <Imath/half.h>
 #include <OpenEXR/Iex.h>
+#include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfRgbaFile.h>
 
@@ -140,12 +141,34 @@ std::optional<std::string> header_problem(std::string_view bytes) {
   }
 }
 
+// The data window as OpenEXR's C++ reader will read it, from the header alone: RgbaInputFile's
+// constructor allocates line and chroma-filter buffers by that window's width before anything
+// else can be checked, and a damaged header can read to it at another size than to OpenEXRCore
+// (a duplicated "dataWindow" attribute: the core keeps one, the C++ reader the other). A file
+// the fuzzer found read as 8x6 to the core and as 2^24 wide to RgbaInputFile, which then
+// allocated 4 GiB. The header is read from the same bytes by the same Imf::Header::readFrom
+// that RgbaInputFile's InputFile calls; header_problem() has bounded what it allocates.
+std::optional<std::string> window_problem(MemoryStream& stream, std::string_view bytes,
+                                          uint32_t width, uint32_t height) {
+  Imf::Header header;
+  int version = int(little_u32(bytes, 4));
+  stream.seekg(8);  // past the magic number and the version field
+  header.readFrom(stream, version);
+  stream.seekg(0);  // RgbaInputFile reads from the stream's position
+  const Imath::Box2i& dw = header.dataWindow();
+  const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, h = int64_t(dw.max.y) - dw.min.y + 1;
+  if (w == int64_t(width) && h == int64_t(height)) return std::nullopt;
+  return cat("the EXR header reads as ", width, "x", height, " and as ", w, "x", h,
+             "; the file is damaged");
+}
+
 }  // namespace
 
-Result<Image> decode_rgba_interface(std::string_view bytes) {
+Result<Image> decode_rgba_interface(std::string_view bytes, uint32_t width, uint32_t height) {
   if (auto bad = header_problem(bytes)) return Error{*bad};
   try {
     MemoryStream stream(bytes);
+    if (auto bad = window_problem(stream, bytes, width, height)) return Error{*bad};
     Imf::RgbaInputFile file(stream);
     const Imath::Box2i& dw = file.dataWindow();
     const std::size_t w = std::size_t(dw.max.x - dw.min.x + 1);

@@ -97,6 +97,7 @@ bool probe(std::string_view bytes, Header& out, std::string& why) {
 bool decode(std::string_view bytes, const Header& h, uint64_t budget_bytes, Pixels& out,
             std::string& why) {
   int len = int(bytes.size()), w = 0, hh = 0, c = 0;
+  if (!check_bmp_palette(bytes, why)) return false;
   g_budget_left = budget_bytes;
   bool ok = false;
   if (h.is_hdr) {

@@ -28,4 +28,9 @@ struct Pixels {
 bool decode(std::string_view bytes, const Header& h, uint64_t budget_bytes, Pixels& out,
             std::string& why);
 
+// False, with the reason, for a BMP of 1, 4 or 8 bits a pixel that stb would decode although a
+// pixel's index lies past its palette (stb would read that entry from uninitialised memory);
+// true for every other file. decode() calls it (src/image/bmp_palette.cpp).
+bool check_bmp_palette(std::string_view bytes, std::string& why);
+
 }  // namespace raylane::stb

@@ -2,6 +2,7 @@
 // (docs/scene-language.md, "Commands").
 #include <cmath>
 
+#include "hints.h"
 #include "raylane/core/strings.h"
 
 #include "raylane/scene/mesh_import.h"
@@ -107,7 +108,8 @@ uint32_t add_material(Scene& s, const Material& m, ParseState& state) {
 bool brdf_command(Scene& s, const Line& line, ParseState& state) {
   std::size_t found = line.tokens.size() - 1;
   if (found != 7 && found != 11) {
-    state.problem(line.at(0), cat("brdf takes 7 or 11 numbers, found ", found));
+    state.problem(line.at(0),
+                  cat("brdf takes 7 or 11 numbers, found ", found, comma_hint(line, 1)));
     return false;
   }
   auto v = parse_numbers(line, 1, found, true, state);
@@ -221,7 +223,8 @@ bool Scene::command(const Line& line, ParseState& state) {
       }
     }
   });
-  if (!handled) state.problem(line.at(0), cat("unknown command ", in_quotes(word)));
+  if (!handled)
+    state.problem(line.at(0), cat("unknown command ", in_quotes(word), command_hint(word)));
   return accepted;
 }
 

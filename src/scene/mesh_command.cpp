@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "hints.h"
 #include "raylane/core/strings.h"
 
 #include "raylane/scene/mesh_import.h"
@@ -118,12 +119,26 @@ std::string obj_drop_warning(const std::vector<uint64_t>& lines, const std::stri
 
 }  // namespace
 
+// A file name with a space left unquoted (`mesh my model.ply 0 0 0 1`) reads as a name and a
+// token that is no number: said as such, with the quotes that mend it, when the joined name
+// is a file and the first part is not. Shared with `environment` (texture_command.cpp).
+// True when it reported one.
+bool spaced_name(const Line& line, ParseState& state, std::string_view number) {
+  if (line.tokens.size() < 3 || find_input_file(state, line.tokens[1].name())) return false;
+  const std::string hint = spaced_name_hint(line, 1, state);
+  if (hint.empty()) return false;
+  state.problem(line.at(2), cat("expected a number (", number, ") after the file name, found ",
+                                in_quotes(line.tokens[2].text), hint));
+  return true;
+}
+
 bool mesh_command(Scene& s, const Line& line, ParseState& state) {
   if (line.tokens.size() < 6) {
     state.problem(line.at(0), cat("mesh takes a file name and 4 numbers (tx ty tz s), found ",
                                   line.tokens.size() - 1, " parameters"));
     return false;
   }
+  if (spaced_name(line, state, "tx")) return false;
   auto v = parse_numbers(line, 2, 4, false, state);
   if (!v) return false;
   if (!((*v)[3] > 0)) {

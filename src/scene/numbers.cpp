@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "hints.h"
 #include "raylane/core/strings.h"
 #include "raylane/scene/parse_state.h"
 #include "raylane/scene/scene.h"
@@ -26,7 +27,10 @@ std::from_chars_result read_double(std::string_view s, double& v) {
 void not_a_number(std::string_view text, FileLoc loc, ParseState& state) {
   std::string invisible = first_invisible(text);
   if (invisible.empty()) {
-    state.problem(loc, cat("expected a number, found ", in_quotes(text)));
+    // "1,2,3" or "1,": numbers written as in a programming language.
+    const bool comma = text.find(',') != std::string_view::npos;
+    state.problem(loc, cat("expected a number, found ", in_quotes(text),
+                           comma ? "; separate numbers with spaces, not commas" : ""));
     return;
   }
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -97,7 +101,8 @@ std::optional<std::vector<double>> parse_numbers(const Line& line, std::size_t f
   std::size_t available = line.tokens.size() - std::min(first, line.tokens.size());
   if (available < count || (exact && available != count)) {
     state.problem(line.at(0), cat(line.tokens[0].text, " takes ", exact ? "" : "at least ", count,
-                                  count == 1 ? " number" : " numbers", ", found ", available));
+                                  count == 1 ? " number" : " numbers", ", found ", available,
+                                  comma_hint(line, first)));
     return std::nullopt;
   }
   std::vector<double> values;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "hints.h"
 #include "raylane/core/input_file.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/input_image.h"
@@ -174,9 +175,9 @@ Result<uint32_t> embedded_texture_row(Scene& s, ParseState& state, const MeshTex
 
 bool texture_command(Scene& s, const Line& line, ParseState& state) {
   if (line.tokens.size() != 2) {
-    state.problem(
-        line.at(line.tokens.size() < 2 ? 1 : 2),
-        cat("texture takes one file name, found ", line.tokens.size() - 1, " parameters"));
+    state.problem(line.at(line.tokens.size() < 2 ? 1 : 2),
+                  cat("texture takes one file name, found ", line.tokens.size() - 1, " parameters",
+                      spaced_name_hint(line, 1, state)));
     return false;
   }
   if (!state.current_material) {
@@ -204,6 +205,8 @@ bool texture_command(Scene& s, const Line& line, ParseState& state) {
   return true;
 }
 
+bool spaced_name(const Line& line, ParseState& state, std::string_view number);  // mesh_command.cpp
+
 // `environment file s <orientation>`.
 bool environment_command(Scene& s, const Line& line, ParseState& state) {
   if (line.tokens.size() < 3) {
@@ -212,6 +215,7 @@ bool environment_command(Scene& s, const Line& line, ParseState& state) {
                       " parameters"));
     return false;
   }
+  if (spaced_name(line, state, "s")) return false;
   auto scale = parse_number(line, 2, state);
   if (!scale) return false;
   if (!positive_in_float(*scale, "environment scale", line, 2, state)) return false;

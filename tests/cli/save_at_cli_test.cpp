@@ -132,5 +132,63 @@ TEST(CliSaveAt, BadListsAndClashingNamesExitTwoAndWriteNothing) {
   EXPECT_FALSE(fs::exists(dir + "/a.2.hdr"));
 }
 
+// -o Image_Pass_{pass}.hdr: the course's names. Every image, the series' and the final one,
+// gets its pass count in place of {pass}, with the --png and --aov siblings; each is the file
+// --spp N writes. A listed count equal to --spp is one image, written once.
+TEST(CliSaveAt, APassPatternNamesEveryImageAsTheCourseDid) {
+  std::string dir = temp_dir(), common = scene_args();
+  ASSERT_EQ(run_status("render " + common + " --spp 4 --save-at 2,1,4 --png --aov albedo -o '" +
+                       dir + "/Image_Pass_{pass}.hdr' --stats-json " + dir + "/s.json"),
+            0);
+  for (int n : {1, 2, 4}) {
+    std::string ref = dir + "/ref" + std::to_string(n);
+    fs::create_directory(ref);
+    ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) +
+                         " --png --aov albedo -o " + ref + "/room.hdr"),
+              0);
+    std::string stem = dir + "/Image_Pass_" + std::to_string(n);
+    EXPECT_TRUE(same_bytes(stem + ".hdr", ref + "/room.hdr"));
+    EXPECT_TRUE(same_bytes(stem + ".png", ref + "/room.png"));
+    EXPECT_TRUE(same_bytes(stem + ".albedo.pfm", ref + "/room.albedo.pfm"));
+  }
+  for (const auto& f : fs::directory_iterator(dir))
+    EXPECT_EQ(f.path().filename().string().find('{'), std::string::npos) << f.path();
+  const std::string json = read_file(dir + "/s.json");
+  EXPECT_NE(json.find("{\"spp\": 4, "), std::string::npos) << json;
+  EXPECT_NE(json.find("Image_Pass_4.hdr"), std::string::npos) << json;
+  // Without --save-at the pattern names the final image alone.
+  ASSERT_EQ(run_status("render " + common + " --spp 3 -o '" + dir + "/only_{pass}.pfm'"), 0);
+  EXPECT_TRUE(fs::exists(dir + "/only_3.pfm"));
+}
+
+// Braces that are not {pass}, {pass} in a folder or in a ray-casting view, and a pattern whose
+// image is another output's: exit 2 with the reason, nothing written.
+TEST(CliSaveAt, BadPassPatternsExitTwoAndWriteNothing) {
+  std::string dir = temp_dir(), common = scene_args() + " --spp 2 --save-at 1";
+  auto run = [&](const std::string& outputs) {
+    return testing::run_cli("render " + common + " " + outputs, dir);
+  };
+  auto typo = run("-o 'Image_Pass_{pas}.hdr'");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.out.find("expected the placeholder {pass} in the output name "
+                          "'Image_Pass_{pas}.hdr', found '{pas}'"),
+            std::string::npos)
+      << typo.out;
+  auto open = run("-o 'Image_Pass_{pass.hdr'");
+  EXPECT_EQ(open.status, 2);
+  EXPECT_NE(open.out.find("found '{'"), std::string::npos) << open.out;
+  EXPECT_EQ(run("-o 'a}.hdr'").status, 2);
+  auto folder = run("-o 'pass{pass}/a.hdr'");
+  EXPECT_EQ(folder.status, 2);
+  EXPECT_NE(folder.out.find("found braces in its folder"), std::string::npos) << folder.out;
+  auto view = run("--mode normal -o 'n_{pass}.pfm'");
+  EXPECT_EQ(view.status, 2);
+  EXPECT_NE(view.out.find("--mode normal renders no passes"), std::string::npos) << view.out;
+  auto clash = run("-o a.hdr -o 'a.{pass}.hdr'");  // a.1.hdr twice: a's series and the pattern
+  EXPECT_EQ(clash.status, 2);
+  EXPECT_NE(clash.out.find("'a.1.hdr' are one file"), std::string::npos) << clash.out;
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
 }  // namespace
 }  // namespace raylane

@@ -161,6 +161,10 @@ uint32_t little_endian_u32(const std::string& b, std::size_t at) {
   return v;
 }
 
+std::string le32(uint32_t v) {
+  return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)};
+}
+
 // Bytes from hex digits (the fuzzer's file below).
 std::string from_hex(std::string_view hex) {
   std::string out;
@@ -211,6 +215,49 @@ TEST(ExrLuminanceChroma, AnAttributeLargerThanTheFileIsRefusedBeforeItIsRead) {
     EXPECT_NE(refused.error().find(cat("declares ", size, " bytes")), std::string::npos)
         << refused.error();
   }
+}
+
+// The position just past an EXR header's attributes (its empty name), where the offset table
+// starts: a little-endian 32-bit size follows each attribute's name and type.
+std::size_t exr_header_end(const std::string& b) {
+  std::size_t pos = 8;
+  for (;;) {
+    const std::size_t name_end = b.find('\0', pos);
+    if (name_end == pos) return pos + 1;
+    const std::size_t type_end = b.find('\0', name_end + 1);
+    pos = type_end + 1 + 4 + little_endian_u32(b, type_end + 1);
+  }
+}
+
+// A damaged luminance-chroma file of 8x6 pixels with a second "dataWindow" attribute 2^24
+// pixels wide after the first (its offset table moved on by the bytes inserted): OpenEXRCore
+// reads it as 8x6, OpenEXR's C++ reader keeps the later window, and its RgbaInputFile
+// constructor allocated buffers by that width (4 GiB) before the size could be compared. The
+// C++ reader's header is now read and compared first: the file is refused, and no more is
+// allocated than the file needs (the sanitizer builds' allocator limits would catch 4 GiB).
+TEST(ExrLuminanceChroma, AHeaderReadAtAnotherSizeByTheCppReaderIsRefusedBeforeItAllocates) {
+  auto grey = [](int, int) { return glm::vec3(0.5f); };
+  std::string bytes = testing::exr_luminance_chroma(8, 6, grey);
+  ASSERT_TRUE(decode_exr(bytes));
+  std::string window = std::string("dataWindow\0box2i\0", 17) + le32(16);
+  for (uint32_t v : {0u, 0u, (1u << 24) - 1, 5u})
+    window += le32(v);
+  const std::size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4 + 16;
+  const std::size_t table = exr_header_end(bytes);
+  bytes.insert(at, window);
+  // One chunk (ZIP holds 16 scan lines): its 64-bit offset moves by the inserted bytes.
+  const std::size_t chunk = little_endian_u32(bytes, table + window.size()) + window.size();
+  for (int k = 0; k < 4; ++k)
+    bytes[table + window.size() + std::size_t(k)] = char((chunk >> (8 * k)) & 0xffu);
+  auto info = probe_exr(bytes);
+  ASSERT_TRUE(info) << info.error();
+  ASSERT_EQ(info->width, 8u);  // the core's reading
+  // A budget of 1 GiB: without the check, the 4 GiB allocation fails inside OpenEXR instead.
+  AllocBudget budget(uint64_t(1) << 30);
+  auto img = decode_exr(bytes);
+  EXPECT_LT(budget.peak(), uint64_t(16) << 20);
+  ASSERT_FALSE(img);
+  EXPECT_NE(img.error().find("reads as 8x6 and as 16777216x6"), std::string::npos) << img.error();
 }
 
 }  // namespace

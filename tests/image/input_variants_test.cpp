@@ -1,9 +1,11 @@
 // Variants of the formats raylane reads that once came back wrong (docs/design.md, "Images in"): a
-// grey PFM (`Pf`), a BMP stored top row first (negative height), a PFM whose scale is NaN.
+// grey PFM (`Pf`), a BMP stored top row first (negative height), a PFM whose scale is NaN, palette
+// BMPs whose indices point past their palette.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "raylane/image/input_image.h"
 #include "raylane/image/pfm.h"
@@ -63,6 +65,60 @@ TEST(InputVariants, ATopDownBmpKeepsItsSizeAndRowOrder) {
   EXPECT_EQ(img->at(1, 0), glm::vec3(0, 1, 0));
   EXPECT_EQ(img->at(0, 1), glm::vec3(0, 0, 1));
   EXPECT_EQ(img->at(1, 1), glm::vec3(1, 1, 1));
+}
+
+// A palette BMP (BITMAPINFOHEADER) of `bits` a pixel with the given palette entries (blue,
+// green, red each) and rows of stored bytes, each row already padded to 4 bytes.
+std::string palette_bmp(uint32_t width, uint32_t height, uint16_t bits,
+                        const std::vector<std::string>& palette, const std::string& rows) {
+  std::string pal;
+  for (const std::string& bgr : palette)
+    pal += bgr + std::string(1, '\0');
+  const uint32_t offset = 54 + uint32_t(pal.size());
+  std::string bmp = "BM" + le32(offset + uint32_t(rows.size())) + le32(0) + le32(offset);
+  bmp += le32(40) + le32(width) + le32(height) + std::string{1, 0, char(bits), 0} + le32(0) +
+         le32(uint32_t(rows.size())) + le32(2835) + le32(2835) + le32(0) + le32(0);
+  return bmp + pal + rows;
+}
+
+const std::string kRed{0, 0, char(255)}, kBlue{char(255), 0, 0};
+
+// Indices inside a two-entry palette decode; the same file with one index past the palette is
+// refused (stb would read that entry from its uninitialised stack palette, fuzz_image found
+// two decodes of such a file that differed).
+TEST(InputVariants, APaletteBmpWithAnIndexPastItsPaletteIsRefused) {
+  const std::string good_rows =
+      std::string{0, 1, 1, 0} + std::string{1, 0, 0, 0};  // 3 wide, 2 high
+  auto img = decode_input_image(palette_bmp(3, 2, 8, {kRed, kBlue}, good_rows), "p.bmp");
+  ASSERT_TRUE(img) << img.error();
+  EXPECT_EQ(img->at(0, 1), glm::vec3(1, 0, 0));  // the bottom row comes first: index 0, red
+  EXPECT_EQ(img->at(1, 1), glm::vec3(0, 0, 1));
+  EXPECT_EQ(img->at(0, 0), glm::vec3(0, 0, 1));
+  const std::string bad_rows = std::string{0, 1, 1, 0} + std::string{1, 0, 7, 0};
+  auto bad = decode_input_image(palette_bmp(3, 2, 8, {kRed, kBlue}, bad_rows), "p.bmp");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().find("expected palette indices below the palette's 2 entries, found "
+                             "index 7"),
+            std::string::npos)
+      << bad.error();
+  // The padding after a row's last index is not a pixel: a 7 there is not looked up.
+  const std::string padded = std::string{0, 1, 1, 7} + std::string{1, 0, 0, 7};
+  EXPECT_TRUE(decode_input_image(palette_bmp(3, 2, 8, {kRed, kBlue}, padded), "p.bmp"));
+}
+
+// 1- and 4-bit rows: a one-entry palette with a set bit, a two-entry one with a nibble of 2.
+TEST(InputVariants, OneAndFourBitBmpsAreCheckedIndexByIndex) {
+  const std::string one_bit_ok = std::string{char(0x00), 0, 0, 0};
+  EXPECT_TRUE(decode_input_image(palette_bmp(8, 1, 1, {kRed}, one_bit_ok), "p.bmp"));
+  const std::string one_bit_bad = std::string{char(0x01), 0, 0, 0};  // the 8th pixel is 1
+  EXPECT_FALSE(decode_input_image(palette_bmp(8, 1, 1, {kRed}, one_bit_bad), "p.bmp"));
+  // 7 pixels wide: the low bit of the byte is not a pixel and is not looked up.
+  EXPECT_TRUE(decode_input_image(palette_bmp(7, 1, 1, {kRed}, one_bit_bad), "p.bmp"));
+  const std::string nibbles_ok = std::string{char(0x01), char(0x10), 0, 0};
+  EXPECT_TRUE(decode_input_image(palette_bmp(3, 1, 4, {kRed, kBlue}, nibbles_ok), "p.bmp"));
+  const std::string nibbles_bad = std::string{char(0x01), char(0x12), 0, 0};  // 4th pixel: 2
+  EXPECT_TRUE(decode_input_image(palette_bmp(3, 1, 4, {kRed, kBlue}, nibbles_bad), "p.bmp"));
+  EXPECT_FALSE(decode_input_image(palette_bmp(4, 1, 4, {kRed, kBlue}, nibbles_bad), "p.bmp"));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scene/hints.h"
 #include "scene/scene_test_util.h"
 #include "support/paths.h"
 
@@ -97,7 +98,48 @@ TEST(Parser, DoubleSlashIsNotAComment) {
 
 TEST(Parser, CommandsAreCaseSensitive) {
   auto p = parse(std::string(kCameraLine) + "Sphere 0 0 0 1\n");
-  EXPECT_THAT(errors(p), ElementsAre("t.scn:2:1: unknown command 'Sphere'"));
+  EXPECT_THAT(errors(p), ElementsAre("t.scn:2:1: unknown command 'Sphere'; did you mean "
+                                     "'sphere'? (commands are lower case)"));
+}
+
+// The hints of docs/scene-language.md, "Hints": a near miss by edit distance, none where two
+// commands are as near or none is near enough.
+TEST(Parser, AMisspeltCommandIsNamedByItsNearestCommand) {
+  auto p = parse(std::string(kCameraLine) +
+                 "shpere 0 0 0 1\ncylnder 0 0 0 0 0 1 1\nBRDF 1 1 1 0 0 0 1\n");
+  EXPECT_THAT(errors(p),
+              ElementsAre("t.scn:2:1: unknown command 'shpere'; did you mean 'sphere'?",
+                          "t.scn:3:1: unknown command 'cylnder'; did you mean 'cylinder'?",
+                          "t.scn:4:1: unknown command 'BRDF'; did you mean 'brdf'? (commands are "
+                          "lower case)"));
+  // 'bogus' is two edits from 'torus' and 'lx' two from 'box', where their lengths allow one:
+  // nothing is offered.
+  auto far = parse(std::string(kCameraLine) + "bogus 1\nlx 1\n");
+  EXPECT_THAT(errors(far),
+              ElementsAre("t.scn:2:1: unknown command 'bogus'", "t.scn:3:1: unknown command 'lx'"));
+}
+
+TEST(Parser, EditDistanceCountsInsertionsDeletionsAndSubstitutions) {
+  EXPECT_EQ(edit_distance("sphere", "sphere"), 0u);
+  EXPECT_EQ(edit_distance("shpere", "sphere"), 2u);  // a swap is two substitutions
+  EXPECT_EQ(edit_distance("cylnder", "cylinder"), 1u);
+  EXPECT_EQ(edit_distance("", "box"), 3u);
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+}
+
+TEST(Parser, CommasBetweenNumbersAreNamed) {
+  auto p = parse(std::string(kCameraLine) + "sphere 1, 2, 3, 0.5\nsphere 1,2,3 0.5\n");
+  EXPECT_THAT(errors(p),
+              ElementsAre("t.scn:2:8: expected a number, found '1,'; separate numbers with "
+                          "spaces, not commas",
+                          "t.scn:3:1: sphere takes 4 numbers, found 2; separate numbers with "
+                          "spaces, not commas"));
+  auto brdf = parse(std::string(kCameraLine) + "brdf 1,1,1 0 0 0 1\n");
+  EXPECT_THAT(errors(brdf), ElementsAre("t.scn:2:1: brdf takes 7 or 11 numbers, found 5; "
+                                        "separate numbers with spaces, not commas"));
+  // A number that is wrong for another reason gets no hint.
+  auto plain = parse(std::string(kCameraLine) + "sphere 1 2 3 0.5x\n");
+  EXPECT_THAT(errors(plain), ElementsAre("t.scn:2:14: expected a number, found '0.5x'"));
 }
 
 TEST(Parser, StrictNumbers) {
@@ -110,13 +152,16 @@ TEST(Parser, StrictNumbers) {
                  "sphere 0 0 1e400 1\n"
                  "sphere 0,0 0 0 1\n"
                  "sphere +1 -2 3e-1 .5\n");
-  EXPECT_THAT(errors(p), ElementsAre("t.scn:2:12: expected a number, found '2.900874b'",
-                                     "t.scn:3:10: expected a number, found 'zero'",
-                                     "t.scn:4:12: expected a finite number, found 'nan'",
-                                     "t.scn:5:14: expected a finite number, found 'inf'",
-                                     "t.scn:6:8: number '1e39' does not fit in a float",
-                                     "t.scn:7:12: number '1e400' does not fit in a float",
-                                     "t.scn:8:8: expected a number, found '0,0'"));
+  EXPECT_THAT(
+      errors(p),
+      ElementsAre("t.scn:2:12: expected a number, found '2.900874b'",
+                  "t.scn:3:10: expected a number, found 'zero'",
+                  "t.scn:4:12: expected a finite number, found 'nan'",
+                  "t.scn:5:14: expected a finite number, found 'inf'",
+                  "t.scn:6:8: number '1e39' does not fit in a float",
+                  "t.scn:7:12: number '1e400' does not fit in a float",
+                  "t.scn:8:8: expected a number, found '0,0'; separate numbers with spaces, not "
+                  "commas"));
   ASSERT_EQ(p.scene.table<Sphere>().size(), 1u);
   EXPECT_EQ(p.scene.table<Sphere>().center(0), glm::vec3(1, -2, 0.3f));
   EXPECT_EQ(p.scene.table<Sphere>().r[0], 0.5f);
@@ -392,6 +437,42 @@ TEST(Parser, MeshInAFolderWithSpaces) {
   ASSERT_EQ(bad.diagnostics.error_count(), 1);
   EXPECT_NE(errors(bad)[0].find(":2:6: expected a closing quote"), std::string::npos)
       << errors(bad)[0];
+}
+
+// `mesh my models/letter x.ply 0 0 0 1` without quotes: the joined name is a file, so the
+// error says so and how to mend it; the same for texture and environment.
+TEST(Parser, AnUnquotedFileNameWithASpaceIsNamed) {
+  std::string dir = testing::temp_dir();
+  std::filesystem::copy_file(testing::source_path("scenes/letterX.ply"), dir + "/letter x.ply",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir + "/s.scn") << kCameraLine << "mesh letter x.ply 0 0 0 1\n"
+                                << "brdf 1 1 1 0 0 0 1\ntexture letter x.ply\n"
+                                << "environment letter x.ply 1\n";
+  ParseOptions lenient;
+  lenient.lenient = true;
+  auto p = load_scene_file(dir + "/s.scn", lenient);
+  std::vector<std::string> w = warnings(p);
+  ASSERT_EQ(w.size(), 4u);  // and "no screen line"
+  EXPECT_NE(
+      w[0].find(":2:13: warning: expected a number (tx) after the file name, found 'x.ply'; the "
+                "file name 'letter x.ply' holds a space: quote it, \"letter x.ply\""),
+      std::string::npos)
+      << w[0];
+  EXPECT_NE(
+      w[1].find(":4:16: warning: texture takes one file name, found 2 parameters; the file name "
+                "'letter x.ply' holds a space: quote it"),
+      std::string::npos)
+      << w[1];
+  EXPECT_NE(
+      w[2].find(":5:20: warning: expected a number (s) after the file name, found 'x.ply'; the "
+                "file name 'letter x.ply' holds a space"),
+      std::string::npos)
+      << w[2];
+  // No such file with the space either: the plain error, no hint.
+  std::ofstream(dir + "/t.scn") << kCameraLine << "mesh letter y.ply 0 0 0 1\n";
+  auto none = load_scene_file(dir + "/t.scn");
+  ASSERT_EQ(none.diagnostics.error_count(), 1);
+  EXPECT_EQ(errors(none)[0].find("holds a space"), std::string::npos) << errors(none)[0];
 }
 
 TEST(SplitTokens, ColumnsAreOneBased) {

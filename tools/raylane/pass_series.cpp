@@ -10,6 +10,7 @@
 #include "args.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_fallback.h"
+#include "raylane/render/raycast.h"
 #include "render_request.h"
 
 namespace raylane::cli {
@@ -47,7 +48,71 @@ Status check_save_at(const RenderRequest& r) {
                    ": the render stops before that pass")};
 }
 
+bool is_pass_pattern(const std::string& output) {
+  return output.find(kPassPlaceholder) != std::string::npos;
+}
+
+std::string with_passes(const std::string& output, int passes) {
+  std::string out = output;
+  const std::string n = std::to_string(passes);
+  for (std::size_t at = out.find(kPassPlaceholder); at != std::string::npos;
+       at = out.find(kPassPlaceholder, at + n.size()))
+    out.replace(at, kPassPlaceholder.size(), n);
+  return out;
+}
+
+namespace {
+
+// The first brace of `name` that is not part of a {pass}, with what follows it up to the
+// closing brace (or 8 bytes): "{pas}", "{", "}". Empty when every brace is a placeholder's.
+std::string stray_brace(const std::string& name) {
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    if (name.compare(i, kPassPlaceholder.size(), kPassPlaceholder) == 0) {
+      i += kPassPlaceholder.size() - 1;
+      continue;
+    }
+    if (name[i] == '{' || name[i] == '}') {
+      const std::size_t close = name.find('}', i + 1);
+      return name.substr(
+          i, name[i] == '{' && close != std::string::npos && close - i < 16 ? close - i + 1 : 1);
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+Status check_pass_patterns(const RenderRequest& r) {
+  for (const std::string& out : r.outputs) {
+    const std::filesystem::path p(out);
+    if (std::string bad = stray_brace(p.filename().string()); !bad.empty())
+      return Error{cat("expected the placeholder {pass} in the output name ", quote_path(out),
+                       ", found ", in_quotes(bad), " (braces name nothing else)")};
+    if (p.parent_path().string().find_first_of("{}") != std::string::npos)
+      return Error{cat("expected {pass} in the file name of the output ", quote_path(out),
+                       ", found braces in its folder (one folder holds the whole series)")};
+    if (is_pass_pattern(out) && !r.path)
+      return Error{cat("the output ", quote_path(out), " holds {pass}, the pass count of a path ",
+                       "render; --mode ", raycast_mode_name(r.mode), " renders no passes")};
+  }
+  return ok_status();
+}
+
+std::vector<std::string> final_outputs(const RenderRequest& r, int passes) {
+  std::vector<std::string> out;
+  const bool in_series = std::binary_search(r.save_at.begin(), r.save_at.end(), passes);
+  for (const std::string& o : r.outputs) {
+    if (!is_pass_pattern(o)) {
+      out.push_back(o);
+    } else if (!in_series) {
+      out.push_back(with_passes(o, passes));
+    }
+  }
+  return out;
+}
+
 std::string series_path(const std::string& output, int passes) {
+  if (is_pass_pattern(output)) return with_passes(output, passes);
   std::filesystem::path p(output);
   std::string name = cat(p.stem().string(), ".", passes, p.extension().string());
   return (p.parent_path() / name).string();

@@ -26,7 +26,24 @@ Status set_save_at(RenderRequest& r, const std::string& list);
 // After every option is read: a listed count beyond --spp is never reached.
 Status check_save_at(const RenderRequest& r);
 
-// STEM.N.EXT in the folder of `output`.
+// The course's names (Image_Pass_N.hdr): an output whose file name holds the placeholder
+// {pass} is a pattern, and every image written from it, the series' and the final one, gets
+// its pass count there (-o Image_Pass_{pass}.hdr --save-at 1,8 --spp 64 writes
+// Image_Pass_1.hdr, Image_Pass_8.hdr and Image_Pass_64.hdr). README.md, "--save-at".
+inline constexpr std::string_view kPassPlaceholder = "{pass}";
+bool is_pass_pattern(const std::string& output);
+// The output with each {pass} replaced by `passes`; any other output unchanged.
+std::string with_passes(const std::string& output, int passes);
+// After every option is read: braces in an output name are {pass} and nothing else, in the
+// file name (not a folder), and only in a path render (a ray-casting view has no passes).
+Status check_pass_patterns(const RenderRequest& r);
+// The files the render's outputs are written as once the film holds `passes`: patterns filled
+// in, except a pattern whose image the series already wrote at that count (the same file, bit
+// for bit); other outputs as given.
+std::vector<std::string> final_outputs(const RenderRequest& r, int passes);
+
+// The series' image after `passes` for one output: a pattern filled in, else STEM.N.EXT in the
+// folder of `output` (room.hdr → room.16.hdr).
 std::string series_path(const std::string& output, int passes);
 
 // Every file the series writes (colour outputs and their --aov siblings), for the checks made

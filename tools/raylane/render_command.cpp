@@ -29,7 +29,9 @@ namespace {
 // No output may be an input (the scene file, a mesh or a file it names, the --resume film)
 // or another output. A --checkpoint that is the --resume film is allowed: the film is read
 // whole first and saved again with more passes, the way a long render is continued.
-Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::string>& read) {
+// `passes`: the count the final images are named by ({pass}), --spp before rendering.
+Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::string>& read,
+                                 int passes) {
   std::vector<FileRole> inputs, outputs;
   for (std::size_t i = 0; i < read.size(); ++i)
     inputs.push_back(
@@ -37,9 +39,9 @@ Status outputs_apart_from_inputs(const RenderRequest& r, const std::vector<std::
   const auto& c = r.checkpoints;
   if (c.resume && !(c.checkpoint && same_file(*c.checkpoint, *c.resume)))
     inputs.push_back({*c.resume, "the --resume film"});
-  for (const std::string& out : r.outputs)
+  for (const std::string& out : final_outputs(r, passes))
     outputs.push_back({out, "the output"});
-  for (const auto& [out, aov] : r.aov_outputs)
+  for (const auto& [out, aov] : aov_siblings(final_outputs(r, passes), r.path_settings.aovs))
     outputs.push_back({out, "an --aov output"});
   for (const std::string& out : series_outputs(r))
     outputs.push_back({out, "a --save-at output"});
@@ -65,7 +67,7 @@ Status checkpoint_keeps_samples(const CheckpointOptions& c) {
 // Every output is checked before rendering starts, so a long render is never lost to a typo.
 bool outputs_writable(const RenderRequest& r) {
   bool ok = true;
-  std::vector<std::string> all = r.outputs;
+  std::vector<std::string> all = final_outputs(r, r.path_settings.spp);
   for (const auto& [out, aov] : r.aov_outputs)
     all.push_back(out);
   if (r.stats_json) all.push_back(*r.stats_json);
@@ -96,6 +98,28 @@ void keep_film(const RenderRequest& r, const Scene& scene, Film& film) {
                region ? cat(" --region ", region_text(*region)).c_str() : "");
 }
 
+// A path render's images. A render stopped before --spp (--time, Ctrl-C) names a {pass}
+// output by the passes it holds, a name the checks before rendering did not see: it is checked
+// now, and where it would overwrite an input or another output the film is kept instead.
+std::vector<std::string> write_final_images(const RenderRequest& r,
+                                            const std::vector<std::string>& inputs,
+                                            const Film& film, const WriteOptions& wopts,
+                                            bool& failed) {
+  if (film.passes != r.path_settings.spp) {
+    RenderRequest late = r;
+    late.save_at.clear();  // written already; the checkpoint and --stats-json were checked
+    late.checkpoints = {};
+    late.stats_json.reset();
+    if (Status s = outputs_apart_from_inputs(late, inputs, film.passes); !s) {
+      std::fprintf(stderr, "raylane: cannot write the images after %d passes: %s\n", film.passes,
+                   s.error().c_str());
+      failed = true;
+      return {};
+    }
+  }
+  return write_film_outputs(final_outputs(r, film.passes), film, wopts, failed);
+}
+
 // Under mpirun only rank 0 speaks: the others' messages would repeat its own (every process
 // reads the same scene and options), so their stdout and stderr go to /dev/null. If that
 // cannot be opened, the messages repeat; nothing else changes.
@@ -123,7 +147,7 @@ int render_command(const std::vector<std::string>& args) {
     if (bad > 0) std::fprintf(stderr, "raylane: rank %d cannot load the scene\n", bad);
     return kExitUsage;
   }
-  if (Status s = outputs_apart_from_inputs(r, parsed->input_files); !s)
+  if (Status s = outputs_apart_from_inputs(r, parsed->input_files, r.path_settings.spp); !s)
     return usage_error("render", s.error());
   if (Status s = checkpoint_keeps_samples(r.checkpoints); r.path && !s)
     return usage_error("render", s.error());
@@ -195,7 +219,7 @@ int render_command(const std::vector<std::string>& args) {
   bool failed = series_failed;
   std::vector<std::string> written;  // for --stats-json
   if (r.path) {
-    written = write_film_outputs(r.outputs, film, wopts, failed);
+    written = write_final_images(r, parsed->input_files, film, wopts, failed);
   } else {
     // 8-bit files get depth and id mapped for viewing; HDR and PFM keep the raw values.
     const Image view = viewable(image, r.mode);

@@ -190,7 +190,9 @@ const std::vector<RenderOption>& render_options() {
        }},
       {{"save-at", 0, "LIST", false,
         "path: also write the image after each listed pass (e.g. 1,4,16,64),\n"
-        "as STEM.N.EXT beside each output: the file --spp N writes, bit for bit",
+        "as STEM.N.EXT beside each output: the file --spp N writes, bit for bit;\n"
+        "an output named with {pass} (-o Image_Pass_{pass}.hdr) gets N there instead,\n"
+        "and its final image the passes it holds (braces name nothing else)",
         "none"},
        set_save_at},
       {{"aov", 0, "LIST", false,
@@ -362,7 +364,10 @@ Result<RenderRequest> read_render_request(const std::vector<std::string>& args) 
   if (parsed->has("exposure") && !has_png && !r.also_png)
     r.warnings.push_back(
         "--exposure does nothing without a .png output; it is for -o FILE.png or --png");
-  if (r.path) r.aov_outputs = aov_siblings(r.outputs, r.path_settings.aovs);
+  if (Status s = check_pass_patterns(r); !s) return Error{s.error()};
+  // The siblings of the images a render that runs to --spp writes (patterns filled in).
+  if (r.path)
+    r.aov_outputs = aov_siblings(final_outputs(r, r.path_settings.spp), r.path_settings.aovs);
   return r;
 }
 
