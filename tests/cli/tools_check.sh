@@ -58,7 +58,7 @@ awk -F, 'NR > 1 { if (!($3 > 0 && $4 > 0) || ($1 == m && $4 < cpu)) exit 1; m = 
 [ -z "$(ls series | grep -v -x -e ref.pfm -e converge.csv -e converge.dat -e converge.png)" ] ||
   fail "converge --series left $(ls series)"
 
-# Variants on one plot (issue 49): two --variant line sets of one scene at chosen --passes,
+# Variants on one plot: two --variant line sets of one scene at chosen --passes,
 # each against its own reference; then two scenes. A bad --variant or --passes is refused.
 "$source_dir/tools/converge" "$source_dir/scenes/sphere.scn" --raylane "$build/raylane" \
   --ref-spp 8 --passes 4,1 --methods mis --out variants --variant 'plain:' \
