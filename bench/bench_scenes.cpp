@@ -160,6 +160,21 @@ std::optional<BenchScene> make_lens_or_sphere(bool lens) {
   return b;
 }
 
+// A torus (an sdf block, R 0.45, r 0.15, its axis tilted 30° toward the camera) and the plain
+// sphere of radius R + r that fills its outline: what the float march costs over an analytic
+// test (issue 51: at least 20 % of the sphere's rays/s; docs/scene-language.md, "SDF blocks").
+std::optional<BenchScene> make_torus_or_sphere(bool torus) {
+  const std::string solid =
+      torus ? "sdf\ntorus 0 0 0 0 0.5 0.866 0.45 0.15\nend\n" : "sphere 0 0 0 0.6\n";
+  ParsedScene p = parse_scene("camera 0 0 2.2 0.3\nbrdf 0.5 0.5 0.5 0 0 0 1\n" + solid,
+                              torus ? "sdftorus.scn" : "torussphere.scn");
+  if (!p.ok()) return std::nullopt;
+  BenchScene b{torus ? "sdftorus" : "torussphere", std::move(p.scene), {}, {}, 0};
+  b.scene.width = kWidth, b.scene.height = kHeight;
+  b.light = {1.0, 1.0, 3.0};
+  return b;
+}
+
 std::optional<BenchScene> make_icosphere() {
   BenchScene b;
   b.name = "icosphere";
@@ -209,8 +224,8 @@ void set_bunny_path(std::string path) {
 }
 
 std::vector<std::string> bench_scene_names() {
-  return {"testscene",   "bunny",   "engine",  "icosphere",
-          "sphereflake", "lattice", "csglens", "lenssphere"};
+  return {"testscene", "bunny",   "engine",     "icosphere", "sphereflake",
+          "lattice",   "csglens", "lenssphere", "sdftorus",  "torussphere"};
 }
 
 CameraSpec look_at(const glm::dvec3& eye, const glm::dvec3& target, double ry) {
@@ -242,6 +257,7 @@ const BenchScene* bench_scene(const std::string& name, std::string* why) {
   if (name == "sphereflake") b = make_sphereflake();
   if (name == "lattice") b = make_lattice();
   if (name == "csglens" || name == "lenssphere") b = make_lens_or_sphere(name == "csglens");
+  if (name == "sdftorus" || name == "torussphere") b = make_torus_or_sphere(name == "sdftorus");
   if (name.rfind(kUserMeshPrefix, 0) == 0)
     b = make_user_mesh(name.substr(kUserMeshPrefix.size()), why);
   if (!b) {

@@ -29,7 +29,8 @@ struct BenchScene {
 // 3,674 triangles, written by tools/make_bunny), engine (2CylinderEngine.glb of Debian's
 // assimp-testmodels, ~110k triangles), icosphere (a displaced icosphere of 1.31M triangles),
 // sphereflake (66k spheres), lattice (4096 boxes joined by 11520 cylinders), csglens (a CSG
-// block: two sphere leaves intersected) and lenssphere (the sphere filling the lens's pixels).
+// block: two sphere leaves intersected) and lenssphere (the sphere filling the lens's pixels),
+// sdftorus (an sdf block: a tilted torus) and torussphere (the sphere filling its outline).
 std::vector<std::string> bench_scene_names();
 
 // The bunny's PLY file: bench-data/bunny.ply in the build tree this program was built in (its

@@ -3,7 +3,10 @@
 // bounds, step by the distance, which never crosses the surface, until it falls below the
 // tolerance (sdf.h) or the ray leaves the bounds or the steps run out.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "raylane/prims/sdf.h"
 
@@ -18,8 +21,10 @@ void truncate(Table& t, std::size_t rows) {
   std::apply([&](auto&... c) { (c.resize(rows), ...); }, t.columns());
 }
 
+}  // namespace
+
 // Leaf `leaf`'s exact distance at p, from its kind's float columns read in double.
-double leaf_distance(const SdfTable& s, uint32_t leaf, const glm::dvec3& p) {
+double sdf_leaf_distance_ref(const SdfTable& s, uint32_t leaf, const glm::dvec3& p) {
   const uint32_t i = s.leaf_row[leaf];
   switch (s.leaf_kind[leaf]) {
     case kSdfSphere:
@@ -42,7 +47,48 @@ double leaf_distance(const SdfTable& s, uint32_t leaf, const glm::dvec3& p) {
   }
 }
 
+namespace {
+
+// One thread's march counts, written by that thread alone (relaxed loads and stores: no locked
+// instruction in the kernels) and read by sdf_march_counts. A thread's slot outlives it, so
+// its counts stay in the sums.
+struct alignas(64) MarchSlot {
+  std::atomic<uint64_t> marches{0}, steps{0}, out_of_steps{0};
+};
+std::mutex slots_mutex;
+std::vector<std::unique_ptr<MarchSlot>>& march_slots() {
+  static std::vector<std::unique_ptr<MarchSlot>> slots;
+  return slots;
+}
+MarchSlot& my_march_slot() {
+  thread_local MarchSlot* mine = [] {
+    std::lock_guard<std::mutex> lock(slots_mutex);
+    march_slots().push_back(std::make_unique<MarchSlot>());
+    return march_slots().back().get();
+  }();
+  return *mine;
+}
+void bump(std::atomic<uint64_t>& a, uint64_t v) {
+  a.store(a.load(std::memory_order_relaxed) + v, std::memory_order_relaxed);
+}
+
 }  // namespace
+
+void sdf_count_marches(const SdfMarchCounts& c) {
+  MarchSlot& s = my_march_slot();
+  bump(s.marches, c.marches), bump(s.steps, c.steps), bump(s.out_of_steps, c.out_of_steps);
+}
+
+SdfMarchCounts sdf_march_counts() {
+  std::lock_guard<std::mutex> lock(slots_mutex);
+  SdfMarchCounts sum;
+  for (const auto& s : march_slots()) {
+    sum.marches += s->marches.load(std::memory_order_relaxed);
+    sum.steps += s->steps.load(std::memory_order_relaxed);
+    sum.out_of_steps += s->out_of_steps.load(std::memory_order_relaxed);
+  }
+  return sum;
+}
 
 std::optional<ParamError> TorusColumns::append(std::span<const double, 8> p) {
   glm::dvec3 a{float(p[3]), float(p[4]), float(p[5])};
@@ -159,7 +205,7 @@ double sdf_distance_ref(const SdfTable& s, uint32_t block, const glm::dvec3& p) 
   for (uint32_t j = begin; j < begin + s.program_count[block]; ++j) {
     const uint32_t code = s.program[j];
     if (code < kSdfMaxLeaves) {
-      stack[top++] = leaf_distance(s, first + code, p);
+      stack[top++] = sdf_leaf_distance_ref(s, first + code, p);
       continue;
     }
     double b = stack[--top];
@@ -173,7 +219,7 @@ uint32_t sdf_nearest_leaf_ref(const SdfTable& s, uint32_t block, const glm::dvec
   uint32_t best = first;
   double best_d = kInf;
   for (uint32_t i = first; i < first + s.leaf_count[block]; ++i) {
-    double d = std::abs(leaf_distance(s, i, p));
+    double d = std::abs(sdf_leaf_distance_ref(s, i, p));
     if (d < best_d) best_d = d, best = i;
   }
   return best;

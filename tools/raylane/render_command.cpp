@@ -166,6 +166,7 @@ int render_command(const std::vector<std::string>& args) {
   // primitive by the same row (and `--mode id` images compare across tracers).
   Bvh bvh = build_bvh_and_reorder(*scene, render_bvh_config(*scene));
   Tracer tracer(*scene, bvh, r.tracer, r.isa);
+  const SdfMarchCounts marches_before = sdf_march_counts();  // --stats: this render's marches
   auto start = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   std::string what;
@@ -254,6 +255,15 @@ int render_command(const std::vector<std::string>& args) {
   if (r.path && r.print_phases && !r.quiet) {
     print_phases(path_stats, seconds, omp_get_max_threads() * cluster.size());
     if (cluster.distributed()) print_balance(balance, cluster.size());
+  }
+  if (r.print_phases && !r.quiet && scene->table<Sdf>().size() > 0) {
+    // The float march's counts (sdf_packet.h; this process's threads alone under mpirun).
+    SdfMarchCounts m = sdf_march_counts();
+    uint64_t marches = m.marches - marches_before.marches, steps = m.steps - marches_before.steps;
+    std::fprintf(stderr,
+                 "sdf blocks: %llu marches, %.2f steps per march, %llu out of steps (misses)\n",
+                 (unsigned long long)marches, marches ? double(steps) / double(marches) : 0.0,
+                 (unsigned long long)(m.out_of_steps - marches_before.out_of_steps));
   }
   if (status == kExitOk && interrupted_run) status = kExitInterrupted;
   return r.path ? cluster.root_status(status) : status;

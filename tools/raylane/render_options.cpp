@@ -256,7 +256,8 @@ const std::vector<RenderOption>& render_options() {
        set_balance},
       {{"stats", 0, "", false,
         "path: at the end, where the time went (camera rays, tracing, shading, light\n"
-        "sampling, film, idle) and the rays per second of each kind",
+        "sampling, film, idle) and the rays per second of each kind; any mode: the sdf\n"
+        "blocks' mean steps per march and the marches that ran out of steps",
         ""},
        [](R& r, V) {
          r.path_settings.time_phases = r.print_phases = true;

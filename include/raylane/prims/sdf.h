@@ -48,6 +48,17 @@ T sdf_tolerance(T s, T o) {
   return T(1e-4) * s + T(0x1p-20) * (o + s);
 }
 
+// What the float marcher did (sdf_packet.h): lanes that marched a block, the distance
+// evaluations they took, and those still marching after kSdfMaxSteps (misses by steps). Each
+// thread adds to its own counts (no shared cache line in the kernels); sdf_march_counts sums
+// them over the threads since the program started, so a caller takes the difference around
+// what it measures.
+struct SdfMarchCounts {
+  uint64_t marches = 0, steps = 0, out_of_steps = 0;
+};
+void sdf_count_marches(const SdfMarchCounts& c);
+SdfMarchCounts sdf_march_counts();
+
 struct SdfTable {
   // One row per block, permuted into the BVH's leaf order like any table's rows.
   std::vector<float> lox, loy, loz, hix, hiy, hiz;  // bounds, widened by k for smooth operators
@@ -125,7 +136,8 @@ inline double intersect_ref(const SdfTable& s, uint32_t row, const Rayd& ray) {
 }
 
 // The distance of block `block` (in the order written) at p, in double; and its leaf nearest p
-// (the least |distance|, the earlier on ties).
+// (the least |distance|, the earlier on ties); and one leaf's own distance at p.
+double sdf_leaf_distance_ref(const SdfTable& s, uint32_t leaf, const glm::dvec3& p);
 double sdf_distance_ref(const SdfTable& s, uint32_t block, const glm::dvec3& p);
 uint32_t sdf_nearest_leaf_ref(const SdfTable& s, uint32_t block, const glm::dvec3& p);
 

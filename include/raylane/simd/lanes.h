@@ -342,6 +342,15 @@ inline Doubles<A> sqrt(const Doubles<A>& x) {
     return xsimd::sqrt(x);
   }
 }
+// The same for float lanes.
+template <class A>
+inline Floats<A> sqrt(const Floats<A>& x) {
+  if constexpr (kWidth<A> == 16) {
+    return Floats<A>(_mm512_maskz_sqrt_ps(kAll16, __m512(x)));
+  } else {
+    return xsimd::sqrt(x);
+  }
+}
 
 // Eight double lanes held as 8 / kDoubleWidth<A> registers, lanes 0-3 read from left[0..3]
 // and lanes 4-7 from right[0..3]: register j of them (the BVH builder's SAH sweep runs two
