@@ -127,6 +127,7 @@ RTCScene build(const Scene& scene, EmbreeMode mode, double* seconds) {
   UserGeometry<Box>::add(s, scene);
   UserGeometry<Cylinder>::add(s, scene);
   UserGeometry<Csg>::add(s, scene);  // Embree has no CSG: raylane's reference in user geometry
+  UserGeometry<Sdf>::add(s, scene);  // nor ray marching: raylane's double reference marcher
   add_triangles(s, scene.table<Triangle>());
   auto start = std::chrono::steady_clock::now();
   rtcCommitScene(s);
