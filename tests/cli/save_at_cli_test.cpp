@@ -37,6 +37,17 @@ std::string scene_args() {
   return source_path("scenes/testscene-glass.scn") + " --set 'screen 40 30' --quiet";
 }
 
+// The plain render at --spp n with --png and an albedo AOV, in dir/ref<n>/room.hdr (and its
+// siblings): what a saved-at image must equal. Returns the folder.
+std::string reference_render(const std::string& common, const std::string& dir, int n) {
+  std::string ref = dir + "/ref" + std::to_string(n);
+  fs::create_directory(ref);
+  EXPECT_EQ(run_status("render " + common + " --spp " + std::to_string(n) +
+                       " --png --aov albedo -o " + ref + "/room.hdr"),
+            0);
+  return ref;
+}
+
 TEST(CliSaveAt, EachImageIsTheRenderStoppedAtThatPass) {
   for (std::string sampler : {"sobol", "mt19937"}) {
     SCOPED_TRACE(sampler);
@@ -45,11 +56,7 @@ TEST(CliSaveAt, EachImageIsTheRenderStoppedAtThatPass) {
                          dir + "/room.hdr"),
               0);
     for (int n : {1, 2, 4}) {
-      std::string ref = dir + "/ref" + std::to_string(n);
-      fs::create_directory(ref);
-      ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) +
-                           " --png --aov albedo -o " + ref + "/room.hdr"),
-                0);
+      const std::string ref = reference_render(common, dir, n);
       std::string stem = "/room." + std::to_string(n);
       std::string hdr = read_file(dir + stem + ".hdr");
       EXPECT_NE(hdr.find("RAYLANE_SPP=" + std::to_string(n)), std::string::npos) << n;
@@ -141,11 +148,7 @@ TEST(CliSaveAt, APassPatternNamesEveryImageAsTheCourseDid) {
                        dir + "/Image_Pass_{pass}.hdr' --stats-json " + dir + "/s.json"),
             0);
   for (int n : {1, 2, 4}) {
-    std::string ref = dir + "/ref" + std::to_string(n);
-    fs::create_directory(ref);
-    ASSERT_EQ(run_status("render " + common + " --spp " + std::to_string(n) +
-                         " --png --aov albedo -o " + ref + "/room.hdr"),
-              0);
+    const std::string ref = reference_render(common, dir, n);
     std::string stem = dir + "/Image_Pass_" + std::to_string(n);
     EXPECT_TRUE(same_bytes(stem + ".hdr", ref + "/room.hdr"));
     EXPECT_TRUE(same_bytes(stem + ".png", ref + "/room.png"));
