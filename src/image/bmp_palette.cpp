@@ -67,10 +67,19 @@ bool check_bmp_palette(std::string_view b, std::string& why) {
       signed_height < 0 ? uint32_t(0) - uint32_t(signed_height) : uint32_t(signed_height);
   if (width > (1u << 24) || height > (1u << 24)) return true;
   // stb's palette size: the bytes between the header and the pixels' offset, 3 or 4 per entry
-  // (its core-header formula subtracts 24, not 26: copied as it is, so both count alike).
+  // (its core-header formula subtracts 24, not 26: copied as it is, so both count alike). It
+  // divides by 3 (rounding toward 0) but shifts right by 2 (rounding down), so an offset inside
+  // the header gives it a negative size, and that it does not refuse: it reads no palette at
+  // all and looks every pixel up in its uninitialised one (found by fuzz_image). Such a file
+  // has no palette to read, and is refused here.
   const int64_t offset = int32_t(le32(b, 10));
-  const int64_t psize = core ? (offset - 14 - 24) / 3 : (offset - 14 - int64_t(hsz)) / 4;
-  if (psize <= 0 || psize > 256) return true;  // stb refuses these ("Corrupt BMP")
+  const int64_t psize = core ? (offset - 14 - 24) / 3 : (offset - 14 - int64_t(hsz)) >> 2;
+  if (psize == 0 || psize > 256) return true;  // stb refuses these ("Corrupt BMP")
+  if (psize < 0) {
+    why = cat("expected a palette between the header and the pixels, found the pixels' offset ",
+              offset, " inside the ", hsz, "-byte header");
+    return false;
+  }
   // Where stb starts reading pixels: the offset, or the file's end if the offset lies inside
   // the palette (stb's skip by a negative count jumps to the end).
   const int64_t after_palette = 14 + int64_t(hsz) + psize * (core ? 3 : 4);

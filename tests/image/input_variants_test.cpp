@@ -106,6 +106,23 @@ TEST(InputVariants, APaletteBmpWithAnIndexPastItsPaletteIsRefused) {
   EXPECT_TRUE(decode_input_image(palette_bmp(3, 2, 8, {kRed, kBlue}, padded), "p.bmp"));
 }
 
+// A palette BMP whose pixels' offset points into its own header: stb computes a negative
+// palette size, reads no palette and looks every pixel up in its uninitialised one (fuzz_image
+// found two decodes of such a file that differed). It is refused, with the offset named.
+TEST(InputVariants, APaletteBmpWhosePixelsStartInsideItsHeaderIsRefused) {
+  const std::string rows = std::string{0, 1, 1, 0} + std::string{1, 0, 0, 0};
+  for (uint32_t offset : {50u, 53u, 40u}) {
+    std::string bmp = palette_bmp(3, 2, 8, {kRed, kBlue}, rows);
+    bmp.replace(10, 4, le32(offset));
+    auto bad = decode_input_image(bmp, "p.bmp");
+    ASSERT_FALSE(bad) << offset;
+    EXPECT_NE(bad.error().find("found the pixels' offset " + std::to_string(offset) +
+                               " inside the 40-byte header"),
+              std::string::npos)
+        << bad.error();
+  }
+}
+
 // 1- and 4-bit rows: a one-entry palette with a set bit, a two-entry one with a nibble of 2.
 TEST(InputVariants, OneAndFourBitBmpsAreCheckedIndexByIndex) {
   const std::string one_bit_ok = std::string{char(0x00), 0, 0, 0};
