@@ -275,16 +275,21 @@ TEST_P(SdfPacketTest, OcclusionIsTheReferences) {
 }
 
 // Secondary rays from the blocks' surfaces with the render's offsets (core/ray_offset.h): one
-// continuing into the solid must meet its boundary from inside (a front face or a miss would be
-// a leak), one reflected off it must not meet a surface from inside (acne). Without moving the
-// hit point onto the surface (sdf.cpp, surface_ref), 127 of 1171 leaked: the march stops up to
-// its tolerance outside. Some still do where the point lies on a seam of a sharp operator (the
-// gradient there mixes two leaves'): fewer than 1 in 50 is allowed, and left to be fixed.
+// continuing into the solid must meet its boundary from inside, one reflected off it must not
+// meet a surface from inside (acne). Without moving the hit point onto the surface (sdf.cpp,
+// surface_ref), 127 of 1171 leaked: the march stops up to its tolerance outside. A ray into the
+// solid leaks where it misses, or meets a front face at a point outside the block it left (it
+// passed through that block's surface). A front face inside the block is another solid's (the
+// analytic sphere overlapping the torus): 10 of the 11 "leaks" the old count (any front face)
+// found were those, not seams. A miss by steps — the reference marcher, from the same origin,
+// also running out of its 256 steps (a ray crawling along the inside of the carved box's
+// blend, at a grazing exit: Hart 1996, §4) — is counted apart, and must be the reference's.
 TEST_P(SdfPacketTest, SecondaryRaysNeitherLeakNorReHitWithTheRenderOffsets) {
   Scene s = sdf_scene();
   Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
   Tracer tracer(s, bvh, TracerBackend::kPacket, GetParam().isa);
   std::vector<Rayd> first = rays_at(s, 3000, 5), into, out;
+  std::vector<std::size_t> from;  // the first ray of each ray into a solid
   std::vector<Hit> hits;
   tracer.closest(first, hits);
   for (std::size_t i = 0; i < first.size(); ++i) {
@@ -293,21 +298,86 @@ TEST_P(SdfPacketTest, SecondaryRaysNeitherLeakNorReHitWithTheRenderOffsets) {
     glm::dvec3 err = hit_point_error(first[i], h.t), n = h.surface.ng, d = normalize(first[i].d);
     if (std::abs(dot(d, n)) < 0.1) continue;  // silhouettes aside: the march stops short there
     into.push_back({offset_ray_origin(h.surface.p, err, n, -n), d});
+    from.push_back(i);
     out.push_back({offset_ray_origin(h.surface.p, err, n, n), d - 2 * dot(d, n) * n});
   }
   std::vector<Hit> in_hits, out_hits;
   tracer.closest(into, in_hits);
   tracer.closest(out, out_hits);
-  int leaks = 0, acne = 0;
-  for (const Hit& h : in_hits)
-    leaks += !h.hit() || h.front_face;
+  const SdfTable& st = s.table<Sdf>();
+  int leaks = 0, acne = 0, inner = 0, by_steps = 0;
+  for (std::size_t i = 0; i < in_hits.size(); ++i) {
+    const Hit& h = in_hits[i];
+    const uint32_t blk = st.leaf_block[hits[from[i]].prim.row()];
+    if (!h.hit()) {
+      bool ref_ran_out = false;
+      for (uint32_t row = 0; row < st.size(); ++row)
+        if (st.block[row] == blk) {
+          Sdf::LeafHit ref = Sdf::hit_ref(st, row, into[i]);
+          ref_ran_out = !(ref.t < kInf) && ref.steps == uint32_t(kSdfMaxSteps);
+        }
+      (ref_ran_out ? by_steps : leaks) += 1;
+    } else if (h.front_face) {
+      bool in_block = h.prim.tag() != tag_of<Sdf> && sdf_distance_ref(st, blk, h.surface.p) < 0;
+      (in_block ? inner : leaks) += 1;
+    }
+  }
   for (const Hit& h : out_hits)
     acne += h.hit() && !h.front_face;
-  std::printf("[ offsets  ] %zu rays into the solids, %d leaking; %zu reflected, %d re-hitting\n",
-              into.size(), leaks, out.size(), acne);
+  std::printf(
+      "[ offsets  ] %zu rays into the solids, %d leaking, %d meeting another solid inside, %d "
+      "missing by steps as the reference does; %zu reflected, %d re-hitting\n",
+      into.size(), leaks, inner, by_steps, out.size(), acne);
   EXPECT_GT(into.size(), 300u);
-  EXPECT_LT(leaks, int(into.size()) / 50);
+  EXPECT_EQ(leaks, 0);
+  EXPECT_GT(inner, 0);     // the overlapping sphere is met: the count above is not vacuous
+  EXPECT_LE(by_steps, 1);  // the one of the comment above, until grazing exits march faster
   EXPECT_EQ(acne, 0);
+}
+
+// A transmissive SDF solid (docs/scene-language.md: rays inside march by |distance|, the
+// negated distance): rays refracted into an sdf sphere (index 1.5) from its surface, offset as
+// the render offsets them, leave it where the analytic sphere says, within the band in which the
+// march may stop (the tolerance over the cosine at the exit; Hart 1996, §2) and from the side
+// inside (a back face).
+TEST_P(SdfPacketTest, RefractedRaysLeaveAnSdfSphereWhereTheAnalyticSphereSays) {
+  auto p = parse_scene("camera 0 0 20 0.5\nsdf\nsphere 0.5 -0.25 0.3 1.5\nend\n", "glass.scn");
+  ASSERT_TRUE(p.ok());
+  Scene s = std::move(p.scene);
+  Bvh bvh = build_bvh_and_reorder(s, kWithWideNodes);
+  Tracer tracer(s, bvh, TracerBackend::kPacket, GetParam().isa);
+  const glm::dvec3 c(0.5, -0.25, 0.3);
+  const double radius = 1.5, eta = 1 / 1.5;
+  std::vector<Rayd> first = rays_at(s, 2000, 9), inside;
+  std::vector<Hit> hits, in_hits;
+  tracer.closest(first, hits);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    const Hit& h = hits[i];
+    if (!h.hit() || !h.front_face) continue;
+    glm::dvec3 d = normalize(first[i].d), n = h.surface.ng;
+    double ci = -dot(d, n);
+    if (ci < 0.1) continue;  // silhouettes aside
+    glm::dvec3 wt = eta * d + (eta * ci - std::sqrt(1 - eta * eta * (1 - ci * ci))) * n;
+    inside.push_back({offset_ray_origin(h.surface.p, hit_point_error(first[i], h.t), n, wt), wt});
+  }
+  tracer.closest(inside, in_hits);
+  int far = 0, checked = 0;
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    const Rayd& r = inside[i];
+    glm::dvec3 oc = r.o - c;
+    double b = dot(oc, r.d), t_exit = -b + std::sqrt(b * b - (dot(oc, oc) - radius * radius));
+    double cos_exit = dot(r.d, normalize(r.at(t_exit) - c));
+    double o = std::max({std::abs(r.o.x), std::abs(r.o.y), std::abs(r.o.z)});
+    if (cos_exit < 0.1) continue;  // a grazing exit: the band is wide, and total reflection near
+    ++checked;
+    double band = 2 * sdf_tolerance(t_exit, o) / cos_exit;
+    const Hit& h = in_hits[i];
+    bool ok = h.hit() && !h.front_face && std::abs(h.t - t_exit) <= band;
+    far += !ok;
+    EXPECT_TRUE(ok) << i << " t " << h.t << " analytic " << t_exit << " band " << band;
+  }
+  EXPECT_GT(checked, 300);
+  EXPECT_EQ(far, 0);
 }
 
 // Over-relaxed steps (sdf_packet.h; Keinert et al. 2014) against plain ones on the pixels of
