@@ -117,7 +117,7 @@ void render_passes(benchmark::State& state, const std::string& name, Integrator 
         double(all.bounce_rays + all.shadow_rays) / all.phases.trace_rest * 1e-6;
     state.counters["shade/trace"] =
         (all.phases.shade + all.phases.lights) / (all.phases.trace_rest + all.phases.trace_camera);
-    // How full the wavefronts ran (src/render/wavefront/tiles_in_flight.h).
+    // How full the wavefronts ran (src/render/wavefront/render_loop.h).
     state.counters["rays/step"] = double(all.rays()) / double(std::max<uint64_t>(all.steps, 1));
   }
 }

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "raylane/core/ray_offset.h"
-#include "raylane/render/camera.h"
+#include "raylane/render/camera/camera.h"
 #include "raylane/trace/tracer.h"
 
 namespace raylane::bench {

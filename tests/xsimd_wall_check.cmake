@@ -15,7 +15,7 @@ foreach(line IN LISTS lines)
   if(line MATCHES "^([^ ].*): #deps")
     set(target "${CMAKE_MATCH_1}")
     set(walled FALSE)
-    if((target MATCHES "/src/(scene|render|image)/[^/]+\\.o$" AND
+    if((target MATCHES "/src/(scene|render|image|view)/([^/]+/)?[^/]+\\.o$" AND
         NOT target MATCHES "/src/render/render_lanes_(sse42|avx2|avx512)\\.cpp\\.o$") OR
        target MATCHES "raylane\\.dir/tools/raylane/[^/]+\\.o$")
       set(walled TRUE)

@@ -6,9 +6,9 @@
 
 #include <omp.h>
 
-#include "raylane/render/camera.h"
-#include "raylane/render/film.h"
-#include "render/wavefront/tiles_in_flight.h"
+#include "raylane/render/camera/camera.h"
+#include "raylane/render/film/film.h"
+#include "render/wavefront/render_loop.h"
 
 namespace raylane {
 
@@ -65,7 +65,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
 #pragma omp single
       if (per_thread.size() < std::size_t(omp_get_num_threads()))
         per_thread.resize(std::size_t(omp_get_num_threads()));
-      TileContext ctx{
+      ThreadContext ctx{
           per_thread[std::size_t(omp_get_thread_num())],   tracer, lights, settings,      lanes,
           Rng::for_tile(settings.seed, 0, uint64_t(pass)), {},     0,      uint32_t(pass)};
       render_claimed_tiles(ctx, cam, claims, f, tile_seconds);

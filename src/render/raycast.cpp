@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "raylane/core/ray_offset.h"
-#include "raylane/render/texturing.h"
+#include "raylane/render/materials/texturing.h"
 
 namespace raylane {
 

@@ -10,23 +10,23 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "raylane/render/camera_lanes.h"
-#include "raylane/render/light_lanes.h"
-#include "raylane/render/shade_lanes.h"
-#include "raylane/render/sobol.h"
+#include "raylane/render/camera/camera_lanes.h"
+#include "raylane/render/lights/light_lanes.h"
+#include "raylane/render/materials/shade_lanes.h"
+#include "raylane/render/samplers/sobol.h"
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/simd/isa.h"
 
 namespace raylane::detail {
 
 struct RenderLanes {
-  // shade_lanes (render/shade_lanes.h).
+  // shade_lanes (render/materials/shade_lanes.h).
   void (*shade)(const LaneMaterials& materials, ShadeBatch& batch);
-  // sobol_groups (render/sobol.h) for the bit-reversed index, components `which` (0 and 1
+  // sobol_groups (render/samplers/sobol.h) for the bit-reversed index, components `which` (0 and 1
   // among them), and their numbers into the callers' columns.
   void (*sobol_groups)(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& batch,
                        const SobolNumbers& numbers);
-  // sample_cones (render/light_lanes.h).
+  // sample_cones (render/lights/light_lanes.h).
   void (*sample_cones)(ConeBatch& batch, const ConeSphere* every_row);
   // finish_vertices (render/vertex_lanes.h).
   void (*finish_vertices)(const VertexRules& rules, const ShadeBatch& bsdf,
@@ -36,7 +36,7 @@ struct RenderLanes {
                              VertexBatch& vertices, ShadeBatch& shade);
   // filter_rows (render/vertex_lanes.h): returns the rows kept.
   std::size_t (*filter_rows)(const RowFilter& filter, std::size_t rows);
-  // pinhole_rays (render/camera_lanes.h) for the points [0, the count rounded down to the lane
+  // pinhole_rays (render/camera/camera_lanes.h) for the points [0, the count rounded down to the lane
   // width): returns that count.
   std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);
 };

@@ -3,11 +3,11 @@
 // with their own flags. Include from those files only.
 #pragma once
 
-#include "render/camera_lanes_impl.h"
-#include "render/light_lanes_impl.h"
+#include "render/camera/camera_lanes_impl.h"
+#include "render/lights/light_lanes_impl.h"
 #include "render/render_lanes.h"
-#include "render/shade_lanes_impl.h"
-#include "render/sobol_lanes_impl.h"
+#include "render/materials/shade_lanes_impl.h"
+#include "render/samplers/sobol_lanes_impl.h"
 #include "render/vertex_lanes_impl.h"
 
 namespace raylane::detail {

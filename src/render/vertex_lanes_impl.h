@@ -12,7 +12,7 @@
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/render/vertex_steps.h"
 #include "raylane/simd/lane_rows.h"
-#include "render/light_lanes_impl.h"
+#include "render/lights/light_lanes_impl.h"
 
 namespace raylane::detail {
 

@@ -1,6 +1,6 @@
 #include "raylane/scene/texture.h"
 
-#include "raylane/render/texel_lookup.h"
+#include "raylane/render/materials/texel_lookup.h"
 
 namespace raylane {
 

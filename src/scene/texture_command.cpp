@@ -126,7 +126,7 @@ Result<TexelImage> read_scene_texels(ParseState& state, const std::string& path,
 }
 
 // The environment's importance sampling: a weight and a CDF entry (doubles) per pixel, and its
-// guide table's share (render/environment.h). The light shares the scene's texels.
+// guide table's share (render/lights/environment.h). The light shares the scene's texels.
 constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double) + 1;
 
 }  // namespace

@@ -1,4 +1,4 @@
-// `raylane render --region X0,Y0,X1,Y1` (render/region.h): the files hold the rectangle, bit for
+// `raylane render --region X0,Y0,X1,Y1` (render/film/region.h): the files hold the rectangle, bit for
 // bit the whole render's pixels (colour, AOV layers, ray-casting views); a checkpoint records
 // the region and resumes only with it; bad values are usage errors that write nothing.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 
 #include "raylane/image/exr.h"
 #include "raylane/image/write_image.h"
-#include "raylane/render/region.h"
+#include "raylane/render/film/region.h"
 #include "support/cli_run.h"
 #include "support/paths.h"
 

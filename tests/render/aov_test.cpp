@@ -1,4 +1,4 @@
-// AOVs of the path render (render/aov.h; docs/scene-language.md, "AOVs: albedo, normal, depth,
+// AOVs of the path render (render/film/aov.h; docs/scene-language.md, "AOVs: albedo, normal, depth,
 // position"): summed at the colour's samples, equal to the ray-cast views where a pixel sees one
 // surface, carried by a resumed film bit for bit, and independent of the thread count.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "raylane/bvh/bvh.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/render/raycast.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"

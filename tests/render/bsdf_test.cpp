@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "raylane/render/bsdf.h"
-#include "raylane/render/rng.h"
-#include "raylane/render/sampling.h"
+#include "raylane/render/materials/bsdf.h"
+#include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sampling.h"
 #include "support/estimate.h"
 
 namespace raylane {

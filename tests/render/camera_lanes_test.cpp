@@ -1,8 +1,8 @@
-// The pinhole's rays in double lanes (render/camera_lanes.h) against Camera::ray_through rounded
+// The pinhole's rays in double lanes (render/camera/camera_lanes.h) against Camera::ray_through rounded
 // to float, bit for bit at every instruction set this CPU has: random cameras (orientations,
 // fields of view, odd image sizes), random pixel points, counts that are not a multiple of any
 // lane width, and points on the image's edges and corners.
-#include "raylane/render/camera_lanes.h"
+#include "raylane/render/camera/camera_lanes.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 #include "support/same_bits.h"
 
 namespace raylane {

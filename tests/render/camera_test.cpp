@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "raylane/render/camera.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/camera/camera.h"
+#include "raylane/render/samplers/rng.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 

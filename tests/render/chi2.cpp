@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "raylane/render/sampling.h"
+#include "raylane/render/samplers/sampling.h"
 
 namespace raylane::testing {
 

@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "raylane/core/vec_math.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 
 namespace raylane::testing {
 

@@ -1,4 +1,4 @@
-// The environment as a light of the path tracer (render/lights.h, render/path.h): furnaces with
+// The environment as a light of the path tracer (render/lights/lights.h, render/path.h): furnaces with
 // analytic answers, the orientation moving the light, and the `environment` command's rules.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/pfm.h"
-#include "raylane/render/environment.h"
+#include "raylane/render/lights/environment.h"
 #include "raylane/render/path.h"
 #include "raylane/scene/parser.h"
 #include "scene/scene_test_util.h"

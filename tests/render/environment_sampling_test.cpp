@@ -1,4 +1,4 @@
-// Importance sampling of the environment light (render/environment.h) against its density:
+// Importance sampling of the environment light (render/lights/environment.h) against its density:
 // chi-square fits (docs/hard-cases.md M4), sample/pdf agreement, ∫pdf dω = 1, and the
 // estimator check: irradiance by importance and by uniform sampling against a quadrature.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include "chi2.h"
 #include "env_maps.h"
-#include "raylane/render/environment.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/lights/environment.h"
+#include "raylane/render/samplers/rng.h"
 #include "support/estimate.h"
 
 namespace raylane {
@@ -72,7 +72,7 @@ uint32_t cell_by_scan(const std::vector<double>& f, double u) {
   return last;
 }
 
-// The guide table (render/environment.h) only narrows the search: every u lands in the cell a
+// The guide table (render/lights/environment.h) only narrows the search: every u lands in the cell a
 // scan of the whole CDF finds, for weights with empty cells, one spike holding almost all the
 // weight (many cells between two guide entries), and any size; u at every CDF step, just below
 // it, and at random.

@@ -1,15 +1,15 @@
-// The environment light's image side (render/environment.h): the equirectangular mapping and its
+// The environment light's image side (render/lights/environment.h): the equirectangular mapping and its
 // bilinear lookup, the piecewise-constant distributions, the sampling density's support and
 // shape, the power, and black or broken maps. Sampling against its density is in
 // environment_sampling_test.cpp.
-#include "raylane/render/environment.h"
+#include "raylane/render/lights/environment.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "env_maps.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 
 namespace raylane {
 namespace {

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "raylane/image/metrics.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 

@@ -1,7 +1,7 @@
-// Sphere lights' cones in double lanes (render/light_lanes.h) against the scalar
+// Sphere lights' cones in double lanes (render/lights/light_lanes.h) against the scalar
 // Sphere::sample_subtended they transcribe, bit for bit at every instruction set this CPU has,
 // and LightSampler::sample_many against sample() on a scene with every kind of light.
-#include "raylane/render/light_lanes.h"
+#include "raylane/render/lights/light_lanes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
-#include "raylane/render/lights.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/lights/lights.h"
+#include "raylane/render/samplers/rng.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 #include "support/same_bits.h"

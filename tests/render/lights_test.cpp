@@ -12,9 +12,9 @@
 #include <limits>
 #include <string>
 
-#include "raylane/render/lights.h"
-#include "raylane/render/rng.h"
-#include "raylane/render/sampling.h"
+#include "raylane/render/lights/lights.h"
+#include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sampling.h"
 #include "raylane/scene/parser.h"
 #include "support/estimate.h"
 #include "support/paths.h"

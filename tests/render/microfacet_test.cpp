@@ -1,4 +1,4 @@
-// GGX and Beckman (render/microfacet.h) in the double reference Bsdf: D is normalised, the
+// GGX and Beckman (render/materials/microfacet.h) in the double reference Bsdf: D is normalised, the
 // sampler follows the pdf (chi-square over the sphere), the white furnace (Ks = 1, Kd = 0)
 // reflects at most all and as much as quadrature of the same BRDF says, the BSDF is reciprocal,
 // and index-matched glass weighs its Dirac lobe right (corner inputs: bsdf_test.cpp).
@@ -9,10 +9,10 @@
 #include <cstdio>
 
 #include "chi2.h"
-#include "raylane/render/bsdf.h"
-#include "raylane/render/microfacet.h"
-#include "raylane/render/rng.h"
-#include "raylane/render/sampling.h"
+#include "raylane/render/materials/bsdf.h"
+#include "raylane/render/materials/microfacet.h"
+#include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sampling.h"
 #include "support/estimate.h"
 
 namespace raylane {

@@ -1,6 +1,6 @@
-// The viewer's camera math (render/navigation.h): quaternions back from matrices, orbit and fly
+// The viewer's camera math (view/navigation.h): quaternions back from matrices, orbit and fly
 // moves, and the printed camera line read back by the scene parser.
-#include "raylane/render/navigation.h"
+#include "raylane/view/navigation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Wavefronts that refill (src/render/wavefront/tiles_in_flight.h): with the Sobol sampler a
+// Wavefronts that refill (src/render/wavefront/render_loop.h): with the Sobol sampler a
 // thread's wavefront takes the next tile's camera rays while paths of the tiles before are
 // still going, so one step shades vertices of several depths. Every number a path draws comes
 // from its pixel, pass and depth, so the image must be the one rendered tile by tile, bit for
@@ -14,7 +14,7 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/render/path.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"

@@ -1,4 +1,4 @@
-// --region (render/region.h): the rectangle's pixels are bit for bit those of a whole render
+// --region (render/film/region.h): the rectangle's pixels are bit for bit those of a whole render
 // with the same settings, for both samplers and every ray-casting view; only the tiles and
 // bands that meet it are traced; a film records its region.
 #include <gtest/gtest.h>
@@ -8,10 +8,10 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
-#include "raylane/render/region.h"
+#include "raylane/render/film/region.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 #include "support/same_bits.h"

@@ -1,8 +1,8 @@
-// The lane BSDF (render/shade_lanes.h) against the double Bsdf, at every instruction set this
+// The lane BSDF (render/materials/shade_lanes.h) against the double Bsdf, at every instruction set this
 // CPU has: its evaluation within a float error bound away from the model's branch points, its
 // samples the double's samples of the same numbers, its directions distributed by the double
 // density (chi-square), and no NaN out of degenerate rows.
-#include "raylane/render/shade_lanes.h"
+#include "raylane/render/materials/shade_lanes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 
 #include "chi2.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/bsdf.h"
-#include "raylane/render/rng.h"
-#include "raylane/render/sampling.h"
-#include "raylane/render/sobol.h"
+#include "raylane/render/materials/bsdf.h"
+#include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sampling.h"
+#include "raylane/render/samplers/sobol.h"
 
 namespace raylane {
 namespace {

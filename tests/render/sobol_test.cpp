@@ -1,4 +1,4 @@
-#include "raylane/render/sobol.h"
+#include "raylane/render/samplers/sobol.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 
 namespace raylane {
 namespace {

@@ -1,4 +1,4 @@
-// The tiles of an image shared between processes (render/tile_share.h, docs/cluster.md): the
+// The tiles of an image shared between processes (render/film/tile_share.h, docs/cluster.md): the
 // film's pixels map to the render's tiles; films of disjoint shares OR together into the
 // single-process film bit for bit, also when the tiles change hands between passes; the
 // largest-cost-first deal meets its bound where round-robin does not.
@@ -9,8 +9,8 @@
 #include <memory>
 #include <random>
 
-#include "raylane/render/film.h"
-#include "raylane/render/tile_share.h"
+#include "raylane/render/film/film.h"
+#include "raylane/render/film/tile_share.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 

@@ -16,7 +16,7 @@
 #include "raylane/core/ray_offset.h"
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 #include "support/same_bits.h"
 
 namespace raylane {
@@ -65,7 +65,7 @@ double spread(Rng& rng, double lo_exp, double hi_exp) {
   return std::pow(10.0, lo_exp + (hi_exp - lo_exp) * rng.uniform());
 }
 
-// The BSDF's answers are float (render/shade_lanes.h): the values rounded to it. Through a
+// The BSDF's answers are float (render/materials/shade_lanes.h): the values rounded to it. Through a
 // volatile: GCC 12's SLP vectoriser dropped the double → float → double round trip of a
 // vector's components (seen in src/trace/tracer.cpp too).
 double to_float(double x) {

@@ -11,7 +11,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/ray_offset.h"
 #include "raylane/prims/sdf_packet.h"
-#include "raylane/render/camera.h"
+#include "raylane/render/camera/camera.h"
 #include "raylane/scene/parser.h"
 #include "raylane/trace/brute_force.h"
 #include "raylane/trace/simd_tracer.h"

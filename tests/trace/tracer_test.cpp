@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "raylane/core/warps.h"
-#include "raylane/render/rng.h"
+#include "raylane/render/samplers/rng.h"
 #include "raylane/scene/parser.h"
 #include "support/same_bits.h"
 

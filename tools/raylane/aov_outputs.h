@@ -1,4 +1,4 @@
-// Where `raylane render --aov` puts the AOVs (render/aov.h): layers of an EXR output, PFM
+// Where `raylane render --aov` puts the AOVs (render/film/aov.h): layers of an EXR output, PFM
 // files beside the other outputs.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "raylane/image/exr.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 
 namespace raylane::cli {
 

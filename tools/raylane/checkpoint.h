@@ -8,7 +8,7 @@
 #include <string>
 
 #include "args.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 
 namespace raylane::cli {
 

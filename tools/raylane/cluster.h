@@ -6,7 +6,7 @@
 // tells, before any MPI call, whether a launcher started this process.
 #pragma once
 
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/render/path.h"
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 
 namespace raylane::cli {
 

@@ -11,7 +11,7 @@
 
 #include "cluster.h"
 #include "raylane/core/error.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "render_request.h"
 
 namespace raylane::cli {

@@ -1,4 +1,4 @@
-// `--region X0,Y0,X1,Y1` of `raylane render` (render/region.h): read from the option, checked
+// `--region X0,Y0,X1,Y1` of `raylane render` (render/film/region.h): read from the option, checked
 // against the screen once the scene is loaded, and what it does to the files written.
 #pragma once
 
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "raylane/core/error.h"
-#include "raylane/render/region.h"
+#include "raylane/render/film/region.h"
 #include "render_request.h"
 
 namespace raylane::cli {

@@ -11,7 +11,7 @@
 #include "pass_series.h"
 #include "progress.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/tile_share.h"
+#include "raylane/render/film/tile_share.h"
 #include "region_option.h"
 #include "render_request.h"
 

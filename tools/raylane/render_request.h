@@ -14,7 +14,7 @@
 #include "raylane/core/strings.h"
 #include "raylane/image/exr.h"
 #include "raylane/image/write_image.h"
-#include "raylane/render/aov.h"
+#include "raylane/render/film/aov.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
 #include "raylane/simd/isa.h"

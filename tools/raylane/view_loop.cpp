@@ -13,7 +13,7 @@
 #include "commands.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/png.h"
-#include "raylane/render/navigation.h"
+#include "raylane/view/navigation.h"
 #include "view.h"
 
 namespace raylane::cli {

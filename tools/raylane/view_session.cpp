@@ -10,8 +10,8 @@
 #include "commands.h"
 #include "raylane/core/strings.h"
 #include "raylane/image/write_image.h"
-#include "raylane/render/camera.h"
-#include "raylane/render/navigation.h"
+#include "raylane/render/camera/camera.h"
+#include "raylane/view/navigation.h"
 #include "region_option.h"
 #include "render_request.h"
 

@@ -13,7 +13,7 @@
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/limits.h"
 #include "raylane/core/memory.h"
-#include "raylane/render/film.h"
+#include "raylane/render/film/film.h"
 #include "raylane/render/path.h"
 #include "raylane/render/raycast.h"
 #include "raylane/scene/parser.h"

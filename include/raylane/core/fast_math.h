@@ -19,7 +19,7 @@ namespace fast_math_detail {
 
 // Taylor polynomials of sin and cos about 0 (Horner form), for |a| ≤ π/4: the first omitted
 // terms are below a^17/17! ≤ 4.6e-17 and a^18/18! ≤ 2e-18, under half an ulp of the results.
-// Templates so that double SIMD lanes (render/light_lanes.h) evaluate the same polynomials.
+// Templates so that double SIMD lanes (render/lights/light_lanes.h) evaluate the same polynomials.
 template <class T>
 T sin_poly(T a) {
   T a2 = a * a;

@@ -17,9 +17,9 @@
 
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
-#include "raylane/render/aov.h"
-#include "raylane/render/region.h"
-#include "raylane/render/tile_share.h"
+#include "raylane/render/film/aov.h"
+#include "raylane/render/film/region.h"
+#include "raylane/render/film/tile_share.h"
 #include "raylane/trace/tracer.h"
 
 namespace raylane {
@@ -41,7 +41,7 @@ inline std::string_view integrator_name(Integrator integrator) {
 // Where a path's random numbers come from (docs/design.md, "Samplers").
 enum class Sampler {
   kMt19937,  // the course's MT19937-64: one stream per (seed, tile, pass), drawn in order
-  kSobol,    // Owen-scrambled Sobol (render/sobol.h): a function of (seed, pixel, pass, decision)
+  kSobol,    // Owen-scrambled Sobol (render/samplers/sobol.h): a function of (seed, pixel, pass, decision)
 };
 
 inline constexpr EnumNames<Sampler, 2> kSamplerNames{{"mt19937", "sobol"}};
@@ -55,7 +55,7 @@ inline std::string_view sampler_name(Sampler sampler) {
 // Where the BSDF is sampled and evaluated (docs/design.md, "Shading in lanes").
 enum class Shading {
   kDouble,  // the double Bsdf, one vertex at a time (films from before the choice: 0)
-  kFloat,   // a wavefront's vertices at once in float SIMD lanes (render/shade_lanes.h)
+  kFloat,   // a wavefront's vertices at once in float SIMD lanes (render/materials/shade_lanes.h)
 };
 
 inline constexpr EnumNames<Shading, 2> kShadingNames{{"double", "float"}};
@@ -76,13 +76,13 @@ struct PathSettings {
   int rr_depth = 3;          // roulette from this bounce on, survival 0.8 (the course's rule)
   double time_limit = 0;     // seconds; 0 = none. Checked between passes.
   bool time_phases = false;  // fill PathStats::phases (a few clock reads per batch and vertex)
-  AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/aov.h)
+  AovSet aovs;               // accumulated in Film::aov_sum beside the colour (render/film/aov.h)
   // With the Sobol sampler, a thread's wavefront takes the next tile's camera rays whenever its
-  // rays run low (src/render/wavefront/tiles_in_flight.h): the image is the same bit for bit
+  // rays run low (src/render/wavefront/render_loop.h): the image is the same bit for bit
   // either way (tests/render/refill_test.cpp holds it to that); off, tile by tile.
   bool refill = true;
   TileShare share;  // the tiles this process renders (all of them by default)
-  // Only the tiles that meet this pixel rectangle are rendered (render/region.h); the film
+  // Only the tiles that meet this pixel rectangle are rendered (render/film/region.h); the film
   // stays the image's size, zero elsewhere.
   std::optional<PixelRegion> region;
   const std::atomic<bool>* stop = nullptr;       // set → finish the pass in flight and return

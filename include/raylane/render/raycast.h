@@ -7,8 +7,8 @@
 
 #include "raylane/core/enum_names.h"
 #include "raylane/image/image.h"
-#include "raylane/render/camera.h"
-#include "raylane/render/region.h"
+#include "raylane/render/camera/camera.h"
+#include "raylane/render/film/region.h"
 #include "raylane/scene/scene.h"
 #include "raylane/trace/tracer.h"
 

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "raylane/core/vec_math.h"
-#include "raylane/render/lights.h"
-#include "raylane/render/shade_lanes.h"
+#include "raylane/render/lights/lights.h"
+#include "raylane/render/materials/shade_lanes.h"
 #include "raylane/simd/isa.h"
 #include "raylane/trace/ray_stream.h"
 

@@ -13,7 +13,7 @@ namespace raylane {
 
 // The distribution of a material's microfacet normals, for its reflection and transmission
 // lobes (the `microfacet` command): the course's Phong distribution, or GGX or Beckman at the
-// course's equivalent roughness α_g = √(2/(α + 2)) (render/microfacet.h).
+// course's equivalent roughness α_g = √(2/(α + 2)) (render/materials/microfacet.h).
 enum class Microfacet : uint8_t { kPhong = 0, kGgx = 1, kBeckman = 2 };
 // The command's names: "phong", "ggx", "beckman".
 std::optional<Microfacet> microfacet_named(std::string_view name);

@@ -1,7 +1,7 @@
 // Image textures (docs/scene-language.md, "Beyond project 4: textures, environment, lens"): the
 // scene keeps each image once, in the compact form it was read in (image/texels.h); materials
 // refer to them by index. Looked up at (u, v) with u to the right and v UP the image (v = 0 is
-// the file's bottom row), repeating, bilinear between texel centres (render/texel_lookup.h).
+// the file's bottom row), repeating, bilinear between texel centres (render/materials/texel_lookup.h).
 #pragma once
 
 #include <cstdint>

@@ -15,7 +15,7 @@ namespace {
 // the MIS share after another bounce, nothing for NEE alone (light sampling counted it
 // already). `light_pdf` is called only for the MIS share.
 template <class LightPdf>
-double emission_weight(const TileContext& ctx, const PathState& p, LightPdf light_pdf) {
+double emission_weight(const ThreadContext& ctx, const PathState& p, LightPdf light_pdf) {
   bool sampled_light_too = p.depth > 0 && !p.prev_specular;
   if (!sampled_light_too || ctx.settings.integrator == Integrator::kBrdf) return 1;
   if (ctx.settings.integrator == Integrator::kNee) return 0;
@@ -23,7 +23,7 @@ double emission_weight(const TileContext& ctx, const PathState& p, LightPdf ligh
 }
 
 // What a path gains where it hits an emitter (its density for MIS is the light sampler's).
-void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hit) {
+void add_emission(ThreadContext& ctx, PathState& p, const Rayd& ray, const Hit& hit) {
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, [&] {
@@ -34,7 +34,7 @@ void add_emission(TileContext& ctx, PathState& p, const Rayd& ray, const Hit& hi
 
 // What a path gains when its ray leaves the scene: the environment (its density for MIS is the
 // environment's).
-void add_escape(TileContext& ctx, PathState& p, const Rayd& ray) {
+void add_escape(ThreadContext& ctx, PathState& p, const Rayd& ray) {
   const EnvironmentMap::Seen seen = ctx.lights.escaped_with_pdf(ray.d);
   if (seen.le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, [&] { return seen.pdf; });
@@ -59,14 +59,14 @@ class MaterialColumns {
 
 }  // namespace
 
-void add_unblocked_shadows(TileContext& ctx) {
+void add_unblocked_shadows(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const ShadowQueue& s = w.shadows;
   for (std::size_t q = 0; q < s.size(); ++q)
     if (w.blocked[q] == 0) w.paths[s.path[q]].radiance += s.contribution_of(q);
 }
 
-void sort_arrivals(TileContext& ctx) {
+void sort_arrivals(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
   const bool lanes = ctx.settings.shading == Shading::kFloat;

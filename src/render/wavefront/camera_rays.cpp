@@ -2,8 +2,8 @@
 // rays' hits.
 #include <algorithm>
 
-#include "raylane/render/camera_lanes.h"
-#include "raylane/render/texturing.h"
+#include "raylane/render/camera/camera_lanes.h"
+#include "raylane/render/materials/texturing.h"
 #include "render/wavefront/stages.h"
 
 namespace raylane::path_detail {
@@ -13,7 +13,7 @@ namespace {
 // A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), into the
 // slots from `first` on, before their camera rays: pixel and Sobol scramble, and the pixel's
 // corner in the camera's points. Returns how many.
-uint32_t tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0, uint32_t first) {
+uint32_t tile_paths(ThreadContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0, uint32_t first) {
   std::vector<PathState>& paths = ctx.wave.paths;
   CameraPoints& points = ctx.wave.camera;
   if (paths.size() < first + kTile * kTile) paths.resize(first + kTile * kTile);
@@ -36,7 +36,7 @@ uint32_t tile_paths(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y
 
 // The pinhole's camera rays with Sobol numbers: the jitter from the lanes straight into the
 // points' columns, the rays from the camera's lanes (bit for bit what the loop below makes).
-void pinhole_sobol_rays(TileContext& ctx, const Camera& cam, RayStream& rays) {
+void pinhole_sobol_rays(ThreadContext& ctx, const Camera& cam, RayStream& rays) {
   Wavefront& w = ctx.wave;
   CameraPoints& points = w.camera;
   SobolNumbers to;
@@ -51,7 +51,7 @@ void pinhole_sobol_rays(TileContext& ctx, const Camera& cam, RayStream& rays) {
 // A scene that moves: the time of each path in slots [first, first + n), one more number of its
 // camera sample (Sobol's group of its own, Dims::time; MT19937's next number after the tile's
 // camera numbers). A scene that does not move draws nothing and keeps no times.
-void draw_path_times(TileContext& ctx, uint32_t first, uint32_t n) {
+void draw_path_times(ThreadContext& ctx, uint32_t first, uint32_t n) {
   Wavefront& w = ctx.wave;
   if (!ctx.tracer.scene().moves()) return;
   if (w.path_time.size() < w.paths.size()) w.path_time.resize(w.paths.size());
@@ -73,14 +73,14 @@ void stamp_stream(RayStream& rays, const Column<uint32_t>& path,
 
 }  // namespace
 
-void stamp_times(TileContext& ctx) {
+void stamp_times(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   if (w.path_time.empty()) return;
   stamp_stream(w.rays.rays, w.rays.path, w.path_time);
   stamp_stream(w.shadows.rays, w.shadows.path, w.path_time);
 }
 
-uint32_t make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+uint32_t make_camera_rays(ThreadContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
                           uint32_t first, RayQueue& into) {
   Wavefront& w = ctx.wave;
   const uint32_t n = tile_paths(ctx, cam, x0, y0, first);
@@ -121,9 +121,9 @@ uint32_t make_camera_rays(TileContext& ctx, const Camera& cam, uint32_t x0, uint
   return n;
 }
 
-// The AOVs of the camera samples (render/aov.h) from this step's hits: rays
+// The AOVs of the camera samples (render/film/aov.h) from this step's hits: rays
 // [0, Wavefront::camera_rays) are camera rays. A sample that meets nothing adds zeros.
-void add_camera_aovs(const TileContext& ctx, Film& film) {
+void add_camera_aovs(const ThreadContext& ctx, Film& film) {
   const Scene& scene = ctx.tracer.scene();
   const Wavefront& w = ctx.wave;
   const std::vector<Hit>& hits = w.hits;

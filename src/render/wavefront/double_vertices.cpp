@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "raylane/core/ray_offset.h"
-#include "raylane/render/bsdf.h"
-#include "raylane/render/texturing.h"
+#include "raylane/render/materials/bsdf.h"
+#include "raylane/render/materials/texturing.h"
 #include "render/wavefront/stages.h"
 
 namespace raylane::path_detail {
@@ -14,7 +14,7 @@ namespace raylane::path_detail {
 namespace {
 
 // Roulette's number: the BSDF group's last component, drawn from MT19937 only when needed.
-double roulette_uniform(TileContext& ctx, const std::array<double, 4>& bsdf_group) {
+double roulette_uniform(ThreadContext& ctx, const std::array<double, 4>& bsdf_group) {
   return ctx.settings.sampler == Sampler::kSobol ? bsdf_group[3] : ctx.rng.uniform();
 }
 
@@ -43,7 +43,7 @@ double clock_read_seconds() {
 }
 
 // Next-event estimation's point on a light, seen from this vertex (invalid: none).
-LightSample sample_light_point(TileContext& ctx, const PathState& p, const Rayd& ray,
+LightSample sample_light_point(ThreadContext& ctx, const PathState& p, const Rayd& ray,
                                const Hit& hit, uint32_t depth) {
   const auto u = draw(ctx, p, Dims::light_group(depth), kLightDrawOrder);
   bool timed = ctx.settings.time_phases && ctx.light_calls++ % kLightTimingStride == 0;
@@ -58,7 +58,7 @@ LightSample sample_light_point(TileContext& ctx, const PathState& p, const Rayd&
 }
 
 // The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
-void queue_shadow_ray(TileContext& ctx, uint32_t path, const PathState& p, const Rayd& ray,
+void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, const Rayd& ray,
                       const Hit& hit, const LightSample& ls, const glm::dvec3& f, double bsdf_pdf) {
   glm::dvec3 c{};
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
@@ -86,7 +86,7 @@ bool continue_path(PathState& p, const Rayd& ray, const Hit& hit, const BsdfSamp
 }
 
 // One vertex with the double Bsdf: light sampling, then the next direction.
-bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Rayd& ray,
+bool shade_vertex_double(ThreadContext& ctx, uint32_t path, PathState& p, const Rayd& ray,
                          const Hit& hit, const Material& material, uint32_t depth, Rayd& next) {
   // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
   Material m = material;
@@ -112,7 +112,7 @@ bool shade_vertex_double(TileContext& ctx, uint32_t path, PathState& p, const Ra
 
 }  // namespace
 
-void shade_double_vertices(TileContext& ctx) {
+void shade_double_vertices(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const DoubleVertexQueue& q = w.double_vertices;
   const std::vector<Material>& materials = ctx.tracer.scene().materials;

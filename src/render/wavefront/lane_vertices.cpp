@@ -2,8 +2,8 @@
 // vertex as the wavefront arrives; the tracer writes their surfaces straight into the batches'
 // columns, and a few passes copy the listed hits, rays and paths into the rest, a column group
 // per pass (a pass over all thirty columns at once reloaded each column's pointer per row);
-// then the rows' numbers (Sobol groups in lanes), light points (render/lights.h, sample_many),
-// BSDFs in float lanes (render/shade_lanes.h) and shadow rays and next rays in double lanes
+// then the rows' numbers (Sobol groups in lanes), light points (render/lights/lights.h, sample_many),
+// BSDFs in float lanes (render/materials/shade_lanes.h) and shadow rays and next rays in double lanes
 // (render/vertex_lanes.h, reading the light points and BSDF answers where those steps left
 // them) all read and write columns; lane_write_back.cpp writes the rays and the paths back.
 // (Each step once gathered what it needed from the hits and paths itself: seven passes over
@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "raylane/render/bsdf.h"
-#include "raylane/render/texturing.h"
+#include "raylane/render/materials/bsdf.h"
+#include "raylane/render/materials/texturing.h"
 #include "render/wavefront/stages.h"
 
 namespace raylane::path_detail {
@@ -21,7 +21,7 @@ namespace {
 
 // The BSDF group's numbers for row r: (u1, u2, lobe) for the float lanes, roulette's for the
 // double ones (0 where this depth has no roulette).
-void set_bsdf_numbers(TileContext& ctx, std::size_t r, const std::array<double, 4>& u,
+void set_bsdf_numbers(ThreadContext& ctx, std::size_t r, const std::array<double, 4>& u,
                       double u_roulette) {
   ShadeBatch& sb = ctx.wave.lane_vertices.shade;
   sb.u1[r] = unit_float(u[0]), sb.u2[r] = unit_float(u[1]), sb.u_lobe[r] = unit_float(u[2]);
@@ -35,7 +35,7 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
 
 // Whether row r has Russian roulette (at its own depth), and its survival probability in the
 // vertex lanes' column (1 without: VertexBatch::survival). Returns whether any row has it.
-bool roulette_columns(TileContext& ctx) {
+bool roulette_columns(ThreadContext& ctx) {
   LaneVertexQueue& lv = ctx.wave.lane_vertices;
   double* survival = lv.vertices.survival.data();
   const uint32_t* depth = lv.depth.data();
@@ -52,7 +52,7 @@ bool roulette_columns(TileContext& ctx) {
 // The rows' Sobol seeds for the group each row draws at its own depth: the pixel's seed salted
 // by the group (sobol.h, group_salt), so that one call for group 0 draws every row's group.
 template <class GroupOf>
-void salt_seeds(TileContext& ctx, GroupOf group_of) {
+void salt_seeds(ThreadContext& ctx, GroupOf group_of) {
   LaneVertexQueue& lv = ctx.wave.lane_vertices;
   const uint64_t* pixel_seed = lv.pixel_seed.data();
   const uint32_t* depth = lv.depth.data();
@@ -63,7 +63,7 @@ void salt_seeds(TileContext& ctx, GroupOf group_of) {
 
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
 // the double shading's order (light, BSDF, roulette where the row has it).
-void draw_numbers(TileContext& ctx, bool lights, bool roulette) {
+void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   LightQueries& q = lv.light_queries;
@@ -105,7 +105,7 @@ void draw_numbers(TileContext& ctx, bool lights, bool roulette) {
 // evaluated toward written by the light sampler as it samples (ConeBatch::wi_float; 0 for no
 // sample, and for every row without lights). The vertex lanes read the rest where sample_many
 // left it.
-void light_columns(TileContext& ctx, bool lights) {
+void light_columns(ThreadContext& ctx, bool lights) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   ShadeBatch& sb = lv.shade;
@@ -124,7 +124,7 @@ void light_columns(TileContext& ctx, bool lights) {
 
 }  // namespace
 
-void start_lane_vertices(TileContext& ctx, std::size_t most) {
+void start_lane_vertices(ThreadContext& ctx, std::size_t most) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   lv.count = 0;
@@ -156,7 +156,7 @@ struct Columns3Out {
 // The queued rows' surfaces, straight into the batches' columns: the point and geometric
 // normal (double) for the vertex lanes and the light sampler, the shading normal (float) for
 // the BSDF; dot(ns, d) and the facing into the rows' own columns.
-void surface_columns(TileContext& ctx) {
+void surface_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   VertexBatch& vb = lv.vertices;
@@ -175,7 +175,7 @@ bool reflects(const LaneMaterials& lm, double cos_ns, uint32_t m) {
 
 // The queued rows whose BSDF reflects something, kept in order with their columns so far (the
 // rest dropped). Seldom any to drop: one pass finds out, a second moves rows only then.
-void drop_black_rows(TileContext& ctx) {
+void drop_black_rows(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const LaneMaterials& lm = ctx.lanes.materials;
@@ -200,7 +200,7 @@ void drop_black_rows(TileContext& ctx) {
 }
 
 // The rows' t and material into the columns, and the point for the light sampler.
-void hit_columns(TileContext& ctx, bool lights) {
+void hit_columns(ThreadContext& ctx, bool lights) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const Hit* hits = w.hits.data();
@@ -219,7 +219,7 @@ void hit_columns(TileContext& ctx, bool lights) {
 // A textured scene's rows' own Kd and lobe probabilities (ShadeBatch::per_row_kd): a textured
 // material's Kd times its image at the hit, as the double shading makes it (texture_factor on
 // the same point and normal, so the same Kd in float), the others their material's.
-void texture_columns(TileContext& ctx) {
+void texture_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   ShadeBatch& sb = lv.shade;
@@ -250,7 +250,7 @@ void texture_columns(TileContext& ctx) {
 
 // The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs with
 // Beer's law on the segment just travelled into the columns.
-void path_columns(TileContext& ctx) {
+void path_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const LaneVertexQueue& rows = lv;
@@ -271,7 +271,7 @@ void path_columns(TileContext& ctx) {
 
 }  // namespace
 
-void shade_lane_vertices(TileContext& ctx) {
+void shade_lane_vertices(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const bool lights = samples_lights(ctx), sobol = ctx.settings.sampler == Sampler::kSobol;

@@ -33,7 +33,7 @@ std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
 // The vertex lanes' shadow rays queued, each aimed at its light: the origin and end as the
 // lanes rounded them, the direction as the BSDF was evaluated toward it (the light point's,
 // rounded to float), and each one's query. A filter over the rows, in lanes.
-void write_lane_shadow_rays(TileContext& ctx) {
+void write_lane_shadow_rays(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const VertexBatch& vb = lv.vertices;
@@ -66,7 +66,7 @@ void write_lane_shadow_rays(TileContext& ctx) {
 // The vertex lanes' throughputs back to the paths (every row: a path that ends here is not
 // read again, and the write spares a branch per row), then the next rays of the paths that go
 // on and their list, filtered in lanes.
-void write_lane_next_rays(TileContext& ctx) {
+void write_lane_next_rays(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const VertexBatch& vb = lv.vertices;

@@ -12,9 +12,9 @@
 
 #include "raylane/core/column.h"
 #include "raylane/core/vec_math.h"
-#include "raylane/render/lights.h"
-#include "raylane/render/shade_lanes.h"
-#include "raylane/render/sobol.h"
+#include "raylane/render/lights/lights.h"
+#include "raylane/render/materials/shade_lanes.h"
+#include "raylane/render/samplers/sobol.h"
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/trace/ray_stream.h"
 #include "raylane/trace/tracer.h"

@@ -1,0 +1,166 @@
+// Next-event estimation: picking an emitting primitive and a point on it, and the density of
+// having done so for a direction found by BSDF sampling (for MIS). Spheres seen from outside
+// are sampled by solid angle (the cone they subtend); boxes, cylinders, triangles and the
+// inside of spheres by area, converted to solid angle. A light is picked with probability
+// proportional to its power (mean of Le's channels × area), so a scene's dim lamps do not take
+// samples from its bright ones.
+//
+// The environment (`environment`, render/lights/environment.h) is one more light, chosen by its power
+// π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
+// flux an infinite light sends through the scene; docs/design.md, "The environment light").
+//
+// A light that moves (an emitting mbsphere) is sampled where it is at the path's time: the
+// queries carry that time, and the density of a BSDF-sampled hit on it is the one at the ray's
+// time (the scene language's spec, "Beyond the course's projects", motion blur).
+//
+// Emission model: solids (spheres, boxes, cylinders) emit from their outside only; triangles
+// emit from both sides. Emitters reflect nothing. A textured emitter's radiance is Le times its
+// image at the point; its power is estimated with the image's mean.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "raylane/render/lights/environment.h"
+#include "raylane/render/lights/light_lanes.h"
+#include "raylane/scene/scene.h"
+#include "raylane/trace/hit.h"
+
+namespace raylane {
+
+struct LightSample {
+  PrimRef light = PrimRef::invalid();  // invalid for the environment
+  glm::dvec3 p{};                      // the point on the light
+  glm::dvec3 n{};   // its outward normal, where sampled by area (0 from a sphere's cone)
+  glm::dvec3 wi{};  // unit direction from the reference point to p
+  double dist = 0;  // |p − reference point|; infinite for the environment
+  glm::dvec3 le{};  // the radiance arriving along −wi
+  double pdf = 0;   // solid-angle density, including the choice of the light
+  bool valid() const { return pdf > 0; }
+};
+
+// Many shading points' light samples at once (a path tracer's wavefront), in columns, with the
+// buffers reused between calls: resize, fill the inputs, call LightSampler::sample_many, read
+// the outputs. The cone kernel's batch holds the columns both share, so a sphere light's rows
+// are sampled where they stand: no copies into and out of a separate batch.
+struct LightQueries {
+  using Column = std::vector<double>;
+  // Inputs: the shading points (cones.ref) and their numbers (cones.u1, cones.u2, u_light,
+  // u_part). Outputs: the light (invalid for the environment), the unit direction (cones.wi),
+  // the distance (cones.dist), the radiance and the solid-angle density (cones.pdf; 0: no
+  // sample).
+  ConeBatch cones;
+  Column u_light, u_part;
+  // The path's time of each row, in [0, 1); empty unless the scene moves (a still scene stores
+  // none), and then every row is at mid-shutter, 0.5. Only moving lights read it.
+  Column time;
+  // Fills `time` from the paths' times (Wavefront::path_time) of rows [0, size()), row r being
+  // path[r]'s; clears it when the paths have none.
+  void set_times(const uint32_t* path, const std::vector<float>& path_time);
+  double time_of(std::size_t r) const { return time.empty() ? 0.5 : time[r]; }
+  std::vector<PrimRef> light;
+  std::array<Column, 3> le;
+  // Rows [0, n), padded to a multiple of 8 lanes as ConeBatch. The columns only grow.
+  void resize(std::size_t n);
+  std::size_t size() const { return size_; }
+  glm::dvec3 ref(std::size_t r) const { return column3(cones.ref, r); }
+  glm::dvec3 wi(std::size_t r) const { return column3(cones.wi, r); }
+  double pdf(std::size_t r) const { return cones.pdf[r]; }
+  bool valid(std::size_t r) const { return cones.pdf[r] > 0; }
+  // Row r's outputs from one sample.
+  void set(std::size_t r, const LightSample& s);
+  // Which light each row picked, when it is a sphere light sampled by its cone (sample_many's
+  // scratch; kEnvironment for the environment, kNoCone for any other light).
+  static constexpr uint32_t kNoCone = ~0u, kEnvironment = ~0u - 1;
+  std::vector<uint32_t> cone_light;
+  // The rows that picked the environment, and their samples (sample_many's scratch).
+  std::vector<uint32_t> environment_rows;
+  EnvironmentBatch environment;
+
+ private:
+  static glm::dvec3 column3(const std::array<Column, 3>& c, std::size_t r) {
+    return {c[0][r], c[1][r], c[2][r]};
+  }
+  std::size_t size_ = 0;
+};
+
+class LightSampler {
+ public:
+  explicit LightSampler(const Scene& scene);
+  bool empty() const { return lights_.empty() && !env_choice_; }
+  // How many of (u1, u2, u_light, u_part) sampling reads: the first two always, u_light when
+  // there is more than one light to pick, u_part when some light is not a (moving) sphere (a
+  // sphere's point needs no part). The others may hold anything.
+  int numbers_read() const;
+
+  // A point on a light as seen from `ref` at the path's `time` (where a moving light is then);
+  // invalid (pdf 0) when the point faces away.
+  LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1, double u2,
+                     double time) const;
+  // sample() for every query: sphere lights seen from outside by their cones in double lanes
+  // (render/lights/light_lanes.h, the same formulas), the rest one by one.
+  void sample_many(Isa isa, LightQueries& q) const;
+
+  // The density sample() would have had for direction wi from ref at `time` (the ray's),
+  // hitting `hit` on a light.
+  double pdf(const glm::dvec3& ref, const glm::dvec3& wi, const Hit& hit, double time) const;
+
+  // The radiance a ray sees where it hits an emitter (0 from behind a solid emitter).
+  glm::dvec3 emitted(const Hit& hit) const;
+
+  // What a ray that leaves the scene along d sees (0 without an environment), and the density
+  // sample() has for that direction (for MIS).
+  glm::dvec3 escaped(const glm::dvec3& d) const {
+    return env_ ? env_->radiance(d) : glm::dvec3(0, 0, 0);
+  }
+  double environment_pdf(const glm::dvec3& d) const {
+    return env_choice_ * (env_ ? env_->pdf(d) : 0.0);
+  }
+  // escaped(d) and environment_pdf(d) at once.
+  EnvironmentMap::Seen escaped_with_pdf(const glm::dvec3& d) const {
+    if (!env_) return {};
+    EnvironmentMap::Seen s = env_->seen(d);
+    s.pdf *= env_choice_;
+    return s;
+  }
+  const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
+
+ private:
+  const Scene& scene_;
+  // The index in lights_ of the light u_light picks (by power).
+  std::size_t pick(double u_light) const;
+  // The choice probability of the light a ray hit, or nullopt if it is not one of ours.
+  std::optional<double> choice_of(PrimRef light) const;
+
+  // The environment's direction for the numbers u1, u2 (choice: its choice probability).
+  LightSample sample_environment(double u1, double u2) const;
+  // The light sample of an environment sample (its density times the choice's).
+  LightSample environment_light_sample(const EnvironmentSample& e) const;
+  // sample_many's rows that picked the environment (q.environment_rows), all at once.
+  void sample_environment_rows(LightQueries& q) const;
+
+  std::optional<EnvironmentMap> env_;
+  double env_choice_ = 0;  // its choice probability; it is light index lights_.size()
+  std::vector<PrimRef> lights_;
+  std::vector<double> cdf_;        // cumulative choice probabilities
+  std::vector<double> choice_;     // choice probability of lights_[k]
+  std::vector<glm::dvec3> le_;     // emission of lights_[k]
+  std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
+  // The sample of sample_many's row r, a (moving) sphere light k's, where the kernel's answer
+  // needs more: a point inside the sphere (sampled by area) or a texture.
+  LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;
+  // sample_many for a scene whose one light is a sphere, without an environment.
+  void sample_one_sphere(Isa isa, LightQueries& q) const;
+  // s.le times the light's texture at s.p, for a textured light (a moving one's at `time`).
+  void apply_texture(std::size_t k, LightSample& s, double time) const;
+  // The centre and radius of sphere light k at `time` (0.5 or anything for a still one), for
+  // the cone kernel.
+  std::pair<glm::dvec3, double> sphere_at(std::size_t k, double time) const;
+  // (PrimRef bits, choice) sorted by bits, for choice_of: a binary search over a few lights is
+  // cheaper per sample than a hash lookup.
+  std::vector<std::pair<uint32_t, double>> by_bits_;
+};
+
+}  // namespace raylane

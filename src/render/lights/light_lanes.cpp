@@ -1,0 +1,34 @@
+#include "raylane/render/lights/light_lanes.h"
+
+#include "render/render_lanes.h"
+
+namespace raylane {
+
+namespace {
+constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
+}
+
+void ConeBatch::resize(std::size_t rows) {
+  size_ = rows;
+  std::size_t padded = (rows + kMaxWidth - 1) / kMaxWidth * kMaxWidth;
+  if (radius.size() < padded) {  // the columns only grow: a wavefront's batch is refilled
+    for (auto* v : {&ref, &center, &wi})
+      for (Column& c : *v)
+        c.resize(padded);
+    for (Column* c : {&radius, &u1, &u2, &choice, &dist, &solid_angle, &pdf})
+      c->resize(padded);
+  }
+  // Padding rows: a unit sphere two units from the origin, finite for the kernel (with a
+  // ConeSphere for every row they see that sphere instead, and may be NaN: nobody reads them).
+  for (std::size_t i = rows; i < padded; ++i) {
+    for (int k = 0; k < 3; ++k)
+      ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;
+    radius[i] = 1, u1[i] = u2[i] = 0.5, choice[i] = 1;
+  }
+}
+
+void sample_cones(Isa isa, ConeBatch& batch, const ConeSphere* every_row) {
+  detail::render_lanes(isa).sample_cones(batch, every_row);
+}
+
+}  // namespace raylane

@@ -1,0 +1,166 @@
+#include "raylane/render/samplers/sobol.h"
+
+#include <array>
+#include <bit>
+
+#include "raylane/render/samplers/rng.h"
+#include "render/render_lanes.h"
+
+namespace raylane {
+
+namespace {
+
+using Matrix = std::array<uint32_t, 32>;  // column k: the bits index bit k contributes
+
+// Sobol's recurrence for one dimension (Bratley and Fox 1988, "Algorithm 659"): a primitive
+// polynomial of degree s with inner coefficients a (bit s−2 is the coefficient of x^(s−1)),
+// initial odd integers m_1..m_s, then m_k = 2a_1·m_(k−1) ⊕ 2²a_2·m_(k−2) ⊕ … ⊕ 2^s·m_(k−s) ⊕
+// m_(k−s); direction number k is m_k/2^k, held as m_k shifted to bit 31.
+constexpr Matrix sobol_matrix(int s, uint32_t a, std::array<uint32_t, 3> m_init) {
+  std::array<uint32_t, 32> m{};
+  for (int k = 0; k < s; ++k)
+    m[k] = m_init[k];
+  for (int k = s; k < 32; ++k) {
+    uint32_t v = m[k - s] ^ (m[k - s] << s);
+    for (int j = 1; j < s; ++j)
+      if ((a >> (s - 1 - j)) & 1) v ^= m[k - j] << j;
+    m[k] = v;
+  }
+  Matrix out{};
+  for (int k = 0; k < 32; ++k)
+    out[k] = m[k] << (31 - k);
+  return out;
+}
+
+// Dimension 0 is the radical inverse (every m_k = 1); 1..3 are Joe and Kuo's first three
+// (their file new-joe-kuo-6.21201: x + 1; x² + x + 1 with m = 1, 3; x³ + x + 1 with 1, 3, 1).
+constexpr std::array<Matrix, 4> kMatrices = [] {
+  Matrix radical{};
+  for (int k = 0; k < 32; ++k)
+    radical[k] = 1u << (31 - k);
+  return std::array<Matrix, 4>{radical, sobol_matrix(1, 0, {1, 0, 0}),
+                               sobol_matrix(2, 1, {1, 3, 0}), sobol_matrix(3, 1, {1, 3, 1})};
+}();
+
+// The matrix-vector product over GF(2) by bytes, in the bit-reversed domain the scrambles work
+// in: entry [d][b][v] is the XOR of the bit-reversed columns 31 − (8b + k) of dimension d for
+// the bits k of byte b of a reversed index. So reverse(point(i)) = XOR of 4 lookups on
+// reverse(i), and a sample needs one reversal per scramble instead of two.
+using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 4>;
+
+constexpr uint32_t reversed(uint32_t x) {
+  uint32_t r = 0;
+  for (int k = 0; k < 32; ++k)
+    r |= ((x >> k) & 1u) << (31 - k);
+  return r;
+}
+
+constexpr ByteTables kReversedTables = [] {
+  // Built incrementally (entry v is entry v without its lowest bit, XOR that bit's column)
+  // from the reversed columns, to stay well inside compilers' constexpr step limits.
+  std::array<Matrix, 4> columns{};
+  for (int d = 0; d < 4; ++d)
+    for (int k = 0; k < 32; ++k)
+      columns[d][k] = reversed(kMatrices[d][31 - k]);
+  ByteTables t{};
+  for (int d = 0; d < 4; ++d)
+    for (int b = 0; b < 4; ++b)
+      for (uint32_t v = 1; v < 256; ++v) {
+        int low = std::countr_zero(v);
+        t[d][b][v] = t[d][b][v & (v - 1)] ^ columns[d][8 * b + low];
+      }
+  return t;
+}();
+
+uint32_t reversed_point(uint32_t reversed_index, int d) {
+  const auto& t = kReversedTables[d];
+  uint32_t r = reversed_index;
+  return t[0][r & 0xff] ^ t[1][(r >> 8) & 0xff] ^ t[2][(r >> 16) & 0xff] ^ t[3][r >> 24];
+}
+
+// A 32-bit integer hash with good avalanche (Wellons 2018, "Prospecting for hash functions",
+// the constants of his "lowbias32"): seeds for the scrambles of one group's components.
+uint32_t hash32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+uint32_t reverse_bits(uint32_t x) {
+  x = __builtin_bswap32(x);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+}
+
+// Laine and Karras 2011 ("Stratified sampling for stochastic transparency") observed that
+// x ↦ x ⊕ (x·even) and x ↦ x + seed change each bit by a function of the bits below it only;
+// on the bit-reversed value that is a nested uniform scramble. The constants are Burley's
+// (2020, §3), chosen for how well they mix.
+uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// A group's 64-bit seed for a pixel: its low half scrambles the index, its high half seeds the
+// components' scrambles. (sobol_lanes_impl.h's group_seeds computes it in lanes.)
+uint64_t group_seed_of(uint64_t seed, uint32_t group) {
+  return mix64(seed ^ group_salt(group));
+}
+
+}  // namespace
+
+namespace detail {
+const uint32_t* sobol_byte_tables() {
+  return &kReversedTables[0][0][0];
+}
+}  // namespace detail
+
+void SobolBatch::resize(std::size_t rows) {
+  size_ = rows;
+  if (seed.size() >= padded_size()) return;  // the columns only grow
+  seed.resize(padded_size(), 0);
+  scramble.resize(padded_size(), 0);
+  component.resize(padded_size(), 0);
+  for (auto& c : u)
+    c.resize(padded_size(), 0);
+}
+
+// The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
+void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, unsigned components,
+                  const SobolNumbers& numbers) {
+  detail::render_lanes(isa).sobol_groups(reverse_bits(index), group,
+                                         (components & kAllComponents) | 3u, batch, numbers);
+}
+
+uint32_t sobol_point(uint32_t index, int d) {
+  return reverse_bits(reversed_point(reverse_bits(index), d));
+}
+
+uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(scramble_reversed(reverse_bits(x), seed));
+}
+
+std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group) {
+  uint64_t group_seed = group_seed_of(seed, group);
+  // The index is shuffled per group (a scramble of its bits is a permutation of every aligned
+  // block of 2^m indices), so groups are independent yet each block of 2^m samples is still
+  // the same net. Everything stays bit-reversed until the last step.
+  uint32_t shuffled = scramble_reversed(reverse_bits(index), uint32_t(group_seed));
+  uint32_t seeds = uint32_t(group_seed >> 32);
+  std::array<double, 4> u;
+  for (int c = 0; c < 4; ++c) {  // the four are independent: their latencies overlap
+    uint32_t v = scramble_reversed(reversed_point(shuffled, c), hash32(seeds + uint32_t(c)));
+    u[c] = reverse_bits(v) * 0x1p-32;
+  }
+  return u;
+}
+
+}  // namespace raylane
