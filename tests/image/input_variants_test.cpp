@@ -123,6 +123,19 @@ TEST(InputVariants, APaletteBmpWhosePixelsStartInsideItsHeaderIsRefused) {
   }
 }
 
+// The same cut off after its bit count (fuzz_image's find): stb reads the rest of the header
+// as zeros and decodes the 2×2 pixels from its uninitialised palette. Refused alike.
+TEST(InputVariants, APaletteBmpCutOffInItsHeaderIsRefused) {
+  std::string bmp = palette_bmp(2, 2, 8, {kRed, kBlue}, std::string(8, '\0'));
+  bmp.replace(10, 4, le32(50));
+  bmp.resize(30);
+  auto bad = decode_input_image(bmp, "p.bmp");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().find("found the pixels' offset 50 inside the 40-byte header"),
+            std::string::npos)
+      << bad.error();
+}
+
 // 1- and 4-bit rows: a one-entry palette with a set bit, a two-entry one with a nibble of 2.
 TEST(InputVariants, OneAndFourBitBmpsAreCheckedIndexByIndex) {
   const std::string one_bit_ok = std::string{char(0x00), 0, 0, 0};
