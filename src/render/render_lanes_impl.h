@@ -5,8 +5,8 @@
 
 #include "render/camera/camera_lanes_impl.h"
 #include "render/lights/light_lanes_impl.h"
-#include "render/render_lanes.h"
 #include "render/materials/shade_lanes_impl.h"
+#include "render/render_lanes.h"
 #include "render/samplers/sobol_lanes_impl.h"
 #include "render/vertex_lanes_impl.h"
 
@@ -21,9 +21,10 @@ void sobol_groups_and_numbers(uint32_t reversed_index, uint32_t group, unsigned 
 
 template <class A>
 constexpr RenderLanes render_lanes_for() {
-  return {shade_lanes_range<A>,     sobol_groups_and_numbers<A>, sample_cones_range<A>,
-          finish_vertices_range<A>, gather_vertex_rays_range<A>, filter_rows_range<A>,
-          pinhole_rays_range<A>};
+  return {shade_lanes_range<A>,  sobol_groups_and_numbers<A>,
+          sample_cones_range<A>, finish_vertices_range<A>,
+          scatter_range<A>,      gather_vertex_rays_range<A>,
+          filter_rows_range<A>,  pinhole_rays_range<A>};
 }
 
 }  // namespace raylane::detail

@@ -201,8 +201,8 @@ struct ColumnSink {
   uint32_t ray_of(uint32_t r) const { return ray[r]; }
   const Hit& hit_of(uint32_t r) const { return hits[ray[r]]; }
   void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d) const {
-    out.px[r] = p.x, out.py[r] = p.y, out.pz[r] = p.z;
-    out.ngx[r] = n.x, out.ngy[r] = n.y, out.ngz[r] = n.z;
+    out.px[r] = float(p.x), out.py[r] = float(p.y), out.pz[r] = float(p.z);
+    out.ngx[r] = float(n.x), out.ngy[r] = float(n.y), out.ngz[r] = float(n.z);
     out.nsx[r] = float(n.x), out.nsy[r] = float(n.y), out.nsz[r] = float(n.z);
     out.cos_ns[r] = cos_d;  // dot(d, n) = dot(n, d) bit for bit: the products commute
     out.front[r] = cos_d < 0;
@@ -211,10 +211,10 @@ struct ColumnSink {
   // rows are its rays in order, and neighbouring rays mostly meet the same kind, so a kind's
   // rows mostly come in runs.
   void store_run(uint32_t r, const SurfaceLanes<A>& s, const simd::Doubles<A>& cos_d) const {
-    s.p.x.store_unaligned(out.px + r), s.p.y.store_unaligned(out.py + r);
-    s.p.z.store_unaligned(out.pz + r);
-    s.n.x.store_unaligned(out.ngx + r), s.n.y.store_unaligned(out.ngy + r);
-    s.n.z.store_unaligned(out.ngz + r);
+    simd::store_narrowed<A>(out.px + r, s.p.x), simd::store_narrowed<A>(out.py + r, s.p.y);
+    simd::store_narrowed<A>(out.pz + r, s.p.z);
+    simd::store_narrowed<A>(out.ngx + r, s.n.x), simd::store_narrowed<A>(out.ngy + r, s.n.y);
+    simd::store_narrowed<A>(out.ngz + r, s.n.z);
     simd::store_narrowed<A>(out.nsx + r, s.n.x), simd::store_narrowed<A>(out.nsy + r, s.n.y);
     simd::store_narrowed<A>(out.nsz + r, s.n.z);
     cos_d.store_unaligned(out.cos_ns + r);

@@ -64,8 +64,8 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
 
 void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s,
                    const glm::dvec3& d) {
-  out.px[r] = s.p.x, out.py[r] = s.p.y, out.pz[r] = s.p.z;
-  out.ngx[r] = s.ng.x, out.ngy[r] = s.ng.y, out.ngz[r] = s.ng.z;
+  out.px[r] = float(s.p.x), out.py[r] = float(s.p.y), out.pz[r] = float(s.p.z);
+  out.ngx[r] = float(s.ng.x), out.ngy[r] = float(s.ng.y), out.ngz[r] = float(s.ng.z);
   out.nsx[r] = float(s.ns.x), out.nsy[r] = float(s.ns.y), out.nsz[r] = float(s.ns.z);
   out.cos_ns[r] = dot(s.ns, d);
   out.front[r] = dot(d, s.ng) < 0;

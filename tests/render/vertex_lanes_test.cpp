@@ -1,10 +1,12 @@
-// What follows the BSDF in double lanes (render/vertex_lanes.h) against the scalar steps the
-// double shading takes (shadow_contribution, next_throughput, offset_ray_origin with
-// hit_point_error), bit for bit at every instruction set this CPU has, on random vertices and
-// on the edges: no light point, f = 0, no sample, roulette's threshold, overflowing
-// throughputs, normals along an axis (offsets of 0 in two components), points at 0 and −0,
-// offsets that land on 0, infinite and NaN points, a NaN t, and points whose next origin lands
-// on a midpoint between two floats (where the float origin shows the double step's direction).
+// What follows the BSDF in float lanes (render/vertex_lanes.h) against the same steps' scalar
+// float instance (shadow_contribution<float>, next_throughput<float>, offset_origin<float> with
+// float_hit_point_bound<float>, shadow_tmax<float>), bit for bit at every instruction set this CPU
+// has, on random vertices and on the edges: no light point, f = 0, no sample, roulette's
+// threshold, overflowing throughputs and densities, normals along an axis (offsets of 0 in two
+// components), points at 0 and −0, offsets that land on 0, points at ±FLT_MAX and the least
+// denormals, infinite and NaN points, a NaN t.
+// scatter_vertices (the BSDF and these steps in one pass) against shade_lanes then
+// finish_vertices.
 #include "raylane/render/vertex_lanes.h"
 
 #include <gtest/gtest.h>
@@ -24,40 +26,23 @@ namespace {
 
 // The lanes must give the scalar results bit for bit (support/same_bits.h).
 using testing::same_bits;
+using Vec = glm::vec3;
 
+// One vertex as the columns hold it: float, but for the light point's double columns (the
+// kernel rounds them to float as it reads them).
 struct Vertex {
-  glm::dvec3 beta{}, p{}, ng{}, o{}, d{};
-  double t;
-  glm::dvec3 light_wi{}, le{}, f{};
-  double light_dist, light_pdf, bsdf_pdf;
-  glm::dvec3 wi{}, value{};
-  double pdf, u;
-  int midpoints = 0;  // next-origin components placed on a midpoint between floats (below)
+  Vec beta{}, p{}, ng{}, o{}, d{};
+  float t;
+  Vec light_wi{}, f{};
+  glm::dvec3 le{};
+  double light_dist, light_pdf;
+  float bsdf_pdf;
+  Vec wi{}, value{};
+  float pdf, u;
 };
 
-// The next ray's offset as offset_ray_origin computes it (core/ray_offset.cpp), before the step.
-glm::dvec3 next_ray_offset(const Vertex& v) {
-  const glm::dvec3 offset = v.ng * dot(abs(v.ng), hit_point_error(Rayd{v.o, v.d}, v.t));
-  return dot(v.ng, v.wi) < 0 ? -offset : offset;
-}
-
-// Moves the point so that p + offset lands on a midpoint between two floats in each component
-// where the double sum allows it exactly. The origin is then stepped one double ulp away from p
-// and rounded to float: the step alone decides which of the two floats it becomes (without
-// one, ties go to even), so a step missed or taken the wrong way shows in the float origin.
-void place_next_origin_on_midpoints(Vertex& v) {
-  const glm::dvec3 offset = next_ray_offset(v);
-  for (int k = 0; k < 3; ++k) {
-    if (offset[k] == 0) continue;
-    const float f = float(v.p[k]);
-    const double mid = (double(f) + double(std::nextafter(f, HUGE_VALF))) / 2;  // exact
-    v.p[k] = mid - offset[k];
-    v.midpoints += v.p[k] + offset[k] == mid;
-  }
-}
-
-glm::dvec3 random_unit(Rng& rng) {
-  return sample_uniform_sphere(rng.uniform(), rng.uniform());
+Vec random_unit(Rng& rng) {
+  return Vec(sample_uniform_sphere(rng.uniform(), rng.uniform()));
 }
 
 // Scales over many decades, so that offsets and throughputs meet their rounding edges.
@@ -65,64 +50,74 @@ double spread(Rng& rng, double lo_exp, double hi_exp) {
   return std::pow(10.0, lo_exp + (hi_exp - lo_exp) * rng.uniform());
 }
 
-// The BSDF's answers are float (render/materials/shade_lanes.h): the values rounded to it. Through a
-// volatile: GCC 12's SLP vectoriser dropped the double → float → double round trip of a
-// vector's components (seen in src/trace/tracer.cpp too).
-double to_float(double x) {
-  volatile float f = float(x);
-  return f;
+Vec bound_of(const Vertex& v) {
+  return float_hit_point_bound<float>(v.o, v.d, v.t, v.p);
 }
-glm::dvec3 to_float(const glm::dvec3& v) {
-  return {to_float(v.x), to_float(v.y), to_float(v.z)};
+
+// The x component of the offset (core/ray_offset.h's offset_origin), before its step.
+float offset_x(const Vertex& v) {
+  const Vec e = bound_of(v);
+  return v.ng.x * (std::abs(v.ng.x) * e.x + std::abs(v.ng.y) * e.y + std::abs(v.ng.z) * e.z);
 }
 
 Vertex random_vertex(Rng& rng, int i) {
   Vertex v;
-  v.beta = glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()) * spread(rng, -3, 3);
+  v.beta = Vec(float(rng.uniform()), float(rng.uniform()), float(rng.uniform())) *
+           float(spread(rng, -3, 3));
   v.d = random_unit(rng);
-  v.o = random_unit(rng) * spread(rng, -2, 4);
-  v.t = spread(rng, -6, 3);
-  v.p = i % 17 == 0 ? glm::dvec3(0, 0, 0) : v.o + v.d * v.t;
-  v.ng = i % 5 == 0 ? glm::dvec3(0, i % 2 ? 1.0 : -1.0, 0) : random_unit(rng);
+  v.o = random_unit(rng) * float(spread(rng, -2, 4));
+  v.t = float(spread(rng, -6, 3));
+  v.p = i % 17 == 0 ? Vec(0) : v.o + v.d * v.t;
+  v.ng = i % 5 == 0 ? Vec(0, i % 2 ? 1.0f : -1.0f, 0) : random_unit(rng);
   v.light_wi = random_unit(rng);
   v.light_dist = i % 37 == 0 ? std::numeric_limits<double>::infinity() : spread(rng, -4, 4);
   v.le = glm::dvec3(1, 2, 3) * spread(rng, -1, 2);
-  v.f = i % 13 == 0 ? glm::dvec3(0, 0, 0) : to_float(glm::dvec3(rng.uniform(), rng.uniform(), 0.5));
+  v.f = i % 13 == 0 ? Vec(0) : Vec(float(rng.uniform()), float(rng.uniform()), 0.5f);
   v.light_pdf = i % 11 == 0 ? 0.0 : spread(rng, -3, 3);
-  if (i % 97 == 0) v.light_pdf = 1e-320;  // a contribution that overflows
-  v.bsdf_pdf = i % 7 == 0 ? 0.0 : to_float(spread(rng, -3, 3));
-  v.wi = to_float(random_unit(rng));
-  v.value = i % 19 == 0 ? glm::dvec3(0, 0, 0)
-                        : to_float(glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()));
-  v.pdf = i % 23 == 0 ? 0.0 : to_float(spread(rng, -3, 3));
+  if (i % 97 == 0) v.light_pdf = 1e-320;  // below float's range: no light point at float
+  if (i % 101 == 0) v.light_pdf = 1e30;   // a square beyond float's range: MIS must not overflow
+  v.bsdf_pdf = i % 7 == 0 ? 0.0f : float(spread(rng, -3, 3));
+  v.wi = random_unit(rng);
+  v.value =
+      i % 19 == 0 ? Vec(0) : Vec(float(rng.uniform()), float(rng.uniform()), float(rng.uniform()));
+  v.pdf = i % 23 == 0 ? 0.0f : float(spread(rng, -3, 3));
   if (i % 89 == 0) {  // a throughput that overflows
     v.pdf = std::numeric_limits<float>::denorm_min();
-    v.beta = v.beta * 1e300;
+    v.beta = v.beta * 1e30f;
   }
-  v.u = i % 29 == 0 ? 0.8 : rng.uniform();  // roulette's threshold itself ends the path
+  v.u = i % 29 == 0 ? 0.8f : float(rng.uniform());  // roulette's threshold itself ends the path
   if (i % 31 == 0) {
     // The offset lands exactly on 0: the origin must still step off it (to the least denormal).
-    v.ng = {1, 0, 0};
-    v.light_wi = v.wi = to_float(normalize(glm::dvec3(1, 0.5, -0.5)));
-    v.p.x = -hit_point_error(Rayd{v.o, v.d}, v.t).x;
+    // The normal leans 2^-8 towards x, so that p.x barely moves its own bound: p.x = −offset.x
+    // reaches a float fixed point in a step or two.
+    v.ng = {0x1p-8f, 1, 0};
+    v.light_wi = v.wi = normalize(Vec(1, 0.5f, -0.5f));
+    v.p.x = 0;
+    for (int k = 0; k < 10 && v.p.x + offset_x(v) != 0; ++k)
+      v.p.x = -offset_x(v);
   }
-  // Points off the end of the doubles: infinite, or not a number (one or the other: where two
+  // Points off the end of the floats: infinite, or not a number (one or the other: where two
   // NaNs meet in a sum, which one's sign survives depends on the operands' order, which the
   // compiler may swap).
-  const double inf = std::numeric_limits<double>::infinity();
+  const float inf = std::numeric_limits<float>::infinity();
   if (i % 43 == 0)
     v.p[i % 3] = i % 2 ? inf : -inf;
   else if (i % 47 == 0)
-    v.p[i % 3] = std::numeric_limits<double>::quiet_NaN();
+    v.p[i % 3] = std::numeric_limits<float>::quiet_NaN();  // (same_origin, below)
   else if (i % 59 == 0) {
-    // A point at −0 on a face along an axis: the offset's zero components (±0, turned with the
-    // side) decide the signs of the origin's zeros.
-    v.p = {-0.0, v.p.y, -0.0};
-    v.ng = {0, i % 2 ? 1.0 : -1.0, 0};
-  } else if (i % 61 == 0)
-    v.t = std::numeric_limits<double>::quiet_NaN();  // no bound on the point's error: NaN
-  else if (i % 3 == 1 && i % 31 != 0)
-    place_next_origin_on_midpoints(v);
+    // A point at −0 on a face along an axis, from an origin at 0: the offset's zero components
+    // (±0, turned with the side) decide the signs of the origin's zeros.
+    v.o = Vec(0), v.t = 0;
+    v.p = {-0.0f, v.p.y, -0.0f};
+    v.ng = {0, i % 2 ? 1.0f : -1.0f, 0};
+  } else if (i % 61 == 0) {
+    v.t = std::numeric_limits<float>::quiet_NaN();  // no bound on the point's error: NaN
+  } else if (i % 67 == 0) {
+    // The ends of the range and the least denormals: the step off them (to ±inf, across 0).
+    const float big = std::numeric_limits<float>::max(), tiny = 0x1p-149f;
+    v.o = Vec(0), v.t = 0;
+    v.p = {i % 2 ? big : -big, i % 3 ? tiny : -tiny, 0};
+  }
   return v;
 }
 
@@ -151,29 +146,37 @@ void fill(Batches& b, const std::vector<Vertex>& vs, const VertexRules& rules, b
     const Vertex& v = vs[i];
     for (std::size_t k = 0; k < 3; ++k) {
       vb.beta[k][i] = v.beta[k], vb.p[k][i] = v.p[k], vb.ng[k][i] = v.ng[k];
-      vb.ray_o[k][i] = v.o[k], vb.ray_d[k][i] = v.d[k];
-      q.cones.wi[k][i] = v.light_wi[k], q.le[k][i] = v.le[k];
-      sb.light_f[k][i] = float(v.f[k]), sb.wi[k][i] = float(v.wi[k]);
-      sb.value[k][i] = float(v.value[k]);
+      vb.ray_o[k][i] = v.o[k], sb.wo[k][i] = -v.d[k];
+      sb.light_wi[k][i] = v.light_wi[k], q.le[k][i] = v.le[k];
+      sb.light_f[k][i] = v.f[k], sb.wi[k][i] = v.wi[k], sb.value[k][i] = v.value[k];
     }
     const VertexRules row_rules = rules_of_row(rules, mixed, i);
     vb.t[i] = v.t, vb.u_roulette[i] = v.u;
-    vb.survival[i] = row_rules.roulette ? row_rules.survival : 1.0;
+    vb.survival[i] = row_rules.roulette ? float(row_rules.survival) : 1.0f;
     q.cones.dist[i] = v.light_dist, q.cones.pdf[i] = v.light_pdf;
-    sb.light_pdf[i] = float(v.bsdf_pdf), sb.pdf[i] = float(v.pdf);
+    sb.light_pdf[i] = v.bsdf_pdf, sb.pdf[i] = v.pdf;
   }
 }
 
-glm::dvec3 row(const VertexBatch::Columns3& c, std::size_t i) {
+template <class T>
+glm::vec<3, T> row(const std::array<std::vector<T>, 3>& c, std::size_t i) {
   return {c[0][i], c[1][i], c[2][i]};
 }
-glm::vec3 row(const VertexBatch::FloatColumns3& c, std::size_t i) {
-  return {c[0][i], c[1][i], c[2][i]};
+
+// An origin's components (and a shadow ray's end) bit for bit, or both NaN: a NaN point makes its
+// bound NaN too, and where the two NaNs meet in p + offset which one's sign survives depends on the
+// operands' order, which the compiler may swap. Either way the ray is invalid (the tracer skips
+// it).
+bool same_or_nan(float a, float b) {
+  return same_bits(a, b) || (std::isnan(a) && std::isnan(b));
+}
+bool same_origin(const Vec& a, const Vec& b) {
+  return same_or_nan(a.x, b.x) && same_or_nan(a.y, b.y) && same_or_nan(a.z, b.z);
 }
 
 // Counts of what the rows exercised, so the test can require every branch.
 struct Seen {
-  int shadows = 0, no_shadow = 0, alive = 0, ended = 0, environment = 0, midpoints = 0;
+  int shadows = 0, no_shadow = 0, alive = 0, ended = 0, environment = 0, zero_sums = 0;
 };
 
 void expect_rows_are_scalar(const VertexRules& batch_rules, bool mixed,
@@ -182,26 +185,26 @@ void expect_rows_are_scalar(const VertexRules& batch_rules, bool mixed,
   for (std::size_t i = 0; i < vs.size() && failures < 10; ++i) {
     const Vertex& v = vs[i];
     const VertexRules rules = rules_of_row(batch_rules, mixed, i);
-    Rayd ray{v.o, v.d};
-    glm::dvec3 err = hit_point_error(ray, v.t);
-    glm::dvec3 c{};
-    bool shadow = shadow_contribution(rules, v.beta, v.f, v.le, v.light_pdf, v.bsdf_pdf, c);
+    const Vec err = bound_of(v);
+    seen.zero_sums += v.p.x + offset_x(v) == 0 && offset_x(v) != 0;
+    Vec c{};
+    const float light_pdf = float(v.light_pdf), dist = float(v.light_dist);
+    const bool shadow =
+        shadow_contribution<float>(rules, v.beta, v.f, Vec(v.le), light_pdf, v.bsdf_pdf, c);
     bool ok = (b.shadow_ok[i] != 0) == shadow;
     if (shadow) {
-      const glm::dvec3 o = offset_ray_origin(v.p, err, v.ng, v.light_wi);
-      // The origin and end rounded to float as ray_cast<float> rounds them.
-      ok = ok && same_bits(row(b.shadow_c, i), c) && same_bits(row(b.shadow_o, i), glm::vec3(o)) &&
-           same_bits(b.shadow_tmax[i], float(shadow_ray_tmax(o, v.p, v.light_wi, v.light_dist)));
+      const Vec o = offset_origin<float>(v.p, err, v.ng, v.light_wi);
+      ok = ok && same_bits(row(b.shadow_c, i), glm::dvec3(c)) &&
+           same_origin(row(b.shadow_o, i), o) &&
+           same_or_nan(b.shadow_tmax[i], shadow_tmax<float>(o, v.p, v.light_wi, dist));
       seen.environment += std::isinf(v.light_dist);
     }
-    glm::dvec3 next{};
-    bool alive = next_throughput(rules, v.beta, v.value, v.pdf, v.u, next);
+    Vec next{};
+    const bool alive = next_throughput<float>(rules, v.beta, v.value, v.pdf, v.u, next);
     ok = ok && (b.alive[i] != 0) == alive;
-    if (alive) {
+    if (alive)
       ok = ok && same_bits(row(b.next_beta, i), next) &&
-           same_bits(row(b.next_o, i), glm::vec3(offset_ray_origin(v.p, err, v.ng, v.wi)));
-      seen.midpoints += v.midpoints;
-    }
+           same_origin(row(b.next_o, i), offset_origin<float>(v.p, err, v.ng, v.wi));
     failures += !ok;
     EXPECT_TRUE(ok) << "row " << i << ": shadow " << shadow << " alive " << alive;
     ++(shadow ? seen.shadows : seen.no_shadow);
@@ -209,7 +212,7 @@ void expect_rows_are_scalar(const VertexRules& batch_rules, bool mixed,
   }
 }
 
-TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
+TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarFloatSteps) {
   Rng rng(11);
   std::vector<Vertex> vs;
   // 20003: not a multiple of any lane width, so the last batch reads the columns' padding.
@@ -231,12 +234,12 @@ TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
         EXPECT_GT(seen.no_shadow, 2000);
         EXPECT_GT(seen.alive, 10000);
         EXPECT_GT(seen.ended, roulette == 1 ? 4000 : roulette == 2 ? 3000 : 1000);
-        EXPECT_GT(seen.midpoints, 3000);
+        EXPECT_GT(seen.zero_sums, 300);  // offsets landing on 0, stepped to the least denormal
         // Without lights: no shadow ray anywhere, the same next rays.
         VertexBatch with_lights = b.vertex;
         finish_vertices(isa, rules, b.bsdf, nullptr, b.vertex);
         for (std::size_t i = 0; i < vs.size(); ++i) {
-          ASSERT_EQ(b.vertex.shadow_ok[i], 0.0) << "row " << i;
+          ASSERT_EQ(b.vertex.shadow_ok[i], 0.0f) << "row " << i;
           ASSERT_EQ(b.vertex.alive[i], with_lights.alive[i]) << "row " << i;
           if (b.vertex.alive[i] != 0) {
             ASSERT_TRUE(same_bits(row(b.vertex.next_beta, i), row(with_lights.next_beta, i)) &&
@@ -247,23 +250,83 @@ TEST(VertexLanes, ShadowRaysAndNextRaysAreTheScalarOnes) {
       }
 }
 
-// The scalar steps themselves, on values whose answers are known.
+// The steps at double on values whose answers are known.
 TEST(VertexLanes, ScalarStepsOnKnownValues) {
   VertexRules rules{true, true, 0.8};
   glm::dvec3 c{};
   // Equal densities: the power heuristic weighs 1/2; beta·f·Le·(1/2)/2.
-  ASSERT_TRUE(shadow_contribution(rules, {1, 2, 4}, {0.5, 0.5, 0.5}, {2, 2, 2}, 2, 2, c));
+  ASSERT_TRUE(shadow_contribution<double>(rules, {1, 2, 4}, {0.5, 0.5, 0.5}, {2, 2, 2}, 2, 2, c));
   EXPECT_EQ(c, glm::dvec3(0.25, 0.5, 1));
-  EXPECT_FALSE(shadow_contribution(rules, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, 1, 1, c));
-  EXPECT_FALSE(shadow_contribution(rules, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}, 0, 1, c));
+  EXPECT_FALSE(shadow_contribution<double>(rules, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, 1, 1, c));
+  EXPECT_FALSE(shadow_contribution<double>(rules, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}, 0, 1, c));
+  // Densities whose squares leave float's range weigh as their ratio says: 1/(1 + 1/4) and
+  // 1/(1 + 4), not inf/inf.
+  EXPECT_EQ(power_heuristic<float>(2e30f, 1e30f), 0.8f);
+  EXPECT_EQ(power_heuristic<float>(1e-30f, 2e-30f), 0.2f);
   glm::dvec3 next{};
-  ASSERT_TRUE(next_throughput(rules, {1, 1, 1}, {0.4, 0.8, 1.6}, 0.5, 0.5, next));
+  ASSERT_TRUE(next_throughput<double>(rules, {1, 1, 1}, {0.4, 0.8, 1.6}, 0.5, 0.5, next));
   EXPECT_EQ(next, glm::dvec3(0.4 / 0.5 / 0.8, 0.8 / 0.5 / 0.8, 1.6 / 0.5 / 0.8));
-  EXPECT_FALSE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.8, next));  // roulette ends it
+  EXPECT_FALSE(next_throughput<double>(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.8, next));  // roulette
   rules.roulette = false;
-  ASSERT_TRUE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.9, next));
+  ASSERT_TRUE(next_throughput<double>(rules, {1, 1, 1}, {1, 1, 1}, 1, 0.9, next));
   EXPECT_EQ(next, glm::dvec3(1, 1, 1));
-  EXPECT_FALSE(next_throughput(rules, {1, 1, 1}, {1, 1, 1}, 0, 0.5, next));
+  EXPECT_FALSE(next_throughput<double>(rules, {1, 1, 1}, {1, 1, 1}, 0, 0.5, next));
+}
+
+// scatter_vertices is shade_lanes then finish_vertices, bit for bit: the same BSDF answers,
+// kept in registers instead of columns.
+TEST(VertexLanes, ScatterIsTheBsdfThenTheStepsAfterIt) {
+  std::vector<Material> materials(3);
+  materials[0].kd = {0.5f, 0.4f, 0.3f};
+  materials[1].kd = {0.2f, 0.2f, 0.2f}, materials[1].ks = {0.5f, 0.5f, 0.5f},
+  materials[1].alpha = 40;
+  materials[2].ks = {0.1f, 0.1f, 0.1f}, materials[2].kt = {0.9f, 0.9f, 0.9f},
+  materials[2].alpha = 200, materials[2].ior = 1.5f;
+  const LaneMaterials lanes(materials);
+  Rng rng(23);
+  std::vector<Vertex> vs;
+  for (int i = 0; i < 5003; ++i)
+    vs.push_back(random_vertex(rng, i));
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    const VertexRules rules{true, true, 0.8};
+    Batches b;
+    fill(b, vs, rules, true);
+    ShadeBatch& sb = b.bsdf;
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      const Vec n = random_unit(rng);
+      for (std::size_t k = 0; k < 3; ++k)
+        sb.n[k][i] = n[k];
+      sb.material[i] = int32_t(i % 3);
+      sb.u_lobe[i] = float(rng.uniform()), sb.u1[i] = float(rng.uniform());
+      sb.u2[i] = float(rng.uniform());
+    }
+    Batches apart = b;
+    shade_lanes(isa, lanes, apart.bsdf);
+    finish_vertices(isa, rules, apart.bsdf, &apart.lights, apart.vertex);
+    scatter_vertices(isa, lanes, rules, b.bsdf, &b.lights, b.vertex);
+    int alive = 0;
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      const VertexBatch &x = b.vertex, &y = apart.vertex;
+      ASSERT_TRUE(x.shadow_ok[i] == y.shadow_ok[i] && x.alive[i] == y.alive[i]) << "row " << i;
+      ASSERT_TRUE(same_bits(row(b.bsdf.wi, i), row(apart.bsdf.wi, i)) &&
+                  same_bits(b.bsdf.pdf[i], apart.bsdf.pdf[i]))
+          << "row " << i;
+      if (x.shadow_ok[i] != 0) {
+        ASSERT_TRUE(same_bits(row(x.shadow_c, i), row(y.shadow_c, i)) &&
+                    same_bits(row(x.shadow_o, i), row(y.shadow_o, i)) &&
+                    same_bits(x.shadow_tmax[i], y.shadow_tmax[i]))
+            << "row " << i;
+      }
+      if (x.alive[i] != 0) {
+        ASSERT_TRUE(same_bits(row(x.next_beta, i), row(y.next_beta, i)) &&
+                    same_bits(row(x.next_o, i), row(y.next_o, i)))
+            << "row " << i;
+      }
+      alive += x.alive[i] != 0;
+    }
+    EXPECT_GT(alive, 1000);
+  }
 }
 
 // filter_rows keeps the rows whose flag is not 0, in order, in every 4- and 8-byte column, at
@@ -276,7 +339,8 @@ TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
     SCOPED_TRACE(std::string(isa_name(isa)));
     for (std::size_t n = 0; n <= 70; ++n)
       for (int pattern = 0; pattern < 5; ++pattern) {
-        std::vector<double> keep(n), wide(n);
+        std::vector<float> keep(n);
+        std::vector<double> wide(n);
         std::vector<float> narrow(n);
         std::vector<uint32_t> index(n);
         for (std::size_t r = 0; r < n; ++r) {
@@ -285,7 +349,7 @@ TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
                           : pattern == 2 ? r % 2 == 0
                           : pattern == 3 ? (r / 5) % 2 == 1
                                          : rng.uniform() < 0.7;
-          keep[r] = on ? 1.0 : 0.0;
+          keep[r] = on ? 1.0f : 0.0f;
           narrow[r] = r % 7 == 3 ? -0.0f : float(rng.uniform()) - 0.5f;
           wide[r] = r % 11 == 4 ? std::bit_cast<double>(0x7ff8000000001234ull) : rng.uniform();
           index[r] = uint32_t(rng.uniform() * 4e9);
@@ -321,8 +385,8 @@ TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
   }
 }
 
-// gather_vertex_rays puts row r's ray, the stream's ray rows[r], into the batches: origin and
-// direction widened exactly, the direction turned around in float, bit for bit (−0 and NaN
+// gather_vertex_rays puts row r's ray, the stream's ray rows[r], into the batches: the origin,
+// and the direction turned around, bit for bit (−0 and NaN
 // payloads too), at every instruction set: for every row count from 0 to 45, with rows in runs
 // (whole-batch loads), backward, repeated and at random (gathers), and runs of 17 broken by others
 // (both in one call at every width; the runs end at the stream's last ray). The rows past n
@@ -351,11 +415,10 @@ TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
         VertexBatch vertices;
         ShadeBatch shade;
         vertices.resize(n + 9), shade.resize(n + 9);
-        const double unwritten = -7;
+        const float unwritten = -7;
         for (int k = 0; k < 3; ++k) {
           std::fill(vertices.ray_o[k].begin(), vertices.ray_o[k].end(), unwritten);
-          std::fill(vertices.ray_d[k].begin(), vertices.ray_d[k].end(), unwritten);
-          std::fill(shade.wo[k].begin(), shade.wo[k].end(), float(unwritten));
+          std::fill(shade.wo[k].begin(), shade.wo[k].end(), unwritten);
         }
         gather_vertex_rays(isa, rays, rows.data(), n, vertices, shade);
         for (std::size_t r = 0; r < n + 9; ++r)
@@ -363,9 +426,8 @@ TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
             const bool row = r < n;
             const float o = row ? (*columns[k])[rows[r]] : 0,
                         d = row ? (*columns[3 + k])[rows[r]] : 0;
-            ASSERT_TRUE(same_bits(vertices.ray_o[k][r], row ? double(o) : unwritten) &&
-                        same_bits(vertices.ray_d[k][r], row ? double(d) : unwritten) &&
-                        same_bits(shade.wo[k][r], row ? -d : float(unwritten)))
+            ASSERT_TRUE(same_bits(vertices.ray_o[k][r], row ? o : unwritten) &&
+                        same_bits(shade.wo[k][r], row ? -d : unwritten))
                 << "n " << n << " pattern " << pattern << " row " << r << " axis " << k;
           }
       }

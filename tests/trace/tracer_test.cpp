@@ -326,8 +326,8 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
     for (std::size_t i = 0; i < hits.size(); ++i)
       if (hits[i].hit() && std::size_t(hits[i].prim.tag()) == kind) request.push_back(uint32_t(i));
   const std::size_t n = request.size();
-  std::vector<double> p[3], ng[3], cos_ns(n);
-  std::vector<float> ns[3];
+  std::vector<double> cos_ns(n);
+  std::vector<float> p[3], ng[3], ns[3];
   std::vector<uint8_t> front(n, 2);
   for (int k = 0; k < 3; ++k)
     p[k].assign(n, nan), ng[k].assign(n, nan), ns[k].assign(n, nan);
@@ -341,8 +341,9 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
     Hit want = hits[request[r]];
     tracer.complete(ray, want);
     const Surface& s = want.surface;
-    ASSERT_TRUE(same_bits(s.p, {p[0][r], p[1][r], p[2][r]}) &&
-                same_bits(s.ng, {ng[0][r], ng[1][r], ng[2][r]}))
+    // The point and the normals rounded to float, as the columns hold them.
+    ASSERT_TRUE(same_bits(glm::vec3(s.p), {p[0][r], p[1][r], p[2][r]}) &&
+                same_bits(glm::vec3(s.ng), {ng[0][r], ng[1][r], ng[2][r]}))
         << "row " << r << " kind " << int(want.prim.tag());
     ASSERT_TRUE(same_bits(glm::vec3(s.ns), {ns[0][r], ns[1][r], ns[2][r]})) << "row " << r;
     const double c = dot(s.ns, ray.d);

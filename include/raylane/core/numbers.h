@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raylane/core/float_util.h"
+
 namespace raylane {
 
 template <class N>
@@ -27,6 +29,7 @@ struct ScalarNum {
   static T min(T a, T b) { return std::min(a, b); }
   static T sqrt(T x) { return std::sqrt(x); }
   static T abs(T x) { return std::abs(x); }
+  static T negate(T x) { return -x; }  // the sign bit flipped, zeros and NaNs too
   // e^-x for x ≥ 0.
   static T exp_neg(T x) { return std::exp(-x); }
   // ln(1 − u) for u in [0, 1]: −inf at 1.
@@ -35,12 +38,21 @@ struct ScalarNum {
 
 template <>
 struct Num<double> : ScalarNum<double> {
+  // x's neighbour on the side of `side`'s sign (next_double_up or next_double_down, core/
+  // float_util.h: ±0 step to the least denormal, NaN and the infinity they move towards stay),
+  // x itself where side is 0 or NaN.
+  static double next_towards(double x, double side) {
+    return side > 0 ? next_double_up(x) : side < 0 ? next_double_down(x) : x;
+  }
   // Where e^-x is taken as 0: e^-700 ≈ 1e-304, below anything a cos⁻⁴ can lift into range.
   static constexpr double kExpNegCutoff = 700;
 };
 
 template <>
 struct Num<float> : ScalarNum<float> {
+  static float next_towards(float x, float side) {
+    return side > 0 ? next_float_up(x) : side < 0 ? next_float_down(x) : x;
+  }
   static constexpr float kExpNegCutoff = 80;  // e^-80 < 2e-35, near float's smallest normal
 };
 

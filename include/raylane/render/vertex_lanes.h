@@ -1,9 +1,11 @@
-// What a wavefront's vertices do after their BSDF (docs/design.md, "Shading in lanes"), in double
+// What a wavefront's vertices do after their BSDF (docs/design.md, "The scatter kernel"), in float
 // SIMD lanes: the contribution and origin of each vertex's shadow ray toward its light point, and
-// its next throughput (Russian roulette included) and ray origin. These are the path tracer's
-// scalar steps (queue_shadow_ray, continue_path, offset_ray_origin, hit_point_error) in their order
-// and precision, so the lanes give their answers bit for bit (tests/render/vertex_lanes_test.cpp)
-// and the error analysis of the ray offsets (docs/hard-cases.md §5) is unchanged.
+// its next throughput (Russian roulette included) and ray origin. The steps are written once over
+// the number type (render/vertex_steps.h; core/ray_offset.h's offset_origin, shadow_tmax and
+// float_hit_point_bound): the double shading takes them at double, the lanes at float lanes,
+// and their scalar float instance is the lanes' bit-for-bit reference
+// (tests/render/vertex_lanes_test.cpp). scatter_vertices runs the BSDF (shade_lanes.h) and these
+// steps in one pass over the rows, the BSDF's answers kept in registers.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -19,40 +21,38 @@
 #include "raylane/core/vec_math.h"
 #include "raylane/render/lights/lights.h"
 #include "raylane/render/materials/shade_lanes.h"
+#include "raylane/render/vertex_steps.h"
 #include "raylane/simd/isa.h"
 #include "raylane/trace/ray_stream.h"
 
 namespace raylane {
 
-// Fill rows [0, size) after resize(), run finish_vertices(), read the outputs. Rows past size
-// up to the lane width are padding the kernel computes and nobody reads.
+// Fill rows [0, size) after resize(), run scatter_vertices() (or finish_vertices()), read the
+// outputs. Rows past size up to the lane width are padding the kernel computes and nobody reads.
 struct VertexBatch {
-  using Column = std::vector<double>;
+  using Column = std::vector<float>;
   using Columns3 = std::array<Column, 3>;
-  using FloatColumn = std::vector<float>;
-  using FloatColumns3 = std::array<FloatColumn, 3>;
-  // Inputs. The vertex: the path's throughput, the hit point and geometric normal, the ray that
-  // found it with its t (for the bound on the point's error), and roulette's number. The light
-  // point and the BSDF's answers are read where their steps left them (finish_vertices).
-  // Roulette's survival probability per row (VertexRules::roulette): 1 for a row without
-  // roulette, which then always survives (u < 1) with its throughput unchanged (x / 1 is x).
-  Columns3 beta, p, ng, ray_o, ray_d;
+  // Inputs. The vertex: the path's throughput, the hit point and geometric normal (float, the
+  // point rounded to nearest: float_hit_point_bound counts it), the origin of the ray that
+  // found it with its t (its direction is the BSDF's −wo), and roulette's number. The light
+  // point and the BSDF's answers are read where their steps left them. Roulette's survival
+  // probability per row (VertexRules::roulette): 1 for a row without roulette, which then
+  // always survives (u < 1) with its throughput unchanged (x / 1 is x).
+  Columns3 beta, p, ng, ray_o;
   Column t, u_roulette, survival;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
-  // light.
-  Columns3 shadow_c;
+  // light, widened to double for the shadow queue.
+  std::array<std::vector<double>, 3> shadow_c;
   Column shadow_ok;
   // The next ray (alive 1 where the path goes on): the new throughput.
   Columns3 next_beta;
   Column alive;
-  // Where the shadow ray and the next ray start, and where the shadow ray ends
-  // (shadow_ray_tmax), as the tracer takes them: computed in double, rounded to nearest float
-  // (ray_cast<float>).
-  FloatColumns3 shadow_o, next_o;
-  FloatColumn shadow_tmax;
+  // Where the shadow ray and the next ray start, and where the shadow ray ends.
+  Columns3 shadow_o, next_o;
+  Column shadow_tmax;
 
   std::size_t size() const { return size_; }
-  // Rows [0, n), padded to a multiple of 8 lanes. Rows below n keep their values; the columns
+  // Rows [0, n), padded to a multiple of 16 lanes. Rows below n keep their values; the columns
   // never shrink.
   void resize(std::size_t n);
 
@@ -68,7 +68,7 @@ struct VertexBatch {
 // registers), nothing at or past `rows`.
 struct RowFilter {
   static constexpr int kMaxColumns = 10;
-  const double* keep = nullptr;
+  const float* keep = nullptr;
   std::array<const void*, kMaxColumns> from4{}, from8{};
   std::array<void*, kMaxColumns> to4{}, to8{};
   int columns4 = 0, columns8 = 0;
@@ -87,9 +87,8 @@ struct RowFilter {
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
 
 // The rows' rays into the batches, for the vertex steps and the BSDF: row r's ray is the
-// stream's ray rows[r] (r < n), its origin and direction widened to double (exactly) into
-// vertices.ray_o and ray_d, its direction turned around, still float, into shade.wo. Both
-// batches must have room for n rows (resize).
+// stream's ray rows[r] (r < n), its origin into vertices.ray_o and its direction turned around
+// into shade.wo, bit for bit. Both batches must have room for n rows (resize).
 void gather_vertex_rays(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
                         VertexBatch& vertices, ShadeBatch& shade);
 
@@ -99,25 +98,48 @@ struct VertexRules {
   double survival = 1;    // roulette's survival probability (the lanes: the survival column)
 };
 
-// The batch's shadow rays and next rays. Row r's light point is row r of `lights` (its
-// cones.wi, cones.dist, le and cones.pdf; a pdf not above 0: none), or none for every row
-// without `lights`; its BSDF's answers are row r of `bsdf` (sample: wi, value, pdf; at the
-// light point: light_f, light_pdf), widened to double exactly. Both are read as their steps left
-// them, padded at least as far as `batch`.
+// The batch's shadow rays and next rays. Row r's light point is row r of `lights` (le,
+// cones.dist and cones.pdf, rounded to float, and bsdf.light_wi; a pdf not above 0: none), or
+// none for every row without `lights`; its BSDF's answers are row r of `bsdf` (sample: wi,
+// value, pdf; at the light point: light_f, light_pdf). Both are read as their steps left them,
+// padded at least as far as `batch`.
 void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
                      const LightQueries* lights, VertexBatch& batch);
 
-// The scalar steps the lanes transcribe, which the double shading takes one vertex at a time.
-// The ray origins are offset_ray_origin(p, hit_point_error(ray, t), ng, direction), the shadow
-// ray's end shadow_ray_tmax(origin, p, light_wi, light_dist) (core/ray_offset.h).
+// shade_lanes and finish_vertices in one pass over the rows (the scatter kernel): the BSDF's
+// sample (wi and pdf stored in `bsdf` for the write-back; value, light_f and light_pdf are not
+// stored) and at once the steps after it.
+void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules& rules,
+                      ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch);
+
+// The steps for one vertex, at double for the double shading and at float as the lanes' scalar
+// twin (T double or float). The ray origins are offset_origin<T>(p, error, ng, direction), the
+// shadow ray's end shadow_tmax<T>(origin, p, light_wi, light_dist) (core/ray_offset.h), with
+// error hit_point_error in double and float_hit_point_bound in float.
 //
 // A shadow ray's contribution if it sees the light, beta·f·Le·(w / light_pdf) with w the power
 // heuristic under MIS: false when it has none (no light point, f = 0, or not finite).
-bool shadow_contribution(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& f,
-                         const glm::dvec3& le, double light_pdf, double bsdf_pdf, glm::dvec3& c);
+template <class T>
+bool shadow_contribution(const VertexRules& rules, const glm::vec<3, T>& beta,
+                         const glm::vec<3, T>& f, const glm::vec<3, T>& le, T light_pdf, T bsdf_pdf,
+                         glm::vec<3, T>& c) {
+  if (!(light_pdf > 0) || f == glm::vec<3, T>(0)) return false;
+  c = shadow_ray_contribution<T>(rules.mis, beta, f, le, light_pdf, bsdf_pdf);
+  return is_finite(c);
+}
 // The throughput after the BSDF's sample, beta·value / pdf, and Russian roulette: false when
 // the path ends (no sample, roulette, or a zero or non-finite throughput).
-bool next_throughput(const VertexRules& rules, const glm::dvec3& beta, const glm::dvec3& value,
-                     double pdf, double u_roulette, glm::dvec3& next);
+template <class T>
+bool next_throughput(const VertexRules& rules, const glm::vec<3, T>& beta,
+                     const glm::vec<3, T>& value, T pdf, T u_roulette, glm::vec<3, T>& next) {
+  if (!(pdf > 0)) return false;
+  next = sampled_throughput<T>(beta, value, pdf);
+  if (rules.roulette) {
+    const T survival = T(rules.survival);
+    if (u_roulette >= survival) return false;
+    next = survivor_throughput<T>(next, survival);
+  }
+  return is_finite(next) && next != glm::vec<3, T>(0);
+}
 
 }  // namespace raylane

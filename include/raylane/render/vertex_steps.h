@@ -7,19 +7,17 @@
 // which the templates find by argument-dependent lookup where a batch instantiates them.
 #pragma once
 
+#include "raylane/core/numbers.h"
+
 namespace raylane {
 
-// c ? a : b for one number, the scalar twin of xsimd::select.
-inline double select(bool c, double a, double b) {
-  return c ? a : b;
-}
-
-// Veach's power heuristic with β = 2 (Veach 1997, thesis §9.2.4) for one sample of each: 0
-// where pdf_this is not positive (or NaN).
+// Veach's power heuristic with β = 2 (Veach 1997, thesis §9.2.4) for one sample of each,
+// p²/(p² + q²) taken as 1/(1 + (q/p)²) so that no square overflows or underflows in float
+// (densities of 1e20 are a small light far off): 0 where pdf_this is not positive (or NaN).
 template <class N>
 N power_heuristic(const N& pdf_this, const N& pdf_other) {
-  const N a = pdf_this * pdf_this, b = pdf_other * pdf_other;
-  return select(a > N(0.0), a / (a + b), N(0.0));
+  const N r = pdf_other / pdf_this;
+  return Num<N>::select(pdf_this > N(0.0), N(1.0) / (N(1.0) + r * r), N(0.0));
 }
 
 // A shadow ray's contribution if it sees the light: beta·f·Le·(w / light_pdf), w the power

@@ -18,6 +18,8 @@ struct Num<xsimd::batch<float, A>> {
   static F min(const F& a, const F& b) { return xsimd::min(a, b); }
   static F sqrt(const F& x) { return xsimd::sqrt(x); }
   static F abs(const F& x) { return xsimd::abs(x); }
+  // Not unary minus, which xsimd 8.1 makes 0 − x on AVX-512 (+0 stays +0; simd/lanes.h).
+  static F negate(const F& x) { return simd::negate(x); }
   // e^-x = 2^(−x·log2 e), x ≥ 0 (a negative x is taken as 0).
   static F exp_neg(const F& x) {
     return simd::exp2<A>(xsimd::max(x, F(0.0f)) * F(-1.44269504088896340736f));
@@ -26,6 +28,22 @@ struct Num<xsimd::batch<float, A>> {
   // it is −87.3 rather than −inf.
   static F log_one_minus(const F& u) {
     return simd::log2<A>(xsimd::max(F(1.0f) - u, F(0x1p-126f))) * F(0.69314718055994530942f);
+  }
+  // next_towards (core/numbers.h) per lane, one step instead of two: up the magnitude where x
+  // lies on side's side, down it where not (both nonzero); ±0 to the least denormal of side's
+  // sign; NaN, and an infinity growing, unchanged; x where side is 0 or NaN.
+  static F next_towards(const F& x, const F& side) {
+    using I = xsimd::batch<int32_t, A>;
+    const F zero(0.0f);
+    const auto up = side > zero, down = side < zero;
+    const auto grows = ((x > zero) & up) | ((x < zero) & down);
+    const I bits = xsimd::bitwise_cast<I>(x);
+    const F stepped = xsimd::select(grows, xsimd::bitwise_cast<F>(bits + I(1)),
+                                    xsimd::bitwise_cast<F>(bits - I(1)));
+    const F from_zero = xsimd::select(up, F(0x1p-149f), F(-0x1p-149f));
+    const auto stays = xsimd::isnan(x) | (grows & (xsimd::abs(x) == F(HUGE_VALF)));
+    const F moved = xsimd::select(x == zero, from_zero, xsimd::select(stays, x, stepped));
+    return xsimd::select(up | down, moved, x);
   }
   static constexpr float kExpNegCutoff = 80;
 };

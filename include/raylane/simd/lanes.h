@@ -450,6 +450,38 @@ inline void store_narrowed(float* p, const Doubles<A>& v) {
   }
 }
 
+// W doubles from p (W the float lanes' count) rounded to nearest float, as a scalar cast rounds.
+template <class A>
+inline Floats<A> load_narrowed(const double* p) {
+  if constexpr (kWidth<A> == 16) {
+    const __m256 lo = _mm512_cvtpd_ps(_mm512_loadu_pd(p)),
+                 hi = _mm512_cvtpd_ps(_mm512_loadu_pd(p + 8));
+    const __m512d both =
+        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1);
+    return Floats<A>(_mm512_castpd_ps(both));
+  } else if constexpr (kWidth<A> == 8) {
+    const __m128 lo = _mm256_cvtpd_ps(_mm256_loadu_pd(p)),
+                 hi = _mm256_cvtpd_ps(_mm256_loadu_pd(p + 4));
+    return Floats<A>(_mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1));
+  } else {
+    static_assert(kWidth<A> == 4, "four, eight or sixteen float lanes");
+    const __m128 lo = _mm_cvtpd_ps(_mm_loadu_pd(p)), hi = _mm_cvtpd_ps(_mm_loadu_pd(p + 2));
+    return Floats<A>(_mm_movelh_ps(lo, hi));
+  }
+}
+
+// Float lanes widened (exactly) to double and stored at p[0, W), W the float lanes' count.
+template <class A>
+inline void store_widened(double* p, const Floats<A>& v) {
+  if constexpr (kWidth<A> == 16) {
+    const __m512d bits = _mm512_castps_pd(__m512(v));
+    _mm512_storeu_pd(p, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_castpd512_pd256(bits))));
+    _mm512_storeu_pd(p + 8, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(bits, 1))));
+  } else {
+    store_widened<A>(p, p + 4, v);
+  }
+}
+
 // Eight 64-bit lanes split into their low halves at low[0, 8) and high halves at high[0, 8)
 // (AVX-512's truncating vpmovqd; the other sets have no 64-bit lanes worth splitting).
 template <class A>

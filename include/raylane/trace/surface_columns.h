@@ -10,11 +10,14 @@ namespace raylane {
 // Row r of a request gets the surface of its r-th hit. Every pointer addresses at least as
 // many rows as the request has.
 struct SurfaceColumns {
-  double *px, *py, *pz;     // the hit point
-  double *ngx, *ngy, *ngz;  // the unit geometric normal
-  float *nsx, *nsy, *nsz;   // the unit shading normal, rounded to float (a float BSDF's frame)
-  double* cos_ns;           // dot(ns, d) in double, before the rounding: the Bsdf's black() test
-  uint8_t* front;           // 1 where the ray meets the front face (dot(d, ng) < 0), else 0
+  // The hit point and the unit geometric normal, rounded to nearest float: the render's float
+  // vertex steps bound the point's error with that rounding counted (float_hit_point_bound,
+  // core/ray_offset.h).
+  float *px, *py, *pz;
+  float *ngx, *ngy, *ngz;
+  float *nsx, *nsy, *nsz;  // the unit shading normal, rounded to float (a float BSDF's frame)
+  double* cos_ns;          // dot(ns, d) in double, before the rounding: the Bsdf's black() test
+  uint8_t* front;          // 1 where the ray meets the front face (dot(d, ng) < 0), else 0
 };
 
 }  // namespace raylane

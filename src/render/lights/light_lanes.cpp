@@ -5,8 +5,9 @@
 namespace raylane {
 
 namespace {
-constexpr std::size_t kMaxWidth = 8;  // AVX-512's double lanes: every batch is padded to it
-}
+// AVX-512's float lanes: the scatter kernel reads the light points in batches of sixteen rows.
+constexpr std::size_t kMaxWidth = 16;
+}  // namespace
 
 void ConeBatch::resize(std::size_t rows) {
   size_ = rows;

@@ -229,8 +229,8 @@ void LightQueries::set_times(const uint32_t* path, const std::vector<float>& pat
 void LightQueries::resize(std::size_t n) {
   size_ = n;
   cones.resize(n);
-  // Padded as the cones are: the vertex lanes read le in whole batches of double lanes.
-  const std::size_t padded = (n + 7) / 8 * 8;
+  // Padded as the cones are: the scatter kernel reads le in whole batches of float lanes.
+  const std::size_t padded = (n + 15) / 16 * 16;
   if (u_light.size() < padded) {
     for (Column* c : {&u_light, &u_part, &le[0], &le[1], &le[2]})
       c->resize(padded);

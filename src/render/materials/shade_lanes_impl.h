@@ -1,8 +1,8 @@
-// The body of the lane BSDF (render/materials/shade_lanes.h), instantiated once per instruction set by
-// src/render/render_lanes_<isa>.cpp. Include from nowhere else. It is Bsdf (src/render/materials/bsdf.cpp)
-// rewritten for lanes: every branch of the scalar code becomes a mask, both sides of each are
-// computed and the lane's side is selected, so a NaN or inf on the side not taken never
-// reaches a result (selects, never multiplications by a mask).
+// The body of the lane BSDF (render/materials/shade_lanes.h), instantiated once per instruction set
+// by src/render/render_lanes_<isa>.cpp. Include from nowhere else. It is Bsdf
+// (src/render/materials/bsdf.cpp) rewritten for lanes: every branch of the scalar code becomes a
+// mask, both sides of each are computed and the lane's side is selected, so a NaN or inf on the
+// side not taken never reaches a result (selects, never multiplications by a mask).
 #pragma once
 
 #include "raylane/render/materials/bsdf_steps.h"
@@ -252,30 +252,51 @@ FloatVec3<A> LaneBsdf<A>::sample_diffuse(const F<A>& u1, const F<A>& u2, M<A>& v
   return wi * (one / len);
 }
 
+// What the BSDF answers for rows [i, i + W): its sample (direction, f·|cos θi| and density, all
+// 0 where there is none) and its evaluation toward the row's light direction.
+template <class A>
+struct BsdfAnswers {
+  FloatVec3<A> wi;
+  F<A> value[3], pdf;
+  F<A> light_f[3], light_pdf;
+};
+
+template <class A>
+BsdfAnswers<A> bsdf_answers(const LaneMaterials& materials, const ShadeBatch& b, std::size_t i) {
+  M<A> valid;
+  const F<A> u0 = simd::load<A>(b.u_lobe.data() + i), u1 = simd::load<A>(b.u1.data() + i),
+             u2 = simd::load<A>(b.u2.data() + i);
+  LaneBsdf<A> bsdf(materials, b, i, u0);
+  const bool diffuse = bsdf.diffuse_only();
+  BsdfAnswers<A> out;
+  out.wi = bsdf.all_diffuse() ? bsdf.sample_diffuse(u1, u2, valid) : bsdf.sample(u0, u1, u2, valid);
+  auto evaluate = [&](const FloatVec3<A>& w) {
+    return diffuse ? bsdf.evaluate_diffuse(w) : bsdf.evaluate(w);
+  };
+  const LaneEval<A> e = evaluate(out.wi);
+  valid = valid & (e.pdf > F<A>(0.0f)) & finite<A>(e.pdf);
+  for (int k = 0; k < 3; ++k)
+    out.value[k] = simd::select(valid, e.f[k], F<A>(0.0f));
+  out.pdf = simd::select(valid, e.pdf, F<A>(0.0f));
+  const LaneEval<A> l = evaluate(load3<A>(b.light_wi, i));
+  for (int k = 0; k < 3; ++k)
+    out.light_f[k] = l.f[k];
+  out.light_pdf = l.pdf;
+  return out;
+}
+
 template <class A>
 void shade_lanes_range(const LaneMaterials& materials, ShadeBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   for (std::size_t i = 0; i < b.size(); i += W) {
-    M<A> valid;
-    const F<A> u0 = simd::load<A>(b.u_lobe.data() + i), u1 = simd::load<A>(b.u1.data() + i),
-               u2 = simd::load<A>(b.u2.data() + i);
-    LaneBsdf<A> bsdf(materials, b, i, u0);
-    const bool diffuse = bsdf.diffuse_only();
-    FloatVec3<A> wi =
-        bsdf.all_diffuse() ? bsdf.sample_diffuse(u1, u2, valid) : bsdf.sample(u0, u1, u2, valid);
-    auto evaluate = [&](const FloatVec3<A>& w) {
-      return diffuse ? bsdf.evaluate_diffuse(w) : bsdf.evaluate(w);
-    };
-    LaneEval<A> e = evaluate(wi);
-    valid = valid & (e.pdf > F<A>(0.0f)) & finite<A>(e.pdf);
-    store3<A>(b.wi, i, wi);
-    for (int k = 0; k < 3; ++k)
-      simd::store<A>(b.value[k].data() + i, simd::select(valid, e.f[k], F<A>(0.0f)));
-    simd::store<A>(b.pdf.data() + i, simd::select(valid, e.pdf, F<A>(0.0f)));
-    LaneEval<A> l = evaluate(load3<A>(b.light_wi, i));
-    for (int k = 0; k < 3; ++k)
-      simd::store<A>(b.light_f[k].data() + i, l.f[k]);
-    simd::store<A>(b.light_pdf.data() + i, l.pdf);
+    const BsdfAnswers<A> a = bsdf_answers<A>(materials, b, i);
+    store3<A>(b.wi, i, a.wi);
+    for (int k = 0; k < 3; ++k) {
+      simd::store<A>(b.value[k].data() + i, a.value[k]);
+      simd::store<A>(b.light_f[k].data() + i, a.light_f[k]);
+    }
+    simd::store<A>(b.pdf.data() + i, a.pdf);
+    simd::store<A>(b.light_pdf.data() + i, a.light_pdf);
   }
 }
 

@@ -2,11 +2,11 @@
 // vertex as the wavefront arrives; the tracer writes their surfaces straight into the batches'
 // columns, and a few passes copy the listed hits, rays and paths into the rest, a column group
 // per pass (a pass over all thirty columns at once reloaded each column's pointer per row);
-// then the rows' numbers (Sobol groups in lanes), light points (render/lights/lights.h, sample_many),
-// BSDFs in float lanes (render/materials/shade_lanes.h) and shadow rays and next rays in double lanes
-// (render/vertex_lanes.h, reading the light points and BSDF answers where those steps left
-// them) all read and write columns; lane_write_back.cpp writes the rays and the paths back.
-// (Each step once gathered what it needed from the hits and paths itself: seven passes over
+// then the rows' numbers (Sobol groups in lanes), light points (render/lights/lights.h,
+// sample_many), BSDFs in float lanes (render/materials/shade_lanes.h) and shadow rays and next rays
+// in double lanes (render/vertex_lanes.h, reading the light points and BSDF answers where those
+// steps left them) all read and write columns; lane_write_back.cpp writes the rays and the paths
+// back. (Each step once gathered what it needed from the hits and paths itself: seven passes over
 // the rows, 18 % of a render.)
 #include <algorithm>
 #include <cmath>
@@ -25,7 +25,7 @@ void set_bsdf_numbers(ThreadContext& ctx, std::size_t r, const std::array<double
                       double u_roulette) {
   ShadeBatch& sb = ctx.wave.lane_vertices.shade;
   sb.u1[r] = unit_float(u[0]), sb.u2[r] = unit_float(u[1]), sb.u_lobe[r] = unit_float(u[2]);
-  ctx.wave.lane_vertices.vertices.u_roulette[r] = u_roulette;
+  ctx.wave.lane_vertices.vertices.u_roulette[r] = unit_float(u_roulette);
 }
 
 // The light group's numbers for row r: (u1, u2, u_light, u_part).
@@ -37,13 +37,13 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
 // vertex lanes' column (1 without: VertexBatch::survival). Returns whether any row has it.
 bool roulette_columns(ThreadContext& ctx) {
   LaneVertexQueue& lv = ctx.wave.lane_vertices;
-  double* survival = lv.vertices.survival.data();
+  float* survival = lv.vertices.survival.data();
   const uint32_t* depth = lv.depth.data();
   const int rr_depth = ctx.settings.rr_depth;  // read once: the stores below may alias it
   bool any = false;
   for (std::size_t r = 0; r < lv.count; ++r) {
     const bool roulette = has_roulette(rr_depth, depth[r]);
-    survival[r] = roulette ? kRouletteSurvival : 1.0;
+    survival[r] = roulette ? float(kRouletteSurvival) : 1.0f;
     any = any || roulette;
   }
   return any;
@@ -96,7 +96,7 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   if (!lobe) std::fill_n(sb.u_lobe.begin(), lv.count, 0.0f);
   SobolNumbers to;
   to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
-  if (roulette) to.as_double[3] = lv.vertices.u_roulette.data();
+  if (roulette) to.as_float[3] = lv.vertices.u_roulette.data();
   salt_seeds(ctx, Dims::bsdf_group);
   sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, 3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
 }
@@ -185,7 +185,7 @@ void drop_black_rows(ThreadContext& ctx) {
   while (first < n && reflects(lm, rows.cos_ns[first], rows.material[first]))
     ++first;
   if (first == n) return;
-  const Columns3Out<double> p(lv.vertices.p), ng(lv.vertices.ng);
+  const Columns3Out<float> p(lv.vertices.p), ng(lv.vertices.ng);
   const Columns3Out<float> ns(lv.shade.n);
   std::size_t kept = first;
   for (std::size_t r = first + 1; r < n; ++r) {
@@ -206,10 +206,10 @@ void hit_columns(ThreadContext& ctx, bool lights) {
   const Hit* hits = w.hits.data();
   const uint32_t *hit = lv.ray.data(), *material = lv.material.data();
   const std::size_t n = lv.count;
-  double* t = lv.vertices.t.data();
+  float* t = lv.vertices.t.data();
   int32_t* shade_material = lv.shade.material.data();
   for (std::size_t r = 0; r < n; ++r)
-    t[r] = hits[hit[r]].t, shade_material[r] = int32_t(material[r]);
+    t[r] = float(hits[hit[r]].t), shade_material[r] = int32_t(material[r]);
   if (!lights) return;
   for (int k = 0; k < 3; ++k)
     std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
@@ -258,8 +258,8 @@ void path_columns(ThreadContext& ctx) {
   gather_vertex_rays(ctx.lanes.isa, w.rays.rays, rows.ray.data(), n, lv.vertices, lv.shade);
   const PathState* paths = w.paths.data();
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
-  const Columns3Out<double> beta(lv.vertices.beta);
-  const double* t = lv.vertices.t.data();
+  const Columns3Out<float> beta(lv.vertices.beta);
+  const float* t = lv.vertices.t.data();
   for (std::size_t r = 0; r < n; ++r) {
     const PathState& path = paths[rows.path[r]];
     // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
@@ -289,9 +289,8 @@ void shade_lane_vertices(ThreadContext& ctx) {
   rules.roulette = roulette_columns(ctx);
   draw_numbers(ctx, lights, rules.roulette);
   light_columns(ctx, lights);
-  shade_lanes(ctx.lanes.isa, ctx.lanes.materials, lv.shade);
-  finish_vertices(ctx.lanes.isa, rules, lv.shade, lights ? &lv.light_queries : nullptr,
-                  lv.vertices);
+  scatter_vertices(ctx.lanes.isa, ctx.lanes.materials, rules, lv.shade,
+                   lights ? &lv.light_queries : nullptr, lv.vertices);
   if (lights) write_lane_shadow_rays(ctx);
   write_lane_next_rays(ctx);
 }

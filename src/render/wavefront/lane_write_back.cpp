@@ -71,7 +71,7 @@ void write_lane_next_rays(ThreadContext& ctx) {
   LaneVertexQueue& lv = w.lane_vertices;
   const VertexBatch& vb = lv.vertices;
   const std::size_t n = lv.count;
-  const Column3View<double> beta(vb.next_beta), p(vb.p);
+  const Column3View<float> beta(vb.next_beta), p(vb.p);
   const float* pdf = lv.shade.pdf.data();
   const uint32_t* row_path = lv.path.data();
   PathState* paths = w.paths.data();

@@ -39,7 +39,7 @@ struct ConeBatch {
   std::array<float*, 3> wi_float{};
 
   std::size_t size() const { return size_; }
-  // Rows [0, n), padded to a multiple of 8 lanes; keeps the capacity.
+  // Rows [0, n), padded to a multiple of 16 lanes; keeps the capacity.
   void resize(std::size_t n);
 
  private:

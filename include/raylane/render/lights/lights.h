@@ -5,8 +5,8 @@
 // proportional to its power (mean of Le's channels × area), so a scene's dim lamps do not take
 // samples from its bright ones.
 //
-// The environment (`environment`, render/lights/environment.h) is one more light, chosen by its power
-// π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
+// The environment (`environment`, render/lights/environment.h) is one more light, chosen by its
+// power π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
 // flux an infinite light sends through the scene; docs/design.md, "The environment light").
 //
 // A light that moves (an emitting mbsphere) is sampled where it is at the path's time: the
@@ -62,7 +62,7 @@ struct LightQueries {
   double time_of(std::size_t r) const { return time.empty() ? 0.5 : time[r]; }
   std::vector<PrimRef> light;
   std::array<Column, 3> le;
-  // Rows [0, n), padded to a multiple of 8 lanes as ConeBatch. The columns only grow.
+  // Rows [0, n), padded to a multiple of 16 lanes as ConeBatch. The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
   glm::dvec3 ref(std::size_t r) const { return column3(cones.ref, r); }

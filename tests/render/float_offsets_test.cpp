@@ -1,0 +1,161 @@
+// The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces
+// rounds them), their error bounded by float_hit_point_bound, and the rays a vertex spawns leave
+// by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes of every kind that
+// the float surfaces cover, at every instruction set, at four scales (unit, far from the origin,
+// tiny, huge):
+// - the float point lies within its bound's projection on the normal of the true surface
+//   (spheres, boxes and triangles, measured in double from the table's own float numbers);
+// - a ray reflected off a front face never meets its own primitive again (acne), and one
+//   continuing into the solid never meets its own primitive's front face (a leak: it started
+//   outside). Convex primitives and planar triangles allow neither, whatever the scene holds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "raylane/core/ray_offset.h"
+#include "raylane/core/strings.h"
+#include "raylane/trace/tracer.h"
+#include "support/random_scene.h"
+
+namespace raylane {
+namespace {
+
+using Vec = glm::vec3;
+
+struct Scale {
+  const char* name;
+  double extent, size;
+  glm::dvec3 offset;
+};
+
+// Far from the origin the offset grows with the coordinates (2^5 float roundoffs of |p|): there
+// a primitive must stay wider than it, so the far scene keeps its smallest cylinders (radius
+// 0.036) about 150 float ulps wide at |p| ≈ 2500. At 25000 they are 18 ulps wide, and 3 of 5063
+// rays continuing into them met a cylinder's front face (1 with the double reference's offsets).
+constexpr Scale kScales[] = {{"unit", 10, 0.6, {0, 0, 0}},
+                             {"far", 10, 0.6, {1.5e3, -2.5e3, 4e2}},
+                             {"tiny", 1e-3, 6e-5, {0, 0, 0}},
+                             {"huge", 1e5, 6e3, {0, 0, 0}}};
+
+// The float hits of a stream: the render's columns (point, geometric normal, facing).
+struct FloatHits {
+  std::vector<Hit> hits;
+  std::vector<uint32_t> rows;  // the rays that hit something
+  std::vector<float> p[3], ng[3], ns[3];
+  std::vector<double> cos_ns;
+  std::vector<uint8_t> front;
+  Vec point(std::size_t r) const { return {p[0][r], p[1][r], p[2][r]}; }
+  Vec normal(std::size_t r) const { return {ng[0][r], ng[1][r], ng[2][r]}; }
+};
+
+FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
+  FloatHits f;
+  TraceScratch scratch;
+  tracer.closest(rays, f.hits, 0, scratch);
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    if (f.hits[i].hit()) f.rows.push_back(uint32_t(i));
+  const std::size_t n = f.rows.size();
+  for (int k = 0; k < 3; ++k)
+    f.p[k].resize(n), f.ng[k].resize(n), f.ns[k].resize(n);
+  f.cos_ns.resize(n), f.front.resize(n);
+  const SurfaceColumns out{f.p[0].data(),  f.p[1].data(),   f.p[2].data(),  f.ng[0].data(),
+                           f.ng[1].data(), f.ng[2].data(),  f.ns[0].data(), f.ns[1].data(),
+                           f.ns[2].data(), f.cos_ns.data(), f.front.data()};
+  tracer.surfaces(rays, f.hits, f.rows, out, scratch);
+  return f;
+}
+
+// How far the float point lies off the true surface of its primitive, in double (nan for a
+// kind without a distance here).
+double distance_off_surface(const Scene& scene, PrimRef prim, const glm::dvec3& p) {
+  const uint32_t i = prim.row();
+  if (prim.tag() == tag_of<Sphere>) {
+    const SphereTable& s = scene.table<Sphere>();
+    return std::abs(length(p - glm::dvec3(s.cx[i], s.cy[i], s.cz[i])) - double(s.r[i]));
+  }
+  if (prim.tag() == tag_of<Triangle>) {
+    const TriangleTable& t = scene.table<Triangle>();
+    const glm::dvec3 a(t.p0(i)), b(t.p1(i)), c(t.p2(i));
+    return std::abs(dot(p - a, normalize(cross(b - a, c - a))));
+  }
+  if (prim.tag() == tag_of<Box>) {  // the nearest of the six face planes
+    const BoxTable& b = scene.table<Box>();
+    const glm::dvec3 lo(b.lo(i)), hi(b.hi(i));
+    double d = HUGE_VAL;
+    for (int k = 0; k < 3; ++k)
+      d = std::min({d, std::abs(p[k] - lo[k]), std::abs(p[k] - hi[k])});
+    return d;
+  }
+  return std::nan("");
+}
+
+bool convex_or_planar(PrimTag tag) {
+  return tag == tag_of<Sphere> || tag == tag_of<Box> || tag == tag_of<Cylinder> ||
+         tag == tag_of<MovingSphere> || tag == tag_of<Triangle>;
+}
+
+struct Counts {
+  int front_hits = 0, measured = 0, beyond_bound = 0, acne = 0, leaks = 0;
+  int kinds[kPrimKindCount] = {};
+};
+
+void check_scale(const Scale& scale, Isa isa, Counts& n) {
+  Scene scene = testing::random_scene(7, 300, scale.extent, scale.size, scale.offset);
+  Bvh bvh = build_bvh_and_reorder(scene);
+  const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
+  const RayStream rays =
+      RayStream::from(testing::random_rays(8, 40000, scale.extent * 1.2, scale.offset));
+  const FloatHits first = trace_float(tracer, rays);
+  RayStream out, into;
+  std::vector<PrimRef> own;
+  for (std::size_t r = 0; r < first.rows.size(); ++r) {
+    const uint32_t i = first.rows[r];
+    const PrimRef prim = first.hits[i].prim;
+    if (!first.front[r] || !convex_or_planar(prim.tag())) continue;
+    const Rayf ray = rays.get(i);
+    const Vec p = first.point(r), ng = first.normal(r);
+    const Vec err = float_hit_point_bound<float>(ray.o, ray.d, float(first.hits[i].t), p);
+    ++n.front_hits, ++n.kinds[std::size_t(prim.tag())];
+    const double off = distance_off_surface(scene, prim, glm::dvec3(p));
+    if (!std::isnan(off)) {
+      ++n.measured;
+      const double bound = dot(abs(glm::dvec3(ng)), glm::dvec3(err));
+      n.beyond_bound += !(off <= bound);
+    }
+    const Vec reflected = ray.d - 2.0f * dot(ray.d, ng) * ng;
+    const std::size_t k = out.size();
+    out.resize(k + 1), into.resize(k + 1);
+    if (!rays.time.empty()) out.time.push_back(ray.time), into.time.push_back(ray.time);
+    out.set(k, {offset_origin<float>(p, err, ng, ng), reflected, 0, HUGE_VALF, ray.time});
+    into.set(k, {offset_origin<float>(p, err, ng, -ng), ray.d, 0, HUGE_VALF, ray.time});
+    own.push_back(prim);
+  }
+  const FloatHits o = trace_float(tracer, out), in = trace_float(tracer, into);
+  for (std::size_t r = 0; r < o.rows.size(); ++r)
+    n.acne += o.hits[o.rows[r]].prim == own[o.rows[r]];
+  for (std::size_t r = 0; r < in.rows.size(); ++r)
+    n.leaks += in.hits[in.rows[r]].prim == own[in.rows[r]] && in.front[r];
+}
+
+TEST(FloatOffsets, FloatHitPointsLieWithinTheirBoundAndSpawnedRaysNeitherLeakNorReHit) {
+  for (Isa isa : supported_isas())
+    for (const Scale& scale : kScales) {
+      SCOPED_TRACE(cat(isa_name(isa), " ", scale.name));
+      Counts n;
+      check_scale(scale, isa, n);
+      std::printf("[ %-8s ] %s: %d front hits, %d of %d beyond the bound, %d acne, %d leaks\n",
+                  scale.name, std::string(isa_name(isa)).c_str(), n.front_hits, n.beyond_bound,
+                  n.measured, n.acne, n.leaks);
+      EXPECT_EQ(n.beyond_bound, 0);
+      EXPECT_EQ(n.acne, 0);
+      EXPECT_EQ(n.leaks, 0);
+      EXPECT_GT(n.measured, 3000);
+      for (PrimTag tag :
+           {tag_of<Sphere>, tag_of<Box>, tag_of<Cylinder>, tag_of<MovingSphere>, tag_of<Triangle>})
+        EXPECT_GT(n.kinds[std::size_t(tag)], 100) << "kind " << int(tag);
+    }
+}
+
+}  // namespace
+}  // namespace raylane
