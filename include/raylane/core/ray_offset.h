@@ -57,7 +57,7 @@ glm::dvec3 hit_point_error(const Rayd& ray, double t);
 // float kernel within a few ulps (2^5 float roundoffs of |o| + |t·d|, as hit_point_error), and
 // p's own rounding to float (one roundoff of |p|). Each constant carries 2^-20 more, which
 // covers this sum's own five float roundings (a relative 5·2^-24), so the bound computed in
-// float is never below the exact one (pbrt-v4 §6.8.2's conservative error terms).
+// float is never below the exact one (pbrt-v4 §6.8.1's running error bounds).
 template <class N, class V3>
 V3 float_hit_point_bound(const V3& o, const V3& d, const N& t, const V3& p) {
   using K = Num<N>;

@@ -1,10 +1,10 @@
 // The arithmetic after a vertex's BSDF, written once over the number type: N = double for the
-// double shading (render/vertex_lanes.h's shadow_contribution and next_throughput), N = a batch
-// of double lanes for the vertex lanes (src/render/vertex_lanes_impl.h); V3 is its 3-vector
-// (glm::dvec3, simd::DoubleVec3). One text for both, so they agree bit for bit by construction (the
-// build has -ffp-contract=off). What to keep stays with each caller: the scalar steps return
-// early, the lanes carry a mask. This header has no xsimd: a batch's select is xsimd::select,
-// which the templates find by argument-dependent lookup where a batch instantiates them.
+// double shading (render/vertex_lanes.h's shadow_contribution and next_throughput), N = float for
+// the lanes' scalar reference, N = a batch of float lanes for the scatter kernel
+// (src/render/vertex_lanes_impl.h); V3 is its 3-vector (glm::dvec3, glm::vec3, simd::FloatVec3).
+// One text for all, so they agree bit for bit by construction (the build has
+// -ffp-contract=off). What to keep stays with each caller: the scalar steps return early, the
+// lanes carry a mask. This header has no xsimd: Num<N> (core/numbers.h) names the operations.
 #pragma once
 
 #include "raylane/core/numbers.h"

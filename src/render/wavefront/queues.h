@@ -122,7 +122,7 @@ struct LaneVertexQueue {
   ShadeBatch shade;            // the BSDF's float lanes
   SobolBatch sobol;            // the rows' Sobol scrambles and numbers
   LightQueries light_queries;  // light group numbers and light points, when lights are sampled
-  VertexBatch vertices;        // the double lanes after the BSDF: shadow rays, next rays
+  VertexBatch vertices;        // the scatter kernel's vertices: shadow rays, next rays
 
   void grow(std::size_t n) {
     if (path.size() >= n) return;
