@@ -38,7 +38,7 @@ Image render_path(const Tracer& tracer, const PathSettings& settings, PathStats*
   Camera cam = Camera::from_scene(scene);
   LightSampler lights(scene);
   LaneMaterials lane_materials(scene.materials);
-  const LaneShading lanes{lane_materials, tracer.isa()};
+  const LaneShading lanes{lane_materials, tracer.isa(), detail::render_lanes(tracer.isa())};
   const std::ptrdiff_t tiles = std::ptrdiff_t((cam.width + kTile - 1) / kTile) *
                                std::ptrdiff_t((cam.height + kTile - 1) / kTile);
   Film own;

@@ -35,9 +35,8 @@ struct RenderLanes {
   // scatter_vertices (render/vertex_lanes.h).
   void (*scatter_vertices)(const LaneMaterials& materials, const VertexRules& rules,
                            ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch);
-  // gather_vertex_rays (render/vertex_lanes.h).
-  void (*gather_vertex_rays)(const RayStream& rays, const uint32_t* rows, std::size_t n,
-                             VertexBatch& vertices, ShadeBatch& shade);
+  // gather_wo (render/vertex_lanes.h).
+  void (*gather_wo)(const RayStream& rays, const uint32_t* rows, std::size_t n, ShadeBatch& shade);
   // filter_rows (render/vertex_lanes.h): returns the rows kept.
   std::size_t (*filter_rows)(const RowFilter& filter, std::size_t rows);
   // pinhole_rays (render/camera/camera_lanes.h) for the points [0, the count rounded down to the

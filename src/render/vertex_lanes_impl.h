@@ -48,14 +48,11 @@ struct VertexLanes {
   FloatVec3<A> beta, p, ng;
   F<A> along;
 
-  VertexLanes(const VertexBatch& b, const ShadeBatch& bsdf, std::size_t i)
-      : beta(load3<A>(b.beta, i)), p(load3<A>(b.p, i)), ng(load3<A>(b.ng, i)) {
-    const FloatVec3<A> wo = load3<A>(bsdf.wo, i);  // the ray's direction turned around
-    const FloatVec3<A> d{simd::negate(wo.x), simd::negate(wo.y), simd::negate(wo.z)};
-    const F<A> t = simd::load<A>(b.t.data() + i);
-    along =
-        offset_along_normal<F<A>>(float_hit_point_bound<F<A>>(load3<A>(b.ray_o, i), d, t, p), ng);
-  }
+  VertexLanes(const VertexBatch& b, std::size_t i)
+      : beta(load3<A>(b.beta, i)),
+        p(load3<A>(b.p, i)),
+        ng(load3<A>(b.ng, i)),
+        along(offset_along_normal<F<A>>(load3<A>(b.p_error, i), ng)) {}
 };
 
 // The shadow ray's contribution (render/vertex_steps.h), origin and end, for rows [i, i + W).
@@ -101,7 +98,7 @@ void continue_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const Ver
 template <class A>
 void vertex_steps(const VertexRules& rules, const BsdfAnswers<A>& a, const ShadeBatch& bsdf,
                   const LightQueries* lights, VertexBatch& b, std::size_t i) {
-  const VertexLanes<A> v(b, bsdf, i);
+  const VertexLanes<A> v(b, i);
   if (lights)
     shadow_lanes<A>(rules, a, bsdf, *lights, v, b, i);
   else
@@ -142,31 +139,27 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
   }
 }
 
-// gather_vertex_rays: a batch of rows that is one run of the stream (the render's rows are its
-// rays in order, most of them going on) loads its columns whole, any other gathers them.
+// gather_wo: a batch of rows that is one run of the stream (the render's rows are its rays in
+// order, most of them going on) loads its columns whole, any other gathers them.
 template <class A>
-void gather_vertex_rays_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
-                              VertexBatch& vertices, ShadeBatch& shade) {
+void gather_wo_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
+                     ShadeBatch& shade) {
   constexpr std::size_t W = simd::kWidth<A>;
-  const float* from[6] = {rays.ox.data(), rays.oy.data(), rays.oz.data(),
-                          rays.dx.data(), rays.dy.data(), rays.dz.data()};
-  float* to[6] = {vertices.ray_o[0].data(), vertices.ray_o[1].data(), vertices.ray_o[2].data(),
-                  shade.wo[0].data(),       shade.wo[1].data(),       shade.wo[2].data()};
+  const float* from[3] = {rays.dx.data(), rays.dy.data(), rays.dz.data()};
+  float* to[3] = {shade.wo[0].data(), shade.wo[1].data(), shade.wo[2].data()};
   std::size_t i = 0;
   for (; i + W <= n; i += W) {
     const uint32_t* at = rows + i;
     const bool run = simd::one_run<int(W)>(at);
     const simd::Ints<A> idx = simd::load<A>(reinterpret_cast<const int32_t*>(at));
-    for (int c = 0; c < 6; ++c) {
+    for (int c = 0; c < 3; ++c) {
       const F<A> x = run ? simd::load<A>(from[c] + at[0]) : simd::gather<A>(from[c], idx);
-      simd::store<A>(to[c] + i, c < 3 ? x : simd::negate(x));  // the direction turned around
+      simd::store<A>(to[c] + i, simd::negate(x));
     }
   }
   for (; i < n; ++i)
-    for (int c = 0; c < 6; ++c) {
-      const float x = from[c][rows[i]];
-      to[c][i] = c < 3 ? x : -x;
-    }
+    for (int c = 0; c < 3; ++c)
+      to[c][i] = -from[c][rows[i]];
 }
 
 // filter_rows: whole lane batches through the compressing stores, the last rows one by one.

@@ -121,7 +121,7 @@ void PacketBackend::surfaces(const RayStream& rays, const std::vector<Hit>& hits
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
-    if constexpr (Kind::surface_in_lanes) {
+    if constexpr (Kind::surface_in_lanes || Kind::surface_in_float_lanes) {
       simd_.surfaces(scene_, rays, tag_of<Kind>, rows, ray.data(), hits.data(), out);
       return;
     }
@@ -129,7 +129,7 @@ void PacketBackend::surfaces(const RayStream& rays, const std::vector<Hit>& hits
     for (uint32_t r : rows) {
       const Hit& h = hits[ray[r]];
       const Rayd traced = ray_cast<double>(rays.get(ray[r]));
-      store_surface(out, r, surface_ref(table, h.prim.row(), traced, h.t), traced.d);
+      store_surface(out, r, surface_ref(table, h.prim.row(), traced, h.t), traced, h.t);
     }
   });
 }

@@ -43,8 +43,10 @@ class Reference : public TraceBackend {
   // A reference's hits come with their surfaces.
   void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch&) const override {
-    for (std::size_t r = 0; r < ray.size(); ++r)
-      store_surface(out, r, hits[ray[r]].surface, ray_cast<double>(rays.get(ray[r])).d);
+    for (std::size_t r = 0; r < ray.size(); ++r) {
+      const Hit& h = hits[ray[r]];
+      store_surface(out, r, h.surface, ray_cast<double>(rays.get(ray[r])), h.t);
+    }
   }
 
  protected:

@@ -4,6 +4,7 @@
 
 #include <cfloat>
 
+#include "raylane/core/ray_offset.h"
 #include "raylane/simd/lane_rows.h"
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"
@@ -181,10 +182,12 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
 template <class A>
 struct HitSink {
   static constexpr bool kTakesRuns = false;
+  static constexpr bool kTakesFloats = false;
   Hit* hits;
   uint32_t ray_of(uint32_t r) const { return r; }
   const Hit& hit_of(uint32_t r) const { return hits[r]; }
-  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d) const {
+  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d,
+             const glm::dvec3& /*error: a hit record's bound is hit_point_error*/) const {
     Hit& h = hits[r];
     h.surface = {p, n, n};
     h.front_face = cos_d < 0;
@@ -195,31 +198,65 @@ struct HitSink {
 template <class A>
 struct ColumnSink {
   static constexpr bool kTakesRuns = true;
+  static constexpr bool kTakesFloats = true;  // float surfaces where the kind has them
   const uint32_t* ray;
   const Hit* hits;
   SurfaceColumns out;
   uint32_t ray_of(uint32_t r) const { return ray[r]; }
   const Hit& hit_of(uint32_t r) const { return hits[ray[r]]; }
-  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d) const {
+  // A double surface: rounded to float, its bound computed in double and rounded
+  // (float_hit_point_bound's 2^-20 covers the rounding).
+  void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d,
+             const glm::dvec3& error) const {
     out.px[r] = float(p.x), out.py[r] = float(p.y), out.pz[r] = float(p.z);
     out.ngx[r] = float(n.x), out.ngy[r] = float(n.y), out.ngz[r] = float(n.z);
     out.nsx[r] = float(n.x), out.nsy[r] = float(n.y), out.nsz[r] = float(n.z);
+    out.ex[r] = float(error.x), out.ey[r] = float(error.y), out.ez[r] = float(error.z);
     out.cos_ns[r] = cos_d;  // dot(d, n) = dot(n, d) bit for bit: the products commute
+    out.front[r] = cos_d < 0;
+  }
+  // A float surface with its kind's bound.
+  void store_float(uint32_t r, const glm::vec3& p, const glm::vec3& n, const glm::vec3& error,
+                   float cos_d) const {
+    out.px[r] = p.x, out.py[r] = p.y, out.pz[r] = p.z;
+    out.ngx[r] = n.x, out.ngy[r] = n.y, out.ngz[r] = n.z;
+    out.nsx[r] = n.x, out.nsy[r] = n.y, out.nsz[r] = n.z;
+    out.ex[r] = error.x, out.ey[r] = error.y, out.ez[r] = error.z;
+    out.cos_ns[r] = cos_d;
     out.front[r] = cos_d < 0;
   }
   // Rows [r, r + W) at once, from lanes: store's values, each column one store. The render's
   // rows are its rays in order, and neighbouring rays mostly meet the same kind, so a kind's
   // rows mostly come in runs.
-  void store_run(uint32_t r, const SurfaceLanes<A>& s, const simd::Doubles<A>& cos_d) const {
+  void store_run(uint32_t r, const SurfaceLanes<A>& s, const simd::Doubles<A>& cos_d,
+                 const simd::DoubleVec3<A>& error) const {
     simd::store_narrowed<A>(out.px + r, s.p.x), simd::store_narrowed<A>(out.py + r, s.p.y);
     simd::store_narrowed<A>(out.pz + r, s.p.z);
     simd::store_narrowed<A>(out.ngx + r, s.n.x), simd::store_narrowed<A>(out.ngy + r, s.n.y);
     simd::store_narrowed<A>(out.ngz + r, s.n.z);
     simd::store_narrowed<A>(out.nsx + r, s.n.x), simd::store_narrowed<A>(out.nsy + r, s.n.y);
     simd::store_narrowed<A>(out.nsz + r, s.n.z);
+    simd::store_narrowed<A>(out.ex + r, error.x), simd::store_narrowed<A>(out.ey + r, error.y);
+    simd::store_narrowed<A>(out.ez + r, error.z);
     cos_d.store_unaligned(out.cos_ns + r);
     const uint32_t front = simd::bits<A>(cos_d < simd::Doubles<A>(0.0));
     for (int k = 0; k < simd::kDoubleWidth<A>; ++k)
+      out.front[r + k] = (front >> k) & 1u;
+  }
+  void store_float_run(uint32_t r, const FloatSurfaceLanes<A>& s,
+                       const simd::Floats<A>& cos_d) const {
+    const simd::FloatVec3<A>* from[4] = {&s.p, &s.n, &s.n, &s.error};
+    float* const to[4][3] = {{out.px, out.py, out.pz},
+                             {out.ngx, out.ngy, out.ngz},
+                             {out.nsx, out.nsy, out.nsz},
+                             {out.ex, out.ey, out.ez}};
+    for (int c = 0; c < 4; ++c) {
+      simd::store<A>(to[c][0] + r, from[c]->x), simd::store<A>(to[c][1] + r, from[c]->y);
+      simd::store<A>(to[c][2] + r, from[c]->z);
+    }
+    simd::store_widened<A>(out.cos_ns + r, cos_d);
+    const uint32_t front = simd::bits<A>(cos_d < simd::Floats<A>(0.0f));
+    for (int k = 0; k < simd::kWidth<A>; ++k)
       out.front[r + k] = (front >> k) & 1u;
   }
 };
@@ -249,20 +286,66 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
                              D::load_aligned(t)};
     const SurfaceLanes<A> s = surface_lanes<A>(table, prim_rows, ray);
     const D cos_d = dot_lanes<A>(ray.d, s.n);
+    // The float point's bound, for columns: in double, rounded as it is stored.
+    simd::DoubleVec3<A> error{};
+    if constexpr (Sink::kTakesFloats) error = float_hit_point_bound<D>(ray.o, ray.d, ray.t, s.p);
     if constexpr (Sink::kTakesRuns) {
       if (i + W <= rows.size() && simd::one_run<W>(at)) {
-        sink.store_run(at[0], s, cos_d);
+        sink.store_run(at[0], s, cos_d, error);
         continue;
       }
     }
-    alignas(64) double out[7][W];
-    const D* outs[7] = {&s.p.x, &s.p.y, &s.p.z, &s.n.x, &s.n.y, &s.n.z, &cos_d};
-    for (int c = 0; c < 7; ++c)
+    alignas(64) double out[10][W];
+    const D* outs[10] = {&s.p.x, &s.p.y, &s.p.z,   &s.n.x,   &s.n.y,
+                         &s.n.z, &cos_d, &error.x, &error.y, &error.z};
+    for (int c = 0; c < 10; ++c)
       outs[c]->store_aligned(out[c]);
     const int n = int(std::min<std::size_t>(W, rows.size() - i));
     for (int k = 0; k < n; ++k)
       sink.store(at[k], {out[0][k], out[1][k], out[2][k]}, {out[3][k], out[4][k], out[5][k]},
-                 out[6][k]);
+                 out[6][k], {out[7][k], out[8][k], out[9][k]});
+  }
+}
+
+// The float surfaces of request rows `rows`, all on Kind, W hits per batch of float lanes, with
+// the kind's bounds (surface_float_lanes), for a sink that takes them; as surfaces_range
+// otherwise.
+template <class A, class Kind, class Sink>
+void surfaces_float_range(const typename Kind::Table& table, const RayStream& rays,
+                          std::span<const uint32_t> rows, const Sink& to) {
+  using F = simd::Floats<A>;
+  const Sink sink = to;
+  constexpr int W = simd::kWidth<A>;
+  for (std::size_t i = 0; i < rows.size(); i += W) {
+    alignas(64) uint32_t at[W];
+    alignas(64) int32_t prim_rows[W], ray_rows[W];
+    alignas(64) float t[W];
+    for (int k = 0; k < W; ++k) {
+      const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
+      const Hit& h = sink.hit_of(r);
+      at[k] = r, prim_rows[k] = int32_t(h.prim.row()), ray_rows[k] = int32_t(sink.ray_of(r));
+      t[k] = float(h.t);  // the float kernel's t, widened exactly
+    }
+    const simd::Ints<A> ray_idx = simd::load<A>(ray_rows);
+    auto col = [&](const Column<float>& c) { return simd::gather<A>(c.data(), ray_idx); };
+    const FloatHitRayLanes<A> ray{{col(rays.ox), col(rays.oy), col(rays.oz)},
+                                  {col(rays.dx), col(rays.dy), col(rays.dz)},
+                                  F::load_aligned(t)};
+    const FloatSurfaceLanes<A> s = surface_float_lanes<A>(table, simd::load<A>(prim_rows), ray);
+    const F cos_d = ray.d.x * s.n.x + ray.d.y * s.n.y + ray.d.z * s.n.z;
+    if (i + W <= rows.size() && simd::one_run<W>(at)) {
+      sink.store_float_run(at[0], s, cos_d);
+      continue;
+    }
+    alignas(64) float out[10][W];
+    const F* outs[10] = {&s.p.x, &s.p.y, &s.p.z,     &s.n.x,     &s.n.y,
+                         &s.n.z, &cos_d, &s.error.x, &s.error.y, &s.error.z};
+    for (int c = 0; c < 10; ++c)
+      outs[c]->store_aligned(out[c]);
+    const int n = int(std::min<std::size_t>(W, rows.size() - i));
+    for (int k = 0; k < n; ++k)
+      sink.store_float(at[k], {out[0][k], out[1][k], out[2][k]}, {out[3][k], out[4][k], out[5][k]},
+                       {out[7][k], out[8][k], out[9][k]}, out[6][k]);
   }
 }
 
@@ -271,7 +354,9 @@ void surfaces_of_kind(const Scene& scene, const RayStream& rays, PrimTag kind,
                       std::span<const uint32_t> rows, const Sink& sink) {
   dispatch(kind, [&](auto k) {
     using Kind = decltype(k);
-    if constexpr (Kind::surface_in_lanes)
+    if constexpr (Sink::kTakesFloats && Kind::surface_in_float_lanes)
+      surfaces_float_range<A, Kind>(scene.table<Kind>(), rays, rows, sink);
+    else if constexpr (Kind::surface_in_lanes)
       surfaces_range<A, Kind>(scene.table<Kind>(), rays, rows, sink);
   });
 }

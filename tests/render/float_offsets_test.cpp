@@ -1,8 +1,9 @@
-// The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces
-// rounds them), their error bounded by float_hit_point_bound, and the rays a vertex spawns leave
-// by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes of every kind that
-// the float surfaces cover, at every instruction set, at four scales (unit, far from the origin,
-// tiny, huge):
+// The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces:
+// spheres and boxes in float lanes with their own bounds, sphere_point_bound and
+// box_point_bound; the other kinds rounded from double, float_hit_point_bound), and the rays a
+// vertex spawns leave by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes
+// of every kind that the float surfaces cover, at every instruction set, at four scales (unit,
+// far from the origin, tiny, huge):
 // - the float point lies within its bound's projection on the normal of the true surface
 //   (spheres, boxes and triangles, measured in double from the table's own float numbers);
 // - a ray reflected off a front face never meets its own primitive again (acne), and one
@@ -42,11 +43,12 @@ constexpr Scale kScales[] = {{"unit", 10, 0.6, {0, 0, 0}},
 struct FloatHits {
   std::vector<Hit> hits;
   std::vector<uint32_t> rows;  // the rays that hit something
-  std::vector<float> p[3], ng[3], ns[3];
+  std::vector<float> p[3], ng[3], ns[3], error[3];
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
   Vec point(std::size_t r) const { return {p[0][r], p[1][r], p[2][r]}; }
   Vec normal(std::size_t r) const { return {ng[0][r], ng[1][r], ng[2][r]}; }
+  Vec bound(std::size_t r) const { return {error[0][r], error[1][r], error[2][r]}; }
 };
 
 FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
@@ -57,11 +59,12 @@ FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
     if (f.hits[i].hit()) f.rows.push_back(uint32_t(i));
   const std::size_t n = f.rows.size();
   for (int k = 0; k < 3; ++k)
-    f.p[k].resize(n), f.ng[k].resize(n), f.ns[k].resize(n);
+    f.p[k].resize(n), f.ng[k].resize(n), f.ns[k].resize(n), f.error[k].resize(n);
   f.cos_ns.resize(n), f.front.resize(n);
-  const SurfaceColumns out{f.p[0].data(),  f.p[1].data(),   f.p[2].data(),  f.ng[0].data(),
-                           f.ng[1].data(), f.ng[2].data(),  f.ns[0].data(), f.ns[1].data(),
-                           f.ns[2].data(), f.cos_ns.data(), f.front.data()};
+  const SurfaceColumns out{f.p[0].data(),   f.p[1].data(),     f.p[2].data(),     f.ng[0].data(),
+                           f.ng[1].data(),  f.ng[2].data(),    f.ns[0].data(),    f.ns[1].data(),
+                           f.ns[2].data(),  f.error[0].data(), f.error[1].data(), f.error[2].data(),
+                           f.cos_ns.data(), f.front.data()};
   tracer.surfaces(rays, f.hits, f.rows, out, scratch);
   return f;
 }
@@ -115,7 +118,7 @@ void check_scale(const Scale& scale, Isa isa, Counts& n) {
     if (!first.front[r] || !convex_or_planar(prim.tag())) continue;
     const Rayf ray = rays.get(i);
     const Vec p = first.point(r), ng = first.normal(r);
-    const Vec err = float_hit_point_bound<float>(ray.o, ray.d, float(first.hits[i].t), p);
+    const Vec err = first.bound(r);
     ++n.front_hits, ++n.kinds[std::size_t(prim.tag())];
     const double off = distance_off_surface(scene, prim, glm::dvec3(p));
     if (!std::isnan(off)) {

@@ -146,12 +146,12 @@ void fill(Batches& b, const std::vector<Vertex>& vs, const VertexRules& rules, b
     const Vertex& v = vs[i];
     for (std::size_t k = 0; k < 3; ++k) {
       vb.beta[k][i] = v.beta[k], vb.p[k][i] = v.p[k], vb.ng[k][i] = v.ng[k];
-      vb.ray_o[k][i] = v.o[k], sb.wo[k][i] = -v.d[k];
+      vb.p_error[k][i] = bound_of(v)[k], sb.wo[k][i] = -v.d[k];
       sb.light_wi[k][i] = v.light_wi[k], q.le[k][i] = v.le[k];
       sb.light_f[k][i] = v.f[k], sb.wi[k][i] = v.wi[k], sb.value[k][i] = v.value[k];
     }
     const VertexRules row_rules = rules_of_row(rules, mixed, i);
-    vb.t[i] = v.t, vb.u_roulette[i] = v.u;
+    vb.u_roulette[i] = v.u;
     vb.survival[i] = row_rules.roulette ? float(row_rules.survival) : 1.0f;
     q.cones.dist[i] = v.light_dist, q.cones.pdf[i] = v.light_pdf;
     sb.light_pdf[i] = v.bsdf_pdf, sb.pdf[i] = v.pdf;
@@ -385,20 +385,19 @@ TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
   }
 }
 
-// gather_vertex_rays puts row r's ray, the stream's ray rows[r], into the batches: the origin,
-// and the direction turned around, bit for bit (−0 and NaN
-// payloads too), at every instruction set: for every row count from 0 to 45, with rows in runs
-// (whole-batch loads), backward, repeated and at random (gathers), and runs of 17 broken by others
-// (both in one call at every width; the runs end at the stream's last ray). The rows past n
-// keep what they held.
-TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
+// gather_wo puts row r's direction turned around, the stream's ray rows[r]'s, into the BSDF's
+// batch, bit for bit (−0 and NaN payloads too), at every instruction set: for every row count
+// from 0 to 45, with rows in runs (whole-batch loads), backward, repeated and at random
+// (gathers), and runs of 17 broken by others (both in one call at every width; the runs end at
+// the stream's last ray). The rows past n keep what they held.
+TEST(VertexLanes, GatherWoGivesEachRowItsStreamRaysDirectionTurnedAround) {
   Rng rng(9);
   RayStream rays;
   const std::size_t kRays = 200;
   rays.resize(kRays);
-  Column<float>* columns[6] = {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz};
+  Column<float>* columns[3] = {&rays.dx, &rays.dy, &rays.dz};
   for (std::size_t i = 0; i < kRays; ++i)
-    for (int c = 0; c < 6; ++c)
+    for (int c = 0; c < 3; ++c)
       (*columns[c])[i] = i % 13 == 5   ? -0.0f
                          : i % 17 == 2 ? std::bit_cast<float>(0x7fc01234u)
                                        : float(rng.uniform() * 20 - 10);
@@ -412,22 +411,17 @@ TEST(VertexLanes, GatherVertexRaysGivesEachRowItsStreamRay) {
                     : pattern == 1 ? uint32_t(kRays - 1 - r)                         // backward
                     : pattern == 2 ? uint32_t(rng.uniform() * kRays)                 // at random
                                    : uint32_t(r % 20 < 17 ? kRays - n + r : r / 2);  // runs broken
-        VertexBatch vertices;
         ShadeBatch shade;
-        vertices.resize(n + 9), shade.resize(n + 9);
+        shade.resize(n + 9);
         const float unwritten = -7;
-        for (int k = 0; k < 3; ++k) {
-          std::fill(vertices.ray_o[k].begin(), vertices.ray_o[k].end(), unwritten);
+        for (int k = 0; k < 3; ++k)
           std::fill(shade.wo[k].begin(), shade.wo[k].end(), unwritten);
-        }
-        gather_vertex_rays(isa, rays, rows.data(), n, vertices, shade);
+        gather_wo(isa, rays, rows.data(), n, shade);
         for (std::size_t r = 0; r < n + 9; ++r)
           for (int k = 0; k < 3; ++k) {
             const bool row = r < n;
-            const float o = row ? (*columns[k])[rows[r]] : 0,
-                        d = row ? (*columns[3 + k])[rows[r]] : 0;
-            ASSERT_TRUE(same_bits(vertices.ray_o[k][r], row ? o : unwritten) &&
-                        same_bits(shade.wo[k][r], row ? -d : unwritten))
+            const float d = row ? (*columns[k])[rows[r]] : 0;
+            ASSERT_TRUE(same_bits(shade.wo[k][r], row ? -d : unwritten))
                 << "n " << n << " pattern " << pattern << " row " << r << " axis " << k;
           }
       }

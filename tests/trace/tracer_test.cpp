@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "raylane/core/ray_offset.h"
 #include "raylane/core/warps.h"
 #include "raylane/render/samplers/rng.h"
 #include "raylane/scene/parser.h"
@@ -300,6 +301,49 @@ TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
   with_every_tracer(2000, 300, expect_streams_answer_as_rays);
 }
 
+// What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes and spheres in
+// float lanes, with their bounds — the same steps' scalar float instance, bit for bit; every
+// other surface complete()'s, rounded to float, with float_hit_point_bound computed in double
+// and rounded.
+struct Columns {
+  glm::vec3 p, ng, ns, error;
+  double cos_ns;
+  bool front, in_float;
+};
+
+Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) {
+  const Scene& scene = tracer.scene();
+  const float t = float(hit.t);
+  auto from_float = [&](const glm::vec3& p, const glm::vec3& n, const glm::vec3& error) {
+    const float c = ray.d.x * n.x + ray.d.y * n.y + ray.d.z * n.z;
+    return Columns{p, n, n, error, c, c < 0, true};
+  };
+  if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Box>) {
+    const BoxTable& b = scene.table<Box>();
+    const BoxSurface<glm::vec3> s =
+        box_surface<float>(b.lo(hit.prim.row()), b.hi(hit.prim.row()), ray.o, ray.d, t);
+    return from_float(s.p, s.n, box_point_bound<float>(ray.o, ray.d, t, s));
+  }
+  if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Sphere>) {
+    const SphereTable& sp = scene.table<Sphere>();
+    const uint32_t i = hit.prim.row();
+    const SphereSurface<glm::vec3> s =
+        sphere_surface<float>(sp.center(i), sp.r[i], ray.o, ray.d, t);
+    return from_float(s.p, s.n, sphere_point_bound<float>(s.p, s.offset));
+  }
+  const Rayd rd = ray_cast<double>(ray);
+  Hit h = hit;
+  tracer.complete(rd, h);
+  const Surface& s = h.surface;
+  return {glm::vec3(s.p),
+          glm::vec3(s.ng),
+          glm::vec3(s.ns),
+          glm::vec3(float_hit_point_bound<double>(rd.o, rd.d, hit.t, s.p)),
+          dot(s.ns, rd.d),
+          h.front_face,
+          false};
+}
+
 // surfaces() writes complete()'s surfaces into columns, for hits given by prim and t alone (the
 // packet tracer's hits are poisoned first, so nothing is read from their surfaces). The
 // request lists the hits backward, every third skipped, twice over, so row r is not hit r and
@@ -327,32 +371,31 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
       if (hits[i].hit() && std::size_t(hits[i].prim.tag()) == kind) request.push_back(uint32_t(i));
   const std::size_t n = request.size();
   std::vector<double> cos_ns(n);
-  std::vector<float> p[3], ng[3], ns[3];
+  std::vector<float> p[3], ng[3], ns[3], error[3];
   std::vector<uint8_t> front(n, 2);
   for (int k = 0; k < 3; ++k)
-    p[k].assign(n, nan), ng[k].assign(n, nan), ns[k].assign(n, nan);
-  const SurfaceColumns out{p[0].data(),  p[1].data(),   p[2].data(),  ng[0].data(),
-                           ng[1].data(), ng[2].data(),  ns[0].data(), ns[1].data(),
-                           ns[2].data(), cos_ns.data(), front.data()};
+    p[k].assign(n, nan), ng[k].assign(n, nan), ns[k].assign(n, nan), error[k].assign(n, nan);
+  const SurfaceColumns out{p[0].data(),   p[1].data(),     p[2].data(),     ng[0].data(),
+                           ng[1].data(),  ng[2].data(),    ns[0].data(),    ns[1].data(),
+                           ns[2].data(),  error[0].data(), error[1].data(), error[2].data(),
+                           cos_ns.data(), front.data()};
   tracer.surfaces(stream, hits, request, out, scratch);
-  int back = 0, smooth = 0, kinds[kPrimKindCount] = {};
+  int back = 0, smooth = 0, kinds[kPrimKindCount] = {}, in_float = 0;
   for (std::size_t r = 0; r < n; ++r) {
-    const Rayd ray = ray_cast<double>(stream.get(request[r]));
-    Hit want = hits[request[r]];
-    tracer.complete(ray, want);
-    const Surface& s = want.surface;
-    // The point and the normals rounded to float, as the columns hold them.
-    ASSERT_TRUE(same_bits(glm::vec3(s.p), {p[0][r], p[1][r], p[2][r]}) &&
-                same_bits(glm::vec3(s.ng), {ng[0][r], ng[1][r], ng[2][r]}))
-        << "row " << r << " kind " << int(want.prim.tag());
-    ASSERT_TRUE(same_bits(glm::vec3(s.ns), {ns[0][r], ns[1][r], ns[2][r]})) << "row " << r;
-    const double c = dot(s.ns, ray.d);
-    ASSERT_EQ(std::memcmp(&c, &cos_ns[r], sizeof c), 0) << "row " << r;
-    ASSERT_EQ(front[r], want.front_face ? 1 : 0) << "row " << r;
-    back += !want.front_face;
-    smooth += !same_bits(s.ns, s.ng);
-    ++kinds[std::size_t(want.prim.tag())];
+    const Hit& hit = hits[request[r]];
+    const Columns want = expected_columns(tracer, stream.get(request[r]), hit);
+    auto row = [&](const std::vector<float>* c) { return glm::vec3(c[0][r], c[1][r], c[2][r]); };
+    ASSERT_TRUE(same_bits(want.p, row(p)) && same_bits(want.ng, row(ng)) &&
+                same_bits(want.ns, row(ns)) && same_bits(want.error, row(error)))
+        << "row " << r << " kind " << int(hit.prim.tag());
+    ASSERT_EQ(std::memcmp(&want.cos_ns, &cos_ns[r], sizeof(double)), 0) << "row " << r;
+    ASSERT_EQ(front[r], want.front ? 1 : 0) << "row " << r;
+    back += !want.front;
+    smooth += !same_bits(want.ns, want.ng);
+    in_float += want.in_float;
+    ++kinds[std::size_t(hit.prim.tag())];
   }
+  if (tracer.backend() == TracerBackend::kPacket) EXPECT_GT(in_float, int(n / 10));
   EXPECT_GT(back, int(n / 50));
   EXPECT_GT(smooth, int(n / 100));  // interpolated normals: the two normals' columns differ
   for (std::size_t k = 0; k < kPrimKindCount; ++k)

@@ -29,7 +29,8 @@ struct ScalarNum {
   static T min(T a, T b) { return std::min(a, b); }
   static T sqrt(T x) { return std::sqrt(x); }
   static T abs(T x) { return std::abs(x); }
-  static T negate(T x) { return -x; }  // the sign bit flipped, zeros and NaNs too
+  static T negate(T x) { return -x; }                    // the sign bit flipped, zeros and NaNs too
+  static bool sign_bit(T x) { return std::signbit(x); }  // −0 and −NaN too
   // e^-x for x ≥ 0.
   static T exp_neg(T x) { return std::exp(-x); }
   // ln(1 − u) for u in [0, 1]: −inf at 1.

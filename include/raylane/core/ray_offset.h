@@ -54,14 +54,16 @@ glm::dvec3 offset_ray_origin(const glm::dvec3& p, const glm::dvec3& p_error, con
 glm::dvec3 hit_point_error(const Rayd& ray, double t);
 
 // A componentwise bound on the error of a float hit point p: the traced point o + t·d, t from a
-// float kernel within a few ulps (2^5 float roundoffs of |o| + |t·d|, as hit_point_error), and
-// p's own rounding to float (one roundoff of |p|). Each constant carries 2^-20 more, which
-// covers this sum's own five float roundings (a relative 5·2^-24), so the bound computed in
-// float is never below the exact one (pbrt-v4 §6.8.1's running error bounds).
+// float kernel within a few ulps (2^5 float roundoffs of |o| + |t·d|, as hit_point_error), two
+// roundoffs more for o + t·d evaluated in float, and p's own rounding to float (one roundoff of
+// |p|). Each constant carries 2^-20 more, which covers this sum's own five float roundings (a
+// relative 5·2^-24), so the bound computed in float is never below the exact one (pbrt-v4
+// §6.8.1's running error bounds). The kinds whose float surfaces have tighter bounds say so in
+// their headers (sphere_point_bound, box_point_bound).
 template <class N, class V3>
 V3 float_hit_point_bound(const V3& o, const V3& d, const N& t, const V3& p) {
   using K = Num<N>;
-  const N along_ray(32 * 0x1p-24 * (1 + 0x1p-20)), own(0x1p-24 * (1 + 0x1p-20));
+  const N along_ray(34 * 0x1p-24 * (1 + 0x1p-20)), own(0x1p-24 * (1 + 0x1p-20));
   auto one = [&](const N& ok, const N& dk, const N& pk) {
     return (K::abs(ok) + K::abs(dk * t)) * along_ray + K::abs(pk) * own;
   };

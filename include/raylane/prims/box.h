@@ -11,8 +11,11 @@
 #include <vector>
 
 #include "raylane/core/bounds3.h"
-#include "raylane/core/ray.h"
+#include "raylane/core/float_util.h"
+#include "raylane/core/numbers.h"
 #include "raylane/core/prim_ref.h"
+#include "raylane/core/ray.h"
+#include "raylane/core/ray_offset.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
@@ -64,6 +67,9 @@ struct Box {
   static constexpr double sah_test_cost = 1.0;
   // The SIMD tracer computes its hits' surfaces in double lanes (box_packet.h, surface_lanes).
   static constexpr bool surface_in_lanes = true;
+  // The render's float columns take its surfaces in float lanes, with their error bounds
+  // (box_packet.h, surface_float_lanes).
+  static constexpr bool surface_in_float_lanes = true;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
@@ -97,36 +103,75 @@ inline double intersect_ref(const BoxTable& b, uint32_t i, const Rayd& ray) {
   return first_in_range(t0, t1, ray);
 }
 
-// The face: at the entry, the axis whose near plane is last (the largest near t); at the
-// exit, the axis whose far plane is first; ties go to the lowest axis, so the normal is
-// always exactly one unit axis vector (docs/hard-cases.md B5). The point is snapped onto that face.
-inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {
-  glm::dvec3 lo(b.lo(i)), hi(b.hi(i));
-  double tn[3], tf[3];
-  for (int k = 0; k < 3; ++k)
-    detail::box_slab(lo[k], hi[k], ray.o[k], ray.d[k], tn[k], tf[k]);
-  double entry = -std::numeric_limits<double>::infinity();
-  int entry_axis = -1, exit_axis = -1;
-  double exit = std::numeric_limits<double>::infinity();
-  // Selects, not branches: which axis wins is data the branch predictor cannot learn (a
-  // render's hits land on every face), and this runs for every hit on a box.
-  for (int k = 0; k < 3; ++k) {
-    bool nearer = tn[k] > entry, farther = tf[k] < exit;
-    entry = nearer ? tn[k] : entry;
-    entry_axis = nearer ? k : entry_axis;
-    exit = farther ? tf[k] : exit;
-    exit_axis = farther ? k : exit_axis;
+// The surface at a hit, written once over the number type N (core/numbers.h) and its 3-vector
+// V3: double for surface_ref, double lanes for the SIMD tracer's hit records, float lanes for the
+// render's float columns (box_packet.h). The face: at the entry, the axis whose near plane is
+// last (the largest near t); at the exit, the axis whose far plane is first; ties go to the
+// lowest axis, so the normal is always exactly one unit axis vector (docs/hard-cases.md B5).
+// The point o + t·d is snapped onto that face. Selects, not branches: which axis wins is data
+// the branch predictor cannot learn (a render's hits land on every face).
+template <class V3>
+struct BoxSurface {
+  V3 p, n;
+};
+template <class N, class V3>
+BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o, const V3& d, const N& t) {
+  using K = Num<N>;
+  const N* los[3] = {&lo.x, &lo.y, &lo.z};
+  const N* his[3] = {&hi.x, &hi.y, &hi.z};
+  const N* os[3] = {&o.x, &o.y, &o.z};
+  const N* ds[3] = {&d.x, &d.y, &d.z};
+  N entry(-HUGE_VAL), exit(HUGE_VAL), entry_axis(-1.0), exit_axis(-1.0);
+  for (int k = 0; k < 3; ++k) {  // detail::box_slab's steps
+    const N inv = N(1.0) / *ds[k];
+    const auto neg = K::sign_bit(*ds[k]);
+    const N tn = (K::select(neg, *his[k], *los[k]) - *os[k]) * inv;
+    const N tf = (K::select(neg, *los[k], *his[k]) - *os[k]) * inv;
+    const auto nearer = tn > entry, farther = tf < exit;
+    entry = K::select(nearer, tn, entry);
+    entry_axis = K::select(nearer, N(double(k)), entry_axis);
+    exit = K::select(farther, tf, exit);
+    exit_axis = K::select(farther, N(double(k)), exit_axis);
   }
   // The nearer end of the interval: t may come from a float kernel, so never compare exactly.
-  bool entering =
-      (entry_axis >= 0) & ((exit_axis < 0) | (std::abs(t - entry) <= std::abs(t - exit)));
-  int axis = entering ? entry_axis : (exit_axis >= 0 ? exit_axis : 0);
-  bool neg = std::signbit(ray.d[axis]);
-  glm::dvec3 n(0, 0, 0), p = ray.at(t);
-  // Entering, the face looks back at the ray; leaving, it looks along it.
-  n[axis] = (entering == neg) ? 1.0 : -1.0;
-  p[axis] = n[axis] > 0 ? hi[axis] : lo[axis];
-  return {p, n, n};
+  const auto entering =
+      (entry_axis >= N(0.0)) & ((exit_axis < N(0.0)) | (K::abs(t - entry) <= K::abs(t - exit)));
+  const N axis = K::select(entering, entry_axis, K::select(exit_axis >= N(0.0), exit_axis, N(0.0)));
+  BoxSurface<V3> out{V3{o.x + d.x * t, o.y + d.y * t, o.z + d.z * t}, V3{N(0.0), N(0.0), N(0.0)}};
+  N* ps[3] = {&out.p.x, &out.p.y, &out.p.z};
+  N* ns[3] = {&out.n.x, &out.n.y, &out.n.z};
+  for (int k = 0; k < 3; ++k) {
+    const auto on = axis == N(double(k));
+    // Entering, the face looks back at the ray; leaving, it looks along it.
+    const auto neg = K::sign_bit(*ds[k]);
+    const N sign =
+        K::select(entering, K::select(neg, N(1.0), N(-1.0)), K::select(neg, N(-1.0), N(1.0)));
+    *ns[k] = K::select(on, sign, N(0.0));
+    *ps[k] = K::select(on, K::select(sign > N(0.0), *his[k], *los[k]), *ps[k]);
+  }
+  return out;
+}
+
+// A componentwise bound on the error of box_surface's point computed in float. On the face's
+// axis the point is the face's own float plane, exact; one roundoff of |p| is kept there, so
+// that an origin offset by it still moves off the plane (the packet kernel's (plane − o)·(1/d)
+// keeps the sign of plane − o, exact for neighbouring floats). Along the face the point is
+// o + t·d, as float_hit_point_bound (core/ray_offset.h) bounds it.
+template <class N, class V3>
+V3 box_point_bound(const V3& o, const V3& d, const N& t, const BoxSurface<V3>& s) {
+  using K = Num<N>;
+  const V3 along = float_hit_point_bound<N>(o, d, t, s.p);
+  const N own(kFloatUnitRoundoff * (1 + 0x1p-20));
+  auto one = [&](const N& nk, const N& pk, const N& ak) {
+    return K::select(nk != N(0.0), K::abs(pk) * own, ak);
+  };
+  return V3{one(s.n.x, s.p.x, along.x), one(s.n.y, s.p.y, along.y), one(s.n.z, s.p.z, along.z)};
+}
+
+inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {
+  const BoxSurface<glm::dvec3> x =
+      box_surface<double>(glm::dvec3(b.lo(i)), glm::dvec3(b.hi(i)), ray.o, ray.d, t);
+  return {x.p, x.n, x.n};
 }
 
 // On the face normal to axis k, u and v run 0 → 1 across it along the other two axes in x, y, z

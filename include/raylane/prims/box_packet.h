@@ -32,49 +32,23 @@ template <class A, class Rows>
   }
 }
 
-// surface_ref (box.h) for one hit per lane: the face by the same selects (entry: the last near
-// plane, exit: the first far plane, ties to the lowest axis), its unit normal, the point
-// snapped onto it.
+// box_surface (box.h) for one hit per double lane: surface_ref's answers bit for bit.
 template <class A>
 SurfaceLanes<A> surface_lanes(const BoxTable& b, const uint32_t* rows, const HitRayLanes<A>& r) {
-  using D = simd::Doubles<A>;
   const simd::DoubleVec3<A> lo = load_rows3<A>(b.lox, b.loy, b.loz, rows);
   const simd::DoubleVec3<A> hi = load_rows3<A>(b.hix, b.hiy, b.hiz, rows);
-  const D* los[3] = {&lo.x, &lo.y, &lo.z};
-  const D* his[3] = {&hi.x, &hi.y, &hi.z};
-  const D* os[3] = {&r.o.x, &r.o.y, &r.o.z};
-  const D* ds[3] = {&r.d.x, &r.d.y, &r.d.z};
-  D entry(-std::numeric_limits<double>::infinity()), exit(std::numeric_limits<double>::infinity());
-  D entry_axis(-1.0), exit_axis(-1.0);
-  for (int k = 0; k < 3; ++k) {
-    D inv = D(1.0) / *ds[k];
-    auto neg = simd::sign_bit<A>(*ds[k]);
-    D tn = (xsimd::select(neg, *his[k], *los[k]) - *os[k]) * inv;
-    D tf = (xsimd::select(neg, *los[k], *his[k]) - *os[k]) * inv;
-    auto nearer = tn > entry, farther = tf < exit;
-    entry = xsimd::select(nearer, tn, entry);
-    entry_axis = xsimd::select(nearer, D(double(k)), entry_axis);
-    exit = xsimd::select(farther, tf, exit);
-    exit_axis = xsimd::select(farther, D(double(k)), exit_axis);
-  }
-  auto entering = (entry_axis >= D(0.0)) &
-                  ((exit_axis < D(0.0)) | (xsimd::abs(r.t - entry) <= xsimd::abs(r.t - exit)));
-  D axis =
-      xsimd::select(entering, entry_axis, xsimd::select(exit_axis >= D(0.0), exit_axis, D(0.0)));
-  SurfaceLanes<A> out{r.at(), {}};
-  D* ps[3] = {&out.p.x, &out.p.y, &out.p.z};
-  D* ns[3] = {&out.n.x, &out.n.y, &out.n.z};
-  for (int k = 0; k < 3; ++k) {
-    auto on = axis == D(double(k));
-    // Entering, the face looks back at the ray; leaving, it looks along it. By selects: xsimd
-    // 8.1's `^` of two AVX-512 masks and `!=` of two SSE masks both compute their OR.
-    auto neg = simd::sign_bit<A>(*ds[k]);
-    D sign = xsimd::select(entering, xsimd::select(neg, D(1.0), D(-1.0)),
-                           xsimd::select(neg, D(-1.0), D(1.0)));
-    *ns[k] = xsimd::select(on, sign, D(0.0));
-    *ps[k] = xsimd::select(on, xsimd::select(sign > D(0.0), *his[k], *los[k]), *ps[k]);
-  }
-  return out;
+  const BoxSurface<simd::DoubleVec3<A>> s = box_surface<simd::Doubles<A>>(lo, hi, r.o, r.d, r.t);
+  return {s.p, s.n};
+}
+
+// box_surface for one hit per float lane, with its bound (box_point_bound).
+template <class A>
+FloatSurfaceLanes<A> surface_float_lanes(const BoxTable& b, const simd::Ints<A>& rows,
+                                         const FloatHitRayLanes<A>& r) {
+  const simd::FloatVec3<A> lo = gather_rows3<A>(b.lox, b.loy, b.loz, rows);
+  const simd::FloatVec3<A> hi = gather_rows3<A>(b.hix, b.hiy, b.hiz, rows);
+  const BoxSurface<simd::FloatVec3<A>> s = box_surface<simd::Floats<A>>(lo, hi, r.o, r.d, r.t);
+  return {s.p, s.n, box_point_bound<simd::Floats<A>>(r.o, r.d, r.t, s)};
 }
 
 }  // namespace raylane

@@ -87,6 +87,7 @@ struct Csg {
   static constexpr double sah_test_cost = 2.0;
   // Surfaces by surface_ref: a hit is a leaf, whose kind decides the surface.
   static constexpr bool surface_in_lanes = false;
+  static constexpr bool surface_in_float_lanes = false;
   // Never an emitter (a leaf may not emit): these exist for the kind list's interface.
   static double area(const Table&, uint32_t) { return 0; }
   static AreaSample sample_area(const Table&, uint32_t, double, double, double) { return {}; }

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "raylane/core/bounds3.h"
+#include "raylane/core/prim_ref.h"
 #include "raylane/core/ray.h"
 #include "raylane/core/warps.h"
-#include "raylane/core/prim_ref.h"
 #include "raylane/prims/solid.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
@@ -95,6 +95,7 @@ struct Cylinder {
   static constexpr double sah_test_cost = 1.0;
   // The SIMD tracer computes its hits' surfaces in double lanes (cylinder_packet.h, surface_lanes).
   static constexpr bool surface_in_lanes = true;
+  static constexpr bool surface_in_float_lanes = false;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.

@@ -84,6 +84,7 @@ struct MovingSphere {
   // Its surfaces come from surface_ref, one hit at a time: they need the ray's time, which the
   // double lanes of the static kinds do not carry.
   static constexpr bool surface_in_lanes = false;
+  static constexpr bool surface_in_float_lanes = false;
   // Emitters: the sphere's sampling (sphere.h) about the centre at the path's time, which
   // LightSampler passes (lights.cpp: a light that moves is sampled at the path's time). The
   // sample_area without a time, which the kinds' interface asks for, is the sphere at

@@ -10,6 +10,10 @@
 //                                     closed solid: outside only)
 //   sah_test_cost                     one primitive test, relative to a BVH node visit
 //   area(t, i), sample_area(t, i, u_part, u1, u2)   uniform area sampling, for emitters
+//   surface_in_lanes, surface_in_float_lanes   whether <kind>_packet.h computes its hits'
+//                                     surfaces in double lanes (surface_lanes, the reference's
+//                                     bits) and in float lanes with error bounds
+//                                     (surface_float_lanes, the render's columns)
 // and may provide (found with `requires` where used):
 //   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
 //                                     primitive subtends, better than by area (spheres)

@@ -119,6 +119,7 @@ struct Sdf {
   static constexpr double sah_test_cost = 16.0;
   // Surfaces by surface_ref: the gradient of the block's distance.
   static constexpr bool surface_in_lanes = false;
+  static constexpr bool surface_in_float_lanes = false;
   // Never an emitter (a leaf may not emit).
   static double area(const Table&, uint32_t) { return 0; }
   static AreaSample sample_area(const Table&, uint32_t, double, double, double) { return {}; }

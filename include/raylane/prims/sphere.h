@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "raylane/core/bounds3.h"
+#include "raylane/core/float_util.h"
+#include "raylane/core/numbers.h"
 #include "raylane/core/prim_ref.h"
 #include "raylane/core/ray.h"
 #include "raylane/core/warps.h"
@@ -67,6 +69,9 @@ struct Sphere {
   static constexpr double sah_test_cost = 0.3;
   // The SIMD tracer computes its hits' surfaces in double lanes (sphere_packet.h, surface_lanes).
   static constexpr bool surface_in_lanes = true;
+  // The render's float columns take its surfaces in float lanes, with their error bounds
+  // (sphere_packet.h, surface_float_lanes).
+  static constexpr bool surface_in_float_lanes = true;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
@@ -109,12 +114,41 @@ inline double intersect_ref(const SphereTable& s, uint32_t i, const Rayd& ray) {
   return intersect_sphere_ref(glm::dvec3(s.center(i)), s.r[i], ray);
 }
 
-// The hit point is projected back onto the sphere (pbrt-v4 Sphere::Intersect), so its error
-// is a few ulps of the radius, not of the distance travelled.
+// The surface at a hit, written once over the number type N (core/numbers.h) and its 3-vector
+// V3: double for surface_ref, double lanes for the SIMD tracer's hit records, float lanes for the
+// render's float columns (sphere_packet.h). The hit point o + t·d is projected back onto the
+// sphere from its centre (pbrt-v4 Sphere::Intersect), so its error is a few ulps of the radius,
+// not of the distance travelled: n = (p − c)/|p − c| as core/vec_math.h's normalize, then
+// c + n·r. `offset` is n·r, the point's part that carries that error (sphere_point_bound).
+template <class V3>
+struct SphereSurface {
+  V3 p, n, offset;
+};
+template <class N, class V3>
+SphereSurface<V3> sphere_surface(const V3& c, const N& r, const V3& o, const V3& d, const N& t) {
+  const V3 v{o.x + d.x * t - c.x, o.y + d.y * t - c.y, o.z + d.z * t - c.z};
+  const N len = Num<N>::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  const V3 n{v.x / len, v.y / len, v.z / len}, offset{n.x * r, n.y * r, n.z * r};
+  return {V3{c.x + offset.x, c.y + offset.y, c.z + offset.z}, n, offset};
+}
+
+// A componentwise bound on the error of sphere_surface's point computed in float: the
+// reprojected offset n·r within γ6 of its exact value (pbrt-v4 §6.8.5 bounds the reprojected
+// point by γ5|p| about the centre; one more for our division per component), plus the rounding of
+// c + n·r (one roundoff of |p|; c is the table's own float). Both constants carry 2^-20 more for
+// this sum's own float roundings.
+template <class N, class V3>
+V3 sphere_point_bound(const V3& p, const V3& offset) {
+  using K = Num<N>;
+  const N reprojected(gamma_float(6) * (1 + 0x1p-20)), own(kFloatUnitRoundoff * (1 + 0x1p-20));
+  auto one = [&](const N& pk, const N& ok) { return K::abs(ok) * reprojected + K::abs(pk) * own; };
+  return V3{one(p.x, offset.x), one(p.y, offset.y), one(p.z, offset.z)};
+}
+
 inline Surface surface_ref(const SphereTable& s, uint32_t i, const Rayd& ray, double t) {
-  glm::dvec3 c(s.center(i));
-  glm::dvec3 n = normalize(ray.at(t) - c);
-  return {c + n * double(s.r[i]), n, n};
+  const SphereSurface<glm::dvec3> x =
+      sphere_surface<double>(glm::dvec3(s.center(i)), double(s.r[i]), ray.o, ray.d, t);
+  return {x.p, x.n, x.n};
 }
 
 // u = φ/2π with φ = atan2(y, x) in [0, 2π), v = 1 − θ/π with θ from +Z, of a unit direction d

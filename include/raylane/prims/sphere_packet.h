@@ -46,15 +46,23 @@ template <class A, class Rows>
   }
 }
 
-// surface_ref (sphere.h) for one hit per lane: the point projected back onto the sphere.
+// sphere_surface (sphere.h) for one hit per double lane: surface_ref's answers bit for bit.
 template <class A>
 SurfaceLanes<A> surface_lanes(const SphereTable& s, const uint32_t* rows, const HitRayLanes<A>& r) {
-  using D = simd::Doubles<A>;
-  simd::DoubleVec3<A> c = load_rows3<A>(s.cx, s.cy, s.cz, rows), p = r.at();
-  simd::DoubleVec3<A> v{p.x - c.x, p.y - c.y, p.z - c.z};
-  D len = simd::sqrt<A>(dot_lanes<A>(v, v)), radius = simd::load_rows<A>(s.r, rows);
-  simd::DoubleVec3<A> n{v.x / len, v.y / len, v.z / len};
-  return {{c.x + n.x * radius, c.y + n.y * radius, c.z + n.z * radius}, n};
+  const simd::DoubleVec3<A> c = load_rows3<A>(s.cx, s.cy, s.cz, rows);
+  const SphereSurface<simd::DoubleVec3<A>> x =
+      sphere_surface<simd::Doubles<A>>(c, simd::load_rows<A>(s.r, rows), r.o, r.d, r.t);
+  return {x.p, x.n};
+}
+
+// sphere_surface for one hit per float lane, with its bound (sphere_point_bound).
+template <class A>
+FloatSurfaceLanes<A> surface_float_lanes(const SphereTable& s, const simd::Ints<A>& rows,
+                                         const FloatHitRayLanes<A>& r) {
+  const simd::FloatVec3<A> c = gather_rows3<A>(s.cx, s.cy, s.cz, rows);
+  const SphereSurface<simd::FloatVec3<A>> x =
+      sphere_surface<simd::Floats<A>>(c, simd::gather<A>(s.r.data(), rows), r.o, r.d, r.t);
+  return {x.p, x.n, sphere_point_bound<simd::Floats<A>>(x.p, x.offset)};
 }
 
 }  // namespace raylane

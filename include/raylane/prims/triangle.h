@@ -13,8 +13,8 @@
 
 #include "raylane/core/bounds3.h"
 #include "raylane/core/float_util.h"
-#include "raylane/core/ray.h"
 #include "raylane/core/prim_ref.h"
+#include "raylane/core/ray.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 
@@ -98,6 +98,7 @@ struct Triangle {
   // a fused multiply-add, which SSE4.2 lanes lack, and meshes are a small share of the course
   // scene's hits.
   static constexpr bool surface_in_lanes = false;
+  static constexpr bool surface_in_float_lanes = false;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.

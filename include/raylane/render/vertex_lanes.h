@@ -32,14 +32,13 @@ namespace raylane {
 struct VertexBatch {
   using Column = std::vector<float>;
   using Columns3 = std::array<Column, 3>;
-  // Inputs. The vertex: the path's throughput, the hit point and geometric normal (float, the
-  // point rounded to nearest: float_hit_point_bound counts it), the origin of the ray that
-  // found it with its t (its direction is the BSDF's −wo), and roulette's number. The light
-  // point and the BSDF's answers are read where their steps left them. Roulette's survival
+  // Inputs. The vertex: the path's throughput, the float hit point with its componentwise
+  // error bound (SurfaceColumns) and geometric normal, and roulette's number. The light point
+  // and the BSDF's answers are read where their steps left them. Roulette's survival
   // probability per row (VertexRules::roulette): 1 for a row without roulette, which then
   // always survives (u < 1) with its throughput unchanged (x / 1 is x).
-  Columns3 beta, p, ng, ray_o;
-  Column t, u_roulette, survival;
+  Columns3 beta, p, p_error, ng;
+  Column u_roulette, survival;
   // Outputs. The shadow ray (shadow_ok 1 where one is cast): what it adds if it sees the
   // light, widened to double for the shadow queue.
   std::array<std::vector<double>, 3> shadow_c;
@@ -86,11 +85,10 @@ struct RowFilter {
 };
 std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
 
-// The rows' rays into the batches, for the vertex steps and the BSDF: row r's ray is the
-// stream's ray rows[r] (r < n), its origin into vertices.ray_o and its direction turned around
-// into shade.wo, bit for bit. Both batches must have room for n rows (resize).
-void gather_vertex_rays(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
-                        VertexBatch& vertices, ShadeBatch& shade);
+// The rows' rays' directions turned around, for the BSDF: row r's is the stream's ray rows[r]
+// (r < n), into shade.wo bit for bit. The batch must have room for n rows (resize).
+void gather_wo(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
+               ShadeBatch& shade);
 
 struct VertexRules {
   bool mis = false;       // weigh the shadow ray by the power heuristic (else 1)

@@ -20,6 +20,7 @@ struct Num<xsimd::batch<float, A>> {
   static F abs(const F& x) { return xsimd::abs(x); }
   // Not unary minus, which xsimd 8.1 makes 0 − x on AVX-512 (+0 stays +0; simd/lanes.h).
   static F negate(const F& x) { return simd::negate(x); }
+  static Mask sign_bit(const F& x) { return xsimd::copysign(F(1.0f), x) < F(0.0f); }
   // e^-x = 2^(−x·log2 e), x ≥ 0 (a negative x is taken as 0).
   static F exp_neg(const F& x) {
     return simd::exp2<A>(xsimd::max(x, F(0.0f)) * F(-1.44269504088896340736f));
@@ -46,6 +47,18 @@ struct Num<xsimd::batch<float, A>> {
     return xsimd::select(up | down, moved, x);
   }
   static constexpr float kExpNegCutoff = 80;
+};
+
+// Double lanes: what the double steps in lanes call (the kinds' surfaces, prims/<kind>.h; the
+// float bound of a double point, core/ray_offset.h). sqrt is correctly rounded, as std::sqrt.
+template <class A>
+struct Num<xsimd::batch<double, A>> {
+  using D = simd::Doubles<A>;
+  using Mask = xsimd::batch_bool<double, A>;
+  static D select(const Mask& c, const D& a, const D& b) { return xsimd::select(c, a, b); }
+  static D sqrt(const D& x) { return simd::sqrt<A>(x); }
+  static D abs(const D& x) { return xsimd::abs(x); }
+  static Mask sign_bit(const D& x) { return simd::sign_bit<A>(x); }
 };
 
 }  // namespace raylane

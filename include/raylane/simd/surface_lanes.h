@@ -5,6 +5,7 @@
 // are the reference's bit for bit (tests/trace/tracer_test.cpp checks it at every ISA).
 #pragma once
 
+#include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane {
@@ -24,6 +25,27 @@ struct SurfaceLanes {
   simd::DoubleVec3<A> p, n;
 };
 
+// One hit per float lane, for the render's float columns: the ray as traced and its t.
+template <class A>
+struct FloatHitRayLanes {
+  simd::FloatVec3<A> o, d;
+  simd::Floats<A> t;
+};
+
+// The point, the unit normal and a componentwise bound on the point's error, in float.
+template <class A>
+struct FloatSurfaceLanes {
+  simd::FloatVec3<A> p, n, error;
+};
+
+// The table columns x, y, z gathered at one row per float lane.
+template <class A>
+inline simd::FloatVec3<A> gather_rows3(const std::vector<float>& x, const std::vector<float>& y,
+                                       const std::vector<float>& z, const simd::Ints<A>& rows) {
+  return {simd::gather<A>(x.data(), rows), simd::gather<A>(y.data(), rows),
+          simd::gather<A>(z.data(), rows)};
+}
+
 // a·b in glm::dot's order ((x + y) + z).
 template <class A>
 inline simd::Doubles<A> dot_lanes(const simd::DoubleVec3<A>& a, const simd::DoubleVec3<A>& b) {
@@ -33,7 +55,7 @@ inline simd::Doubles<A> dot_lanes(const simd::DoubleVec3<A>& a, const simd::Doub
 // The table columns x, y, z read at one row per lane.
 template <class A>
 inline simd::DoubleVec3<A> load_rows3(const std::vector<float>& x, const std::vector<float>& y,
-                                       const std::vector<float>& z, const uint32_t* rows) {
+                                      const std::vector<float>& z, const uint32_t* rows) {
   return {simd::load_rows<A>(x, rows), simd::load_rows<A>(y, rows), simd::load_rows<A>(z, rows)};
 }
 

@@ -10,14 +10,17 @@ namespace raylane {
 // Row r of a request gets the surface of its r-th hit. Every pointer addresses at least as
 // many rows as the request has.
 struct SurfaceColumns {
-  // The hit point and the unit geometric normal, rounded to nearest float: the render's float
-  // vertex steps bound the point's error with that rounding counted (float_hit_point_bound,
-  // core/ray_offset.h).
+  // The hit point and the unit geometric normal in float: from the kind's float lanes where it
+  // has them (surface_float_lanes), else its double surface rounded to nearest.
   float *px, *py, *pz;
   float *ngx, *ngy, *ngz;
-  float *nsx, *nsy, *nsz;  // the unit shading normal, rounded to float (a float BSDF's frame)
-  double* cos_ns;          // dot(ns, d) in double, before the rounding: the Bsdf's black() test
-  uint8_t* front;          // 1 where the ray meets the front face (dot(d, ng) < 0), else 0
+  float *nsx, *nsy, *nsz;  // the unit shading normal in float (a float BSDF's frame)
+  // A componentwise bound on the float point's error: the kind's own where its float lanes
+  // give one (sphere_point_bound, box_point_bound), else float_hit_point_bound
+  // (core/ray_offset.h), which counts the rounding.
+  float *ex, *ey, *ez;
+  double* cos_ns;  // dot(ns, d): the Bsdf's black() test
+  uint8_t* front;  // 1 where the ray meets the front face (dot(d, ng) < 0), else 0
 };
 
 }  // namespace raylane

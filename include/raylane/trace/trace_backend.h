@@ -54,7 +54,9 @@ std::unique_ptr<const TraceBackend> packet_backend(const Scene& scene, const Bvh
 std::unique_ptr<const TraceBackend> bvh_reference_backend(const Scene& scene, const Bvh& bvh);
 std::unique_ptr<const TraceBackend> brute_force_backend(const Scene& scene);
 
-// One surface into row r of `out`, from a Surface record, for a ray of direction d.
-void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const glm::dvec3& d);
+// One surface into row r of `out`, from a Surface record, for the ray that met it at t (the
+// point's bound: float_hit_point_bound, core/ray_offset.h).
+void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Rayd& ray,
+                   double t);
 
 }  // namespace raylane

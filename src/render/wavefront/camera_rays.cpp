@@ -13,7 +13,8 @@ namespace {
 // A tile's paths, 4×4 blocks of pixels at a time (y counts up in the pixel grid), into the
 // slots from `first` on, before their camera rays: pixel and Sobol scramble, and the pixel's
 // corner in the camera's points. Returns how many.
-uint32_t tile_paths(ThreadContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0, uint32_t first) {
+uint32_t tile_paths(ThreadContext& ctx, const Camera& cam, uint32_t x0, uint32_t y0,
+                    uint32_t first) {
   std::vector<PathState>& paths = ctx.wave.paths;
   CameraPoints& points = ctx.wave.camera;
   if (paths.size() < first + kTile * kTile) paths.resize(first + kTile * kTile);

@@ -161,9 +161,11 @@ void surface_columns(ThreadContext& ctx) {
   LaneVertexQueue& lv = w.lane_vertices;
   VertexBatch& vb = lv.vertices;
   ShadeBatch& sb = lv.shade;
-  const SurfaceColumns out{vb.p[0].data(),  vb.p[1].data(),   vb.p[2].data(), vb.ng[0].data(),
-                           vb.ng[1].data(), vb.ng[2].data(),  sb.n[0].data(), sb.n[1].data(),
-                           sb.n[2].data(),  lv.cos_ns.data(), lv.front.data()};
+  const SurfaceColumns out{vb.p[0].data(),       vb.p[1].data(),       vb.p[2].data(),
+                           vb.ng[0].data(),      vb.ng[1].data(),      vb.ng[2].data(),
+                           sb.n[0].data(),       sb.n[1].data(),       sb.n[2].data(),
+                           vb.p_error[0].data(), vb.p_error[1].data(), vb.p_error[2].data(),
+                           lv.cos_ns.data(),     lv.front.data()};
   ctx.tracer.surfaces(w.rays.rays, w.hits, {lv.ray.data(), lv.count}, out, w.scratch);
 }
 
@@ -185,7 +187,7 @@ void drop_black_rows(ThreadContext& ctx) {
   while (first < n && reflects(lm, rows.cos_ns[first], rows.material[first]))
     ++first;
   if (first == n) return;
-  const Columns3Out<float> p(lv.vertices.p), ng(lv.vertices.ng);
+  const Columns3Out<float> p(lv.vertices.p), p_error(lv.vertices.p_error), ng(lv.vertices.ng);
   const Columns3Out<float> ns(lv.shade.n);
   std::size_t kept = first;
   for (std::size_t r = first + 1; r < n; ++r) {
@@ -193,23 +195,21 @@ void drop_black_rows(ThreadContext& ctx) {
     rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
     rows.pixel_seed[kept] = rows.pixel_seed[r];
-    p.move(kept, r), ng.move(kept, r), ns.move(kept, r);
+    p.move(kept, r), p_error.move(kept, r), ng.move(kept, r), ns.move(kept, r);
     ++kept;
   }
   lv.count = kept;
 }
 
-// The rows' t and material into the columns, and the point for the light sampler.
+// The rows' material into the BSDF's column, and the point for the light sampler.
 void hit_columns(ThreadContext& ctx, bool lights) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
-  const Hit* hits = w.hits.data();
-  const uint32_t *hit = lv.ray.data(), *material = lv.material.data();
+  const uint32_t* material = lv.material.data();
   const std::size_t n = lv.count;
-  float* t = lv.vertices.t.data();
   int32_t* shade_material = lv.shade.material.data();
   for (std::size_t r = 0; r < n; ++r)
-    t[r] = float(hits[hit[r]].t), shade_material[r] = int32_t(material[r]);
+    shade_material[r] = int32_t(material[r]);
   if (!lights) return;
   for (int k = 0; k < 3; ++k)
     std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
@@ -248,24 +248,24 @@ void texture_columns(ThreadContext& ctx) {
   }
 }
 
-// The rows' rays (the stream's float rays, widened exactly) and the paths' throughputs with
-// Beer's law on the segment just travelled into the columns.
+// The rows' directions turned around (wo, from the stream's float rays) and the paths'
+// throughputs with Beer's law on the segment just travelled into the columns.
 void path_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
   const LaneVertexQueue& rows = lv;
   const std::size_t n = lv.count;
-  gather_vertex_rays(ctx.lanes.isa, w.rays.rays, rows.ray.data(), n, lv.vertices, lv.shade);
+  ctx.lanes.kernels.gather_wo(w.rays.rays, rows.ray.data(), n, lv.shade);
   const PathState* paths = w.paths.data();
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<float> beta(lv.vertices.beta);
-  const float* t = lv.vertices.t.data();
+  const Hit* hits = w.hits.data();
   for (std::size_t r = 0; r < n; ++r) {
     const PathState& path = paths[rows.path[r]];
     // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
-    beta.set(r, rows.front[r]
-                    ? path.beta
-                    : path.beta * beer_transmittance(materials[rows.material[r]], false, t[r]));
+    beta.set(r, rows.front[r] ? path.beta
+                              : path.beta * beer_transmittance(materials[rows.material[r]], false,
+                                                               hits[rows.ray[r]].t));
   }
 }
 
@@ -289,8 +289,8 @@ void shade_lane_vertices(ThreadContext& ctx) {
   rules.roulette = roulette_columns(ctx);
   draw_numbers(ctx, lights, rules.roulette);
   light_columns(ctx, lights);
-  scatter_vertices(ctx.lanes.isa, ctx.lanes.materials, rules, lv.shade,
-                   lights ? &lv.light_queries : nullptr, lv.vertices);
+  ctx.lanes.kernels.scatter_vertices(ctx.lanes.materials, rules, lv.shade,
+                                     lights ? &lv.light_queries : nullptr, lv.vertices);
   if (lights) write_lane_shadow_rays(ctx);
   write_lane_next_rays(ctx);
 }

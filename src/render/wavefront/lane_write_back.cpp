@@ -57,7 +57,7 @@ void write_lane_shadow_rays(ThreadContext& ctx) {
   f.add(lv.path.data(), q.path.data() + queued);
   for (std::size_t k = 0; k < 3; ++k)
     f.add(vb.shadow_c[k].data(), q.contribution[k].data() + queued);
-  const std::size_t kept = filter_rows(ctx.lanes.isa, f, n);
+  const std::size_t kept = ctx.lanes.kernels.filter_rows(f, n);
   std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
   s.resize(at + kept), s.aim.resize(at + kept);
   q.resize_queries(queued + kept);
@@ -93,7 +93,7 @@ void write_lane_next_rays(ThreadContext& ctx) {
   for (std::size_t k = 0; k < 3; ++k)
     f.add(lv.shade.wi[k].data(), (k == 0 ? s.dx : k == 1 ? s.dy : s.dz).data() + at);
   f.add(row_path, next_paths.data() + listed);
-  const std::size_t kept = filter_rows(ctx.lanes.isa, f, n);
+  const std::size_t kept = ctx.lanes.kernels.filter_rows(f, n);
   std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
   std::fill_n(s.tmax.begin() + std::ptrdiff_t(at), kept, std::numeric_limits<float>::infinity());
   s.resize(at + kept);

@@ -8,11 +8,12 @@
 #include <initializer_list>
 
 #include "raylane/render/lights/lights.h"
+#include "raylane/render/materials/shade_lanes.h"
 #include "raylane/render/path.h"
 #include "raylane/render/samplers/rng.h"
-#include "raylane/render/materials/shade_lanes.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/render/vertex_lanes.h"
+#include "render/render_lanes.h"
 #include "render/wavefront/queues.h"
 
 namespace raylane::path_detail {
@@ -41,10 +42,12 @@ class PhaseClock {
 };
 
 // What shading in lanes needs besides the settings (with Shading::kDouble, only the
-// materials' routes are read: LaneMaterials::route).
+// materials' routes are read: LaneMaterials::route): the materials, the instruction set, and
+// its table of render kernels, looked up once for the render (src/render/render_lanes.h).
 struct LaneShading {
   const LaneMaterials& materials;
   Isa isa;
+  const detail::RenderLanes& kernels;
 };
 
 // One render thread's state for a pass: it lives across the tiles the thread claims (their
