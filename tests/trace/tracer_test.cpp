@@ -395,7 +395,9 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
     in_float += want.in_float;
     ++kinds[std::size_t(hit.prim.tag())];
   }
-  if (tracer.backend() == TracerBackend::kPacket) EXPECT_GT(in_float, int(n / 10));
+  if (tracer.backend() == TracerBackend::kPacket) {
+    EXPECT_GT(in_float, int(n / 10));
+  }
   EXPECT_GT(back, int(n / 50));
   EXPECT_GT(smooth, int(n / 100));  // interpolated normals: the two normals' columns differ
   for (std::size_t k = 0; k < kPrimKindCount; ++k)
