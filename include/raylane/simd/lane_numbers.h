@@ -1,7 +1,7 @@
-// The number-type layer (core/numbers.h) for float lanes: Num<simd::Floats<A>>, so that a step
-// written once over its number type runs in lanes. Include only from per-ISA translation units
-// (simd/lanes.h). exp_neg and log_one_minus carry the bounds of simd/lane_math.h's exp2 and
-// log2.
+// The number-type layer (core/numbers.h) for lanes: Num<simd::Floats<A>>, Num<simd::Doubles<A>>
+// and Num<simd::UInts<A>>, so that a step written once over its number type runs in lanes.
+// Include only from per-ISA translation units (simd/lanes.h). The float lanes' exp_neg and
+// log_one_minus carry the bounds of simd/lane_math.h's exp2 and log2.
 #pragma once
 
 #include "raylane/core/numbers.h"
@@ -28,6 +28,22 @@ struct Num<xsimd::batch<float, A>> {
     return simd::log2<A>(xsimd::max(F(1.0f) - u, F(0x1p-126f))) * F(0.69314718055994530942f);
   }
   static constexpr float kExpNegCutoff = 80;
+};
+
+// Double lanes: the operations the double steps in lanes call so far (the pinhole camera's
+// direction, render/camera/camera.h). sqrt is correctly rounded, as std::sqrt.
+template <class A>
+struct Num<xsimd::batch<double, A>> {
+  using D = simd::Doubles<A>;
+  static D sqrt(const D& x) { return simd::sqrt<A>(x); }
+};
+
+// 32-bit unsigned lanes, for the integer steps (Num<uint32_t>'s twins).
+template <class A>
+struct Num<xsimd::batch<uint32_t, A>> {
+  using U = simd::UInts<A>;
+  static U reverse_bits(const U& x) { return simd::reverse_bits<A>(x); }
+  static U gather(const uint32_t* table, const U& i) { return simd::gather<A>(table, i); }
 };
 
 }  // namespace raylane
