@@ -56,10 +56,10 @@ void sobol_groups_range(uint32_t reversed_index, uint32_t group, unsigned which,
 
 // The groups' components in `which` as numbers into the callers' columns (SobolNumbers): plain
 // loops, which the compiler vectorises with this file's instruction set (the baseline build has
-// no unsigned-to-double conversion in lanes). The expressions are sobol_group's, so the doubles
-// are its own bit for bit and the floats unit_float's of them. (A template on A, though A is
-// unused, so that each instruction set's unit keeps its own copy: one inline function would be
-// one definition for the linker to pick.)
+// no unsigned-to-double conversion in lanes). The conversions are sobol_group's (sobol_unit) and
+// unit_float, so the doubles are its own bit for bit and the floats unit_float's of them. (A
+// template on A, and A the conversions' tag, so that each instruction set's unit keeps its own
+// copies: one inline function would be one definition for the linker to pick.)
 template <class A>
 void sobol_numbers(unsigned which, const SobolBatch& b, const SobolNumbers& to) {
   const std::size_t n = b.size();
