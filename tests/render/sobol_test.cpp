@@ -23,6 +23,41 @@ TEST(Sobol, FirstPointsAreTheTextbookOnes) {
   }
 }
 
+// Every dimension's point is its generator matrix times the index over GF(2) — the XOR of the
+// direction numbers of the index's set bits — for many indices. sobol_point takes no matrix:
+// dimension 0 reverses bits, 1 runs Lucas's-theorem butterflies, 2 and 3 look up byte tables
+// (render/samplers/sobol_steps.h). The direction numbers here are Bratley and Fox's recurrence
+// on Joe and Kuo's first three parameter sets, m_k/2^k held at bit 31.
+TEST(Sobol, PointsAreTheGeneratorMatrixProducts) {
+  auto columns = [](int s, uint32_t a, std::vector<uint32_t> m) {
+    for (int k = s; k < 32; ++k) {
+      uint32_t v = m[k - s] ^ (m[k - s] << s);
+      for (int j = 1; j < s; ++j)
+        if ((a >> (s - 1 - j)) & 1) v ^= m[k - j] << j;
+      m.push_back(v);
+    }
+    std::array<uint32_t, 32> out;
+    for (int k = 0; k < 32; ++k)
+      out[k] = m[k] << (31 - k);
+    return out;
+  };
+  std::array<uint32_t, 32> radical;  // dimension 0, the radical inverse: every m_k = 1
+  for (int k = 0; k < 32; ++k)
+    radical[k] = 1u << (31 - k);
+  const std::array<std::array<uint32_t, 32>, 4> matrix = {
+      radical, columns(1, 0, {1}), columns(2, 1, {1, 3}), columns(3, 1, {1, 3, 1})};
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const uint32_t index = trial == 0 ? 0xffffffffu : trial < 256 ? uint32_t(trial) : rng();
+    for (int d = 0; d < 4; ++d) {
+      uint32_t want = 0;
+      for (int k = 0; k < 32; ++k)
+        if ((index >> k) & 1u) want ^= matrix[d][k];
+      ASSERT_EQ(sobol_point(index, d), want) << "index " << index << " dimension " << d;
+    }
+  }
+}
+
 // Components 0 and 1 of a group are a (0, 2)-sequence after scrambling and shuffling: the
 // first 2^m points put exactly one point in every cell of every 2^a × 2^(m−a) grid. Random
 // points, a wrong direction number or a scramble that is not nested all fail this.

@@ -9,10 +9,15 @@
 //
 // Scalar versions call libm (the reference keeps its numbers); the lanes' versions carry the
 // error bounds of simd/lane_math.h. Limits that depend on the type's range are members too.
+//
+// Integer steps (the Sobol sampler's hashes and scrambles, render/samplers/sobol_steps.h) are
+// written over N = uint32_t or 32-bit unsigned lanes: +, ^, * and shifts are the operators of
+// both, wrapping modulo 2^32, and Num<uint32_t> has the rest.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "raylane/core/float_util.h"
 
@@ -55,6 +60,20 @@ struct Num<float> : ScalarNum<float> {
     return side > 0 ? next_float_up(x) : side < 0 ? next_float_down(x) : x;
   }
   static constexpr float kExpNegCutoff = 80;  // e^-80 < 2e-35, near float's smallest normal
+};
+
+template <>
+struct Num<uint32_t> {
+  // x's 32 bits in reverse order: the bytes swapped, then the nibbles, bit pairs and bits of
+  // each byte (Warren, "Hacker's Delight", 2nd ed., §7-1).
+  static uint32_t reverse_bits(uint32_t x) {
+    x = __builtin_bswap32(x);
+    x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+    x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+    return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+  }
+  // table[i], the scalar twin of a lane gather.
+  static uint32_t gather(const uint32_t* table, uint32_t i) { return table[i]; }
 };
 
 }  // namespace raylane

@@ -1,7 +1,7 @@
-// The number-type layer (core/numbers.h) for float lanes: Num<simd::Floats<A>>, so that a step
-// written once over its number type runs in lanes. Include only from per-ISA translation units
-// (simd/lanes.h). exp_neg and log_one_minus carry the bounds of simd/lane_math.h's exp2 and
-// log2.
+// The number-type layer (core/numbers.h) for lanes: Num<simd::Floats<A>>, Num<simd::Doubles<A>>
+// and Num<simd::UInts<A>>, so that a step written once over its number type runs in lanes.
+// Include only from per-ISA translation units (simd/lanes.h). The float lanes' exp_neg and
+// log_one_minus carry the bounds of simd/lane_math.h's exp2 and log2.
 #pragma once
 
 #include "raylane/core/numbers.h"
@@ -50,7 +50,8 @@ struct Num<xsimd::batch<float, A>> {
 };
 
 // Double lanes: what the double steps in lanes call (the kinds' surfaces, prims/<kind>.h; the
-// float bound of a double point, core/ray_offset.h). sqrt is correctly rounded, as std::sqrt.
+// float bound of a double point, core/ray_offset.h; the pinhole camera's direction,
+// render/camera/camera.h). sqrt is correctly rounded, as std::sqrt.
 template <class A>
 struct Num<xsimd::batch<double, A>> {
   using D = simd::Doubles<A>;
@@ -59,6 +60,14 @@ struct Num<xsimd::batch<double, A>> {
   static D sqrt(const D& x) { return simd::sqrt<A>(x); }
   static D abs(const D& x) { return xsimd::abs(x); }
   static Mask sign_bit(const D& x) { return simd::sign_bit<A>(x); }
+};
+
+// 32-bit unsigned lanes, for the integer steps (Num<uint32_t>'s twins).
+template <class A>
+struct Num<xsimd::batch<uint32_t, A>> {
+  using U = simd::UInts<A>;
+  static U reverse_bits(const U& x) { return simd::reverse_bits<A>(x); }
+  static U gather(const uint32_t* table, const U& i) { return simd::gather<A>(table, i); }
 };
 
 }  // namespace raylane

@@ -22,8 +22,7 @@ Camera Camera::from_scene(const Scene& scene) {
 
 Rayd Camera::ray_through_lens(double x, double y, double u1, double u2) const {
   if (!has_lens()) return ray_through(x, y);
-  double dx = 2 * x / width - 1, dy = 2 * y / height - 1;
-  glm::dvec3 in_focus = eye + (right * (dx * rx) + up * (dy * ry) + forward) * focus;
+  glm::dvec3 in_focus = eye + pinhole_offset<double, glm::dvec3>(*this, x, y) * focus;
   glm::dvec3 disc = sample_concentric_disc(u1, u2) * lens_radius;
   glm::dvec3 o = eye + right * disc.x + up * disc.y;
   return {o, normalize(in_focus - o)};

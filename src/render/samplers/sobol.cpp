@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sobol_steps.h"
 #include "render/render_lanes.h"
 
 namespace raylane {
@@ -32,21 +33,17 @@ constexpr Matrix sobol_matrix(int s, uint32_t a, std::array<uint32_t, 3> m_init)
   return out;
 }
 
-// Dimension 0 is the radical inverse (every m_k = 1); 1..3 are Joe and Kuo's first three
-// (their file new-joe-kuo-6.21201: x + 1; x² + x + 1 with m = 1, 3; x³ + x + 1 with 1, 3, 1).
-constexpr std::array<Matrix, 4> kMatrices = [] {
-  Matrix radical{};
-  for (int k = 0; k < 32; ++k)
-    radical[k] = 1u << (31 - k);
-  return std::array<Matrix, 4>{radical, sobol_matrix(1, 0, {1, 0, 0}),
-                               sobol_matrix(2, 1, {1, 3, 0}), sobol_matrix(3, 1, {1, 3, 1})};
-}();
+// Dimensions 2 and 3 are Joe and Kuo's second and third (their file new-joe-kuo-6.21201:
+// x² + x + 1 with m = 1, 3; x³ + x + 1 with 1, 3, 1). Dimension 0, the radical inverse, and 1
+// (x + 1) need no matrix: render/samplers/sobol_steps.h computes them by bit operations.
+constexpr std::array<Matrix, 2> kMatrices = {sobol_matrix(2, 1, {1, 3, 0}),
+                                             sobol_matrix(3, 1, {1, 3, 1})};
 
 // The matrix-vector product over GF(2) by bytes, in the bit-reversed domain the scrambles work
-// in: entry [d][b][v] is the XOR of the bit-reversed columns 31 − (8b + k) of dimension d for
-// the bits k of byte b of a reversed index. So reverse(point(i)) = XOR of 4 lookups on
+// in: entry [d][b][v] is the XOR of the bit-reversed columns 31 − (8b + k) of dimension d + 2
+// for the bits k of byte b of a reversed index. So reverse(point(i)) = XOR of 4 lookups on
 // reverse(i), and a sample needs one reversal per scramble instead of two.
-using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 4>;
+using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 2>;
 
 constexpr uint32_t reversed(uint32_t x) {
   uint32_t r = 0;
@@ -58,12 +55,12 @@ constexpr uint32_t reversed(uint32_t x) {
 constexpr ByteTables kReversedTables = [] {
   // Built incrementally (entry v is entry v without its lowest bit, XOR that bit's column)
   // from the reversed columns, to stay well inside compilers' constexpr step limits.
-  std::array<Matrix, 4> columns{};
-  for (int d = 0; d < 4; ++d)
+  std::array<Matrix, 2> columns{};
+  for (int d = 0; d < 2; ++d)
     for (int k = 0; k < 32; ++k)
       columns[d][k] = reversed(kMatrices[d][31 - k]);
   ByteTables t{};
-  for (int d = 0; d < 4; ++d)
+  for (int d = 0; d < 2; ++d)
     for (int b = 0; b < 4; ++b)
       for (uint32_t v = 1; v < 256; ++v) {
         int low = std::countr_zero(v);
@@ -72,41 +69,8 @@ constexpr ByteTables kReversedTables = [] {
   return t;
 }();
 
-uint32_t reversed_point(uint32_t reversed_index, int d) {
-  const auto& t = kReversedTables[d];
-  uint32_t r = reversed_index;
-  return t[0][r & 0xff] ^ t[1][(r >> 8) & 0xff] ^ t[2][(r >> 16) & 0xff] ^ t[3][r >> 24];
-}
-
-// A 32-bit integer hash with good avalanche (Wellons 2018, "Prospecting for hash functions",
-// the constants of his "lowbias32"): seeds for the scrambles of one group's components.
-uint32_t hash32(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 uint32_t reverse_bits(uint32_t x) {
-  x = __builtin_bswap32(x);
-  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
-  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
-  return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
-}
-
-// Laine and Karras 2011 ("Stratified sampling for stochastic transparency") observed that
-// x ↦ x ⊕ (x·even) and x ↦ x + seed change each bit by a function of the bits below it only;
-// on the bit-reversed value that is a nested uniform scramble. The constants are Burley's
-// (2020, §3), chosen for how well they mix.
-uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return x;
+  return Num<uint32_t>::reverse_bits(x);
 }
 
 // A group's 64-bit seed for a pixel: its low half scrambles the index, its high half seeds the
@@ -141,7 +105,7 @@ void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, un
 }
 
 uint32_t sobol_point(uint32_t index, int d) {
-  return reverse_bits(reversed_point(reverse_bits(index), d));
+  return reverse_bits(reversed_sobol_point(reverse_bits(index), uint32_t(d)));
 }
 
 uint32_t owen_scramble(uint32_t x, uint32_t seed) {
@@ -149,17 +113,10 @@ uint32_t owen_scramble(uint32_t x, uint32_t seed) {
 }
 
 std::array<double, 4> sobol_group(uint64_t seed, uint32_t index, uint32_t group) {
-  uint64_t group_seed = group_seed_of(seed, group);
-  // The index is shuffled per group (a scramble of its bits is a permutation of every aligned
-  // block of 2^m indices), so groups are independent yet each block of 2^m samples is still
-  // the same net. Everything stays bit-reversed until the last step.
-  uint32_t shuffled = scramble_reversed(reverse_bits(index), uint32_t(group_seed));
-  uint32_t seeds = uint32_t(group_seed >> 32);
+  const uint64_t group_seed = group_seed_of(seed, group);
   std::array<double, 4> u;
-  for (int c = 0; c < 4; ++c) {  // the four are independent: their latencies overlap
-    uint32_t v = scramble_reversed(reversed_point(shuffled, c), hash32(seeds + uint32_t(c)));
-    u[c] = reverse_bits(v) * 0x1p-32;
-  }
+  sobol_group_bits(reverse_bits(index), uint32_t(group_seed), uint32_t(group_seed >> 32),
+                   kAllComponents, [&](uint32_t c, uint32_t bits) { u[c] = sobol_unit(bits); });
   return u;
 }
 

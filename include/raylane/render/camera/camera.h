@@ -1,9 +1,9 @@
 // The pinhole camera of the course (docs/scene-language.md, "Camera and image orientation").
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 
+#include "raylane/core/numbers.h"
 #include "raylane/core/ray.h"
 #include "raylane/scene/scene.h"
 
@@ -32,27 +32,35 @@ struct Camera {
   Rayd ray_through_lens(double x, double y, double u1, double u2) const;
 };
 
-// The unit direction of the pinhole ray through the pixel-grid point (x, y), written once over
-// the number type: N = double for Camera::ray_through, N = double lanes for the camera's lanes
-// (src/render/camera/camera_lanes_impl.h); V3 = glm::dvec3 or simd::DoubleVec3. The steps, in their
-// order (the build has -ffp-contract=off, so both agree bit for bit): sx = 2x/W − 1,
-// d = right·(sx·rx) + up·(sy·ry) + forward, d / sqrt((dx² + dy²) + dz²) as core/vec_math.h's
-// normalize, with the correctly rounded square root `sqrt_of` (std::sqrt, simd::sqrt).
-template <class N, class V3, class Sqrt>
-V3 pinhole_direction(const Camera& c, const N& x, const N& y, Sqrt sqrt_of) {
+// The pinhole camera's steps, written once over the number type: N = double for the scalar
+// camera (ray_through, ray_through_lens), N = double lanes for the camera's lanes
+// (src/render/camera/camera_lanes_impl.h); V3 = glm::dvec3 or simd::DoubleVec3. The build has
+// -ffp-contract=off, so the same steps in the same order agree bit for bit.
+
+// The direction, not normalised, from the eye through the pixel-grid point (x, y):
+// right·(sx·rx) + up·(sy·ry) + forward, with sx = 2x/W − 1 and sy = 2y/H − 1, summed left to
+// right per axis as GLM's vector sums.
+template <class N, class V3>
+V3 pinhole_offset(const Camera& c, const N& x, const N& y) {
   const N two(2.0), one(1.0);
   const N sx = two * x / N(double(c.width)) - one, sy = two * y / N(double(c.height)) - one;
   const N a = sx * N(c.rx), b = sy * N(c.ry);
-  const N dx = N(c.right.x) * a + N(c.up.x) * b + N(c.forward.x);
-  const N dy = N(c.right.y) * a + N(c.up.y) * b + N(c.forward.y);
-  const N dz = N(c.right.z) * a + N(c.up.z) * b + N(c.forward.z);
-  const N len = sqrt_of(dx * dx + dy * dy + dz * dz);
-  return V3{dx / len, dy / len, dz / len};
+  return V3{N(c.right.x) * a + N(c.up.x) * b + N(c.forward.x),
+            N(c.right.y) * a + N(c.up.y) * b + N(c.forward.y),
+            N(c.right.z) * a + N(c.up.z) * b + N(c.forward.z)};
+}
+
+// The unit direction of the pinhole ray through (x, y): pinhole_offset / sqrt((dx² + dy²) +
+// dz²), as core/vec_math.h's normalize, with Num<N>'s correctly rounded square root.
+template <class N, class V3>
+V3 pinhole_direction(const Camera& c, const N& x, const N& y) {
+  const V3 d = pinhole_offset<N, V3>(c, x, y);
+  const N len = Num<N>::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return V3{d.x / len, d.y / len, d.z / len};
 }
 
 inline Rayd Camera::ray_through(double x, double y) const {
-  return {eye, pinhole_direction<double, glm::dvec3>(*this, x, y,
-                                                     [](double v) { return std::sqrt(v); })};
+  return {eye, pinhole_direction<double, glm::dvec3>(*this, x, y)};
 }
 
 }  // namespace raylane

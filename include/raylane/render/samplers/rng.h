@@ -9,12 +9,18 @@ namespace raylane {
 
 // SplitMix64's finaliser (Steele, Lea and Flood 2014, "Fast splittable pseudorandom number
 // generators"): a bijective mix whose output bits each depend on every input bit, so nearby
-// (tile, pass) keys give unrelated seeds.
-constexpr uint64_t mix64(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+// (tile, pass) keys give unrelated seeds. Written once over the number type: U64 = uint64_t
+// (mix64) or 64-bit unsigned lanes (the Sobol groups' seeds,
+// src/render/samplers/sobol_lanes_impl.h), modulo 2^64 in both.
+template <class U64>
+constexpr U64 splitmix64_finaliser(U64 z) {
+  z = z + U64(0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * U64(0xbf58476d1ce4e5b9ull);
+  z = (z ^ (z >> 27)) * U64(0x94d049bb133111ebull);
   return z ^ (z >> 31);
+}
+constexpr uint64_t mix64(uint64_t z) {
+  return splitmix64_finaliser(z);
 }
 
 class Rng {

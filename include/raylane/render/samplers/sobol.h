@@ -7,7 +7,6 @@
 // depend on the thread or the order they are drawn in.
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -19,9 +18,13 @@ namespace raylane {
 // A number u in [0, 1) as float: rounded to nearest, but never up to 1 (every u above
 // 1 − 2^-25 would round to 1). The float shading picks a lobe by u < pd, and pd is 1 for a
 // material that is diffuse alone, so a 1 would pick a lobe it does not have.
+// (std::min's comparison, written out, and a template on a tag that the per-ISA units set to
+// their instruction set: see sobol_unit in render/samplers/sobol_steps.h.)
 inline constexpr float kLargestBelowOne = 0x1.fffffep-1f;
-inline float unit_float(double u) {
-  return std::min(float(u), kLargestBelowOne);
+template <class Tag = void>
+float unit_float(double u) {
+  const float f = float(u);
+  return kLargestBelowOne < f ? kLargestBelowOne : f;
 }
 
 // The 32-bit Sobol point of `index` in dimension d = 0..3 (dimension 0 is van der Corput's
@@ -79,8 +82,8 @@ void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch,
                   unsigned components = kAllComponents, const SobolNumbers& numbers = {});
 
 namespace detail {
-// The byte tables of the first four dimensions, [dimension][byte][value], in the
-// bit-reversed domain (sobol.cpp): what the lanes gather from.
+// The byte tables of dimensions 2 and 3, [dimension − 2][byte][value], in the bit-reversed
+// domain (sobol.cpp): what render/samplers/sobol_steps.h's reversed_table_point looks up.
 const uint32_t* sobol_byte_tables();
 }  // namespace detail
 
