@@ -1,6 +1,7 @@
 // The packet backend (trace/trace_backend.h): the SIMD tracer on float rays, then the hits'
-// surfaces kind by kind (in double lanes where the kind has them, by surface_ref otherwise),
-// each for the ray as traced, so that t and the point agree.
+// surfaces kind by kind (in double lanes where the kind has them, float lanes for the render's
+// columns where it has those, by surface_ref otherwise), each for the ray as traced, so that t
+// and the point agree.
 #include <algorithm>
 
 #include "raylane/prims/prim_list.h"

@@ -326,8 +326,13 @@ void surfaces_float_range(const typename Kind::Table& table, const RayStream& ra
       at[k] = r, prim_rows[k] = int32_t(h.prim.row()), ray_rows[k] = int32_t(sink.ray_of(r));
       t[k] = float(h.t);  // the float kernel's t, widened exactly
     }
+    // The rays of a batch are mostly a run of the stream (the render's rows are its rays in
+    // order): loaded whole, else gathered.
     const simd::Ints<A> ray_idx = simd::load<A>(ray_rows);
-    auto col = [&](const Column<float>& c) { return simd::gather<A>(c.data(), ray_idx); };
+    const bool rays_run = simd::one_run<W>(reinterpret_cast<const uint32_t*>(ray_rows));
+    auto col = [&](const Column<float>& c) {
+      return rays_run ? simd::load<A>(c.data() + ray_rows[0]) : simd::gather<A>(c.data(), ray_idx);
+    };
     const FloatHitRayLanes<A> ray{{col(rays.ox), col(rays.oy), col(rays.oz)},
                                   {col(rays.dx), col(rays.dy), col(rays.dz)},
                                   F::load_aligned(t)};

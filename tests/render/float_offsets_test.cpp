@@ -16,6 +16,7 @@
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/core/strings.h"
+#include "raylane/render/samplers/rng.h"
 #include "raylane/trace/tracer.h"
 #include "support/random_scene.h"
 
@@ -158,6 +159,90 @@ TEST(FloatOffsets, FloatHitPointsLieWithinTheirBoundAndSpawnedRaysNeitherLeakNor
            {tag_of<Sphere>, tag_of<Box>, tag_of<Cylinder>, tag_of<MovingSphere>, tag_of<Triangle>})
         EXPECT_GT(n.kinds[std::size_t(tag)], 100) << "kind " << int(tag);
     }
+}
+
+// docs/hard-cases.md S2: a sphere of radius 1e5 as the ground, its top at y = 0, seen from
+// 1 to 10 above within |x|, |z| < 10. Float resolves heights there only to ulp(1e5) = 0.0078, so
+// the offset must scale with the radius (the sphere's bound: γ6 of n·r, about 0.036): no
+// reflected ray may meet the ground again, and no ray continuing down may meet it from outside.
+TEST(FloatOffsets, AHugeSphereAsGroundIsLeftByItsOwnBound) {
+  Scene scene;
+  scene.materials.push_back(Material{});
+  scene.table<Sphere>().append(std::array<double, 4>{0, -1e5, 0, 1e5}, 0);
+  Bvh bvh = build_bvh_and_reorder(scene);
+  std::vector<Rayd> from_above;
+  Rng rng(3);
+  for (int i = 0; i < 40000; ++i) {
+    const glm::dvec3 o(20 * rng.uniform() - 10, 1 + 9 * rng.uniform(), 20 * rng.uniform() - 10);
+    const glm::dvec3 to(20 * rng.uniform() - 10, 0, 20 * rng.uniform() - 10);
+    from_above.push_back({o, normalize(to - o)});
+  }
+  const RayStream rays = RayStream::from(from_above);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
+    const FloatHits first = trace_float(tracer, rays);
+    RayStream out, into;
+    for (std::size_t r = 0; r < first.rows.size(); ++r) {
+      const Rayf ray = rays.get(first.rows[r]);
+      const Vec p = first.point(r), ng = first.normal(r), err = first.bound(r);
+      const std::size_t k = out.size();
+      out.resize(k + 1), into.resize(k + 1);
+      const Vec reflected = ray.d - 2.0f * dot(ray.d, ng) * ng;
+      out.set(k, {offset_origin<float>(p, err, ng, ng), reflected, 0, HUGE_VALF, 0.5f});
+      into.set(k, {offset_origin<float>(p, err, ng, -ng), ray.d, 0, HUGE_VALF, 0.5f});
+    }
+    const FloatHits o = trace_float(tracer, out), in = trace_float(tracer, into);
+    int front_from_inside = 0;
+    for (std::size_t r = 0; r < in.rows.size(); ++r)
+      front_from_inside += in.front[r];
+    std::printf(
+        "[ ground   ] %s: %zu hits, %zu reflected rays re-hit, %d continuing rays "
+        "meet its front\n",
+        std::string(isa_name(isa)).c_str(), first.rows.size(), o.rows.size(), front_from_inside);
+    EXPECT_GT(first.rows.size(), 39000u);
+    EXPECT_EQ(o.rows.size(), 0u);
+    EXPECT_EQ(front_from_inside, 0);
+  }
+}
+
+// docs/hard-cases.md N5 at float: a box whose top face lies at y = 0 (the course scene's floor),
+// hit from above; rays leave the hit points within the face's plane (direction y = +0 or −0),
+// where a slab test's (0 − o)·(1/±0) is NaN for an origin exactly on the plane. The origin
+// must leave the plane even though the face's coordinate is 0, so that no such ray meets its
+// own box.
+TEST(FloatOffsets, RaysAlongAFaceAtZeroDoNotMeetTheirOwnBox) {
+  Scene scene;
+  scene.materials.push_back(Material{});
+  scene.table<Box>().append(std::array<double, 6>{-10, -1, -10, 20, 1, 20}, 0);
+  Bvh bvh = build_bvh_and_reorder(scene);
+  std::vector<Rayd> from_above;
+  Rng rng(4);
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 o(16 * rng.uniform() - 8, 1 + 4 * rng.uniform(), 16 * rng.uniform() - 8);
+    const glm::dvec3 to(16 * rng.uniform() - 8, 0, 16 * rng.uniform() - 8);
+    from_above.push_back({o, normalize(to - o)});
+  }
+  const RayStream rays = RayStream::from(from_above);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
+    const FloatHits first = trace_float(tracer, rays);
+    RayStream along;
+    for (std::size_t r = 0; r < first.rows.size(); ++r) {
+      const Vec p = first.point(r), ng = first.normal(r), err = first.bound(r);
+      const float phi = float(r) * 0.7f;
+      const Vec d(std::cos(phi), r % 2 ? 0.0f : -0.0f, std::sin(phi));
+      const std::size_t k = along.size();
+      along.resize(k + 1);
+      along.set(k, {offset_origin<float>(p, err, ng, ng), d, 0, HUGE_VALF, 0.5f});
+    }
+    const FloatHits a = trace_float(tracer, along);
+    std::printf("[ face at 0 ] %s: %zu hits on the top, %zu rays along it meet the box\n",
+                std::string(isa_name(isa)).c_str(), first.rows.size(), a.rows.size());
+    EXPECT_GT(first.rows.size(), 19000u);
+    EXPECT_EQ(a.rows.size(), 0u);
+  }
 }
 
 }  // namespace

@@ -320,9 +320,9 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
   };
   if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Box>) {
     const BoxTable& b = scene.table<Box>();
-    const BoxSurface<glm::vec3> s =
-        box_surface<float>(b.lo(hit.prim.row()), b.hi(hit.prim.row()), ray.o, ray.d, t);
-    return from_float(s.p, s.n, box_point_bound<float>(ray.o, ray.d, t, s));
+    const glm::vec3 lo = b.lo(hit.prim.row()), hi = b.hi(hit.prim.row());
+    const BoxSurface<glm::vec3> s = box_surface<float>(lo, hi, ray.o, ray.d, t);
+    return from_float(s.p, s.n, box_point_bound<float>(lo, hi, ray.o, ray.d, t, s));
   }
   if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Sphere>) {
     const SphereTable& sp = scene.table<Sphere>();

@@ -28,15 +28,19 @@ template <class N, class V3>
 V3 offset_origin_by(const V3& p, const N& along, const V3& ng, const V3& toward) {
   using K = Num<N>;
   const auto away = ng.x * toward.x + ng.y * toward.y + ng.z * toward.z < N(0.0);
+  // The step goes by the normal's side, not the offset's: where the bound is 0 (a box face at
+  // 0), the origin still leaves the surface by one unit in the last place.
   auto one = [&](const N& pk, const N& nk) {
-    const N out = nk * along;
-    const N off = K::select(away, K::negate(out), out);
-    return K::next_towards(pk + off, off);
+    const N out = nk * along, side = K::select(away, K::negate(nk), nk);
+    return K::next_towards(pk + K::select(away, K::negate(out), out), side);
   };
   return V3{one(p.x, ng.x), one(p.y, ng.y), one(p.z, ng.z)};
 }
 
-// `error` bounds |p − exact p| per component.
+// `error` bounds p's error such that its projection on the normal, dot(|ng|, error), bounds p's
+// distance from the true surface: what the offset must clear. (For most kinds it bounds
+// |p − exact p| per component; a sphere's reprojected point may slide along the sphere by more,
+// which no offset along the normal needs to cover: sphere_point_bound.)
 template <class N, class V3>
 V3 offset_origin(const V3& p, const V3& error, const V3& ng, const V3& toward) {
   return offset_origin_by<N>(p, offset_along_normal<N>(error, ng), ng, toward);

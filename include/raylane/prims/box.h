@@ -152,20 +152,24 @@ BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o, const V3& d,
   return out;
 }
 
-// A componentwise bound on the error of box_surface's point computed in float. On the face's
-// axis the point is the face's own float plane, exact; one roundoff of |p| is kept there, so
-// that an origin offset by it still moves off the plane (the packet kernel's (plane − o)·(1/d)
-// keeps the sign of plane − o, exact for neighbouring floats). Along the face the point is
-// o + t·d, as float_hit_point_bound (core/ray_offset.h) bounds it.
+// A bound on the error of box_surface's point computed in float, for the offset along its
+// normal. On the face's axis the point is the face's own float plane, exact; the bound keeps
+// one roundoff of the box's larger corner coordinate on that axis there, so that an origin
+// offset by it moves off the plane even where the face lies at 0 (the course scene's floor),
+// and a ray leaving within the face's plane (a direction component ±0) starts outside the slab
+// rather than on it, where 0·inf is NaN and the slab would not count. Along the face the point
+// is o + t·d, as float_hit_point_bound (core/ray_offset.h) bounds it.
 template <class N, class V3>
-V3 box_point_bound(const V3& o, const V3& d, const N& t, const BoxSurface<V3>& s) {
+V3 box_point_bound(const V3& lo, const V3& hi, const V3& o, const V3& d, const N& t,
+                   const BoxSurface<V3>& s) {
   using K = Num<N>;
   const V3 along = float_hit_point_bound<N>(o, d, t, s.p);
   const N own(kFloatUnitRoundoff * (1 + 0x1p-20));
-  auto one = [&](const N& nk, const N& pk, const N& ak) {
-    return K::select(nk != N(0.0), K::abs(pk) * own, ak);
+  auto one = [&](const N& nk, const N& lok, const N& hik, const N& ak) {
+    return K::select(nk != N(0.0), K::max(K::abs(lok), K::abs(hik)) * own, ak);
   };
-  return V3{one(s.n.x, s.p.x, along.x), one(s.n.y, s.p.y, along.y), one(s.n.z, s.p.z, along.z)};
+  return V3{one(s.n.x, lo.x, hi.x, along.x), one(s.n.y, lo.y, hi.y, along.y),
+            one(s.n.z, lo.z, hi.z, along.z)};
 }
 
 inline Surface surface_ref(const BoxTable& b, uint32_t i, const Rayd& ray, double t) {

@@ -132,11 +132,14 @@ SphereSurface<V3> sphere_surface(const V3& c, const N& r, const V3& o, const V3&
   return {V3{c.x + offset.x, c.y + offset.y, c.z + offset.z}, n, offset};
 }
 
-// A componentwise bound on the error of sphere_surface's point computed in float: the
-// reprojected offset n·r within γ6 of its exact value (pbrt-v4 §6.8.5 bounds the reprojected
-// point by γ5|p| about the centre; one more for our division per component), plus the rounding of
-// c + n·r (one roundoff of |p|; c is the table's own float). Both constants carry 2^-20 more for
-// this sum's own float roundings.
+// A bound on the error of sphere_surface's point computed in float, for the offset along its
+// normal: the reprojected offset n·r within γ6 of its exact length along the normal (pbrt-v4
+// §6.8.5 bounds the reprojected point by γ5|p| about the centre; one more for our division per
+// component), plus the rounding of c + n·r (one roundoff of |p|; c is the table's own float).
+// Both constants carry 2^-20 more for this sum's own float roundings. Not a bound on where along
+// the sphere the point lies: o + t·d's rounding before the reprojection may slide it sideways by
+// more, as it may slide the double reference's, and no offset along the normal needs to cover
+// that.
 template <class N, class V3>
 V3 sphere_point_bound(const V3& p, const V3& offset) {
   using K = Num<N>;

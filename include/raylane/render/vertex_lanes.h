@@ -1,8 +1,9 @@
 // What a wavefront's vertices do after their BSDF (docs/design.md, "The scatter kernel"), in float
 // SIMD lanes: the contribution and origin of each vertex's shadow ray toward its light point, and
-// its next throughput (Russian roulette included) and ray origin. The steps are written once over
-// the number type (render/vertex_steps.h; core/ray_offset.h's offset_origin, shadow_tmax and
-// float_hit_point_bound): the double shading takes them at double, the lanes at float lanes,
+// its next throughput (Russian roulette included) and ray origin, offset by the point's error
+// bound (VertexBatch::p_error, the kind's own: SurfaceColumns). The steps are written once over
+// the number type (render/vertex_steps.h; core/ray_offset.h's offset_origin and shadow_tmax):
+// the double shading takes them at double, the lanes at float lanes,
 // and their scalar float instance is the lanes' bit-for-bit reference
 // (tests/render/vertex_lanes_test.cpp). scatter_vertices runs the BSDF (shade_lanes.h) and these
 // steps in one pass over the rows, the BSDF's answers kept in registers.
@@ -113,7 +114,7 @@ void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules
 // The steps for one vertex, at double for the double shading and at float as the lanes' scalar
 // twin (T double or float). The ray origins are offset_origin<T>(p, error, ng, direction), the
 // shadow ray's end shadow_tmax<T>(origin, p, light_wi, light_dist) (core/ray_offset.h), with
-// error hit_point_error in double and float_hit_point_bound in float.
+// error hit_point_error in double and the row's p_error in float.
 //
 // A shadow ray's contribution if it sees the light, beta·f·Le·(w / light_pdf) with w the power
 // heuristic under MIS: false when it has none (no light point, f = 0, or not finite).

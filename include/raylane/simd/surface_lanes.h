@@ -1,8 +1,10 @@
-// Hit surfaces in double lanes: what each kind's surface_lanes (prims/<kind>_packet.h) takes
-// and gives. Lane code: included only through the kinds' packet headers by the SIMD tracer's
-// per-ISA translation units. Every step is the double reference's (surface_ref), in the same
-// order; with -ffp-contract=off and IEEE division and square root in the lanes, the answers
-// are the reference's bit for bit (tests/trace/tracer_test.cpp checks it at every ISA).
+// Hit surfaces in lanes: what each kind's surface_lanes (double lanes) and surface_float_lanes
+// (float lanes, with error bounds) take and give (prims/<kind>_packet.h). Lane code: included
+// only through the kinds' packet headers by the SIMD tracer's per-ISA translation units. The
+// double lanes run the double reference's steps (surface_ref) in its order; with
+// -ffp-contract=off and IEEE division and square root in the lanes, the answers are the
+// reference's bit for bit, and the float lanes' are the same steps' scalar float instance's
+// (tests/trace/tracer_test.cpp checks both at every ISA).
 #pragma once
 
 #include "raylane/simd/lane_numbers.h"

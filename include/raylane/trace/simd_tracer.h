@@ -69,8 +69,10 @@ class SimdTracer {
   // surface_ref gives them for the stream's ray i (the ray as traced) and h.t.
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                 std::span<const uint32_t> rows, Hit* hits) const;
-  // The same surfaces written as columns: for each r in `rows`, hits[ray[r]]'s (traced as the
-  // stream's ray ray[r]) into row r of `out`. hits need only prim and t.
+  // The surfaces written as columns: for each r in `rows`, hits[ray[r]]'s (traced as the
+  // stream's ray ray[r]) into row r of `out`, in float lanes with the kind's bound where it has
+  // them (surface_in_float_lanes), else the double lanes' rounded (Tracer::surfaces). hits
+  // need only prim and t.
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                 std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
                 const SurfaceColumns& out) const;

@@ -49,8 +49,10 @@ class Tracer {
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
   // The surfaces of hits[ray[r]] (each a hit, not a miss, of a closest() on `rays`, which may
-  // have given prim and t alone) into row r of `out`, for r in [0, ray.size()): as complete()
-  // gives them, kind by kind (in double lanes where the kind has them).
+  // have given prim and t alone) into row r of `out`, for r in [0, ray.size()), kind by kind,
+  // in float with an error bound (SurfaceColumns): from the kind's float lanes where it has
+  // them (surface_float_lanes: spheres and boxes, the same steps as complete()'s in float),
+  // else complete()'s surface (in double lanes where the kind has them) rounded.
   void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch& scratch) const;
   // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's

@@ -2,12 +2,11 @@
 // vertex as the wavefront arrives; the tracer writes their surfaces straight into the batches'
 // columns, and a few passes copy the listed hits, rays and paths into the rest, a column group
 // per pass (a pass over all thirty columns at once reloaded each column's pointer per row);
-// then the rows' numbers (Sobol groups in lanes), light points (render/lights/lights.h,
-// sample_many), BSDFs in float lanes (render/materials/shade_lanes.h) and shadow rays and next rays
-// in double lanes (render/vertex_lanes.h, reading the light points and BSDF answers where those
-// steps left them) all read and write columns; lane_write_back.cpp writes the rays and the paths
-// back. (Each step once gathered what it needed from the hits and paths itself: seven passes over
-// the rows, 18 % of a render.)
+// then the rows' numbers (Sobol groups in lanes) and light points (render/lights/lights.h,
+// sample_many) fill columns, and the scatter kernel (render/vertex_lanes.h: the BSDF, then the
+// shadow rays and next rays, in one pass of float lanes) reads them; lane_write_back.cpp writes
+// the rays and the paths back. (Each step once gathered what it needed from the hits and paths
+// itself: seven passes over the rows, 18 % of a render.)
 #include <algorithm>
 #include <cmath>
 
@@ -19,8 +18,8 @@ namespace raylane::path_detail {
 
 namespace {
 
-// The BSDF group's numbers for row r: (u1, u2, lobe) for the float lanes, roulette's for the
-// double ones (0 where this depth has no roulette).
+// The BSDF group's numbers for row r: (u1, u2, lobe) and roulette's (0 where this depth has
+// no roulette), rounded below 1 into the float columns.
 void set_bsdf_numbers(ThreadContext& ctx, std::size_t r, const std::array<double, 4>& u,
                       double u_roulette) {
   ShadeBatch& sb = ctx.wave.lane_vertices.shade;
@@ -153,9 +152,9 @@ struct Columns3Out {
   }
 };
 
-// The queued rows' surfaces, straight into the batches' columns: the point and geometric
-// normal (double) for the vertex lanes and the light sampler, the shading normal (float) for
-// the BSDF; dot(ns, d) and the facing into the rows' own columns.
+// The queued rows' surfaces, straight into the batches' columns: the float point, its error
+// bound and the geometric normal for the scatter kernel and the light sampler, the shading
+// normal for the BSDF; dot(ns, d) and the facing into the rows' own columns.
 void surface_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
