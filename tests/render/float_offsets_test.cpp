@@ -161,6 +161,20 @@ TEST(FloatOffsets, FloatHitPointsLieWithinTheirBoundAndSpawnedRaysNeitherLeakNor
     }
 }
 
+// n rays from heights [lo, hi] above the plane y = 0 to points of it, both within |x|, |z| < half.
+std::vector<Rayd> rays_onto_y0(uint64_t seed, int n, double half, double lo, double hi) {
+  Rng rng(seed);
+  auto across = [&] { return 2 * half * rng.uniform() - half; };
+  std::vector<Rayd> rays;
+  for (int i = 0; i < n; ++i) {
+    glm::dvec3 o, to;  // one number at a time: argument order is unspecified
+    o.x = across(), o.y = lo + (hi - lo) * rng.uniform(), o.z = across();
+    to.x = across(), to.y = 0, to.z = across();
+    rays.push_back({o, normalize(to - o)});
+  }
+  return rays;
+}
+
 // docs/hard-cases.md S2: a sphere of radius 1e5 as the ground, its top at y = 0, seen from
 // 1 to 10 above within |x|, |z| < 10. Float resolves heights there only to ulp(1e5) = 0.0078, so
 // the offset must scale with the radius (the sphere's bound: γ6 of n·r, about 0.036): no
@@ -170,14 +184,7 @@ TEST(FloatOffsets, AHugeSphereAsGroundIsLeftByItsOwnBound) {
   scene.materials.push_back(Material{});
   scene.table<Sphere>().append(std::array<double, 4>{0, -1e5, 0, 1e5}, 0);
   Bvh bvh = build_bvh_and_reorder(scene);
-  std::vector<Rayd> from_above;
-  Rng rng(3);
-  for (int i = 0; i < 40000; ++i) {
-    const glm::dvec3 o(20 * rng.uniform() - 10, 1 + 9 * rng.uniform(), 20 * rng.uniform() - 10);
-    const glm::dvec3 to(20 * rng.uniform() - 10, 0, 20 * rng.uniform() - 10);
-    from_above.push_back({o, normalize(to - o)});
-  }
-  const RayStream rays = RayStream::from(from_above);
+  const RayStream rays = RayStream::from(rays_onto_y0(3, 40000, 10, 1, 10));
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(std::string(isa_name(isa)));
     const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
@@ -216,14 +223,7 @@ TEST(FloatOffsets, RaysAlongAFaceAtZeroDoNotMeetTheirOwnBox) {
   scene.materials.push_back(Material{});
   scene.table<Box>().append(std::array<double, 6>{-10, -1, -10, 20, 1, 20}, 0);
   Bvh bvh = build_bvh_and_reorder(scene);
-  std::vector<Rayd> from_above;
-  Rng rng(4);
-  for (int i = 0; i < 20000; ++i) {
-    const glm::dvec3 o(16 * rng.uniform() - 8, 1 + 4 * rng.uniform(), 16 * rng.uniform() - 8);
-    const glm::dvec3 to(16 * rng.uniform() - 8, 0, 16 * rng.uniform() - 8);
-    from_above.push_back({o, normalize(to - o)});
-  }
-  const RayStream rays = RayStream::from(from_above);
+  const RayStream rays = RayStream::from(rays_onto_y0(4, 20000, 8, 1, 5));
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(std::string(isa_name(isa)));
     const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
