@@ -130,7 +130,8 @@ void PacketBackend::surfaces(const RayStream& rays, const std::vector<Hit>& hits
     for (uint32_t r : rows) {
       const Hit& h = hits[ray[r]];
       const Rayd traced = ray_cast<double>(rays.get(ray[r]));
-      store_surface(out, r, surface_ref(table, h.prim.row(), traced, h.t), traced, h.t);
+      store_surface(out, r, scene_, h.prim, surface_ref(table, h.prim.row(), traced, h.t), traced,
+                    h.t);
     }
   });
 }

@@ -45,11 +45,12 @@ class Reference : public TraceBackend {
                 const SurfaceColumns& out, TraceScratch&) const override {
     for (std::size_t r = 0; r < ray.size(); ++r) {
       const Hit& h = hits[ray[r]];
-      store_surface(out, r, h.surface, ray_cast<double>(rays.get(ray[r])), h.t);
+      store_surface(out, r, scene(), h.prim, h.surface, ray_cast<double>(rays.get(ray[r])), h.t);
     }
   }
 
  protected:
+  virtual const Scene& scene() const = 0;
   virtual Hit closest_one(const Rayd& ray) const = 0;
   virtual bool any_one(const Rayd& ray) const = 0;
 
@@ -67,6 +68,7 @@ class BvhReference final : public Reference {
   BvhReference(const Scene& scene, const Bvh& bvh) : scene_(scene), bvh_(bvh) {}
 
  private:
+  const Scene& scene() const override { return scene_; }
   Hit closest_one(const Rayd& ray) const override { return closest_hit_bvh_ref(scene_, bvh_, ray); }
   bool any_one(const Rayd& ray) const override { return any_hit_bvh_ref(scene_, bvh_, ray); }
   const Scene& scene_;
@@ -78,6 +80,7 @@ class BruteForce final : public Reference {
   explicit BruteForce(const Scene& scene) : scene_(scene) {}
 
  private:
+  const Scene& scene() const override { return scene_; }
   Hit closest_one(const Rayd& ray) const override { return closest_hit_ref(scene_, ray); }
   bool any_one(const Rayd& ray) const override { return any_hit_ref(scene_, ray); }
   const Scene& scene_;

@@ -63,13 +63,15 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   h.front_face = dot(traced.d, h.surface.ng) < 0;
 }
 
-void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Rayd& ray,
-                   double t) {
+void store_surface(const SurfaceColumns& out, std::size_t r, const Scene& scene, PrimRef prim,
+                   const Surface& s, const Rayd& ray, double t) {
   out.px[r] = float(s.p.x), out.py[r] = float(s.p.y), out.pz[r] = float(s.p.z);
   out.ngx[r] = float(s.ng.x), out.ngy[r] = float(s.ng.y), out.ngz[r] = float(s.ng.z);
   out.nsx[r] = float(s.ns.x), out.nsy[r] = float(s.ns.y), out.nsz[r] = float(s.ns.z);
   // In double from the double point, then rounded: the bound's 2^-20 covers the rounding.
-  const glm::dvec3 e = float_hit_point_bound<double>(ray.o, ray.d, t, s.p);
+  glm::dvec3 e = float_hit_point_bound<double>(ray.o, ray.d, t, s.p);
+  if (prim.tag() == tag_of<Triangle>)
+    e += triangle_vertex_bound(scene.table<Triangle>(), prim.row());
   out.ex[r] = float(e.x), out.ey[r] = float(e.y), out.ez[r] = float(e.z);
   out.cos_ns[r] = dot(s.ns, ray.d);
   out.front[r] = dot(ray.d, s.ng) < 0;

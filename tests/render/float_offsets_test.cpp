@@ -16,6 +16,7 @@
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/core/strings.h"
+#include "raylane/core/warps.h"
 #include "raylane/render/samplers/rng.h"
 #include "raylane/trace/tracer.h"
 #include "support/random_scene.h"
@@ -242,6 +243,62 @@ TEST(FloatOffsets, RaysAlongAFaceAtZeroDoNotMeetTheirOwnBox) {
                 std::string(isa_name(isa)).c_str(), first.rows.size(), a.rows.size());
     EXPECT_GT(first.rows.size(), 19000u);
     EXPECT_EQ(a.rows.size(), 0u);
+  }
+}
+
+// docs/hard-cases.md R2 at float: a large tilted triangle pair (normal ∝ (1, 2, 3), vertices of
+// magnitude 50 to 70) near the world origin, hit by rays that start 0.05 to 0.5 from points
+// within 0.3 of the origin, as secondary rays do. The float kernel's own error grows with the
+// vertices' magnitudes, not with |o| + |t·d|; a reflected ray must not meet the triangle it
+// left.
+TEST(FloatOffsets, ALargeTriangleNearTheOriginIsNotHitAgain) {
+  Scene scene;
+  scene.materials.push_back(Material{});
+  const glm::dvec3 n = normalize(glm::dvec3(1, 2, 3));
+  const glm::dvec3 u = normalize(cross(n, glm::dvec3(1, 0, 0))), v = cross(n, u);
+  auto at = [&](double a, double b) { return glm::vec3(u * a + v * b); };
+  const std::array<glm::vec3, 3> t0{at(-60, -50), at(60, -45), at(-5, 70)};
+  const std::array<glm::vec3, 3> t1{at(60, -45), at(55, 65), at(-5, 70)};
+  const glm::vec3 fn(n);
+  scene.table<Triangle>().append(t0, {fn, fn, fn}, 0);
+  scene.table<Triangle>().append(t1, {fn, fn, fn}, 0);
+  Bvh bvh = build_bvh_and_reorder(scene);
+  Rng rng(5);
+  std::vector<Rayd> near;
+  for (int i = 0; i < 200000; ++i) {
+    glm::dvec3 target;
+    target.x = 0.6 * rng.uniform() - 0.3, target.y = 0.6 * rng.uniform() - 0.3;
+    target.z = -(n.x * target.x + n.y * target.y) / n.z;  // on the plane through 0
+    const double away = 0.05 + 0.45 * rng.uniform();
+    glm::dvec3 off = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    if (dot(off, n) < 0.2) off = normalize(off + n);
+    near.push_back({target + off * away, -off});
+  }
+  const RayStream rays = RayStream::from(near);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    const Tracer tracer(scene, bvh, TracerBackend::kPacket, isa);
+    const FloatHits first = trace_float(tracer, rays);
+    RayStream out;
+    std::vector<PrimRef> own;
+    for (std::size_t r = 0; r < first.rows.size(); ++r) {
+      const Rayf ray = rays.get(first.rows[r]);
+      const Vec p = first.point(r), ng = first.normal(r), err = first.bound(r);
+      const Vec side = dot(ray.d, ng) < 0 ? ng : -ng;
+      const Vec reflected = ray.d - 2.0f * dot(ray.d, ng) * ng;
+      const std::size_t k = out.size();
+      out.resize(k + 1);
+      out.set(k, {offset_origin<float>(p, err, ng, side), reflected, 0, HUGE_VALF, 0.5f});
+      own.push_back(first.hits[first.rows[r]].prim);
+    }
+    const FloatHits o = trace_float(tracer, out);
+    int again = 0;
+    for (uint32_t i : o.rows)
+      again += o.hits[i].prim == own[i];
+    std::printf("[ large tri ] %s: %zu hits, %d reflected rays meet their triangle again\n",
+                std::string(isa_name(isa)).c_str(), first.rows.size(), again);
+    EXPECT_GT(first.rows.size(), 190000u);
+    EXPECT_EQ(again, 0);
   }
 }
 

@@ -335,10 +335,13 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
   Hit h = hit;
   tracer.complete(rd, h);
   const Surface& s = h.surface;
+  glm::dvec3 error = float_hit_point_bound<double>(rd.o, rd.d, hit.t, s.p);
+  if (hit.prim.tag() == tag_of<Triangle>)
+    error += triangle_vertex_bound(scene.table<Triangle>(), hit.prim.row());
   return {glm::vec3(s.p),
           glm::vec3(s.ng),
           glm::vec3(s.ns),
-          glm::vec3(float_hit_point_bound<double>(rd.o, rd.d, hit.t, s.p)),
+          glm::vec3(error),
           dot(s.ns, rd.d),
           h.front_face,
           false};

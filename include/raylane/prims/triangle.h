@@ -163,6 +163,17 @@ inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray
   return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
 }
 
+// What a triangle adds to the bound on its hit point's error (float_hit_point_bound) for the
+// render's offsets: the float kernel decides which side of the plane a ray's origin lies on with
+// an error that grows with the vertices' magnitudes, not with |o| + |t·d| (docs/hard-cases.md
+// R2). pbrt-v4 §6.8.5 bounds the barycentric point by γ7·Σ|bᵢ·pᵢ|; with the barycentrics in
+// [0, 1] summing to 1, the largest vertex coordinate per component bounds the sum.
+inline glm::dvec3 triangle_vertex_bound(const TriangleTable& tri, uint32_t i) {
+  const glm::dvec3 m =
+      max(max(abs(glm::dvec3(tri.p0(i))), abs(glm::dvec3(tri.p1(i)))), abs(glm::dvec3(tri.p2(i))));
+  return m * gamma_float(7);
+}
+
 // The vertices' UVs interpolated with the barycentrics of the hit point, found from the point
 // by least squares on the edges (exact for a point in the plane; the point of a hit is within
 // rounding of it). (0, 0) for a table without UVs.

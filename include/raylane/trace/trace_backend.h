@@ -54,9 +54,10 @@ std::unique_ptr<const TraceBackend> packet_backend(const Scene& scene, const Bvh
 std::unique_ptr<const TraceBackend> bvh_reference_backend(const Scene& scene, const Bvh& bvh);
 std::unique_ptr<const TraceBackend> brute_force_backend(const Scene& scene);
 
-// One surface into row r of `out`, from a Surface record, for the ray that met it at t (the
-// point's bound: float_hit_point_bound, core/ray_offset.h).
-void store_surface(const SurfaceColumns& out, std::size_t r, const Surface& s, const Rayd& ray,
-                   double t);
+// One surface into row r of `out`, from a Surface record of a hit on `prim`, for the ray that
+// met it at t (the point's bound: float_hit_point_bound, core/ray_offset.h, and for a triangle
+// triangle_vertex_bound too).
+void store_surface(const SurfaceColumns& out, std::size_t r, const Scene& scene, PrimRef prim,
+                   const Surface& s, const Rayd& ray, double t);
 
 }  // namespace raylane
