@@ -40,7 +40,10 @@ class PacketBackend final : public TraceBackend {
     for (std::size_t i = 0; i < rays.size(); ++i)
       blocked[i] = scratch.hits.prim[i] != PrimRef::kInvalidBits;
   }
-  void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
+  void closest(const RayStream& rays, HitStream& hits, TraceScratch&) const override {
+    simd_.closest(scene_, bvh_, rays, hits);
+  }
+  void surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch& scratch) const override;
 
  private:
@@ -79,21 +82,22 @@ void PacketBackend::closest(const RayStream& rays, std::vector<Hit>& hits, std::
   complete_by_prim_kind(rays, hits, std::min(with_surface, n), scratch);
 }
 
-// The hits' rows grouped by primitive kind into scratch.by_kind: row r where hit_of(r) is one.
-template <class HitOf>
-void group_by_prim_kind(std::size_t n, const HitOf& hit_of, TraceScratch& scratch) {
+// The hits' rows grouped by primitive kind into scratch.by_kind: row r where prim_of(r) is
+// valid (a hit), in its kind's list.
+template <class PrimOf>
+void group_by_prim_kind(std::size_t n, const PrimOf& prim_of, TraceScratch& scratch) {
   for (auto& rows : scratch.by_kind)
     rows.clear();
   for (std::size_t r = 0; r < n; ++r) {
-    const Hit& h = hit_of(r);
-    if (h.hit()) scratch.by_kind[std::size_t(h.prim.tag())].push_back(uint32_t(r));
+    const PrimRef prim = prim_of(r);
+    if (prim.valid()) scratch.by_kind[std::size_t(prim.tag())].push_back(uint32_t(r));
   }
 }
 
 void PacketBackend::complete_by_prim_kind(const RayStream& rays, std::vector<Hit>& hits,
                                           std::size_t n, TraceScratch& scratch) const {
   group_by_prim_kind(
-      n, [&](std::size_t i) -> const Hit& { return hits[i]; }, scratch);
+      n, [&](std::size_t i) { return hits[i].prim; }, scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
@@ -114,24 +118,25 @@ void PacketBackend::complete_by_prim_kind(const RayStream& rays, std::vector<Hit
   });
 }
 
-void PacketBackend::surfaces(const RayStream& rays, const std::vector<Hit>& hits,
+void PacketBackend::surfaces(const RayStream& rays, const HitStream& hits,
                              std::span<const uint32_t> ray, const SurfaceColumns& out,
                              TraceScratch& scratch) const {
+  const uint32_t* prim = hits.prim.data();
   group_by_prim_kind(
-      ray.size(), [&](std::size_t r) -> const Hit& { return hits[ray[r]]; }, scratch);
+      ray.size(), [&](std::size_t r) { return PrimRef::from_bits(prim[ray[r]]); }, scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
     if constexpr (Kind::surface_in_lanes || Kind::surface_in_float_lanes) {
-      simd_.surfaces(scene_, rays, tag_of<Kind>, rows, ray.data(), hits.data(), out);
+      simd_.surfaces(scene_, rays, tag_of<Kind>, rows, ray.data(), hits, out);
       return;
     }
     const typename Kind::Table& table = scene_.table<Kind>();
     for (uint32_t r : rows) {
-      const Hit& h = hits[ray[r]];
+      const PrimRef p = PrimRef::from_bits(prim[ray[r]]);
       const Rayd traced = ray_cast<double>(rays.get(ray[r]));
-      store_surface(out, r, scene_, h.prim, surface_ref(table, h.prim.row(), traced, h.t), traced,
-                    h.t);
+      const double t = hits.t[ray[r]];
+      store_surface(out, r, scene_, p, surface_ref(table, p.row(), traced, t), traced, t);
     }
   });
 }

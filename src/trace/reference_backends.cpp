@@ -40,12 +40,21 @@ class Reference : public TraceBackend {
       blocked[i] = occluded_one(ray_cast<double>(rays.get(i)),
                                 aimed ? PrimRef::from_bits(rays.aim[i]) : PrimRef::invalid());
   }
-  // A reference's hits come with their surfaces.
-  void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
+  void closest(const RayStream& rays, HitStream& hits, TraceScratch&) const override {
+    hits.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const Hit h = closest_one(ray_cast<double>(rays.get(i)));
+      hits.t[i] = float(h.t);  // +inf for a miss
+      hits.prim[i] = h.prim.bits();
+    }
+  }
+  void surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch&) const override {
     for (std::size_t r = 0; r < ray.size(); ++r) {
-      const Hit& h = hits[ray[r]];
-      store_surface(out, r, scene(), h.prim, h.surface, ray_cast<double>(rays.get(ray[r])), h.t);
+      const PrimRef prim = PrimRef::from_bits(hits.prim[ray[r]]);
+      const Rayd traced = ray_cast<double>(rays.get(ray[r]));
+      const double t = hits.t[ray[r]];
+      store_surface(out, r, scene(), prim, surface_of(scene(), prim, traced, t), traced, t);
     }
   }
 

@@ -56,8 +56,8 @@ void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kin
 }
 
 void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
-                          std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
-                          const SurfaceColumns& out) const {
+                          std::span<const uint32_t> rows, const uint32_t* ray,
+                          const HitStream& hits, const SurfaceColumns& out) const {
   lanes_->surface_columns(scene, rays, kind, rows, ray, hits, out);
 }
 

@@ -185,7 +185,8 @@ struct HitSink {
   static constexpr bool kTakesFloats = false;
   Hit* hits;
   uint32_t ray_of(uint32_t r) const { return r; }
-  const Hit& hit_of(uint32_t r) const { return hits[r]; }
+  uint32_t prim_row(uint32_t r) const { return hits[r].prim.row(); }
+  double t_of(uint32_t r) const { return hits[r].t; }
   void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d,
              const glm::dvec3& /*error: a hit record's bound is hit_point_error*/) const {
     Hit& h = hits[r];
@@ -194,16 +195,18 @@ struct HitSink {
   }
 };
 
-// ... or into row r of columns, for hit ray[r] (the render's lane rows).
+// ... or into row r of columns, for hit ray[r] of a HitStream's columns (the render's lane rows).
 template <class A>
 struct ColumnSink {
   static constexpr bool kTakesRuns = true;
   static constexpr bool kTakesFloats = true;  // float surfaces where the kind has them
   const uint32_t* ray;
-  const Hit* hits;
+  const float* t;        // HitStream::t
+  const uint32_t* prim;  // HitStream::prim
   SurfaceColumns out;
   uint32_t ray_of(uint32_t r) const { return ray[r]; }
-  const Hit& hit_of(uint32_t r) const { return hits[ray[r]]; }
+  uint32_t prim_row(uint32_t r) const { return PrimRef::from_bits(prim[ray[r]]).row(); }
+  double t_of(uint32_t r) const { return t[ray[r]]; }
   // A double surface: rounded to float, its bound computed in double and rounded
   // (float_hit_point_bound's 2^-20 covers the rounding).
   void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d,
@@ -277,8 +280,7 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
     alignas(64) double t[W];
     for (int k = 0; k < W; ++k) {
       const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
-      const Hit& h = sink.hit_of(r);
-      at[k] = r, prim_rows[k] = h.prim.row(), ray_rows[k] = sink.ray_of(r), t[k] = h.t;
+      at[k] = r, prim_rows[k] = sink.prim_row(r), ray_rows[k] = sink.ray_of(r), t[k] = sink.t_of(r);
     }
     auto col = [&](const Column<float>& c) { return simd::load_rows<A>(c.data(), ray_rows); };
     const HitRayLanes<A> ray{{col(rays.ox), col(rays.oy), col(rays.oz)},
@@ -322,9 +324,8 @@ void surfaces_float_range(const typename Kind::Table& table, const RayStream& ra
     alignas(64) float t[W];
     for (int k = 0; k < W; ++k) {
       const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
-      const Hit& h = sink.hit_of(r);
-      at[k] = r, prim_rows[k] = int32_t(h.prim.row()), ray_rows[k] = int32_t(sink.ray_of(r));
-      t[k] = float(h.t);  // the float kernel's t, widened exactly
+      at[k] = r, prim_rows[k] = int32_t(sink.prim_row(r)), ray_rows[k] = int32_t(sink.ray_of(r));
+      t[k] = float(sink.t_of(r));  // the float kernel's t, exact
     }
     // The rays of a batch are mostly a run of the stream (the render's rows are its rays in
     // order): loaded whole, else gathered.

@@ -45,9 +45,12 @@ void Tracer::occluded(const RayStream& rays, std::vector<uint8_t>& blocked,
   impl_->occluded(rays, blocked, scratch);
 }
 
-void Tracer::surfaces(const RayStream& rays, const std::vector<Hit>& hits,
-                      std::span<const uint32_t> ray, const SurfaceColumns& out,
-                      TraceScratch& scratch) const {
+void Tracer::closest(const RayStream& rays, HitStream& hits, TraceScratch& scratch) const {
+  impl_->closest(rays, hits, scratch);
+}
+
+void Tracer::surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
+                      const SurfaceColumns& out, TraceScratch& scratch) const {
   impl_->surfaces(rays, hits, ray, out, scratch);
 }
 
@@ -57,10 +60,14 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   // surface is computed for that ray so that t and the point agree.
   const Rayd traced =
       backend_ == TracerBackend::kPacket ? ray_cast<double>(ray_cast<float>(ray)) : ray;
-  h.surface = dispatch(h.prim.tag(), [&](auto kind) {
-    return surface_ref(scene_.table<decltype(kind)>(), h.prim.row(), traced, h.t);
-  });
+  h.surface = surface_of(scene_, h.prim, traced, h.t);
   h.front_face = dot(traced.d, h.surface.ng) < 0;
+}
+
+Surface surface_of(const Scene& scene, PrimRef prim, const Rayd& ray, double t) {
+  return dispatch(prim.tag(), [&](auto kind) {
+    return surface_ref(scene.table<decltype(kind)>(), prim.row(), ray, t);
+  });
 }
 
 void store_surface(const SurfaceColumns& out, std::size_t r, const Scene& scene, PrimRef prim,

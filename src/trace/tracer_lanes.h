@@ -23,8 +23,8 @@ struct TracerLanes {
                    std::span<const uint32_t> rows, Hit* hits);
   // ... or into columns.
   void (*surface_columns)(const Scene& scene, const RayStream& rays, PrimTag kind,
-                          std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
-                          const SurfaceColumns& out);
+                          std::span<const uint32_t> rows, const uint32_t* ray,
+                          const HitStream& hits, const SurfaceColumns& out);
 };
 
 extern const TracerLanes kTracerLanesSse42, kTracerLanesAvx2, kTracerLanesAvx512;

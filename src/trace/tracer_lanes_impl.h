@@ -16,9 +16,10 @@ void surfaces_into_hits(const Scene& scene, const RayStream& rays, PrimTag kind,
 
 template <class A>
 void surfaces_into_columns(const Scene& scene, const RayStream& rays, PrimTag kind,
-                           std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
-                           const SurfaceColumns& out) {
-  surfaces_of_kind<A>(scene, rays, kind, rows, ColumnSink<A>{ray, hits, out});
+                           std::span<const uint32_t> rows, const uint32_t* ray,
+                           const HitStream& hits, const SurfaceColumns& out) {
+  surfaces_of_kind<A>(scene, rays, kind, rows,
+                      ColumnSink<A>{ray, hits.t.data(), hits.prim.data(), out});
 }
 
 template <class A>

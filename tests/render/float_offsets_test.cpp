@@ -43,11 +43,12 @@ constexpr Scale kScales[] = {{"unit", 10, 0.6, {0, 0, 0}},
 
 // The float hits of a stream: the render's columns (point, geometric normal, facing).
 struct FloatHits {
-  std::vector<Hit> hits;
+  HitStream hits;
   std::vector<uint32_t> rows;  // the rays that hit something
   std::vector<float> p[3], ng[3], ns[3], error[3];
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
+  PrimRef prim(std::size_t i) const { return PrimRef::from_bits(hits.prim[i]); }  // ray i's
   Vec point(std::size_t r) const { return {p[0][r], p[1][r], p[2][r]}; }
   Vec normal(std::size_t r) const { return {ng[0][r], ng[1][r], ng[2][r]}; }
   Vec bound(std::size_t r) const { return {error[0][r], error[1][r], error[2][r]}; }
@@ -56,9 +57,9 @@ struct FloatHits {
 FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
   FloatHits f;
   TraceScratch scratch;
-  tracer.closest(rays, f.hits, 0, scratch);
+  tracer.closest(rays, f.hits, scratch);
   for (std::size_t i = 0; i < rays.size(); ++i)
-    if (f.hits[i].hit()) f.rows.push_back(uint32_t(i));
+    if (PrimRef::from_bits(f.hits.prim[i]).valid()) f.rows.push_back(uint32_t(i));
   const std::size_t n = f.rows.size();
   for (int k = 0; k < 3; ++k)
     f.p[k].resize(n), f.ng[k].resize(n), f.ns[k].resize(n), f.error[k].resize(n);
@@ -116,7 +117,7 @@ void check_scale(const Scale& scale, Isa isa, Counts& n) {
   std::vector<PrimRef> own;
   for (std::size_t r = 0; r < first.rows.size(); ++r) {
     const uint32_t i = first.rows[r];
-    const PrimRef prim = first.hits[i].prim;
+    const PrimRef prim = first.prim(i);
     if (!first.front[r] || !convex_or_planar(prim.tag())) continue;
     const Rayf ray = rays.get(i);
     const Vec p = first.point(r), ng = first.normal(r);
@@ -138,9 +139,9 @@ void check_scale(const Scale& scale, Isa isa, Counts& n) {
   }
   const FloatHits o = trace_float(tracer, out), in = trace_float(tracer, into);
   for (std::size_t r = 0; r < o.rows.size(); ++r)
-    n.acne += o.hits[o.rows[r]].prim == own[o.rows[r]];
+    n.acne += o.prim(o.rows[r]) == own[o.rows[r]];
   for (std::size_t r = 0; r < in.rows.size(); ++r)
-    n.leaks += in.hits[in.rows[r]].prim == own[in.rows[r]] && in.front[r];
+    n.leaks += in.prim(in.rows[r]) == own[in.rows[r]] && in.front[r];
 }
 
 TEST(FloatOffsets, FloatHitPointsLieWithinTheirBoundAndSpawnedRaysNeitherLeakNorReHit) {
@@ -289,12 +290,12 @@ TEST(FloatOffsets, ALargeTriangleNearTheOriginIsNotHitAgain) {
       const std::size_t k = out.size();
       out.resize(k + 1);
       out.set(k, {offset_origin<float>(p, err, ng, side), reflected, 0, HUGE_VALF, 0.5f});
-      own.push_back(first.hits[first.rows[r]].prim);
+      own.push_back(first.prim(first.rows[r]));
     }
     const FloatHits o = trace_float(tracer, out);
     int again = 0;
     for (uint32_t i : o.rows)
-      again += o.hits[i].prim == own[i];
+      again += o.prim(i) == own[i];
     std::printf("[ large tri ] %s: %zu hits, %d reflected rays meet their triangle again\n",
                 std::string(isa_name(isa)).c_str(), first.rows.size(), again);
     EXPECT_GT(first.rows.size(), 190000u);

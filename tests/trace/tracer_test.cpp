@@ -347,23 +347,57 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
           false};
 }
 
-// surfaces() writes complete()'s surfaces into columns, for hits given by prim and t alone (the
-// packet tracer's hits are poisoned first, so nothing is read from their surfaces). The
-// request lists the hits backward, every third skipped, twice over, so row r is not hit r and
-// the kinds are interleaved; then every hit again, kind by kind, so that each kind's rows come
-// in long runs of different hits (the lanes store a whole run at once: a lane stored in the
-// wrong row shows).
+// The hits closest() gives as columns (HitStream) as records, prim and t alone.
+std::vector<Hit> records_of(const HitStream& columns) {
+  std::vector<Hit> hits(columns.t.size());
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    hits[i].t = columns.t[i], hits[i].prim = PrimRef::from_bits(columns.prim[i]);
+  return hits;
+}
+
+// closest() as columns gives each ray the primitive of its record and the record's t rounded
+// to float (the packet tracer's exactly: its t is a float).
+void expect_hit_columns_are_the_records(const Tracer& tracer, const std::vector<Rayd>& rays) {
+  const RayStream stream = RayStream::from(rays);
+  TraceScratch scratch;
+  std::vector<Hit> records;
+  HitStream columns;
+  tracer.closest(stream, records, 0, scratch);
+  tracer.closest(stream, columns, scratch);
+  ASSERT_EQ(columns.t.size(), rays.size());
+  ASSERT_EQ(columns.prim.size(), rays.size());
+  int hits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(columns.prim[i], records[i].prim.bits()) << "ray " << i;
+    ASSERT_TRUE(same_bits(columns.t[i], float(records[i].t))) << "ray " << i;
+    if (tracer.backend() == TracerBackend::kPacket) {
+      ASSERT_EQ(double(columns.t[i]), records[i].t);
+    }
+    hits += records[i].hit();
+  }
+  EXPECT_GT(hits, int(rays.size() / 4));
+}
+
+TEST(Tracer, HitColumnsAreTheRecordsPrimAndT) {
+  with_every_tracer(2000, 300, expect_hit_columns_are_the_records);
+}
+
+// surfaces() writes complete()'s surfaces into columns, for hits given as columns (prim and t
+// alone: for the references, the surface at the float t). The request lists the hits
+// backward, every third skipped, twice over, so row r is not hit r and the kinds are
+// interleaved; then every hit again, kind by kind, so that each kind's rows come in long runs
+// of different hits (the lanes store a whole run at once: a lane stored in the wrong row shows).
 void expect_surface_columns_are_completes(const Tracer& tracer, const std::vector<Rayd>& rays) {
   const RayStream stream = RayStream::from(rays);
   TraceScratch scratch;
-  std::vector<Hit> hits;
-  tracer.closest(stream, hits, 0, scratch);
+  HitStream columns;
+  tracer.closest(stream, columns, scratch);
+  const std::vector<Hit> hits = records_of(columns);
   const double nan = std::nan("");
   std::vector<uint32_t> request;
   for (int pass = 0; pass < 2; ++pass)
     for (std::size_t i = hits.size(); i-- > 0;) {
       if (!hits[i].hit() || i % 3 == 0) continue;
-      if (tracer.backend() == TracerBackend::kPacket) hits[i].surface = {{nan, nan, nan}, {}, {}};
       request.push_back(uint32_t(i));
     }
   // A third pass lists each kind's hits together, after an odd number of rows: long runs at
@@ -382,7 +416,7 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
                            ng[1].data(),  ng[2].data(),    ns[0].data(),    ns[1].data(),
                            ns[2].data(),  error[0].data(), error[1].data(), error[2].data(),
                            cos_ns.data(), front.data()};
-  tracer.surfaces(stream, hits, request, out, scratch);
+  tracer.surfaces(stream, columns, request, out, scratch);
   int back = 0, smooth = 0, kinds[kPrimKindCount] = {}, in_float = 0;
   for (std::size_t r = 0; r < n; ++r) {
     const Hit& hit = hits[request[r]];

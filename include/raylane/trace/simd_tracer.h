@@ -71,10 +71,9 @@ class SimdTracer {
                 std::span<const uint32_t> rows, Hit* hits) const;
   // The surfaces written as columns: for each r in `rows`, hits[ray[r]]'s (traced as the
   // stream's ray ray[r]) into row r of `out`, in float lanes with the kind's bound where it has
-  // them (surface_in_float_lanes), else the double lanes' rounded (Tracer::surfaces). hits
-  // need only prim and t.
+  // them (surface_in_float_lanes), else the double lanes' rounded (Tracer::surfaces).
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
-                std::span<const uint32_t> rows, const uint32_t* ray, const Hit* hits,
+                std::span<const uint32_t> rows, const uint32_t* ray, const HitStream& hits,
                 const SurfaceColumns& out) const;
 
  private:

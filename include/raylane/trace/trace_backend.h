@@ -42,17 +42,20 @@ class TraceBackend {
   // Rays given in float columns (the render's wavefronts): the references widen each exactly.
   virtual void closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t with_surface,
                        TraceScratch& scratch) const = 0;
+  virtual void closest(const RayStream& rays, HitStream& hits, TraceScratch& scratch) const = 0;
   virtual void occluded(const RayStream& rays, std::vector<uint8_t>& blocked,
                         TraceScratch& scratch) const = 0;
-  virtual void surfaces(const RayStream& rays, const std::vector<Hit>& hits,
-                        std::span<const uint32_t> ray, const SurfaceColumns& out,
-                        TraceScratch& scratch) const = 0;
+  virtual void surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
+                        const SurfaceColumns& out, TraceScratch& scratch) const = 0;
 };
 
 // Contract for the packet backend: isa_supported(isa).
 std::unique_ptr<const TraceBackend> packet_backend(const Scene& scene, const Bvh& bvh, Isa isa);
 std::unique_ptr<const TraceBackend> bvh_reference_backend(const Scene& scene, const Bvh& bvh);
 std::unique_ptr<const TraceBackend> brute_force_backend(const Scene& scene);
+
+// The surface of a hit on `prim` at t along `ray`, by its kind's double reference (surface_ref).
+Surface surface_of(const Scene& scene, PrimRef prim, const Rayd& ray, double t);
 
 // One surface into row r of `out`, from a Surface record of a hit on `prim`, for the ray that
 // met it at t (the point's bound: float_hit_point_bound, core/ray_offset.h, and for a triangle

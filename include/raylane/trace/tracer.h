@@ -46,14 +46,20 @@ class Tracer {
   // references trace each ray widened to double (exactly). `rays` may be scratch.rays.
   void closest(const RayStream& rays, std::vector<Hit>& hits, std::size_t with_surface,
                TraceScratch& scratch) const;
+  // closest() for float rays as two columns, prim and t alone (HitStream), for a caller that
+  // reads hits column by column and asks surfaces() for the ones it needs (the render's lane
+  // rows): no 96-byte record per ray. The packet tracer's t is its own; the references' double
+  // t is rounded to the nearest float (their records, from the overload above, keep it whole).
+  void closest(const RayStream& rays, HitStream& hits, TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
-  // The surfaces of hits[ray[r]] (each a hit, not a miss, of a closest() on `rays`, which may
-  // have given prim and t alone) into row r of `out`, for r in [0, ray.size()), kind by kind,
-  // in float with an error bound (SurfaceColumns): from the kind's float lanes where it has
-  // them (surface_float_lanes: spheres and boxes, the same steps as complete()'s in float),
-  // else complete()'s surface (in double lanes where the kind has them) rounded.
-  void surfaces(const RayStream& rays, const std::vector<Hit>& hits, std::span<const uint32_t> ray,
+  // The surfaces of hit ray[r] of `hits` (each a hit, not a miss, of a closest() on `rays`)
+  // into row r of `out`, for r in [0, ray.size()), kind by kind, in float with an error bound
+  // (SurfaceColumns): from the kind's float lanes where it has them (surface_float_lanes:
+  // spheres and boxes, the same steps as complete()'s in float), else complete()'s surface (in
+  // double lanes where the kind has them) rounded. For the references that surface is the one
+  // at the float t (its rounding lies within the bound: float_hit_point_bound).
+  void surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch& scratch) const;
   // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's
   // traversal ending at the first blocker. aims[i], when `aims` is not empty, is the primitive

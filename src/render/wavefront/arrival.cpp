@@ -1,6 +1,7 @@
 // The stage after tracing: the shadow rays' answers, and where each ray arrived — the
 // environment for an escaped ray, the emission of an emitter it hit (both finish the path
 // here), or a queue of vertices to shade.
+#include <algorithm>
 #include <array>
 
 #include "raylane/render/vertex_steps.h"
@@ -66,6 +67,31 @@ void add_unblocked_shadows(ThreadContext& ctx) {
     if (w.blocked[q] == 0) w.paths[s.path[q]].radiance += s.contribution_of(q);
 }
 
+namespace {
+
+// The lane_vertices rows sort_arrivals appends: their columns' pointers and the count, held
+// in locals through the loop (stores through the queue's vectors could alias its count and
+// pointers, so the compiler reloaded them at every row).
+struct LaneRowWriter {
+  uint32_t *path, *ray, *material, *depth;
+  uint64_t* pixel_seed;
+  std::size_t count;
+  explicit LaneRowWriter(LaneVertexQueue& q)
+      : path(q.path.data()),
+        ray(q.ray.data()),
+        material(q.material.data()),
+        depth(q.depth.data()),
+        pixel_seed(q.pixel_seed.data()),
+        count(q.count) {}
+  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, uint64_t seed) {
+    path[count] = p, ray[count] = k, material[count] = m, depth[count] = d;
+    pixel_seed[count] = seed;
+    ++count;
+  }
+};
+
+}  // namespace
+
 void sort_arrivals(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
@@ -74,32 +100,38 @@ void sort_arrivals(ThreadContext& ctx) {
   const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
   // Without an environment an escaped ray adds nothing (add_escape would find 0).
   const bool environment = ctx.lights.environment() != nullptr;
+  const uint32_t max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
   w.double_vertices.clear();
   if (lanes) start_lane_vertices(ctx, w.rays.size());
-  for (std::size_t k = 0; k < w.rays.size(); ++k) {
-    const uint32_t path = w.rays.path[k];
-    PathState& p = w.paths[path];
-    Hit& hit = w.hits[k];
-    if (!hit.hit()) {
+  LaneRowWriter lane_rows(w.lane_vertices);
+  const uint32_t* prim = w.hits.prim.data();
+  const uint32_t* ray_path = w.rays.path.data();
+  PathState* paths = w.paths.data();
+  const std::size_t n = w.rays.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const uint32_t path = ray_path[k];
+    PathState& p = paths[path];
+    const PrimRef hit = PrimRef::from_bits(prim[k]);
+    if (!hit.valid()) {
       if (environment) add_escape(ctx, p, ray_of(w.rays.rays, k));
       continue;
     }
-    const uint32_t material = material_of(hit.prim);
+    const uint32_t material = material_of(hit);
     const LaneMaterials::Route to = route[material];
     if (to == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing: the path ends
       const Rayd ray = ray_of(w.rays.rays, k);
-      if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
-      add_emission(ctx, p, ray, hit);
+      add_emission(ctx, p, ray, w.record(k, ctx.tracer, ray));
       continue;
     }
     const uint32_t depth = p.depth;
-    if (int(depth) >= ctx.settings.max_depth) continue;
+    if (depth >= max_depth) continue;
     p.depth = depth + 1;  // where the ray it sends on (if any) arrives
     if (lanes && to == LaneMaterials::Route::kLanes)
-      w.lane_vertices.push(path, uint32_t(k), material, depth, p.pixel_seed);
+      lane_rows.push(path, uint32_t(k), material, depth, p.pixel_seed);
     else
       w.double_vertices.push(uint32_t(k), material, depth);
   }
+  w.lane_vertices.count = lane_rows.count;
 }
 
 }  // namespace raylane::path_detail

@@ -123,11 +123,12 @@ uint32_t make_camera_rays(ThreadContext& ctx, const Camera& cam, uint32_t x0, ui
 }
 
 // The AOVs of the camera samples (render/film/aov.h) from this step's hits: rays
-// [0, Wavefront::camera_rays) are camera rays. A sample that meets nothing adds zeros.
+// [0, Wavefront::camera_rays) are camera rays, and the step has their records. A sample that
+// meets nothing adds zeros.
 void add_camera_aovs(const ThreadContext& ctx, Film& film) {
   const Scene& scene = ctx.tracer.scene();
   const Wavefront& w = ctx.wave;
-  const std::vector<Hit>& hits = w.hits;
+  const std::vector<Hit>& hits = w.records;
   const AovSet set = film.aovs;
   const std::size_t stride = std::size_t(set.channels());
   for (std::size_t k = 0; k < w.camera_rays; ++k) {

@@ -119,10 +119,9 @@ void shade_double_vertices(ThreadContext& ctx) {
   for (std::size_t i = 0; i < q.ray.size(); ++i) {
     const uint32_t k = q.ray[i], path = w.rays.path[k];
     PathState& p = w.paths[path];
-    Hit& hit = w.hits[k];
     const Rayd ray = ray_of(w.rays.rays, k);
+    const Hit hit = w.record(k, ctx.tracer, ray);
     const Material& m = materials[q.material[i]];
-    if (!w.hits_have_surfaces) ctx.tracer.complete(ray, hit);
     p.beta = p.beta * beer_transmittance(m, hit.front_face, hit.t);
     Rayd next;
     if (!shade_vertex_double(ctx, path, p, ray, hit, m, q.depth[i], next)) continue;

@@ -238,7 +238,7 @@ void texture_columns(ThreadContext& ctx) {
     const Material& material = scene.materials[m];
     const glm::dvec3 p(vb.p[0][r], vb.p[1][r], vb.p[2][r]);
     const glm::dvec3 ng(vb.ng[0][r], vb.ng[1][r], vb.ng[2][r]);
-    const PrimRef prim = w.hits[lv.ray[r]].prim;
+    const PrimRef prim = PrimRef::from_bits(w.hits.prim[lv.ray[r]]);
     const glm::vec3 textured(glm::dvec3(material.kd) *
                              texture_factor(scene, material, prim, Surface{p, ng, ng}));
     kd.set(r, textured);
@@ -258,13 +258,13 @@ void path_columns(ThreadContext& ctx) {
   const PathState* paths = w.paths.data();
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<float> beta(lv.vertices.beta);
-  const Hit* hits = w.hits.data();
+  const float* t = w.hits.t.data();
   for (std::size_t r = 0; r < n; ++r) {
     const PathState& path = paths[rows.path[r]];
     // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
     beta.set(r, rows.front[r] ? path.beta
                               : path.beta * beer_transmittance(materials[rows.material[r]], false,
-                                                               hits[rows.ray[r]].t));
+                                                               t[rows.ray[r]]));
   }
 }
 

@@ -129,10 +129,6 @@ struct LaneVertexQueue {
     path.resize(n), ray.resize(n), material.resize(n), depth.resize(n), cos_ns.resize(n);
     front.resize(n), pixel_seed.resize(n);
   }
-  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, uint64_t seed) {
-    const std::size_t r = count++;
-    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d, pixel_seed[r] = seed;
-  }
 };
 
 // A tile whose paths are in a wavefront: path slots [first, first + paths) of its `paths`.
@@ -161,14 +157,27 @@ struct alignas(128) Wavefront {
   CameraPoints camera;
   RayQueue rays, next_rays;
   ShadowQueue shadows, next_shadows;
-  std::vector<Hit> hits;            // hits[k] for rays ray k
-  bool hits_have_surfaces = false;  // or prim and t alone (Tracer::closest's with_surface)
-  std::vector<uint8_t> blocked;     // blocked[q] for shadow ray q
+  // Ray k's hit as columns: its primitive (hits.prim[k], invalid for a miss) and t. What the
+  // stages read of most hits; the lane rows' surfaces come from them (Tracer::surfaces).
+  HitStream hits;
+  // Ray k's hit with its surface, in a step that reads every surface (the double shading, the
+  // camera AOVs, a reference tracer); empty otherwise.
+  std::vector<Hit> records;
+  std::vector<uint8_t> blocked;  // blocked[q] for shadow ray q
   DoubleVertexQueue double_vertices;
   LaneVertexQueue lane_vertices;
   TraceScratch scratch;
   std::vector<TileInFlight> tiles;  // block b holds paths [b·kTile², (b + 1)·kTile²)
   std::size_t camera_rays = 0;      // rays [0, camera_rays) of `rays` are camera rays (this step)
+
+  // Ray k's hit with its surface: its record, or its columns completed for `ray`.
+  Hit record(std::size_t k, const Tracer& tracer, const Rayd& ray) const {
+    if (!records.empty()) return records[k];
+    Hit h;
+    h.t = hits.t[k], h.prim = PrimRef::from_bits(hits.prim[k]);
+    tracer.complete(ray, h);
+    return h;
+  }
 };
 
 }  // namespace raylane::path_detail

@@ -56,6 +56,14 @@ void claim_tiles(ThreadContext& ctx, const Camera& cam, TileClaims& claims) {
   }
 }
 
+// The records' primitives and t as columns (t rounded to float: a reference tracer's double t
+// stays in its record).
+void hits_from_records(const std::vector<Hit>& records, HitStream& hits) {
+  hits.resize(records.size());
+  for (std::size_t k = 0; k < records.size(); ++k)
+    hits.t[k] = float(records[k].t), hits.prim[k] = records[k].prim.bits();
+}
+
 // One step of the wavefront: trace its rays and shadow rays, then the stages that fill the
 // next step's queues.
 void step(ThreadContext& ctx, Film& f) {
@@ -70,8 +78,13 @@ void step(ThreadContext& ctx, Film& f) {
   const bool all_surfaces = ctx.settings.shading == Shading::kDouble || camera_aovs ||
                             ctx.tracer.backend() != TracerBackend::kPacket;
   stamp_times(ctx);
-  ctx.tracer.closest(w.rays.rays, w.hits, all_surfaces ? w.rays.size() : 0, w.scratch);
-  w.hits_have_surfaces = all_surfaces;
+  w.records.clear();
+  if (all_surfaces) {
+    ctx.tracer.closest(w.rays.rays, w.records, w.rays.size(), w.scratch);
+    hits_from_records(w.records, w.hits);
+  } else {
+    ctx.tracer.closest(w.rays.rays, w.hits, w.scratch);
+  }
   // Shadow rays, aimed at their light: it is seen when nothing else lies before it.
   ctx.tracer.occluded(w.shadows.rays, w.blocked, w.scratch);
   double traced = 0;
