@@ -69,12 +69,15 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane_vertices rows sort_arrivals appends: their columns' pointers and the count, held
-// in locals through the loop (stores through the queue's vectors could alias its count and
-// pointers, so the compiler reloaded them at every row).
+// The lane_vertices rows sort_arrivals appends, with the path's throughput for the scatter
+// kernel, read while the path is at hand (a pass of its own gathered it again from the paths
+// scattered in memory). Their columns' pointers and the count are held in locals
+// through the loop (stores through the queue's vectors could alias its count and pointers, so
+// the compiler reloaded them at every row).
 struct LaneRowWriter {
   uint32_t *path, *ray, *material, *depth;
   uint64_t* pixel_seed;
+  float *beta_x, *beta_y, *beta_z;
   std::size_t count;
   explicit LaneRowWriter(LaneVertexQueue& q)
       : path(q.path.data()),
@@ -82,11 +85,17 @@ struct LaneRowWriter {
         material(q.material.data()),
         depth(q.depth.data()),
         pixel_seed(q.pixel_seed.data()),
+        beta_x(q.vertices.beta[0].data()),
+        beta_y(q.vertices.beta[1].data()),
+        beta_z(q.vertices.beta[2].data()),
         count(q.count) {}
-  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, uint64_t seed) {
-    path[count] = p, ray[count] = k, material[count] = m, depth[count] = d;
-    pixel_seed[count] = seed;
-    ++count;
+  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, const PathState& state) {
+    const std::size_t r = count++;
+    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d;
+    pixel_seed[r] = state.pixel_seed;
+    // Beer's law on a back face follows with the surfaces (lane_vertices.cpp, path_columns).
+    beta_x[r] = float(state.beta.x), beta_y[r] = float(state.beta.y);
+    beta_z[r] = float(state.beta.z);
   }
 };
 
@@ -127,7 +136,7 @@ void sort_arrivals(ThreadContext& ctx) {
     if (depth >= max_depth) continue;
     p.depth = depth + 1;  // where the ray it sends on (if any) arrives
     if (lanes && to == LaneMaterials::Route::kLanes)
-      lane_rows.push(path, uint32_t(k), material, depth, p.pixel_seed);
+      lane_rows.push(path, uint32_t(k), material, depth, p);
     else
       w.double_vertices.push(uint32_t(k), material, depth);
   }

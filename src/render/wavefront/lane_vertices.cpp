@@ -187,7 +187,7 @@ void drop_black_rows(ThreadContext& ctx) {
     ++first;
   if (first == n) return;
   const Columns3Out<float> p(lv.vertices.p), p_error(lv.vertices.p_error), ng(lv.vertices.ng);
-  const Columns3Out<float> ns(lv.shade.n);
+  const Columns3Out<float> ns(lv.shade.n), beta(lv.vertices.beta);
   std::size_t kept = first;
   for (std::size_t r = first + 1; r < n; ++r) {
     if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
@@ -195,6 +195,7 @@ void drop_black_rows(ThreadContext& ctx) {
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
     rows.pixel_seed[kept] = rows.pixel_seed[r];
     p.move(kept, r), p_error.move(kept, r), ng.move(kept, r), ns.move(kept, r);
+    beta.move(kept, r);
     ++kept;
   }
   lv.count = kept;
@@ -247,8 +248,10 @@ void texture_columns(ThreadContext& ctx) {
   }
 }
 
-// The rows' directions turned around (wo, from the stream's float rays) and the paths'
-// throughputs with Beer's law on the segment just travelled into the columns.
+// The rows' directions turned around (wo, from the stream's float rays), and Beer's law on the
+// segment just travelled for the rows that met a back face: their throughput, which
+// sort_arrivals took as it was, again from the path's times the transmittance (in double, then
+// rounded, as the double shading). Beer's law is 1 on a front face.
 void path_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
@@ -259,12 +262,11 @@ void path_columns(ThreadContext& ctx) {
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<float> beta(lv.vertices.beta);
   const float* t = w.hits.t.data();
+  const uint8_t* front = rows.front.data();
   for (std::size_t r = 0; r < n; ++r) {
+    if (front[r]) continue;
     const PathState& path = paths[rows.path[r]];
-    // Beer's law is 1 on a front face: no product there (x·1 = x, bit for bit).
-    beta.set(r, rows.front[r] ? path.beta
-                              : path.beta * beer_transmittance(materials[rows.material[r]], false,
-                                                               t[rows.ray[r]]));
+    beta.set(r, path.beta * beer_transmittance(materials[rows.material[r]], false, t[rows.ray[r]]));
   }
 }
 

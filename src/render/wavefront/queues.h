@@ -105,8 +105,8 @@ struct DoubleVertexQueue {
 };
 
 // Hits on a material shaded in lanes, as columns: row r is vertex r of every batch below
-// (the shading stage fills their columns in a few passes). Rows [0, count) are this
-// wavefront's; the columns only grow.
+// (sort_arrivals fills what it reads of the path, the shading stage the rest in a few passes).
+// Rows [0, count) are this wavefront's; the columns only grow.
 struct LaneVertexQueue {
   std::size_t count = 0;
   std::vector<uint32_t> path;      // index into the wavefront's paths
