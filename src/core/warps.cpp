@@ -22,15 +22,6 @@ glm::dvec3 sample_cosine_hemisphere(double u1, double u2) {
   return {r * phi.cos, r * phi.sin, z};
 }
 
-glm::dvec3 sample_uniform_cone(double u1, double u2, double one_minus_cos_max) {
-  // 1 − cos θ = u1·(1 − cos θmax) and sin²θ = (1 − cos θ)(1 + cos θ): no cancellation.
-  double one_minus_cos = u1 * one_minus_cos_max;
-  double cos_t = 1 - one_minus_cos;
-  double sin_t = std::sqrt(std::max(0.0, one_minus_cos * (2 - one_minus_cos)));
-  SinCos phi = sincos_2pi(u2);
-  return {sin_t * phi.cos, sin_t * phi.sin, cos_t};
-}
-
 glm::dvec3 sample_concentric_disc(double u1, double u2) {
   double a = 2 * u1 - 1, b = 2 * u2 - 1;
   if (a == 0 && b == 0) return {0, 0, 0};

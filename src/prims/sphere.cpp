@@ -4,17 +4,9 @@
 
 #include "raylane/core/warps.h"
 #include "raylane/prims/sphere.h"
+#include "raylane/prims/sphere_cone.h"
 
 namespace raylane {
-
-namespace {
-// 1 − cos θmax of the cone a sphere of radius² r2 subtends from distance² d2 > r2, without
-// cancellation: sin²θmax / (1 + cos θmax).
-double cone_one_minus_cos(double r2, double d2) {
-  double sin2 = r2 / d2;
-  return sin2 / (1 + std::sqrt(std::max(0.0, 1 - sin2)));
-}
-}  // namespace
 
 double Sphere::area(const Table& t, uint32_t i) {
   return 4 * kPi * double(t.r[i]) * t.r[i];
@@ -27,21 +19,16 @@ AreaSample sample_sphere_area(const glm::dvec3& c, double r, double u1, double u
 
 std::optional<SubtendedSample> sample_sphere_cone(const glm::dvec3& c, double r,
                                                   const glm::dvec3& ref, double u1, double u2) {
-  double d2 = length_squared(c - ref);
-  if (!(d2 > r * r)) return std::nullopt;
-  double d = std::sqrt(d2), omc = cone_one_minus_cos(r * r, d2);
-  glm::dvec3 local = sample_uniform_cone(u1, u2, omc);
-  double sin2 = local.x * local.x + local.y * local.y;
-  // The nearer root of the ray from ref along the sampled direction.
-  double t_hit = d * local.z - std::sqrt(std::max(0.0, r * r - d2 * sin2));
-  return SubtendedSample{Frame((c - ref) / d).to_world(local), t_hit, 2 * kPi * omc};
+  const SphereCone<double, glm::dvec3> s = sphere_cone<double>(c, r, ref, u1, u2);
+  if (!(s.solid_angle > 0)) return std::nullopt;  // ref is not outside the sphere
+  return SubtendedSample{s.wi, s.dist, s.solid_angle};
 }
 
 std::optional<double> sphere_cone_solid_angle(const glm::dvec3& c, double r,
                                               const glm::dvec3& ref) {
   double d2 = length_squared(c - ref);
   if (!(d2 > r * r)) return std::nullopt;
-  return 2 * kPi * cone_one_minus_cos(r * r, d2);
+  return 2 * kPi * cone_one_minus_cos<double>(r * r, d2);
 }
 
 AreaSample Sphere::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {

@@ -62,13 +62,13 @@ void shadow_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const Shade
                   std::size_t i) {
   const FloatVec3<A> wi = load3<A>(bsdf.light_wi, i), le = load3_narrowed<A>(lights.le, i);
   const FloatVec3<A> f{a.light_f[0], a.light_f[1], a.light_f[2]};
-  const F<A> pdf = simd::load_narrowed<A>(lights.cones.pdf.data() + i);
+  const F<A> pdf = simd::load<A>(lights.cones.pdf.data() + i);
   const FloatVec3<A> c = shadow_ray_contribution(rules.mis, v.beta, f, le, pdf, a.light_pdf);
   for (int k = 0; k < 3; ++k)
     simd::store_widened<A>(b.shadow_c[k].data() + i, k == 0 ? c.x : k == 1 ? c.y : c.z);
   const FloatVec3<A> from = offset_origin_by<F<A>>(v.p, v.along, v.ng, wi);
   store3<A>(b.shadow_o, i, from);
-  const F<A> dist = simd::load_narrowed<A>(lights.cones.dist.data() + i);
+  const F<A> dist = simd::load<A>(lights.cones.dist.data() + i);
   simd::store<A>(b.shadow_tmax.data() + i, shadow_tmax<F<A>>(from, v.p, wi, dist));
   // No light point (pdf 0, or NaN): no shadow ray, whatever the other columns hold.
   simd::store<A>(b.shadow_ok.data() + i,

@@ -1,6 +1,7 @@
-// Sphere lights' cones in double lanes (render/lights/light_lanes.h) against the scalar
-// Sphere::sample_subtended they transcribe, bit for bit at every instruction set this CPU has,
-// and LightSampler::sample_many against sample() on a scene with every kind of light.
+// Sphere lights' cones in float lanes (render/lights/light_lanes.h) against the scalar float
+// instance of the steps they run (prims/sphere_cone.h), bit for bit at every instruction set this
+// CPU has; that float instance against the double one (Sphere::sample_subtended) within float's
+// error bound; and LightSampler::sample_many against sample() on a scene with every kind of light.
 #include "raylane/render/lights/light_lanes.h"
 
 #include <gtest/gtest.h>
@@ -13,8 +14,10 @@
 
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
+#include "raylane/prims/sphere_cone.h"
 #include "raylane/render/lights/lights.h"
 #include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 #include "support/same_bits.h"
@@ -53,20 +56,34 @@ std::vector<Case> random_cases(SphereTable& spheres, int count, uint64_t seed) {
   return cases;
 }
 
+// The cases as the render's float columns hold them: points and numbers rounded (the numbers
+// below 1, unit_float), the spheres' own float centres and radii.
 ConeBatch batch_of(const SphereTable& spheres, const std::vector<Case>& cases) {
   ConeBatch b;
   b.resize(cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
     for (int k = 0; k < 3; ++k)
-      b.ref[k][i] = c.ref[k], b.center[k][i] = spheres.center(c.sphere)[k];
-    b.radius[i] = spheres.r[c.sphere], b.u1[i] = c.u1, b.u2[i] = c.u2;
-    b.choice[i] = i % 2 == 0 ? 1.0 : 0.3;  // a light among others: pdf is a true division
+      b.ref[k][i] = float(c.ref[k]), b.center[k][i] = spheres.center(c.sphere)[k];
+    b.radius[i] = spheres.r[c.sphere], b.u1[i] = unit_float(c.u1), b.u2[i] = unit_float(c.u2);
+    b.choice[i] = i % 2 == 0 ? 1.0f : 0.3f;  // a light among others: pdf is a true division
   }
   return b;
 }
 
-TEST(LightLanes, ConesAreTheScalarSphereSamples) {
+glm::vec3 row3(const std::array<std::vector<float>, 3>& c, std::size_t i) {
+  return {c[0][i], c[1][i], c[2][i]};
+}
+
+// The cone of batch row i by the steps' instance at N (float: the lanes' reference; double: the
+// reference, at the same inputs widened).
+template <class N, class V3>
+SphereCone<N, V3> steps_for_row(const ConeBatch& b, std::size_t i) {
+  return sphere_cone<N>(V3(row3(b.center, i)), N(b.radius[i]), V3(row3(b.ref, i)), N(b.u1[i]),
+                        N(b.u2[i]));
+}
+
+TEST(LightLanes, ConesAreTheScalarFloatSteps) {
   SphereTable spheres;
   std::vector<Case> cases = random_cases(spheres, 20000, 7);
   for (Isa isa : supported_isas()) {
@@ -75,27 +92,86 @@ TEST(LightLanes, ConesAreTheScalarSphereSamples) {
     sample_cones(isa, b);
     int outside = 0, failures = 0;
     for (std::size_t i = 0; i < cases.size() && failures < 10; ++i) {
-      const Case& c = cases[i];
-      auto s = Sphere::sample_subtended(spheres, c.sphere, c.ref, c.u1, c.u2);
-      if (!s) {
-        failures += !(b.solid_angle[i] == 0 && b.pdf[i] == 0);
-        EXPECT_EQ(b.solid_angle[i], 0) << "row " << i << " is inside its sphere";
-        EXPECT_EQ(b.pdf[i], 0) << "row " << i << " is inside its sphere";
-        continue;
-      }
-      ++outside;
-      glm::dvec3 wi(b.wi[0][i], b.wi[1][i], b.wi[2][i]);
-      bool ok = same_bits(wi, s->wi) && same_bits(b.dist[i], s->dist) &&
-                same_bits(b.solid_angle[i], s->solid_angle) &&
-                same_bits(b.pdf[i], b.choice[i] / s->solid_angle);
+      const SphereCone<float, glm::vec3> s = steps_for_row<float, glm::vec3>(b, i);
+      const float pdf = s.solid_angle > 0 ? b.choice[i] / s.solid_angle : 0.0f;
+      outside += s.solid_angle > 0;
+      const bool ok = same_bits(b.solid_angle[i], s.solid_angle) && same_bits(b.pdf[i], pdf) &&
+                      (!(s.solid_angle > 0) ||
+                       (same_bits(row3(b.wi, i), s.wi) && same_bits(b.dist[i], s.dist)));
       failures += !ok;
-      EXPECT_TRUE(ok) << "row " << i << ": lanes wi " << wi.x << " " << wi.y << " " << wi.z
-                      << " dist " << b.dist[i] << " solid " << b.solid_angle[i] << "; scalar wi "
-                      << s->wi.x << " " << s->wi.y << " " << s->wi.z << " dist " << s->dist
-                      << " solid " << s->solid_angle;
+      EXPECT_TRUE(ok) << "row " << i << ": lanes wi " << b.wi[0][i] << " " << b.wi[1][i] << " "
+                      << b.wi[2][i] << " dist " << b.dist[i] << " solid " << b.solid_angle[i]
+                      << "; scalar wi " << s.wi.x << " " << s.wi.y << " " << s.wi.z << " dist "
+                      << s.dist << " solid " << s.solid_angle;
     }
-    EXPECT_GT(outside, 15000);  // most rows sample the cone; about a tenth are inside
+    // Most rows sample the cone; a tenth are inside, and those within float's resolution of
+    // their sphere (about a quarter are 1e-9 to 1e-6 radii away) count as inside in float.
+    EXPECT_GT(outside, 13000);
   }
+}
+
+// Float's error bound for the cone of a sphere of radius r seen from distance d (u = 2^-24),
+// from the steps' roundings (prims/sphere_cone.h): each of the dozen steps to the cone's
+// 1 − cos θmax rounds once, 12u relative, except √(1 − sin²θmax), whose argument x carries an
+// absolute 12u that the root turns into min(6u/√x, √(12u)); the solid angle carries both. The
+// sampled direction's angle inherits that relative error of 1 − cos θ (a half of it, through
+// sin θ) plus a dozen roundings of the frame and the turn. The distance d·cos θ − √y, y = r² −
+// d²sin²θ, is a difference of terms of size d (a dozen roundings of d, and the direction's error
+// across the sphere), and y's absolute error δy = (8u + the cone's relative error)·r² becomes
+// min(δy/(2√y), √δy) in the root: large where the sampled direction grazes the sphere.
+struct ConeBound {
+  double solid_angle, wi, dist;
+};
+
+ConeBound cone_bound(const SphereCone<double, glm::dvec3>& exact, double r, const glm::dvec3& w) {
+  const double u = 0x1p-24, d = length(w), sin2_max = r * r / (d * d);
+  const double x = std::max(0.0, 1 - sin2_max);
+  const double omc = 12 * u + std::min(6 * u / std::sqrt(x), std::sqrt(12 * u));
+  // The direction: the angle's relative error times the cone's half-angle (sin θmax bounds it).
+  const double wi = 16 * u + omc * std::sqrt(sin2_max);
+  const double root_y = std::max(0.0, dot(exact.wi, w) - exact.dist);  // √y
+  const double dy = (8 * u + omc) * r * r;
+  const double root = root_y > 0 ? std::min(dy / (2 * root_y), std::sqrt(dy)) : std::sqrt(dy);
+  return {omc * exact.solid_angle, wi, (16 * u + 2 * wi) * d + root};
+}
+
+// The float steps against the double ones at the same inputs, within cone_bound; a planted
+// error of one part in 10^5 in the float's solid angle is caught.
+TEST(LightLanes, FloatConesAreWithinTheirBoundOfTheDoubleOnes) {
+  SphereTable spheres;
+  std::vector<Case> cases = random_cases(spheres, 20000, 7);
+  const ConeBatch b = batch_of(spheres, cases);
+  int outside = 0, beyond = 0, planted_beyond = 0, disagree = 0;
+  double worst[3] = {};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto f = steps_for_row<float, glm::vec3>(b, i);
+    const auto d = steps_for_row<double, glm::dvec3>(b, i);
+    const glm::dvec3 w = glm::dvec3(row3(b.center, i)) - glm::dvec3(row3(b.ref, i));
+    if ((f.solid_angle > 0) != (d.solid_angle > 0)) {
+      // Inside in one precision, outside in the other: only within float's resolution of the
+      // surface (d² and r² each a few roundings from exact).
+      ++disagree;
+      ASSERT_LE(std::abs(length(w) - double(b.radius[i])), 8 * 0x1p-24 * length(w)) << "row " << i;
+      continue;
+    }
+    if (!(d.solid_angle > 0)) continue;
+    ++outside;
+    const ConeBound bound = cone_bound(d, b.radius[i], w);
+    const double e[3] = {std::abs(f.solid_angle - d.solid_angle) / bound.solid_angle,
+                         length(glm::dvec3(f.wi) - d.wi) / bound.wi,
+                         std::abs(f.dist - d.dist) / bound.dist};
+    for (int k = 0; k < 3; ++k)
+      worst[k] = std::max(worst[k], e[k]);
+    beyond += e[0] > 1 || e[1] > 1 || e[2] > 1;
+    planted_beyond += std::abs(f.solid_angle * (1 + 1e-5) - d.solid_angle) > bound.solid_angle;
+  }
+  EXPECT_EQ(beyond, 0);
+  EXPECT_GT(planted_beyond, outside / 2);
+  EXPECT_GT(outside, 13000);
+  std::printf(
+      "largest error / bound: solid angle %.3g, direction %.3g, distance %.3g; %d rows "
+      "inside in one precision only\n",
+      worst[0], worst[1], worst[2], disagree);
 }
 
 // Every row about one sphere (ConeSphere) gives the answers of the same sphere in the columns,
@@ -106,9 +182,8 @@ TEST(LightLanes, ConesAboutOneSphereAreTheColumnsAnswers) {
   std::vector<Case> cases = random_cases(spheres, 4001, 9);
   for (Case& c : cases)
     c.sphere = 3;  // the refs stay where they were: some inside sphere 3, most far outside
-  const ConeSphere one{{spheres.center(3)[0], spheres.center(3)[1], spheres.center(3)[2]},
-                       double(spheres.r[3]),
-                       0.3};
+  const ConeSphere one{
+      {spheres.center(3)[0], spheres.center(3)[1], spheres.center(3)[2]}, spheres.r[3], 0.3f};
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
     ConeBatch want = batch_of(spheres, cases), got = want;
@@ -118,10 +193,10 @@ TEST(LightLanes, ConesAboutOneSphereAreTheColumnsAnswers) {
     for (int k = 0; k < 3; ++k) {
       wi_float[k].assign(got.radius.size(), -1.0f);
       got.wi_float[k] = wi_float[k].data();
-      std::fill(got.center[k].begin(), got.center[k].end(), 1e300);  // not to be read
+      std::fill(got.center[k].begin(), got.center[k].end(), std::nanf(""));  // not to be read
     }
-    std::fill(got.radius.begin(), got.radius.end(), 1e300);  // nor these
-    std::fill(got.choice.begin(), got.choice.end(), 1e300);
+    std::fill(got.radius.begin(), got.radius.end(), std::nanf(""));  // nor these
+    std::fill(got.choice.begin(), got.choice.end(), std::nanf(""));
     sample_cones(isa, got, &one);
     int failures = 0, valid = 0;
     for (std::size_t i = 0; i < got.radius.size() && failures < 10; ++i) {
@@ -130,7 +205,7 @@ TEST(LightLanes, ConesAboutOneSphereAreTheColumnsAnswers) {
       valid += ok;
       for (int k = 0; k < 3; ++k) {
         // A padding row is left alone or gets 0 (the kernel's last lanes), never a direction.
-        const float w = ok ? float(want.wi[k][i]) : 0.0f, got_k = wi_float[k][i];
+        const float w = ok ? want.wi[k][i] : 0.0f, got_k = wi_float[k][i];
         const bool right = same_bits(got_k, w) || (!row && got_k == -1.0f);
         failures += !right;
         EXPECT_TRUE(right) << "row " << i << " component " << k << ": " << got_k;
@@ -147,11 +222,51 @@ TEST(LightLanes, ConesAboutOneSphereAreTheColumnsAnswers) {
   }
 }
 
-// sample_many's rows against sample() one by one, at every instruction set: the same light,
-// radiance, direction, distance and density, bit for bit, and the float direction
-// (ConeBatch::wi_float) rounded from it where the sample is valid, 0 where not; counts the
-// kinds picked.
-void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, int* kinds_seen) {
+// A sphere light's centre (a moving one's at `time`) and radius, as sample_many hands them to
+// the float kernel, rounded; and the same centre in double.
+struct LightSphere {
+  glm::vec3 center;
+  glm::dvec3 exact_center;
+  float r;
+};
+LightSphere light_sphere(const Scene& scene, PrimRef light, double time) {
+  if (light.tag() == tag_of<MovingSphere>) {
+    const MovingSphereTable& t = scene.table<MovingSphere>();
+    const glm::dvec3 c = t.center_at(light.row(), time);
+    return {glm::vec3(c), c, t.r[light.row()]};
+  }
+  const SphereTable& t = scene.table<Sphere>();
+  return {t.center(light.row()), glm::dvec3(t.center(light.row())), t.r[light.row()]};
+}
+
+// A cone row of sample_many (a sphere light seen from outside) against sample()'s double answer:
+// the direction and distance within cone_bound of the double steps at the kernel's own inputs,
+// the density within the solid angle's bound and two roundings (the choice's and the quotient).
+void expect_cone_row_near(const Scene& scene, const LightQueries& q, std::size_t i,
+                          const LightSample& want) {
+  const LightSphere s = light_sphere(scene, want.light, q.time_of(i));
+  const glm::dvec3 ref = q.ref(i), c(s.center);
+  const auto exact =
+      sphere_cone<double>(c, double(s.r), ref, double(q.cones.u1[i]), double(q.cones.u2[i]));
+  ASSERT_GT(exact.solid_angle, 0) << "query " << i;
+  const ConeBound bound = cone_bound(exact, s.r, c - ref);
+  // The choice probability, from the double sample about the exact centre.
+  const auto at_exact = sphere_cone<double>(s.exact_center, double(s.r), ref, double(q.cones.u1[i]),
+                                            double(q.cones.u2[i]));
+  const double choice = want.pdf * at_exact.solid_angle, pdf = choice / exact.solid_angle;
+  const double pdf_bound = (bound.solid_angle / exact.solid_angle + 3 * 0x1p-24) * pdf;
+  EXPECT_LE(length(q.wi(i) - exact.wi), bound.wi) << "query " << i;
+  EXPECT_LE(std::abs(q.cones.dist[i] - exact.dist), bound.dist) << "query " << i;
+  EXPECT_LE(std::abs(q.pdf(i) - pdf), pdf_bound) << "query " << i;
+}
+
+// sample_many's rows against sample() one by one, at every instruction set: the same light and
+// validity; a sphere light's cone (the float kernel) within its error bound (expect_cone_row_near),
+// every other row sample()'s answer rounded to float, bit for bit, with its radiance; and the
+// float direction (ConeBatch::wi_float) the row's where the sample is valid, 0 where not. Counts
+// the kinds picked.
+void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights, LightQueries& q,
+                                  int* kinds_seen) {
   std::array<std::vector<float>, 3> wi_float;
   for (int k = 0; k < 3; ++k) {
     wi_float[k].assign(q.cones.radius.size(), -1.0f);
@@ -165,9 +280,10 @@ void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, i
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
     lights.sample_many(isa, q);
+    int cones = 0;
     for (std::size_t i = 0; i < q.size(); ++i) {
       for (int k = 0; k < 3; ++k)
-        ASSERT_TRUE(same_bits(wi_float[k][i], q.valid(i) ? float(q.wi(i)[k]) : 0.0f))
+        ASSERT_TRUE(same_bits(wi_float[k][i], q.valid(i) ? q.cones.wi[k][i] : 0.0f))
             << "query " << i;
       LightSample want = lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i],
                                        q.cones.u2[i], q.time_of(i));
@@ -175,21 +291,32 @@ void expect_sample_many_is_sample(const LightSampler& lights, LightQueries& q, i
       ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
       ++kinds_seen[std::size_t(q.light[i].tag())];
       if (!want.valid()) continue;
+      const bool sphere =
+          want.light.tag() == tag_of<Sphere> || want.light.tag() == tag_of<MovingSphere>;
+      if (sphere && want.n == glm::dvec3(0, 0, 0)) {  // by its cone (area samples have a normal)
+        ++cones;
+        expect_cone_row_near(scene, q, i, want);
+        continue;
+      }
       glm::dvec3 le(q.le[0][i], q.le[1][i], q.le[2][i]);
       EXPECT_EQ(le, want.le);
-      // The point is ref + wi·dist for a cone's sample, so these pin it down too.
-      EXPECT_TRUE(same_bits(q.wi(i), want.wi) && same_bits(q.pdf(i), want.pdf) &&
-                  same_bits(q.cones.dist[i], want.dist))
+      // The point is ref + wi·dist, so these pin it down too.
+      EXPECT_TRUE(same_bits(q.cones.wi[0][i], float(want.wi.x)) &&
+                  same_bits(q.cones.wi[1][i], float(want.wi.y)) &&
+                  same_bits(q.cones.wi[2][i], float(want.wi.z)) &&
+                  same_bits(q.cones.pdf[i], float(want.pdf)) &&
+                  same_bits(q.cones.dist[i], float(want.dist)))
           << "query " << i;
     }
+    EXPECT_GT(cones, 0);
   }
 }
 
 // Query i: the shading point and random numbers.
 void set_query(LightQueries& q, std::size_t i, const glm::dvec3& ref, Rng& rng) {
   for (int k = 0; k < 3; ++k)
-    q.cones.ref[k][i] = ref[k];
-  q.cones.u1[i] = rng.uniform(), q.cones.u2[i] = rng.uniform();
+    q.cones.ref[k][i] = float(ref[k]);
+  q.cones.u1[i] = unit_float(rng.uniform()), q.cones.u2[i] = unit_float(rng.uniform());
   q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
 }
 
@@ -218,7 +345,7 @@ TEST(LightLanes, SampleManyIsSampleForEveryQuery) {
   LightQueries q;
   set_queries_around(q, 4000, 3);
   int kinds_seen[8] = {};
-  expect_sample_many_is_sample(lights, q, kinds_seen);
+  expect_sample_many_is_sample(parsed.scene, lights, q, kinds_seen);
   for (int k = 0; k < 3; ++k)
     EXPECT_GT(kinds_seen[k], 0) << "no query picked a light of kind " << k;
 }
@@ -235,7 +362,7 @@ TEST(LightLanes, SampleManyIsSampleForOneSphereLight) {
   LightQueries q;
   set_queries_around(q, 3001, 13);
   int kinds_seen[8] = {};
-  expect_sample_many_is_sample(lights, q, kinds_seen);
+  expect_sample_many_is_sample(parsed.scene, lights, q, kinds_seen);
   EXPECT_EQ(kinds_seen[std::size_t(tag_of<Sphere>)], int(q.size() * supported_isas().size()));
 }
 
@@ -264,7 +391,7 @@ TEST(LightLanes, SampleManyIsSampleAtEachRowsTimeForMovingLights) {
     set_query(q, i, ref, rng);
   }
   int kinds_seen[8] = {};
-  expect_sample_many_is_sample(lights, q, kinds_seen);
+  expect_sample_many_is_sample(parsed.scene, lights, q, kinds_seen);
   EXPECT_GT(kinds_seen[std::size_t(tag_of<MovingSphere>)], 0);
   EXPECT_GT(kinds_seen[std::size_t(tag_of<Sphere>)], 0);
   // The rows' samples depend on their times: the same queries at mid-shutter differ.

@@ -34,6 +34,7 @@ struct ScalarNum {
   static T min(T a, T b) { return std::min(a, b); }
   static T sqrt(T x) { return std::sqrt(x); }
   static T abs(T x) { return std::abs(x); }
+  static T round_even(T x) { return std::nearbyint(x); }  // to the nearest, ties to even
   static T negate(T x) { return -x; }                    // the sign bit flipped, zeros and NaNs too
   static bool sign_bit(T x) { return std::signbit(x); }  // −0 and −NaN too
   // e^-x for x ≥ 0.

@@ -26,11 +26,6 @@ inline double cosine_hemisphere_pdf(double cos_theta) {
   return cos_theta > 0 ? cos_theta / kPi : 0.0;
 }
 
-// A direction uniformly inside the cone around +z of half-angle θmax, given
-// one_minus_cos_max = 1 − cos θmax (computed by the caller without cancellation for narrow
-// cones); pdf = 1 / (2π·(1 − cos θmax)).
-glm::dvec3 sample_uniform_cone(double u1, double u2, double one_minus_cos_max);
-
 // A uniform point on the unit disc, by Shirley and Chiu's concentric map (1997, "A
 // low-distortion map between disk and square"): squares of the [-1, 1]² grid go to rings, so
 // the square's stratification survives (no polar map's pinch at the centre); pdf = 1/π.

@@ -18,6 +18,7 @@ struct Num<xsimd::batch<float, A>> {
   static F min(const F& a, const F& b) { return xsimd::min(a, b); }
   static F sqrt(const F& x) { return xsimd::sqrt(x); }
   static F abs(const F& x) { return xsimd::abs(x); }
+  static F round_even(const F& x) { return xsimd::nearbyint(x); }
   // Not unary minus, which xsimd 8.1 makes 0 − x on AVX-512 (+0 stays +0; simd/lanes.h).
   static F negate(const F& x) { return simd::negate(x); }
   static Mask sign_bit(const F& x) { return xsimd::copysign(F(1.0f), x) < F(0.0f); }

@@ -3,12 +3,24 @@
 // rows a mask keeps, packed to the front). For the per-ISA units, as simd/lanes.h.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "raylane/simd/lanes.h"
 
 namespace raylane::simd {
+
+// Rows [i, i + W) of three float columns (a batch's vector, x, y and z) as lanes, and back.
+template <class A>
+FloatVec3<A> load3(const std::array<std::vector<float>, 3>& c, std::size_t i) {
+  return {load<A>(c[0].data() + i), load<A>(c[1].data() + i), load<A>(c[2].data() + i)};
+}
+template <class A>
+void store3(std::array<std::vector<float>, 3>& c, std::size_t i, const FloatVec3<A>& v) {
+  store<A>(c[0].data() + i, v.x), store<A>(c[1].data() + i, v.y), store<A>(c[2].data() + i, v.z);
+}
 
 // Whether rows[0, W) are one run, rows[k] = rows[0] + k: then a batch's columns load and
 // store whole rather than row by row.

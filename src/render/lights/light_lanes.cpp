@@ -24,7 +24,7 @@ void ConeBatch::resize(std::size_t rows) {
   for (std::size_t i = rows; i < padded; ++i) {
     for (int k = 0; k < 3; ++k)
       ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;
-    radius[i] = 1, u1[i] = u2[i] = 0.5, choice[i] = 1;
+    radius[i] = 1, u1[i] = u2[i] = 0.5f, choice[i] = 1;
   }
 }
 

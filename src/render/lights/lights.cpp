@@ -241,13 +241,15 @@ void LightQueries::resize(std::size_t n) {
 
 void LightQueries::set(std::size_t r, const LightSample& s) {
   light[r] = s.light;
-  cones.pdf[r] = s.pdf;
-  cones.dist[r] = s.dist;
+  // Rounded to float: a density below float's range is no sample, as the float shading reads it.
+  const float pdf = float(s.pdf);
+  cones.pdf[r] = pdf;
+  cones.dist[r] = float(s.dist);
   for (int k = 0; k < 3; ++k)
-    cones.wi[k][r] = s.wi[k], le[k][r] = s.le[k];
+    cones.wi[k][r] = float(s.wi[k]), le[k][r] = s.le[k];
   if (cones.wi_float[0])  // ConeBatch::wi_float, as the kernel writes it
     for (int k = 0; k < 3; ++k)
-      cones.wi_float[k][r] = s.pdf > 0 ? float(s.wi[k]) : 0.0f;
+      cones.wi_float[k][r] = pdf > 0 ? float(s.wi[k]) : 0.0f;
 }
 
 // The one light is a sphere (and no environment): every row's cone is about the same sphere,
@@ -259,14 +261,14 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   const std::size_t n = q.size();
   const SphereTable& spheres = scene_.table<Sphere>();
   const uint32_t row = lights_[0].row();
-  const glm::dvec3 center(spheres.center(row));
-  const ConeSphere every_row{{center.x, center.y, center.z}, double(spheres.r[row]), choice_[0]};
+  const glm::vec3 center = spheres.center(row);
+  const ConeSphere every_row{{center.x, center.y, center.z}, spheres.r[row], float(choice_[0])};
   sample_cones(isa, cb, &every_row);
   std::fill_n(q.light.begin(), n, lights_[0]);
   for (int c = 0; c < 3; ++c)
     std::fill_n(q.le[std::size_t(c)].begin(), n, le_[0][c]);
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
-  const double* solid_angle = cb.solid_angle.data();
+  const float* solid_angle = cb.solid_angle.data();
   for (std::size_t r = 0; r < n; ++r)
     if (!(solid_angle[r] > 0) || textured) q.set(r, finish_sphere_row(q, r, 0));
 }
@@ -296,9 +298,9 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
         cone ? sphere_at(k, q.time_of(r))
              : std::pair<glm::dvec3, double>(q.ref(r) + glm::dvec3(0, 0, 2), 1.0);
     for (int c = 0; c < 3; ++c)
-      cb.center[c][r] = center[c];
-    cb.radius[r] = radius;
-    cb.choice[r] = cone ? choice_[k] : 1.0;
+      cb.center[c][r] = float(center[c]);
+    cb.radius[r] = float(radius);
+    cb.choice[r] = cone ? float(choice_[k]) : 1.0f;
   }
   // Direction, distance and density of every cone row (none under an environment alone).
   if (any_cone) sample_cones(isa, cb);

@@ -9,6 +9,7 @@
 #include "raylane/render/materials/shade_lanes.h"
 #include "raylane/simd/lane_math.h"
 #include "raylane/simd/lane_numbers.h"
+#include "raylane/simd/lane_rows.h"
 #include "render/materials/microfacet_lanes_impl.h"
 
 namespace raylane::detail {
@@ -33,17 +34,8 @@ M<A> finite(const F<A>& v) {
   return xsimd::abs(v) <= F<A>(3.40282347e38f);  // false for NaN and ±inf
 }
 
-template <class A>
-FloatVec3<A> load3(const std::array<ShadeBatch::Column, 3>& c, std::size_t i) {
-  return {simd::load<A>(c[0].data() + i), simd::load<A>(c[1].data() + i),
-          simd::load<A>(c[2].data() + i)};
-}
-template <class A>
-void store3(std::array<ShadeBatch::Column, 3>& c, std::size_t i, const FloatVec3<A>& v) {
-  simd::store<A>(c[0].data() + i, v.x);
-  simd::store<A>(c[1].data() + i, v.y);
-  simd::store<A>(c[2].data() + i, v.z);
-}
+using simd::load3;
+using simd::store3;
 
 // f·|cos θi| per channel and the sampling density, as Bsdf::evaluate's BsdfEval.
 template <class A>

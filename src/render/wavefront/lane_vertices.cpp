@@ -27,9 +27,11 @@ void set_bsdf_numbers(ThreadContext& ctx, std::size_t r, const std::array<double
   ctx.wave.lane_vertices.vertices.u_roulette[r] = unit_float(u_roulette);
 }
 
-// The light group's numbers for row r: (u1, u2, u_light, u_part).
+// The light group's numbers for row r: (u1, u2, u_light, u_part), the cone's rounded below 1
+// into its float columns.
 void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 4>& u) {
-  q.cones.u1[r] = u[0], q.cones.u2[r] = u[1], q.u_light[r] = u[2], q.u_part[r] = u[3];
+  q.cones.u1[r] = unit_float(u[0]), q.cones.u2[r] = unit_float(u[1]);
+  q.u_light[r] = u[2], q.u_part[r] = u[3];
 }
 
 // Whether row r has Russian roulette (at its own depth), and its survival probability in the
@@ -80,8 +82,9 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   SobolBatch& s = lv.sobol;
   if (lights) {  // only the numbers the lights read (for one sphere light, no table gathers)
     const int read = ctx.lights.numbers_read();
-    SobolNumbers to;
-    to.as_double = {q.cones.u1.data(), q.cones.u2.data(), read > 2 ? q.u_light.data() : nullptr,
+    SobolNumbers to;  // the cone's numbers in float, the light's choice and part in double
+    to.as_float = {q.cones.u1.data(), q.cones.u2.data(), nullptr, nullptr};
+    to.as_double = {nullptr, nullptr, read > 2 ? q.u_light.data() : nullptr,
                     read > 3 ? q.u_part.data() : nullptr};
     salt_seeds(ctx, Dims::light_group);
     sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, first_components(read), to);

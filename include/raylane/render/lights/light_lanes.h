@@ -1,9 +1,9 @@
-// Points on sphere lights by the cone each subtends (Sphere::sample_subtended), for a whole
-// wavefront's vertices at once in double SIMD lanes (the scalar routine and its warps were a
-// large share of a render's profile: docs/design.md, "Shading in lanes"). The formulas are the
-// scalar ones, in the same precision: the lanes change the speed, not the error analysis
-// (tests/render/light_lanes_test.cpp holds them to the scalar routine). LightSampler::sample_many
-// routes sphere lights here.
+// Points on sphere lights by the cone each subtends, for a whole wavefront's vertices at once in
+// float SIMD lanes (the scalar routine and its warps were a large share of a render's profile:
+// docs/design.md, "Shading in lanes"). The steps are sphere_cone's (prims/sphere_cone.h), whose
+// double instance is Sphere::sample_subtended: tests/render/light_lanes_test.cpp holds the lanes
+// to its scalar float instance bit for bit, and that to the double one within float's error
+// bound. LightSampler::sample_many routes sphere lights here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -21,7 +21,7 @@ namespace raylane {
 // Fill rows [0, size) after resize(), run sample_cones(), read the outputs. Rows past size up
 // to the lane width are padding the kernel computes and nobody reads.
 struct ConeBatch {
-  using Column = std::vector<double>;
+  using Column = std::vector<float>;
   // Inputs: the shading point, the sphere, the two numbers of the cone's warp and the
   // probability of having chosen this light.
   std::array<Column, 3> ref, center;
@@ -32,10 +32,10 @@ struct ConeBatch {
   std::array<Column, 3> wi;
   Column dist, solid_angle, pdf;
   // Optional, for the float BSDF that is evaluated toward the light next: where wi_float[0] is
-  // set, rows [0, size) of these three float columns get wi rounded to float where the sample
-  // is valid (pdf > 0) and 0 where it is not. The kernel writes them with its other outputs,
-  // saving the caller a pass that converts them (LightQueries::set keeps them for rows
-  // finished one by one). The caller points them at columns of at least the padded size.
+  // set, rows [0, size) of these three float columns get wi where the sample is valid (pdf > 0)
+  // and 0 where it is not. The kernel writes them with its other outputs, saving the caller a
+  // pass (LightQueries::set keeps them for rows finished one by one). The caller points them at
+  // columns of at least the padded size.
   std::array<float*, 3> wi_float{};
 
   std::size_t size() const { return size_; }
@@ -50,8 +50,8 @@ struct ConeBatch {
 // and choice broadcast into the lanes, so that the batch's center, radius and choice columns
 // need no filling and are not read.
 struct ConeSphere {
-  std::array<double, 3> center;
-  double radius, choice;
+  std::array<float, 3> center;
+  float radius, choice;
 };
 
 // The cones of rows [0, batch.size()), each about its own sphere (the batch's columns) or all

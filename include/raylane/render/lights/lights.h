@@ -44,7 +44,9 @@ struct LightSample {
 // Many shading points' light samples at once (a path tracer's wavefront), in columns, with the
 // buffers reused between calls: resize, fill the inputs, call LightSampler::sample_many, read
 // the outputs. The cone kernel's batch holds the columns both share, so a sphere light's rows
-// are sampled where they stand: no copies into and out of a separate batch.
+// are sampled where they stand: no copies into and out of a separate batch. Those columns are
+// float, as the float shading reads them: the points, the cone's numbers, the direction, the
+// distance and the density (a row sampled one by one in double is rounded into them).
 struct LightQueries {
   using Column = std::vector<double>;
   // Inputs: the shading points (cones.ref) and their numbers (cones.u1, cones.u2, u_light,
@@ -80,7 +82,8 @@ struct LightQueries {
   EnvironmentBatch environment;
 
  private:
-  static glm::dvec3 column3(const std::array<Column, 3>& c, std::size_t r) {
+  template <class T>
+  static glm::dvec3 column3(const std::array<std::vector<T>, 3>& c, std::size_t r) {
     return {c[0][r], c[1][r], c[2][r]};
   }
   std::size_t size_ = 0;

@@ -1,0 +1,131 @@
+// A point on a sphere light by the cone the sphere subtends, written once over the number type
+// (core/numbers.h): N = double for the double shading (sample_sphere_cone, prims/sphere.h), N =
+// float lanes for the render's light points (src/render/lights/light_lanes_impl.h), and N =
+// float as the lanes' bit-for-bit reference. No step fuses a multiply-add and the build has
+// -ffp-contract=off, so the float lanes and the scalar float text agree on every instruction
+// set.
+//
+// Float's error, for a sphere of radius r seen from distance d > r (each step rounds once, to
+// 2^-24 relative; tests/render/light_lanes_test.cpp holds the float answers to these against
+// the double ones at the same inputs):
+//   - the direction: a few float roundoffs (the cone's frame and sin/cos of the turn);
+//   - the distance d·cos θ − √(r² − d²sin²θ): the difference of two terms of size d, so a few
+//     roundoffs of d, not of the distance;
+//   - the solid angle 2π·sin²θmax / (1 + cos θmax) (no cancellation for a narrow cone: pbrt-v4,
+//     Pharr, Jakob and Humphreys, 4th ed., §6.2.4): a few roundoffs relative.
+#pragma once
+
+#include <type_traits>
+
+#include "raylane/core/fast_math.h"
+#include "raylane/core/numbers.h"
+
+namespace raylane {
+
+// Whether N is double or double lanes (else float or float lanes).
+template <class N>
+constexpr bool is_double_number() {
+  if constexpr (std::is_arithmetic_v<N>)
+    return std::is_same_v<N, double>;
+  else
+    return std::is_same_v<typename N::value_type, double>;
+}
+
+template <class N>
+struct TurnSinCos {
+  N sin, cos;
+};
+
+// sin and cos of 2π·u for u in [0, 1], as core/fast_math.h's sincos_2pi: the turn reduced
+// exactly to a quarter q = round(4u) and |u − q/4| ≤ 1/8 (Sterbenz), Taylor polynomials on
+// |a| ≤ π/4, then the quarter's symmetry. In double fast_math's polynomials (the same answers,
+// bit for bit); in float the same series to degree 9 and 10 (the omitted terms are below 2e-9),
+// in plain products and sums: absolute error ≤ 3·2^-24, as simd/lane_math.h's.
+template <class N>
+TurnSinCos<N> sincos_turn(const N& u) {
+  using K = Num<N>;
+  constexpr double kTwoPi = 6.283185307179586476925;
+  const N q = K::round_even(N(4.0) * u);
+  const N a = N(kTwoPi) * (u - N(0.25) * q);
+  N s, c;
+  if constexpr (is_double_number<N>()) {
+    s = fast_math_detail::sin_poly(a), c = fast_math_detail::cos_poly(a);
+  } else {
+    const N a2 = a * a;
+    N ps = N(1.0f / 362880) * a2 - N(1.0f / 5040);
+    ps = ps * a2 + N(1.0f / 120);
+    ps = ps * a2 - N(1.0f / 6);
+    s = a + a * a2 * ps;
+    N pc = N(-1.0f / 3628800) * a2 + N(1.0f / 40320);
+    pc = pc * a2 - N(1.0f / 720);
+    pc = pc * a2 + N(1.0f / 24);
+    c = N(1.0f) - N(0.5f) * a2 + a2 * a2 * pc;
+  }
+  // Quarter k = q mod 4 (q is 0 to 4): (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s).
+  const N k = K::select(q == N(4.0), N(0.0), q);
+  const auto swap = (k == N(1.0)) | (k == N(3.0));
+  const auto neg_sin = k >= N(2.0), neg_cos = (k == N(1.0)) | (k == N(2.0));
+  const N sin = K::select(swap, c, s), cos = K::select(swap, s, c);
+  return {K::select(neg_sin, K::negate(sin), sin), K::select(neg_cos, K::negate(cos), cos)};
+}
+
+// The local direction v = (x, y, z) about the unit normal n, to world: Duff et al. 2017,
+// "Building an Orthonormal Basis, Revisited", in core/warps.h's Frame's order.
+template <class N, class V3>
+V3 frame_to_world(const V3& n, const V3& v) {
+  using K = Num<N>;
+  const N sign = K::select(K::sign_bit(n.z), N(-1.0), N(1.0));
+  const N a = N(-1.0) / (sign + n.z);
+  const N b = n.x * n.y * a;
+  const N minus_sign = K::negate(sign);
+  const V3 s{N(1.0) + sign * n.x * n.x * a, sign * b, minus_sign * n.x};
+  const V3 t{b, sign + n.y * n.y * a, K::negate(n.y)};
+  return V3{s.x * v.x + t.x * v.y + n.x * v.z, s.y * v.x + t.y * v.y + n.y * v.z,
+            s.z * v.x + t.z * v.y + n.z * v.z};
+}
+
+// 1 − cos θmax of the cone a sphere of radius² r2 subtends from distance² d2 > r2, as
+// sin²θmax / (1 + cos θmax): no cancellation for a narrow cone.
+template <class N>
+N cone_one_minus_cos(const N& r2, const N& d2) {
+  using K = Num<N>;
+  const N sin2_max = r2 / d2;
+  return sin2_max / (N(1.0) + K::sqrt(K::max(N(0.0), N(1.0) - sin2_max)));
+}
+
+// A direction toward a sphere, uniform in the cone it subtends, and how far along it the sphere
+// lies; solid_angle 0 where the reference point is not outside the sphere (the caller samples
+// by area there, and wi and dist are then meaningless).
+template <class N, class V3>
+struct SphereCone {
+  V3 wi;
+  N dist, solid_angle;
+};
+
+// The sphere about `center` of radius r, seen from ref, with the cone's numbers u1 (1 − cos θ
+// over its range) and u2 (the turn about the axis).
+template <class N, class V3>
+SphereCone<N, V3> sphere_cone(const V3& center, const N& r, const V3& ref, const N& u1,
+                              const N& u2) {
+  using K = Num<N>;
+  const N zero(0.0), one(1.0);
+  const V3 w{center.x - ref.x, center.y - ref.y, center.z - ref.z};
+  const N r2 = r * r, d2 = w.x * w.x + w.y * w.y + w.z * w.z;
+  const auto outside = d2 > r2;
+  const N d = K::sqrt(d2);
+  const N omc_max = cone_one_minus_cos(r2, d2);
+  // Uniform in the cone: 1 − cos θ = u1·(1 − cos θmax), sin²θ = (1 − cos θ)(1 + cos θ).
+  const N omc = u1 * omc_max;
+  const N cos_t = one - omc;
+  const N sin_t = K::sqrt(K::max(zero, omc * (N(2.0) - omc)));
+  const TurnSinCos<N> phi = sincos_turn(u2);
+  const V3 local{sin_t * phi.cos, sin_t * phi.sin, cos_t};
+  // The nearer root of the ray from ref along the sampled direction.
+  const N sin2 = local.x * local.x + local.y * local.y;
+  const N t_hit = d * local.z - K::sqrt(K::max(zero, r2 - d2 * sin2));
+  const V3 axis{w.x / d, w.y / d, w.z / d};
+  constexpr double kTwoPi = 6.283185307179586476925;
+  return {frame_to_world<N>(axis, local), t_hit, K::select(outside, N(kTwoPi) * omc_max, zero)};
+}
+
+}  // namespace raylane
