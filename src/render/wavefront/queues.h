@@ -21,20 +21,26 @@
 
 namespace raylane::path_detail {
 
-// A path between wavefronts. Its ray is not here: it waits in a RayQueue.
-struct PathState {
-  glm::dvec3 beta{1, 1, 1};  // throughput
-  glm::dvec3 radiance{0, 0, 0};
-  glm::dvec3 prev_p{};         // the vertex the ray left (for the light pdf of MIS)
-  double prev_pdf = 0;         // the BSDF density of the ray's direction
-  bool prev_specular = false;  // ... drawn from a Dirac lobe: light sampling could not find it
-  std::size_t pixel = 0;
-  uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
+// A path between wavefronts. Its ray is not here: it waits in a RayQueue. Two cache lines, the
+// first holding what the lane shading's passes over arrivals and shadow rays read (sort_arrivals:
+// depth, seed, throughput; add_unblocked_shadows: radiance), so each touches one line per path
+// (112 bytes unaligned straddled two or three).
+struct alignas(64) PathState {
   // The depth its ray in flight arrives at: 0 for the camera ray, one more at every vertex
   // that sends the path on (sort_arrivals counts it). A wavefront that refills holds paths of
   // different depths side by side.
   uint32_t depth = 0;
+  bool prev_specular = false;  // the ray was drawn from a Dirac lobe: light sampling could not
+                               // find what it meets
+  uint64_t pixel_seed = 0;     // the Sobol sampler's scramble of this pixel
+  glm::dvec3 beta{1, 1, 1};    // throughput
+  glm::dvec3 radiance{0, 0, 0};
+  // The second line: what the vertex's write-back leaves for the next arrival's MIS weight.
+  glm::dvec3 prev_p{};  // the vertex the ray left (for the light pdf of MIS)
+  double prev_pdf = 0;  // the BSDF density of the ray's direction
+  std::size_t pixel = 0;
 };
+static_assert(sizeof(PathState) == 128, "two cache lines");
 
 // Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
 struct RayQueue {
