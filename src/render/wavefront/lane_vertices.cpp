@@ -41,13 +41,17 @@ bool roulette_columns(ThreadContext& ctx) {
   float* survival = lv.vertices.survival.data();
   const uint32_t* depth = lv.depth.data();
   const int rr_depth = ctx.settings.rr_depth;  // read once: the stores below may alias it
-  bool any = false;
-  for (std::size_t r = 0; r < lv.count; ++r) {
-    const bool roulette = has_roulette(rr_depth, depth[r]);
-    survival[r] = roulette ? float(kRouletteSurvival) : 1.0f;
-    any = any || roulette;
+  const std::size_t n = lv.count;
+  // Without branches: a wavefront mixes depths, and a branch per row on the depth mispredicted
+  // (a quarter of this stage's own time).
+  const float survival_of[2] = {1.0f, float(kRouletteSurvival)};
+  unsigned any = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    const unsigned roulette = has_roulette(rr_depth, depth[r]) ? 1u : 0u;
+    survival[r] = survival_of[roulette];
+    any |= roulette;
   }
-  return any;
+  return any != 0;
 }
 
 // The rows' Sobol seeds for the group each row draws at its own depth: the pixel's seed salted
@@ -173,8 +177,8 @@ void surface_columns(ThreadContext& ctx) {
 
 // Whether row r's BSDF reflects something: a shading normal at a right angle to the ray, or not
 // finite, or a material without lobes is Bsdf::black(), as the double shading decides it.
-bool reflects(const LaneMaterials& lm, double cos_ns, uint32_t m) {
-  return cos_ns != 0 && std::isfinite(cos_ns) && lm.has_lobes[m];
+bool reflects(const uint8_t* has_lobes, double cos_ns, uint32_t m) {
+  return cos_ns != 0 && std::isfinite(cos_ns) && has_lobes[m];
 }
 
 // The queued rows whose BSDF reflects something, kept in order with their columns so far (the
@@ -185,15 +189,18 @@ void drop_black_rows(ThreadContext& ctx) {
   const LaneMaterials& lm = ctx.lanes.materials;
   LaneVertexQueue& rows = lv;
   const std::size_t n = lv.count;
+  const double* cos_ns = rows.cos_ns.data();
+  const uint32_t* material = rows.material.data();
   std::size_t first = 0;
-  while (first < n && reflects(lm, rows.cos_ns[first], rows.material[first]))
+  const uint8_t* has_lobes = lm.has_lobes.data();
+  while (first < n && reflects(has_lobes, cos_ns[first], material[first]))
     ++first;
   if (first == n) return;
   const Columns3Out<float> p(lv.vertices.p), p_error(lv.vertices.p_error), ng(lv.vertices.ng);
   const Columns3Out<float> ns(lv.shade.n), beta(lv.vertices.beta);
   std::size_t kept = first;
   for (std::size_t r = first + 1; r < n; ++r) {
-    if (!reflects(lm, rows.cos_ns[r], rows.material[r])) continue;
+    if (!reflects(has_lobes, cos_ns[r], material[r])) continue;
     rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
     rows.pixel_seed[kept] = rows.pixel_seed[r];
@@ -261,6 +268,7 @@ void path_columns(ThreadContext& ctx) {
   const LaneVertexQueue& rows = lv;
   const std::size_t n = lv.count;
   ctx.lanes.kernels.gather_wo(w.rays.rays, rows.ray.data(), n, lv.shade);
+  if (!ctx.lanes.materials.any_absorbing) return;
   const PathState* paths = w.paths.data();
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<float> beta(lv.vertices.beta);

@@ -48,6 +48,9 @@ struct LaneMaterials {
   std::vector<uint8_t> textured;
   bool any_textured = false;
   std::vector<uint8_t> has_lobes;  // 1 where pd + pr + pt > 0 (0: the Bsdf is black)
+  // Some material shaded in lanes transmits (Kt ≠ 0), so Beer's law may weigh a path that
+  // arrives at a back face (beer_transmittance is 1 for every other material).
+  bool any_absorbing = false;
   // Where a hit on the material goes when the wavefront arrives: it ends its path (an
   // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit.
   enum class Route : uint8_t { kEmitter, kLanes, kDouble };
