@@ -34,13 +34,6 @@ F<A> as_flag(const M<A>& m) {
   return simd::select(m, F<A>(1.0f), F<A>(0.0f));
 }
 
-// Double columns [i, i + W) rounded to float lanes.
-template <class A>
-FloatVec3<A> load3_narrowed(const std::array<std::vector<double>, 3>& c, std::size_t i) {
-  return {simd::load_narrowed<A>(c[0].data() + i), simd::load_narrowed<A>(c[1].data() + i),
-          simd::load_narrowed<A>(c[2].data() + i)};
-}
-
 // The vertex of rows [i, i + W): throughput, point, normal, and the bound on the point's error
 // projected on the normal, the offset both its rays leave by.
 template <class A>
@@ -60,7 +53,7 @@ template <class A>
 void shadow_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const ShadeBatch& bsdf,
                   const LightQueries& lights, const VertexLanes<A>& v, VertexBatch& b,
                   std::size_t i) {
-  const FloatVec3<A> wi = load3<A>(bsdf.light_wi, i), le = load3_narrowed<A>(lights.le, i);
+  const FloatVec3<A> wi = load3<A>(bsdf.light_wi, i), le = load3<A>(lights.le, i);
   const FloatVec3<A> f{a.light_f[0], a.light_f[1], a.light_f[2]};
   const F<A> pdf = simd::load<A>(lights.cones.pdf.data() + i);
   const FloatVec3<A> c = shadow_ray_contribution(rules.mis, v.beta, f, le, pdf, a.light_pdf);

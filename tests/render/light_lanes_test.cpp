@@ -298,8 +298,7 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
         expect_cone_row_near(scene, q, i, want);
         continue;
       }
-      glm::dvec3 le(q.le[0][i], q.le[1][i], q.le[2][i]);
-      EXPECT_EQ(le, want.le);
+      EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(want.le));
       // The point is ref + wi·dist, so these pin it down too.
       EXPECT_TRUE(same_bits(q.cones.wi[0][i], float(want.wi.x)) &&
                   same_bits(q.cones.wi[1][i], float(want.wi.y)) &&

@@ -232,8 +232,10 @@ void LightQueries::resize(std::size_t n) {
   // Padded as the cones are: the scatter kernel reads le in whole batches of float lanes.
   const std::size_t padded = (n + 15) / 16 * 16;
   if (u_light.size() < padded) {
-    for (Column* c : {&u_light, &u_part, &le[0], &le[1], &le[2]})
+    for (Column* c : {&u_light, &u_part})
       c->resize(padded);
+    for (std::vector<float>& c : le)
+      c.resize(padded);
     light.resize(padded);
     cone_light.resize(padded);
   }
@@ -246,7 +248,7 @@ void LightQueries::set(std::size_t r, const LightSample& s) {
   cones.pdf[r] = pdf;
   cones.dist[r] = float(s.dist);
   for (int k = 0; k < 3; ++k)
-    cones.wi[k][r] = float(s.wi[k]), le[k][r] = s.le[k];
+    cones.wi[k][r] = float(s.wi[k]), le[k][r] = float(s.le[k]);
   if (cones.wi_float[0])  // ConeBatch::wi_float, as the kernel writes it
     for (int k = 0; k < 3; ++k)
       cones.wi_float[k][r] = pdf > 0 ? float(s.wi[k]) : 0.0f;
@@ -266,7 +268,7 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   sample_cones(isa, cb, &every_row);
   std::fill_n(q.light.begin(), n, lights_[0]);
   for (int c = 0; c < 3; ++c)
-    std::fill_n(q.le[std::size_t(c)].begin(), n, le_[0][c]);
+    std::fill_n(q.le[std::size_t(c)].begin(), n, float(le_[0][c]));
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
   const float* solid_angle = cb.solid_angle.data();
   for (std::size_t r = 0; r < n; ++r)
@@ -313,7 +315,7 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
     }
     q.light[r] = lights_[k];
     for (int c = 0; c < 3; ++c)
-      q.le[c][r] = le_[k][c];
+      q.le[c][r] = float(le_[k][c]);
     if (cb.solid_angle[r] > 0 && !textured_[k]) continue;  // the kernel's answer stands
     q.set(r, finish_sphere_row(q, r, k));
   }

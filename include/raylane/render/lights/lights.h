@@ -63,7 +63,7 @@ struct LightQueries {
   void set_times(const uint32_t* path, const std::vector<float>& path_time);
   double time_of(std::size_t r) const { return time.empty() ? 0.5 : time[r]; }
   std::vector<PrimRef> light;
-  std::array<Column, 3> le;
+  std::array<std::vector<float>, 3> le;  // rounded to float, as the shading reads it
   // Rows [0, n), padded to a multiple of 16 lanes as ConeBatch. The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
