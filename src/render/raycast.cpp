@@ -77,8 +77,9 @@ struct ShadowQuery {
 // The course's first shading: ambient·Kd, plus for each emitting sphere whose centre is
 // visible, Le·(Kd·max(0, N·L) + Ks·max(0, R·V)^α), R = L mirrored about N (Phong 1975).
 // Returns the ambient (or emitted) part and appends the shadow queries of the rest.
-glm::dvec3 shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, std::size_t pixel,
+glm::dvec3 shade_lit_begin(const Tracer& tracer, const Rayd& ray, const Hit& hit, std::size_t pixel,
                            std::vector<Rayd>& shadow_rays, std::vector<ShadowQuery>& queries) {
+  const Scene& scene = tracer.scene();
   if (!hit.hit()) return {0, 0, 0};
   const Material& m = material_of(scene, hit);
   if (m.is_light) return radiance(scene, hit);
@@ -86,7 +87,7 @@ glm::dvec3 shade_lit_begin(const Scene& scene, const Rayd& ray, const Hit& hit, 
   glm::dvec3 n = hit.front_face ? hit.surface.ns : -hit.surface.ns;
   glm::dvec3 v = -normalize(ray.d);
   glm::dvec3 origin =
-      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, v);
+      offset_ray_origin(hit.surface.p, tracer.hit_point_bound(ray, hit), hit.surface.ng, v);
   for (PrimRef light : scene.lights) {
     std::optional<glm::dvec3> at = point_light(scene, light);
     if (!at) continue;
@@ -133,7 +134,7 @@ void render_band(const Tracer& tracer, const Camera& camera, RaycastMode mode, u
   st.camera_rays += rays.size();
   for (std::size_t i = 0; i < rays.size(); ++i) {
     glm::dvec3 c = mode == RaycastMode::kLit
-                       ? shade_lit_begin(scene, rays[i], hits[i], pixel[i], shadow_rays, queries)
+                       ? shade_lit_begin(tracer, rays[i], hits[i], pixel[i], shadow_rays, queries)
                        : shade_simple(scene, mode, hits[i]);
     const std::size_t at = region_slot(region, scene.width, pixel[i]);
     if (at == kNotInRegion) continue;

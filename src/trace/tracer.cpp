@@ -64,6 +64,13 @@ void Tracer::complete(const Rayd& ray, Hit& h) const {
   h.front_face = dot(traced.d, h.surface.ng) < 0;
 }
 
+glm::dvec3 Tracer::hit_point_bound(const Rayd& ray, const Hit& hit) const {
+  glm::dvec3 e = hit_point_error(ray, hit.t);
+  if (hit.prim.tag() == tag_of<Triangle>)
+    e += triangle_vertex_bound(scene_.table<Triangle>(), hit.prim.row());
+  return e;
+}
+
 Surface surface_of(const Scene& scene, PrimRef prim, const Rayd& ray, double t) {
   return dispatch(prim.tag(), [&](auto kind) {
     return surface_ref(scene.table<decltype(kind)>(), prim.row(), ray, t);

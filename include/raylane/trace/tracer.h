@@ -53,6 +53,11 @@ class Tracer {
   void closest(const RayStream& rays, HitStream& hits, TraceScratch& scratch) const;
   // The surface and facing of a hit closest() gave prim and t alone, for the ray it traced.
   void complete(const Rayd& ray, Hit& hit) const;
+  // A componentwise bound on the error of a hit's double point (hit.surface.p, for `ray`), what
+  // a ray leaving it must clear (offset_ray_origin): hit_point_error's float roundoffs of
+  // |o| + |t·d| and, on a triangle, triangle_vertex_bound (the float kernel's error in telling
+  // the sides of a plane grows with the vertices: docs/hard-cases.md R2).
+  glm::dvec3 hit_point_bound(const Rayd& ray, const Hit& hit) const;
   // The surfaces of hit ray[r] of `hits` (each a hit, not a miss, of a closest() on `rays`)
   // into row r of `out`, for r in [0, ray.size()), kind by kind, in float with an error bound
   // (SurfaceColumns): from the kind's float lanes where it has them (surface_float_lanes:

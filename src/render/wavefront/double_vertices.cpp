@@ -63,7 +63,7 @@ void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, con
   glm::dvec3 c{};
   if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
   glm::dvec3 o =
-      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, ls.wi);
+      offset_ray_origin(hit.surface.p, ctx.tracer.hit_point_bound(ray, hit), hit.surface.ng, ls.wi);
   ShadowQueue& s = ctx.wave.next_shadows;
   RayAppender(s.rays, 1, true)
       .push(ray_cast<float>(Rayd{o, ls.wi, 0, shadow_ray_tmax(o, hit.surface.p, ls.wi, ls.dist)}),
@@ -73,14 +73,14 @@ void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, con
 
 // After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`).
 // False when the path ends here.
-bool continue_path(PathState& p, const Rayd& ray, const Hit& hit, const BsdfSample& s,
-                   double u_roulette, const VertexRules& rules, Rayd& next) {
+bool continue_path(const Tracer& tracer, PathState& p, const Rayd& ray, const Hit& hit,
+                   const BsdfSample& s, double u_roulette, const VertexRules& rules, Rayd& next) {
   if (!next_throughput(rules, p.beta, s.value, s.pdf, u_roulette, p.beta)) return false;
   p.prev_p = hit.surface.p;
   p.prev_pdf = s.pdf;
   p.prev_specular = s.specular;
   glm::dvec3 o =
-      offset_ray_origin(hit.surface.p, hit_point_error(ray, hit.t), hit.surface.ng, s.wi);
+      offset_ray_origin(hit.surface.p, tracer.hit_point_bound(ray, hit), hit.surface.ng, s.wi);
   next = {o, s.wi};
   return true;
 }
@@ -107,7 +107,7 @@ bool shade_vertex_double(ThreadContext& ctx, uint32_t path, PathState& p, const 
   if (!s.valid()) return false;
   const VertexRules rules = vertex_rules(ctx, depth);
   double u_roulette = rules.roulette ? roulette_uniform(ctx, u) : 0.0;
-  return continue_path(p, ray, hit, s, u_roulette, rules, next);
+  return continue_path(ctx.tracer, p, ray, hit, s, u_roulette, rules, next);
 }
 
 }  // namespace
