@@ -14,6 +14,7 @@
 
 #include "bvh/box_lanes.h"
 #include "bvh/sah_split.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane::bvh_build::lanes {

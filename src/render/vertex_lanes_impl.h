@@ -10,6 +10,7 @@
 #include "raylane/core/ray_offset.h"
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/render/vertex_steps.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lane_rows.h"
 #include "render/lights/light_lanes_impl.h"

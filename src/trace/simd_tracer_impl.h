@@ -5,6 +5,7 @@
 #include <cfloat>
 
 #include "raylane/core/ray_offset.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_rows.h"
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"

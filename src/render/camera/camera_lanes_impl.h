@@ -5,6 +5,7 @@
 #pragma once
 
 #include "raylane/render/camera/camera_lanes.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lanes.h"
 
