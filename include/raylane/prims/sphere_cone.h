@@ -63,8 +63,9 @@ TurnSinCos<N> sincos_turn(const N& u) {
   }
   // Quarter k = q mod 4 (q is 0 to 4): (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s).
   const N k = K::select(q == N(4.0), N(0.0), q);
-  const auto swap = (k == N(1.0)) | (k == N(3.0));
-  const auto neg_sin = k >= N(2.0), neg_cos = (k == N(1.0)) | (k == N(2.0));
+  using Mask = typename K::Mask;
+  const Mask swap = (k == N(1.0)) | (k == N(3.0));
+  const Mask neg_sin = k >= N(2.0), neg_cos = (k == N(1.0)) | (k == N(2.0));
   const N sin = K::select(swap, c, s), cos = K::select(swap, s, c);
   return {K::select(neg_sin, K::negate(sin), sin), K::select(neg_cos, K::negate(cos), cos)};
 }
