@@ -1,9 +1,9 @@
-// The course's BSDF (render/materials/bsdf.h) for a whole wavefront of shading points at once, in float
-// SIMD lanes (docs/design.md, "Shading in lanes"): each point's sample of the next
-// direction and its evaluation toward a sampled light point, with every lobe computed in every
-// lane and the lane's choice selected, so that lanes never diverge. The double-precision Bsdf
-// stays the reference (tests/render/shade_lanes_test.cpp holds the lanes to it) and shades
-// what the lanes do not: index-matched transmission, a Dirac lobe.
+// The course's BSDF (render/materials/bsdf.h) for a whole wavefront of shading points at once, in
+// float SIMD lanes (docs/design.md, "Shading in lanes"): each point's sample of the next direction
+// and its evaluation toward a sampled light point, with every lobe computed in every lane and the
+// lane's choice selected, so that lanes never diverge. The double-precision Bsdf stays the
+// reference (tests/render/shade_lanes_test.cpp holds the lanes to it) and shades what the lanes do
+// not: index-matched transmission, a Dirac lobe.
 //
 // Baseline code includes this header; the kernels live in per-ISA translation units
 // (src/render/render_lanes_<isa>.cpp), picked at run time through their table
