@@ -1,9 +1,6 @@
 // Spheres as emitters: area, area sampling and sampling of the subtended cone.
-#include <algorithm>
-#include <cmath>
-
-#include "raylane/core/warps.h"
 #include "raylane/prims/sphere.h"
+#include "raylane/core/warps.h"
 #include "raylane/prims/sphere_cone.h"
 
 namespace raylane {
@@ -26,9 +23,10 @@ std::optional<SubtendedSample> sample_sphere_cone(const glm::dvec3& c, double r,
 
 std::optional<double> sphere_cone_solid_angle(const glm::dvec3& c, double r,
                                               const glm::dvec3& ref) {
-  double d2 = length_squared(c - ref);
-  if (!(d2 > r * r)) return std::nullopt;
-  return 2 * kPi * cone_one_minus_cos<double>(r * r, d2);
+  // sphere_cone's test: outside, and a cone of some solid angle.
+  const double d2 = length_squared(c - ref), solid_angle = 2 * kPi * cone_one_minus_cos(r * r, d2);
+  if (!(d2 > r * r) || !(solid_angle > 0)) return std::nullopt;
+  return solid_angle;
 }
 
 AreaSample Sphere::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {

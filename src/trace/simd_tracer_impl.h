@@ -189,7 +189,7 @@ struct HitSink {
   uint32_t prim_row(uint32_t r) const { return hits[r].prim.row(); }
   double t_of(uint32_t r) const { return hits[r].t; }
   void store(uint32_t r, const glm::dvec3& p, const glm::dvec3& n, double cos_d,
-             const glm::dvec3& /*error: a hit record's bound is hit_point_error*/) const {
+             const glm::dvec3& /*error: a hit record's is Tracer::hit_point_bound*/) const {
     Hit& h = hits[r];
     h.surface = {p, n, n};
     h.front_face = cos_d < 0;

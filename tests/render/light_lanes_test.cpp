@@ -136,12 +136,12 @@ ConeBound cone_bound(const SphereCone<double, glm::dvec3>& exact, double r, cons
 }
 
 // The float steps against the double ones at the same inputs, within cone_bound; a planted
-// error of one part in 10^5 in the float's solid angle is caught.
+// error of one part in 10^5 in the float's solid angle, direction or distance is caught.
 TEST(LightLanes, FloatConesAreWithinTheirBoundOfTheDoubleOnes) {
   SphereTable spheres;
   std::vector<Case> cases = random_cases(spheres, 20000, 7);
   const ConeBatch b = batch_of(spheres, cases);
-  int outside = 0, beyond = 0, planted_beyond = 0, disagree = 0;
+  int outside = 0, beyond = 0, planted_beyond = 0, planted_wi = 0, planted_dist = 0, disagree = 0;
   double worst[3] = {};
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto f = steps_for_row<float, glm::vec3>(b, i);
@@ -163,10 +163,20 @@ TEST(LightLanes, FloatConesAreWithinTheirBoundOfTheDoubleOnes) {
     for (int k = 0; k < 3; ++k)
       worst[k] = std::max(worst[k], e[k]);
     beyond += e[0] > 1 || e[1] > 1 || e[2] > 1;
+    // Planted: one part in 10^5 off the solid angle, the direction, and the distance (of the
+    // distance to the centre, the scale its bound is in).
     planted_beyond += std::abs(f.solid_angle * (1 + 1e-5) - d.solid_angle) > bound.solid_angle;
+    planted_wi += length(glm::dvec3(f.wi) + glm::dvec3(1e-5, 0, 0) - d.wi) > bound.wi;
+    planted_dist += std::abs(f.dist + 1e-5 * length(w) - d.dist) > bound.dist;
   }
   EXPECT_EQ(beyond, 0);
   EXPECT_GT(planted_beyond, outside / 2);
+  EXPECT_GT(planted_wi, outside / 2);
+  // The distance's bound is wide near the sphere and where the sample grazes it (its √ terms):
+  // there 10^-5 of d passes, and about 40 % of the rows are caught.
+  EXPECT_GT(planted_dist, outside / 3);
+  std::printf("planted errors beyond the bound: solid angle %d, direction %d, distance %d of %d\n",
+              planted_beyond, planted_wi, planted_dist, outside);
   EXPECT_GT(outside, 13000);
   std::printf(
       "largest error / bound: solid angle %.3g, direction %.3g, distance %.3g; %d rows "

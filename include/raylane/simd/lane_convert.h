@@ -24,21 +24,6 @@ inline void store_widened(double* lo, double* hi, const Floats<A>& v) {
   }
 }
 
-// W floats from p (W the double lanes' count) widened, exactly, to double lanes.
-template <class A>
-inline Doubles<A> load_widened(const float* p) {
-  if constexpr (kDoubleWidth<A> == 8) {
-    return Doubles<A>(_mm512_cvtps_pd(_mm256_loadu_ps(p)));
-  } else if constexpr (kDoubleWidth<A> == 4) {
-    return Doubles<A>(_mm256_cvtps_pd(_mm_loadu_ps(p)));
-  } else {
-    static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
-    // _mm_loadl_epi64's pointer type may alias the floats (a double* load would not).
-    return Doubles<A>(
-        _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)))));
-  }
-}
-
 // Double lanes rounded to nearest float (as a scalar cast rounds) and stored at p[0, W).
 template <class A>
 inline void store_narrowed(float* p, const Doubles<A>& v) {
@@ -49,26 +34,6 @@ inline void store_narrowed(float* p, const Doubles<A>& v) {
   } else {
     static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
     _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(__m128d(v)));
-  }
-}
-
-// W doubles from p (W the float lanes' count) rounded to nearest float, as a scalar cast rounds.
-template <class A>
-inline Floats<A> load_narrowed(const double* p) {
-  if constexpr (kWidth<A> == 16) {
-    const __m256 lo = _mm512_cvtpd_ps(_mm512_loadu_pd(p)),
-                 hi = _mm512_cvtpd_ps(_mm512_loadu_pd(p + 8));
-    const __m512d both =
-        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1);
-    return Floats<A>(_mm512_castpd_ps(both));
-  } else if constexpr (kWidth<A> == 8) {
-    const __m128 lo = _mm256_cvtpd_ps(_mm256_loadu_pd(p)),
-                 hi = _mm256_cvtpd_ps(_mm256_loadu_pd(p + 4));
-    return Floats<A>(_mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1));
-  } else {
-    static_assert(kWidth<A> == 4, "four, eight or sixteen float lanes");
-    const __m128 lo = _mm_cvtpd_ps(_mm_loadu_pd(p)), hi = _mm_cvtpd_ps(_mm_loadu_pd(p + 2));
-    return Floats<A>(_mm_movelh_ps(lo, hi));
   }
 }
 

@@ -14,8 +14,11 @@ struct Num<xsimd::batch<float, A>> {
   using F = simd::Floats<A>;
   using Mask = simd::Mask<A>;
   static F select(const Mask& c, const F& a, const F& b) { return simd::select(c, a, b); }
-  static F max(const F& a, const F& b) { return xsimd::max(a, b); }
-  static F min(const F& a, const F& b) { return xsimd::min(a, b); }
+  // std::max(a, b) and std::min(a, b) exactly, NaNs and zeros' signs included: MAXPS(x, y) and
+  // MINPS(x, y) return y where either is NaN or both are zero, so the operands go in swapped
+  // ((b > a) ? b : a is std::max's (a < b) ? b : a).
+  static F max(const F& a, const F& b) { return xsimd::max(b, a); }
+  static F min(const F& a, const F& b) { return xsimd::min(b, a); }
   static F sqrt(const F& x) { return xsimd::sqrt(x); }
   static F abs(const F& x) { return xsimd::abs(x); }
   static F round_even(const F& x) { return xsimd::nearbyint(x); }

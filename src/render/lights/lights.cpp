@@ -282,8 +282,7 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   const std::size_t n = q.size();
   // Each row's light; a sphere's rows get its center (a moving one's at the row's time),
   // radius and choice for the cone kernel. The other rows get a unit sphere two units above
-  // their point, so that their lanes stay finite (what the kernel makes of them is overwritten
-  // below).
+  // their point (what the kernel makes of them is overwritten below).
   bool any_cone = false;
   q.environment_rows.clear();
   for (std::size_t r = 0; r < n; ++r) {

@@ -42,8 +42,7 @@ bool roulette_columns(ThreadContext& ctx) {
   const uint32_t* depth = lv.depth.data();
   const int rr_depth = ctx.settings.rr_depth;  // read once: the stores below may alias it
   const std::size_t n = lv.count;
-  // Without branches: a wavefront mixes depths, and a branch per row on the depth mispredicted
-  // (a quarter of this stage's own time).
+  // Without branches: a wavefront mixes depths, and a branch per row on the depth mispredicts.
   const float survival_of[2] = {1.0f, float(kRouletteSurvival)};
   unsigned any = 0;
   for (std::size_t r = 0; r < n; ++r) {
