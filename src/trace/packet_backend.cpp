@@ -1,7 +1,7 @@
 // The packet backend (trace/trace_backend.h): the SIMD tracer on float rays, then the hits'
-// surfaces kind by kind (in double lanes where the kind has them, float lanes for the render's
-// columns where it has those, by surface_ref otherwise), each for the ray as traced, so that t
-// and the point agree.
+// surfaces (float lanes for the render's columns where the kind has them, in one pass over the
+// rows in order; then kind by kind, in double lanes where the kind has them, by surface_ref
+// otherwise), each for the ray as traced, so that t and the point agree.
 #include <algorithm>
 
 #include "raylane/prims/prim_list.h"
@@ -82,22 +82,35 @@ void PacketBackend::closest(const RayStream& rays, std::vector<Hit>& hits, std::
   complete_by_prim_kind(rays, hits, std::min(with_surface, n), scratch);
 }
 
-// The hits' rows grouped by primitive kind into scratch.by_kind: row r where prim_of(r) is
-// valid (a hit), in its kind's list.
-template <class PrimOf>
-void group_by_prim_kind(std::size_t n, const PrimOf& prim_of, TraceScratch& scratch) {
-  for (auto& rows : scratch.by_kind)
-    rows.clear();
-  for (std::size_t r = 0; r < n; ++r) {
+// Rows `rows` grouped by their hit's primitive kind into scratch.by_kind: row r where prim_of(r)
+// is valid (a hit), in its kind's list, in order.
+template <class Rows, class PrimOf>
+void group_by_prim_kind(const Rows& rows, const PrimOf& prim_of, TraceScratch& scratch) {
+  for (auto& list : scratch.by_kind)
+    list.clear();
+  for (const uint32_t r : rows) {
     const PrimRef prim = prim_of(r);
-    if (prim.valid()) scratch.by_kind[std::size_t(prim.tag())].push_back(uint32_t(r));
+    if (prim.valid()) scratch.by_kind[std::size_t(prim.tag())].push_back(r);
   }
 }
+
+// The rows [0, n).
+struct AllRows {
+  std::size_t n;
+  struct It {
+    uint32_t r;
+    uint32_t operator*() const { return r; }
+    It& operator++() { return ++r, *this; }
+    bool operator!=(const It& o) const { return r != o.r; }
+  };
+  It begin() const { return {0}; }
+  It end() const { return {uint32_t(n)}; }
+};
 
 void PacketBackend::complete_by_prim_kind(const RayStream& rays, std::vector<Hit>& hits,
                                           std::size_t n, TraceScratch& scratch) const {
   group_by_prim_kind(
-      n, [&](std::size_t i) { return hits[i].prim; }, scratch);
+      AllRows{n}, [&](uint32_t i) { return hits[i].prim; }, scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
@@ -122,12 +135,17 @@ void PacketBackend::surfaces(const RayStream& rays, const HitStream& hits,
                              std::span<const uint32_t> ray, const SurfaceColumns& out,
                              TraceScratch& scratch) const {
   const uint32_t* prim = hits.prim.data();
+  scratch.rest.resize(ray.size());
+  const std::size_t rest = simd_.float_surfaces(scene_, rays, ray, hits, out, scratch.rest.data());
   group_by_prim_kind(
-      ray.size(), [&](std::size_t r) { return PrimRef::from_bits(prim[ray[r]]); }, scratch);
+      std::span<const uint32_t>(scratch.rest.data(), rest),
+      [&](uint32_t r) { return PrimRef::from_bits(prim[ray[r]]); }, scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];
-    if constexpr (Kind::surface_in_lanes || Kind::surface_in_float_lanes) {
+    if constexpr (Kind::surface_in_float_lanes) {
+      return;  // written by float_surfaces
+    } else if constexpr (Kind::surface_in_lanes) {
       simd_.surfaces(scene_, rays, tag_of<Kind>, rows, ray.data(), hits, out);
       return;
     }

@@ -61,6 +61,12 @@ void SimdTracer::surfaces(const Scene& scene, const RayStream& rays, PrimTag kin
   lanes_->surface_columns(scene, rays, kind, rows, ray, hits, out);
 }
 
+std::size_t SimdTracer::float_surfaces(const Scene& scene, const RayStream& rays,
+                                       std::span<const uint32_t> ray, const HitStream& hits,
+                                       const SurfaceColumns& out, uint32_t* rest) const {
+  return lanes_->float_surface_columns(scene, rays, ray, hits, out, rest);
+}
+
 namespace detail {
 
 const TracerLanes& tracer_lanes(Isa isa) {

@@ -200,7 +200,7 @@ struct HitSink {
 template <class A>
 struct ColumnSink {
   static constexpr bool kTakesRuns = true;
-  static constexpr bool kTakesFloats = true;  // float surfaces where the kind has them
+  static constexpr bool kTakesFloats = true;  // the float point's bound as well
   const uint32_t* ray;
   const float* t;        // HitStream::t
   const uint32_t* prim;  // HitStream::prim
@@ -219,16 +219,6 @@ struct ColumnSink {
     out.cos_ns[r] = cos_d;  // dot(d, n) = dot(n, d) bit for bit: the products commute
     out.front[r] = cos_d < 0;
   }
-  // A float surface with its kind's bound.
-  void store_float(uint32_t r, const glm::vec3& p, const glm::vec3& n, const glm::vec3& error,
-                   float cos_d) const {
-    out.px[r] = p.x, out.py[r] = p.y, out.pz[r] = p.z;
-    out.ngx[r] = n.x, out.ngy[r] = n.y, out.ngz[r] = n.z;
-    out.nsx[r] = n.x, out.nsy[r] = n.y, out.nsz[r] = n.z;
-    out.ex[r] = error.x, out.ey[r] = error.y, out.ez[r] = error.z;
-    out.cos_ns[r] = cos_d;
-    out.front[r] = cos_d < 0;
-  }
   // Rows [r, r + W) at once, from lanes: store's values, each column one store. The render's
   // rows are its rays in order, and neighbouring rays mostly meet the same kind, so a kind's
   // rows mostly come in runs.
@@ -245,22 +235,6 @@ struct ColumnSink {
     cos_d.store_unaligned(out.cos_ns + r);
     const uint32_t front = simd::bits<A>(cos_d < simd::Doubles<A>(0.0));
     for (int k = 0; k < simd::kDoubleWidth<A>; ++k)
-      out.front[r + k] = (front >> k) & 1u;
-  }
-  void store_float_run(uint32_t r, const FloatSurfaceLanes<A>& s,
-                       const simd::Floats<A>& cos_d) const {
-    const simd::FloatVec3<A>* from[4] = {&s.p, &s.n, &s.n, &s.error};
-    float* const to[4][3] = {{out.px, out.py, out.pz},
-                             {out.ngx, out.ngy, out.ngz},
-                             {out.nsx, out.nsy, out.nsz},
-                             {out.ex, out.ey, out.ez}};
-    for (int c = 0; c < 4; ++c) {
-      simd::store<A>(to[c][0] + r, from[c]->x), simd::store<A>(to[c][1] + r, from[c]->y);
-      simd::store<A>(to[c][2] + r, from[c]->z);
-    }
-    simd::store_widened<A>(out.cos_ns + r, cos_d);
-    const uint32_t front = simd::bits<A>(cos_d < simd::Floats<A>(0.0f));
-    for (int k = 0; k < simd::kWidth<A>; ++k)
       out.front[r + k] = (front >> k) & 1u;
   }
 };
@@ -310,50 +284,101 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
   }
 }
 
-// The float surfaces of request rows `rows`, all on Kind, W hits per batch of float lanes, with
-// the kind's bounds (surface_float_lanes), for a sink that takes them; as surfaces_range
-// otherwise.
-template <class A, class Kind, class Sink>
-void surfaces_float_range(const typename Kind::Table& table, const RayStream& rays,
-                          std::span<const uint32_t> rows, const Sink& to) {
+// One batch's float surfaces, blended kind by kind: the lanes `on` of `from` into `into`.
+template <class A>
+void blend_surfaces(const simd::Mask<A>& on, const FloatSurfaceLanes<A>& from,
+                    FloatSurfaceLanes<A>& into) {
+  auto one = [&](const simd::FloatVec3<A>& f, simd::FloatVec3<A>& i) {
+    i = {simd::select<A>(on, f.x, i.x), simd::select<A>(on, f.y, i.y),
+         simd::select<A>(on, f.z, i.z)};
+  };
+  one(from.p, into.p), one(from.n, into.n), one(from.error, into.error);
+}
+
+// The float surfaces of request rows [0, ray.size()) in the rows' order, W rows per batch of
+// float lanes: every kind with surface_in_float_lanes in the one pass, each kind present in a
+// batch computed for the whole batch and blended in by its lanes. The rows are the render's
+// rays in order, so the batch's rays mostly load whole, and its columns always store whole:
+// grouping the rows by kind first cost a gather of every ray column and a scalar store of every
+// surface column wherever kinds interleave (perf: most of the box surfaces' time on the course
+// scene). The rows of the other kinds are listed in `rest`, in order, for surfaces_of_kind;
+// their rows here hold nothing of use until it writes them. Returns their count.
+template <class A>
+std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& rays,
+                                        std::span<const uint32_t> ray, const HitStream& hits,
+                                        const SurfaceColumns& out, uint32_t* rest) {
   using F = simd::Floats<A>;
-  const Sink sink = to;
+  using I = simd::Ints<A>;
   constexpr int W = simd::kWidth<A>;
-  for (std::size_t i = 0; i < rows.size(); i += W) {
-    alignas(64) uint32_t at[W];
-    alignas(64) int32_t prim_rows[W], ray_rows[W];
-    alignas(64) float t[W];
-    for (int k = 0; k < W; ++k) {
-      const uint32_t r = rows[std::min(i + std::size_t(k), rows.size() - 1)];
-      at[k] = r, prim_rows[k] = int32_t(sink.prim_row(r)), ray_rows[k] = int32_t(sink.ray_of(r));
-      t[k] = float(sink.t_of(r));  // the float kernel's t, exact
-    }
-    // The rays of a batch are mostly a run of the stream (the render's rows are its rays in
-    // order): loaded whole, else gathered.
-    const simd::Ints<A> ray_idx = simd::load<A>(ray_rows);
-    const bool rays_run = simd::one_run<W>(reinterpret_cast<const uint32_t*>(ray_rows));
-    auto col = [&](const Column<float>& c) {
-      return rays_run ? simd::load<A>(c.data() + ray_rows[0]) : simd::gather<A>(c.data(), ray_idx);
+  const SurfaceColumns to = out;  // local: the facing's byte stores alias nothing provably
+  const std::size_t n = ray.size();
+  std::size_t rest_count = 0;
+  for (std::size_t i = 0; i < n; i += W) {
+    const int m = int(std::min<std::size_t>(W, n - i));
+    alignas(64) uint32_t ray_rows[W];
+    for (int k = 0; k < W; ++k)
+      ray_rows[k] = ray[i + std::size_t(std::min(k, m - 1))];
+    const bool run = m == W && simd::one_run<W>(ray_rows);
+    const I ray_idx = simd::load<A>(reinterpret_cast<const int32_t*>(ray_rows));
+    auto col = [&](const float* c) {
+      return run ? simd::load<A>(c + ray_rows[0]) : simd::gather<A>(c, ray_idx);
     };
-    const FloatHitRayLanes<A> ray{{col(rays.ox), col(rays.oy), col(rays.oz)},
-                                  {col(rays.dx), col(rays.dy), col(rays.dz)},
-                                  F::load_aligned(t)};
-    const FloatSurfaceLanes<A> s = surface_float_lanes<A>(table, simd::load<A>(prim_rows), ray);
-    const F cos_d = ray.d.x * s.n.x + ray.d.y * s.n.y + ray.d.z * s.n.z;
-    if (i + W <= rows.size() && simd::one_run<W>(at)) {
-      sink.store_float_run(at[0], s, cos_d);
-      continue;
-    }
-    alignas(64) float out[10][W];
-    const F* outs[10] = {&s.p.x, &s.p.y, &s.p.z,     &s.n.x,     &s.n.y,
+    const I prim = xsimd::bitwise_cast<I>(col(reinterpret_cast<const float*>(hits.prim.data())));
+    const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
+                                {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
+                                col(hits.t.data())};
+    const I tag = (prim >> PrimRef::kRowBits) & I((1 << PrimRef::kTagBits) - 1);
+    const I row = prim & I(int32_t(PrimRef::kMaxRows - 1));
+    const uint32_t lanes = m == W ? (1u << W) - 1 : (1u << m) - 1;
+    FloatSurfaceLanes<A> s{};
+    uint32_t done = 0;
+    PrimKinds::for_each([&](auto kind) {
+      using Kind = decltype(kind);
+      if constexpr (Kind::surface_in_float_lanes) {
+        const simd::Mask<A> on = simd::equal<A>(tag, I(int32_t(tag_of<Kind>)));
+        const uint32_t bits = simd::bits<A>(on) & lanes;
+        if (bits == 0) return;
+        // Lanes of other kinds read the table's row 0, which exists: this kind has a hit.
+        const FloatSurfaceLanes<A> k =
+            surface_float_lanes<A>(scene.table<Kind>(), simd::select<A>(on, row, I(0)), r);
+        if (done == 0) {
+          s = k;
+        } else {
+          blend_surfaces<A>(on, k, s);
+        }
+        done |= bits;
+      }
+    });
+    for (uint32_t others = lanes & ~done; others != 0; others &= others - 1)
+      rest[rest_count++] = uint32_t(i) + uint32_t(std::countr_zero(others));
+    const F cos_d = r.d.x * s.n.x + r.d.y * s.n.y + r.d.z * s.n.z;
+    const uint32_t front = simd::bits<A>(cos_d < F(0.0f));
+    alignas(64) float buffer[10][W];
+    const F* from[10] = {&s.p.x, &s.p.y, &s.p.z,     &s.n.x,     &s.n.y,
                          &s.n.z, &cos_d, &s.error.x, &s.error.y, &s.error.z};
-    for (int c = 0; c < 10; ++c)
-      outs[c]->store_aligned(out[c]);
-    const int n = int(std::min<std::size_t>(W, rows.size() - i));
-    for (int k = 0; k < n; ++k)
-      sink.store_float(at[k], {out[0][k], out[1][k], out[2][k]}, {out[3][k], out[4][k], out[5][k]},
-                       {out[7][k], out[8][k], out[9][k]}, out[6][k]);
+    float* const into[9] = {to.px + i,  to.py + i, to.pz + i, to.ngx + i, to.ngy + i,
+                            to.ngz + i, to.ex + i, to.ey + i, to.ez + i};
+    float* const ns[3] = {to.nsx + i, to.nsy + i, to.nsz + i};
+    if (m == W) {
+      for (int c = 0; c < 3; ++c) {
+        simd::store<A>(into[c], *from[c]), simd::store<A>(into[3 + c], *from[3 + c]);
+        simd::store<A>(ns[c], *from[3 + c]), simd::store<A>(into[6 + c], *from[7 + c]);
+      }
+      simd::store_widened<A>(to.cos_ns + i, cos_d);
+    } else {
+      for (int c = 0; c < 10; ++c)
+        from[c]->store_aligned(buffer[c]);
+      for (int c = 0; c < 3; ++c) {
+        std::copy_n(buffer[c], m, into[c]), std::copy_n(buffer[3 + c], m, into[3 + c]);
+        std::copy_n(buffer[3 + c], m, ns[c]), std::copy_n(buffer[7 + c], m, into[6 + c]);
+      }
+      for (int k = 0; k < m; ++k)
+        to.cos_ns[i + std::size_t(k)] = buffer[6][k];
+    }
+    for (int k = 0; k < m; ++k)
+      to.front[i + std::size_t(k)] = (front >> k) & 1u;
   }
+  return rest_count;
 }
 
 template <class A, class Sink>
@@ -361,9 +386,7 @@ void surfaces_of_kind(const Scene& scene, const RayStream& rays, PrimTag kind,
                       std::span<const uint32_t> rows, const Sink& sink) {
   dispatch(kind, [&](auto k) {
     using Kind = decltype(k);
-    if constexpr (Sink::kTakesFloats && Kind::surface_in_float_lanes)
-      surfaces_float_range<A, Kind>(scene.table<Kind>(), rays, rows, sink);
-    else if constexpr (Kind::surface_in_lanes)
+    if constexpr (Kind::surface_in_lanes)
       surfaces_range<A, Kind>(scene.table<Kind>(), rays, rows, sink);
   });
 }

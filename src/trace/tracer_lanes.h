@@ -25,6 +25,10 @@ struct TracerLanes {
   void (*surface_columns)(const Scene& scene, const RayStream& rays, PrimTag kind,
                           std::span<const uint32_t> rows, const uint32_t* ray,
                           const HitStream& hits, const SurfaceColumns& out);
+  // The float-lane kinds' surfaces into columns, in row order (SimdTracer::float_surfaces).
+  std::size_t (*float_surface_columns)(const Scene& scene, const RayStream& rays,
+                                       std::span<const uint32_t> ray, const HitStream& hits,
+                                       const SurfaceColumns& out, uint32_t* rest);
 };
 
 extern const TracerLanes kTracerLanesSse42, kTracerLanesAvx2, kTracerLanesAvx512;

@@ -24,7 +24,8 @@ void surfaces_into_columns(const Scene& scene, const RayStream& rays, PrimTag ki
 
 template <class A>
 constexpr TracerLanes tracer_lanes_for() {
-  return {trace_range<A>, surfaces_into_hits<A>, surfaces_into_columns<A>};
+  return {trace_range<A>, surfaces_into_hits<A>, surfaces_into_columns<A>,
+          float_surfaces_in_row_order<A>};
 }
 
 }  // namespace raylane::detail

@@ -114,8 +114,11 @@ template <class V3>
 struct BoxSurface {
   V3 p, n;
 };
+// Inlined always: a call passes the lanes through memory (GCC kept it out of line in the
+// render's surface pass, spilling every operand).
 template <class N, class V3>
-BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o, const V3& d, const N& t) {
+[[gnu::always_inline]] inline BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o,
+                                                         const V3& d, const N& t) {
   using K = Num<N>;
   const N* los[3] = {&lo.x, &lo.y, &lo.z};
   const N* his[3] = {&hi.x, &hi.y, &hi.z};

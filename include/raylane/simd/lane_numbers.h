@@ -17,9 +17,9 @@ struct Num<xsimd::batch<float, A>> {
   // std::max(a, b) and std::min(a, b) exactly, NaNs and zeros' signs included: MAXPS(x, y) and
   // MINPS(x, y) return y where either is NaN or both are zero, so the operands go in swapped
   // ((b > a) ? b : a is std::max's (a < b) ? b : a).
-  static F max(const F& a, const F& b) { return xsimd::max(b, a); }
-  static F min(const F& a, const F& b) { return xsimd::min(b, a); }
-  static F sqrt(const F& x) { return xsimd::sqrt(x); }
+  static F max(const F& a, const F& b) { return simd::max_keep<A>(b, a); }
+  static F min(const F& a, const F& b) { return simd::min_keep<A>(b, a); }
+  static F sqrt(const F& x) { return simd::sqrt<A>(x); }  // simd/lanes.h: no -Wuninitialized
   static F abs(const F& x) { return xsimd::abs(x); }
   static F round_even(const F& x) { return xsimd::nearbyint(x); }
   // Not unary minus, which xsimd 8.1 makes 0 − x on AVX-512 (+0 stays +0; simd/lanes.h).

@@ -162,11 +162,12 @@ using UInts = xsimd::batch<uint32_t, A>;
 
 // base[idx[i]] per lane: the gather instructions named directly (xsimd 8.1's gather for a
 // float or int batch indexed by int32 fell back to one insert per lane on AVX-512 in the
-// render's profile); SSE4.2 has none, so it loads lane by lane.
+// render's profile); SSE4.2 has none, so it loads lane by lane. AVX-512's are the masked forms
+// with every lane on, for the reason max_keep gives.
 template <class A>
 inline Floats<A> gather(const float* base, const Ints<A>& idx) {
   if constexpr (kWidth<A> == 16) {
-    return Floats<A>(_mm512_i32gather_ps(__m512i(idx), base, 4));
+    return Floats<A>(_mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAll16, __m512i(idx), base, 4));
   } else if constexpr (kWidth<A> == 8) {
     return Floats<A>(_mm256_i32gather_ps(base, __m256i(idx), 4));
   } else {
@@ -181,7 +182,8 @@ inline Floats<A> gather(const float* base, const Ints<A>& idx) {
 template <class A>
 inline UInts<A> gather(const uint32_t* base, const UInts<A>& idx) {
   if constexpr (kWidth<A> == 16) {
-    return UInts<A>(_mm512_i32gather_epi32(__m512i(idx), base, 4));
+    return UInts<A>(
+        _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), kAll16, __m512i(idx), base, 4));
   } else if constexpr (kWidth<A> == 8) {
     return UInts<A>(_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), __m256i(idx), 4));
   } else {

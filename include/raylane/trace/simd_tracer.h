@@ -70,11 +70,18 @@ class SimdTracer {
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                 std::span<const uint32_t> rows, Hit* hits) const;
   // The surfaces written as columns: for each r in `rows`, hits[ray[r]]'s (traced as the
-  // stream's ray ray[r]) into row r of `out`, in float lanes with the kind's bound where it has
-  // them (surface_in_float_lanes), else the double lanes' rounded (Tracer::surfaces).
+  // stream's ray ray[r]) into row r of `out`, the double lanes' rounded, with the float
+  // point's bound (Tracer::surfaces), for a kind whose surface_in_float_lanes is false.
   void surfaces(const Scene& scene, const RayStream& rays, PrimTag kind,
                 std::span<const uint32_t> rows, const uint32_t* ray, const HitStream& hits,
                 const SurfaceColumns& out) const;
+  // For every row r of `ray` whose hit's kind has surface_in_float_lanes, its surface in float
+  // lanes with the kind's bound, as above, all such kinds in one pass in row order. The other
+  // rows (of ray's size at most) are listed in `rest`, in order, for the call above; their
+  // columns are left for it to write. Returns how many.
+  std::size_t float_surfaces(const Scene& scene, const RayStream& rays,
+                             std::span<const uint32_t> ray, const HitStream& hits,
+                             const SurfaceColumns& out, uint32_t* rest) const;
 
  private:
   void trace(const Scene& scene, const Bvh& bvh, const RayStream& rays, std::size_t begin,

@@ -28,6 +28,7 @@ struct TraceScratch {
   RayStream rays;
   HitStream hits;
   std::array<std::vector<uint32_t>, kPrimKindCount> by_kind;  // hits awaiting their surface
+  std::vector<uint32_t> rest;  // rows the float surfaces' pass left (SimdTracer::float_surfaces)
 };
 
 // Each call is Tracer's of the same name (trace/tracer.h says what it answers).
