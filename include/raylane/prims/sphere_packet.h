@@ -57,8 +57,8 @@ SurfaceLanes<A> surface_lanes(const SphereTable& s, const uint32_t* rows, const 
 
 // sphere_surface for one hit per float lane, with its bound (sphere_point_bound).
 template <class A>
-FloatSurfaceLanes<A> surface_float_lanes(const SphereTable& s, const simd::Ints<A>& rows,
-                                         const FloatHitRayLanes<A>& r) {
+[[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
+    const SphereTable& s, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
   const simd::FloatVec3<A> c = gather_rows3<A>(s.cx, s.cy, s.cz, rows);
   const SphereSurface<simd::FloatVec3<A>> x =
       sphere_surface<simd::Floats<A>>(c, simd::gather<A>(s.r.data(), rows), r.o, r.d, r.t);
