@@ -162,7 +162,7 @@ std::optional<BenchScene> make_lens_or_sphere(bool lens) {
 
 // A torus (an sdf block, R 0.45, r 0.15, its axis tilted 30° toward the camera) and the plain
 // sphere of radius R + r that fills its outline: what the float march costs over an analytic
-// test (issue 51: at least 20 % of the sphere's rays/s; docs/scene-language.md, "SDF blocks").
+// test (its target: at least a fifth of the sphere's rays/s; docs/scene-language.md, "SDF blocks").
 std::optional<BenchScene> make_torus_or_sphere(bool torus) {
   const std::string solid =
       torus ? "sdf\ntorus 0 0 0 0 0.5 0.866 0.45 0.15\nend\n" : "sphere 0 0 0 0.6\n";

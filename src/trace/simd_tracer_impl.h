@@ -17,11 +17,11 @@ namespace raylane::detail {
 
 // 1/d, and the active mask: the lanes of `loaded` whose ray is valid — finite origin and
 // direction (|x| <= FLT_MAX is false for NaN and inf), a non-zero direction, and
-// tmin <= tmax (false for NaN); then the rays' shear frame for triangles and
-// the near side of each slab.
+// tmin <= tmax (false for NaN); then the rays' shear frame for triangles (where the scene has
+// some: `shear`) and the near side of each slab.
 template <class A>
 void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
-                                 const simd::Mask<A>& loaded) {
+                                 const simd::Mask<A>& loaded, bool shear) {
   using F = simd::Floats<A>;
   const F one(1.0f), big(FLT_MAX);
   r.inv_dx = one / r.dx, r.inv_dy = one / r.dy, r.inv_dz = one / r.dz;
@@ -29,13 +29,14 @@ void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
   F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
   r.active = loaded & finite(r.ox) & finite(r.oy) & finite(r.oz) & finite(r.dx) & finite(r.dy) &
              finite(r.dz) & (dd > F(0.0f)) & (r.tmin <= tmax);
-  r.shear = RayShear<A>(r.dx, r.dy, r.dz, r.active);
+  r.shear = shear ? RayShear<A>(r.dx, r.dy, r.dz, r.active) : RayShear<A>::unused();
   r.sides = SlabSides<A>(r.inv_dx, r.inv_dy, r.inv_dz, r.active);
 }
 
 // Loads rays [i, i + n) into a packet; lanes past n, and invalid rays, are inactive.
 template <class A>
-RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<A>& tmax) {
+RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<A>& tmax,
+                         bool shear) {
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
   // A whole packet straight from the columns; the stream's last, partial one by masked loads
@@ -61,7 +62,7 @@ RayPacket<A> load_packet(const RayStream& s, std::size_t i, int n, simd::Floats<
       end[k] = k < n ? int32_t(s.aim[i + std::size_t(k)]) : int32_t(PrimRef::kInvalidBits);
     r.aim = simd::load<A>(end);
   }
-  set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n));
+  set_reciprocal_and_validity<A>(r, tmax, simd::first_lanes<A>(n), shear);
   return r;
 }
 
@@ -148,10 +149,11 @@ void trace_range(const Scene& scene, const Bvh& bvh, const RayStream& rays, std:
   constexpr int W = simd::kWidth<A>;
   const F inf(std::numeric_limits<float>::infinity());
   if (counters) counters->width = W;
+  const bool shear = scene.table<Triangle>().size() != 0;  // only triangles read the frame
   for (std::size_t i = begin; i < end; i += W) {
     int n = int(std::min<std::size_t>(W, end - i));
     HitPacket<A> h;
-    RayPacket<A> r = load_packet<A>(rays, i, n, h.t);
+    RayPacket<A> r = load_packet<A>(rays, i, n, h.t, shear);
     h.prim = simd::Ints<A>(int32_t(PrimRef::kInvalidBits));
     h.found = F(0.0f) != F(0.0f);
     if (simd::any<A>(r.active)) traverse<A>(scene, bvh, r, h, any_hit, counters);

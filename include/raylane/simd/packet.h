@@ -33,6 +33,18 @@ struct RayShear {
   }
 
   RayShear() = default;
+  // The frame of packets that meet no triangle (a scene without any): axes (0, 1, 2) in every
+  // lane and no shear, for a division and some thirty selects less per packet. Only triangles
+  // read a frame; the hand-over to single rays copies it along.
+  static RayShear unused() {
+    RayShear s;
+    for (int k = 0; k < 3; ++k)
+      s.x_is[k] = simd::Mask<A>(k == 0), s.y_is[k] = simd::Mask<A>(k == 1),
+      s.z_is[k] = simd::Mask<A>(k == 2);
+    s.sx = F(0.0f), s.sy = F(0.0f), s.sz = F(1.0f);
+    s.uniform = true;
+    return s;
+  }
   RayShear(const F& dx, const F& dy, const F& dz, const simd::Mask<A>& active) {
     F ax = xsimd::abs(dx), ay = xsimd::abs(dy), az = xsimd::abs(dz);
     z_is[0] = (ax >= ay) & (ax >= az);
