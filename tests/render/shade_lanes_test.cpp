@@ -1,5 +1,5 @@
-// The lane BSDF (render/materials/shade_lanes.h) against the double Bsdf, at every instruction set this
-// CPU has: its evaluation within a float error bound away from the model's branch points, its
+// The lane BSDF (render/materials/shade_lanes.h) against the double Bsdf, at every instruction set
+// this CPU has: its evaluation within a float error bound away from the model's branch points, its
 // samples the double's samples of the same numbers, its directions distributed by the double
 // density (chi-square), and no NaN out of degenerate rows.
 #include "raylane/render/materials/shade_lanes.h"
@@ -330,6 +330,49 @@ TEST(ShadeLanes, DiffuseBatchesAreTheGeneralPathsAnswers) {
       sampled += alone.pdf[i] > 0;
     }
     EXPECT_GT(sampled, 30);
+  }
+}
+
+// The lanes read a short material table by register permutes (simd/lane_lookup.h: up to 16
+// materials on AVX2, 32 on AVX-512, in one register or two) and a long one by gathers. The
+// answers must not depend on which: a batch over the first n materials is shaded with a table
+// of n, then with the same materials followed by enough others that every instruction set
+// gathers, and the two answer bit for bit. n runs across each register's edge.
+TEST(ShadeLanes, ShortMaterialTablesAnswerAsGatheredOnes) {
+  std::vector<Material> all;
+  for (int i = 0; all.size() < 48; ++i)  // distinct materials: every column differs by row
+    for (Material m : test_materials()) {
+      m.kd *= 1.0f - 0.01f * float(i), m.ks *= 1.0f - 0.005f * float(i);
+      m.alpha += float(i), m.ior += m.ior > 1 ? 0.01f * float(i) : 0.0f;
+      all.push_back(m);
+    }
+  const LaneMaterials gathered(all);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(std::string(isa_name(isa)));
+    for (int n : {1, 3, 8, 9, 15, 16, 17, 24, 31, 32}) {
+      SCOPED_TRACE("materials " + std::to_string(n));
+      const LaneMaterials short_table(std::vector<Material>(all.begin(), all.begin() + n));
+      ShadeBatch permuted = random_batch(301, n, 40 + n);  // 301: a partly filled last batch
+      ShadeBatch reference = permuted;
+      shade_lanes(isa, short_table, permuted);
+      shade_lanes(isa, gathered, reference);
+      int sampled = 0;
+      for (std::size_t i = 0; i < permuted.size(); ++i) {
+        for (auto c : {&ShadeBatch::wi, &ShadeBatch::value, &ShadeBatch::light_f})
+          for (int k = 0; k < 3; ++k)
+            ASSERT_EQ(std::bit_cast<uint32_t>((permuted.*c)[k][i]),
+                      std::bit_cast<uint32_t>((reference.*c)[k][i]))
+                << "row " << i;
+        ASSERT_EQ(std::bit_cast<uint32_t>(permuted.pdf[i]),
+                  std::bit_cast<uint32_t>(reference.pdf[i]))
+            << "row " << i;
+        ASSERT_EQ(std::bit_cast<uint32_t>(permuted.light_pdf[i]),
+                  std::bit_cast<uint32_t>(reference.light_pdf[i]))
+            << "row " << i;
+        sampled += permuted.pdf[i] > 0;
+      }
+      EXPECT_GT(sampled, 100);
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "raylane/render/materials/bsdf_steps.h"
 #include "raylane/render/materials/shade_lanes.h"
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_math.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lane_rows.h"
@@ -66,7 +67,10 @@ struct LaneBsdf {
 
   LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i, const F<A>& u0) {
     auto idx = simd::load<A>(b.material.data() + i);
-    auto gather = [&](const std::vector<float>& col) { return simd::gather<A>(col.data(), idx); };
+    // The materials' columns are short: read by register permutes where they fit (lookup).
+    auto gather = [&](const std::vector<float>& col) {
+      return simd::lookup<A>(col.data(), col.size(), idx);
+    };
     // A textured scene's rows carry their own Kd and lobe probabilities (ShadeBatch::per_row_kd).
     const bool rows = b.per_row_kd;
     auto own_or_gather = [&](const ShadeBatch::Column& own, const std::vector<float>& col) {

@@ -1,0 +1,43 @@
+// Reading a short column at one row per lane: a scene's materials (a dozen in the course scene)
+// are read by every lane row's material index several times per bounce. A gather loads lane by
+// lane (sixteen loads' worth of work on AVX-512, the lanes' slowest instruction); a column that
+// fits in one or two registers is loaded whole instead and read by a register permute, one
+// instruction per register (Intel's intrinsics guide: VPERMPS, VPERMT2PS). For the per-ISA
+// units, as simd/lanes.h.
+#pragma once
+
+#include <cstddef>
+
+#include "raylane/simd/lanes.h"
+
+namespace raylane::simd {
+
+// col[idx[i]] per lane, for a column of n floats and each idx[i] in [0, n): exactly what
+// gather<A>(col, idx) answers. Columns of up to 2·kWidth<A> floats are permuted (AVX-512,
+// AVX2); longer ones, and SSE4.2 (no variable float permute across its four lanes that beats
+// its lane-by-lane loads), gather.
+template <class A>
+inline Floats<A> lookup(const float* col, std::size_t n, const Ints<A>& idx) {
+  constexpr std::size_t W = std::size_t(kWidth<A>);
+  if constexpr (W == 16) {
+    if (n <= 2 * W) {
+      const __m512 low(load_first<A>(col, int(n < W ? n : W)));
+      const __m512 high = n > W ? __m512(load_first<A>(col + W, int(n - W))) : _mm512_setzero_ps();
+      // Bit 4 of each index picks the register, bits 0-3 the lane.
+      return Floats<A>(_mm512_permutex2var_ps(low, __m512i(idx), high));
+    }
+  } else if constexpr (W == 8) {
+    if (n <= 2 * W) {
+      const __m256 low(load_first<A>(col, int(n < W ? n : W)));
+      const __m256 high = n > W ? __m256(load_first<A>(col + W, int(n - W))) : _mm256_setzero_ps();
+      // VPERMPS reads bits 0-2 of each index; lanes whose index is 8 or more take the high one.
+      const __m256 from_low = _mm256_permutevar8x32_ps(low, __m256i(idx));
+      const __m256 from_high = _mm256_permutevar8x32_ps(high, __m256i(idx));
+      const __m256i in_high = _mm256_cmpgt_epi32(__m256i(idx), _mm256_set1_epi32(int32_t(W) - 1));
+      return Floats<A>(_mm256_blendv_ps(from_low, from_high, _mm256_castsi256_ps(in_high)));
+    }
+  }
+  return gather<A>(col, idx);
+}
+
+}  // namespace raylane::simd
