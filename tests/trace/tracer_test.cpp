@@ -453,5 +453,22 @@ TEST(Tracer, SurfaceColumnsAreCompletesSurfaces) {
   with_every_tracer(4000, 400, expect_surface_columns_are_completes, bend_vertex_normals);
 }
 
+// The float surfaces read a short table (the course scene's handful of spheres and boxes) by
+// register permutes and a long one by gathers (simd/lane_lookup.h): with forty more small
+// spheres and boxes about the room, each table is longer than two registers at every width.
+void add_spheres_and_boxes(Scene& scene) {
+  bend_vertex_normals(scene);
+  for (int i = 0; i < 40; ++i) {
+    const double x = 1 + i % 8 * 1.5, y = 1 + i / 8 * 1.5, z = 2 + i % 5;
+    ASSERT_FALSE(scene.table<Sphere>().append(std::array<double, 4>{x, y, z, 0.3}, 0));
+    ASSERT_FALSE(
+        scene.table<Box>().append(std::array<double, 6>{x + 0.5, y, z - 1, 0.4, 0.5, 0.6}, 0));
+  }
+}
+
+TEST(Tracer, SurfaceColumnsAreCompletesSurfacesInLongTables) {
+  with_every_tracer(4000, 400, expect_surface_columns_are_completes, add_spheres_and_boxes);
+}
+
 }  // namespace
 }  // namespace raylane

@@ -45,8 +45,8 @@ SurfaceLanes<A> surface_lanes(const BoxTable& b, const uint32_t* rows, const Hit
 template <class A>
 [[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
     const BoxTable& b, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
-  const simd::FloatVec3<A> lo = gather_rows3<A>(b.lox, b.loy, b.loz, rows);
-  const simd::FloatVec3<A> hi = gather_rows3<A>(b.hix, b.hiy, b.hiz, rows);
+  const simd::FloatVec3<A> lo = read_rows3<A>(b.lox, b.loy, b.loz, rows);
+  const simd::FloatVec3<A> hi = read_rows3<A>(b.hix, b.hiy, b.hiz, rows);
   const BoxSurface<simd::FloatVec3<A>> s = box_surface<simd::Floats<A>>(lo, hi, r.o, r.d, r.t);
   return {s.p, s.n, box_point_bound<simd::Floats<A>>(lo, hi, r.o, r.d, r.t, s)};
 }

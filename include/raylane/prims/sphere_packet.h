@@ -59,9 +59,9 @@ SurfaceLanes<A> surface_lanes(const SphereTable& s, const uint32_t* rows, const 
 template <class A>
 [[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
     const SphereTable& s, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
-  const simd::FloatVec3<A> c = gather_rows3<A>(s.cx, s.cy, s.cz, rows);
+  const simd::FloatVec3<A> c = read_rows3<A>(s.cx, s.cy, s.cz, rows);
   const SphereSurface<simd::FloatVec3<A>> x =
-      sphere_surface<simd::Floats<A>>(c, simd::gather<A>(s.r.data(), rows), r.o, r.d, r.t);
+      sphere_surface<simd::Floats<A>>(c, read_rows<A>(s.r, rows), r.o, r.d, r.t);
   return {x.p, x.n, sphere_point_bound<simd::Floats<A>>(x.p, x.offset)};
 }
 

@@ -7,6 +7,7 @@
 // (tests/trace/tracer_test.cpp checks both at every ISA).
 #pragma once
 
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lanes.h"
 
@@ -40,12 +41,16 @@ struct FloatSurfaceLanes {
   simd::FloatVec3<A> p, n, error;
 };
 
-// The table columns x, y, z gathered at one row per float lane.
+// The table column c read at one row per float lane: by register permutes where the table is
+// short (a scene's handful of boxes or spheres), else gathered (simd/lane_lookup.h).
 template <class A>
-inline simd::FloatVec3<A> gather_rows3(const std::vector<float>& x, const std::vector<float>& y,
-                                       const std::vector<float>& z, const simd::Ints<A>& rows) {
-  return {simd::gather<A>(x.data(), rows), simd::gather<A>(y.data(), rows),
-          simd::gather<A>(z.data(), rows)};
+inline simd::Floats<A> read_rows(const std::vector<float>& c, const simd::Ints<A>& rows) {
+  return simd::lookup<A>(c.data(), c.size(), rows);
+}
+template <class A>
+inline simd::FloatVec3<A> read_rows3(const std::vector<float>& x, const std::vector<float>& y,
+                                     const std::vector<float>& z, const simd::Ints<A>& rows) {
+  return {read_rows<A>(x, rows), read_rows<A>(y, rows), read_rows<A>(z, rows)};
 }
 
 // a·b in glm::dot's order ((x + y) + z).
