@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sobol_steps.h"
 
 namespace raylane {
 namespace {
@@ -214,6 +216,34 @@ TEST(Sobol, LanesGiveTheScalarGroupsBitForBit) {
             }
           }
   }
+}
+
+// sobol_unit_float, the lanes' conversion of a component's bits without a double, is
+// unit_float(sobol_unit(bits)) bit for bit: on every value of the top 2^24 (where the ties
+// round to even and the clamp below 1 acts), every one below 2^25 (exact), every tie between
+// floats of every binade above, and a million random bits.
+TEST(Sobol, FloatConversionIsTheDoublesRounded) {
+  uint64_t differ = 0,
+           first = 0;  // counted, not asserted per value: 2^25 failures would take minutes
+  auto expect_same = [&](uint32_t bits) {
+    if (std::bit_cast<uint32_t>(sobol_unit_float(bits)) ==
+        std::bit_cast<uint32_t>(unit_float(sobol_unit(bits))))
+      return;
+    if (differ++ == 0) first = bits;
+  };
+  for (uint32_t b = 0xff000000u; b != 0; ++b)
+    expect_same(b);
+  for (uint32_t b = 0; b < (1u << 25); ++b)
+    expect_same(b);
+  std::mt19937 rng(5);
+  for (int e = 25; e < 32; ++e)  // binade [2^e, 2^(e+1)): floats are 2^(e-23) apart
+    for (int i = 0; i < 20000; ++i) {
+      const uint32_t step = 1u << (e - 23), at = (1u << e) + (rng() % (1u << 23)) * step;
+      expect_same(at + step / 2), expect_same(at + step / 2 - 1), expect_same(at + step / 2 + 1);
+    }
+  for (int i = 0; i < 1000000; ++i)
+    expect_same(uint32_t(rng()));
+  EXPECT_EQ(differ, 0u) << "first at bits 0x" << std::hex << first;
 }
 
 // A number in [0, 1) as float never rounds up to 1: the float shading's lobe choice (u < pd,

@@ -72,6 +72,10 @@ struct Num<xsimd::batch<uint32_t, A>> {
   using U = simd::UInts<A>;
   static U reverse_bits(const U& x) { return simd::reverse_bits<A>(x); }
   static U gather(const uint32_t* table, const U& i) { return simd::gather<A>(table, i); }
+  using Float = simd::Floats<A>;
+  static Float to_float(const U& x) {
+    return xsimd::to_float(xsimd::bitwise_cast<simd::Ints<A>>(x));
+  }
 };
 
 }  // namespace raylane

@@ -54,12 +54,13 @@ void sobol_groups_range(uint32_t reversed_index, uint32_t group, unsigned which,
   }
 }
 
-// The groups' components in `which` as numbers into the callers' columns (SobolNumbers): plain
-// loops, which the compiler vectorises with this file's instruction set (the baseline build has
-// no unsigned-to-double conversion in lanes). The conversions are sobol_group's (sobol_unit) and
-// unit_float, so the doubles are its own bit for bit and the floats unit_float's of them. (A
-// template on A, and A the conversions' tag, so that each instruction set's unit keeps its own
-// copies: one inline function would be one definition for the linker to pick.)
+// The groups' components in `which` as numbers into the callers' columns (SobolNumbers). The
+// doubles are sobol_group's conversion (sobol_unit) in a plain loop, which the compiler
+// vectorises with this file's instruction set (the baseline build has no unsigned-to-double
+// conversion in lanes); the floats are sobol_unit_float's, in lanes, unit_float's of those
+// doubles bit for bit. (A template on A, and A the conversions' tag, so that each instruction
+// set's unit keeps its own copies: one inline function would be one definition for the linker
+// to pick.)
 template <class A>
 void sobol_numbers(unsigned which, const SobolBatch& b, const SobolNumbers& to) {
   const std::size_t n = b.size();
@@ -69,9 +70,14 @@ void sobol_numbers(unsigned which, const SobolBatch& b, const SobolNumbers& to) 
     if (double* d = to.as_double[c])
       for (std::size_t r = 0; r < n; ++r)
         d[r] = sobol_unit<A>(u[r]);
-    if (float* f = to.as_float[c])
-      for (std::size_t r = 0; r < n; ++r)
-        f[r] = unit_float<A>(sobol_unit<A>(u[r]));
+    if (float* f = to.as_float[c]) {
+      constexpr std::size_t W = simd::kWidth<A>;
+      std::size_t r = 0;
+      for (; r + W <= n; r += W)
+        simd::store<A>(f + r, sobol_unit_float(U32<A>::load_unaligned(u + r)));
+      for (; r < n; ++r)  // the columns may end here: the rest row by row, the same steps
+        f[r] = sobol_unit_float<A>(u[r]);
+    }
   }
 }
 

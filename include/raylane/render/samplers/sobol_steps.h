@@ -100,6 +100,19 @@ void sobol_group_bits(const U& reversed_index, const U& index_seed, const U& com
   if (which & 8u) store(3u, scrambled_component(reversed_table_point(r, 3), component_seed, 3u));
 }
 
+// unit_float(sobol_unit(bits)) without a double: bits·2^-32 rounded to float once, then kept
+// below 1 as unit_float keeps it. The two 16-bit halves as floats, float(hi)·2^16 and
+// float(lo), are exact, so their sum rounds once, to nearest, as the double's conversion does;
+// the scaling by 2^-32 is exact. (Lanes convert only signed integers before AVX-512, and
+// through double at half the width.) Tag: as sobol_unit's below, for the scalar instance.
+template <class Tag = void, class U>
+auto sobol_unit_float(const U& bits) {
+  using F = typename Num<U>::Float;
+  const F sum = Num<U>::to_float(bits >> 16) * F(65536.0f) + Num<U>::to_float(bits & U(0xffffu));
+  const F f = sum * F(0x1p-32f), top(kLargestBelowOne);
+  return Num<F>::select(top < f, top, f);
+}
+
 // A component's 32 bits as the number in [0, 1) they stand for, bits·2^-32 (exact in double).
 // Tag: a per-ISA translation unit passes its instruction set, so that it keeps a copy of its
 // own rather than emit one the linker could pick for the whole program (docs/design.md, "SIMD
