@@ -25,7 +25,8 @@ N offset_along_normal(const V3& error, const V3& ng) {
 
 // p moved `along` along ng, to the side `toward` points to, and stepped away from p.
 template <class N, class V3>
-V3 offset_origin_by(const V3& p, const N& along, const V3& ng, const V3& toward) {
+[[gnu::always_inline]] inline V3 offset_origin_by(const V3& p, const N& along, const V3& ng,
+                                                  const V3& toward) {
   using K = Num<N>;
   const auto away = ng.x * toward.x + ng.y * toward.y + ng.z * toward.z < N(0.0);
   // The step goes by the normal's side, not the offset's: where the bound is 0 (a box face at

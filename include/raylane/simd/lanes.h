@@ -302,7 +302,7 @@ LaneVec3<B> operator*(const LaneVec3<B>& a, const B& s) {
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (core/warps.h's Frame, in its
 // order): the local direction v = (x, y, z) around the unit normal n, to world.
 template <class B>
-LaneVec3<B> to_world(const LaneVec3<B>& n, const LaneVec3<B>& v) {
+[[gnu::always_inline]] inline LaneVec3<B> to_world(const LaneVec3<B>& n, const LaneVec3<B>& v) {
   using T = typename B::value_type;
   const B one(T(1));
   const B sign = xsimd::copysign(one, n.z);
