@@ -11,6 +11,7 @@
 #include "raylane/render/vertex_lanes.h"
 #include "raylane/render/vertex_steps.h"
 #include "raylane/simd/lane_convert.h"
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lane_rows.h"
 #include "render/lights/light_lanes_impl.h"
@@ -133,8 +134,8 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
   }
 }
 
-// gather_wo: a batch of rows that is one run of the stream (the render's rows are its rays in
-// order, most of them going on) loads its columns whole, any other gathers them.
+// gather_wo: a batch of rows reads the stream's columns through a RowReader (the render's rows
+// are its rays in order, most of them going on: mostly one run, else close together).
 template <class A>
 void gather_wo_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
                      ShadeBatch& shade) {
@@ -143,13 +144,9 @@ void gather_wo_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
   float* to[3] = {shade.wo[0].data(), shade.wo[1].data(), shade.wo[2].data()};
   std::size_t i = 0;
   for (; i + W <= n; i += W) {
-    const uint32_t* at = rows + i;
-    const bool run = simd::one_run<int(W)>(at);
-    const simd::Ints<A> idx = simd::load<A>(reinterpret_cast<const int32_t*>(at));
-    for (int c = 0; c < 3; ++c) {
-      const F<A> x = run ? simd::load<A>(from[c] + at[0]) : simd::gather<A>(from[c], idx);
-      simd::store<A>(to[c] + i, simd::negate(x));
-    }
+    const simd::RowReader<A> read(rows + i);
+    for (int c = 0; c < 3; ++c)
+      simd::store<A>(to[c] + i, simd::negate(read.read(from[c])));
   }
   for (; i < n; ++i)
     for (int c = 0; c < 3; ++c)

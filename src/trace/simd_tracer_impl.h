@@ -6,6 +6,7 @@
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/simd/lane_convert.h"
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_rows.h"
 #include "raylane/trace/packet_traverse.h"
 #include "raylane/trace/ray_traverse.h"
@@ -300,10 +301,10 @@ void blend_surfaces(const simd::Mask<A>& on, const FloatSurfaceLanes<A>& from,
 // The float surfaces of request rows [0, ray.size()) in the rows' order, W rows per batch of
 // float lanes: every kind with surface_in_float_lanes in the one pass, each kind present in a
 // batch computed for the whole batch and blended in by its lanes. The rows are the render's
-// rays in order, so the batch's rays mostly load whole, and its columns always store whole:
-// grouping the rows by kind first cost a gather of every ray column and a scalar store of every
-// surface column wherever kinds interleave (perf: most of the box surfaces' time on the course
-// scene). The rows of the other kinds are listed in `rest`, in order, for surfaces_of_kind;
+// rays in order, so the batch's rays mostly load whole or from a short window (RowReader), and
+// its columns always store whole: grouping the rows by kind first cost a gather of every ray
+// column and a scalar store of every surface column wherever kinds interleave (perf: most of
+// the box surfaces' time on the course scene). The rows of the other kinds are listed in `rest`, in order, for surfaces_of_kind;
 // their rows here hold nothing of use until it writes them. Returns their count.
 template <class A>
 std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& rays,
@@ -320,11 +321,8 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     alignas(64) uint32_t ray_rows[W];
     for (int k = 0; k < W; ++k)
       ray_rows[k] = ray[i + std::size_t(std::min(k, m - 1))];
-    const bool run = m == W && simd::one_run<W>(ray_rows);
-    const I ray_idx = simd::load<A>(reinterpret_cast<const int32_t*>(ray_rows));
-    auto col = [&](const float* c) {
-      return run ? simd::load<A>(c + ray_rows[0]) : simd::gather<A>(c, ray_idx);
-    };
+    const simd::RowReader<A> read(ray_rows);  // the rays mostly a run, else close together
+    auto col = [&](const float* c) { return read.read(c); };
     const I prim = xsimd::bitwise_cast<I>(col(reinterpret_cast<const float*>(hits.prim.data())));
     const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
                                 {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},

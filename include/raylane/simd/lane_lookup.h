@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "raylane/simd/lanes.h"
 
@@ -39,5 +40,46 @@ inline Floats<A> lookup(const float* col, std::size_t n, const Ints<A>& idx) {
   }
   return gather<A>(col, idx);
 }
+
+// Rows of a long column (a stream's rays) read at one row per lane, for a batch whose rows lie
+// close together: the render's lane rows are its rays in order with a few skipped (misses,
+// emitters, rows shaded in double), so a batch that is not one run mostly spans less than two
+// registers' rows. Such a batch reads that window whole and permutes (lookup); one run loads
+// straight; any other gathers.
+template <class A>
+class RowReader {
+ public:
+  explicit RowReader(const uint32_t* rows) {
+    constexpr int W = kWidth<A>;
+    uint32_t lo = rows[0], hi = rows[0];
+    bool run = true;
+    for (int k = 1; k < W; ++k) {
+      lo = rows[k] < lo ? rows[k] : lo, hi = rows[k] > hi ? rows[k] : hi;
+      run = run && rows[k] == rows[0] + uint32_t(k);
+    }
+    idx_ = load<A>(reinterpret_cast<const int32_t*>(rows));
+    lo_ = lo, span_ = std::size_t(hi - lo) + 1;
+    way_ = run ? Way::kRun : span_ <= std::size_t(2 * W) ? Way::kWindow : Way::kGather;
+    if (way_ == Way::kWindow) idx_ = idx_ - Ints<A>(int32_t(lo));
+  }
+  // col[rows[k]] in lane k.
+  Floats<A> read(const float* col) const {
+    switch (way_) {
+      case Way::kRun:
+        return load<A>(col + lo_);
+      case Way::kWindow:
+        return lookup<A>(col + lo_, span_, idx_);
+      default:
+        return gather<A>(col, idx_);
+    }
+  }
+
+ private:
+  enum class Way { kRun, kWindow, kGather };
+  Ints<A> idx_;  // the rows, or in a window their offsets from its first
+  uint32_t lo_;
+  std::size_t span_;
+  Way way_;
+};
 
 }  // namespace raylane::simd
