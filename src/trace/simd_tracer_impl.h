@@ -30,7 +30,11 @@ void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
   F dd = r.dx * r.dx + r.dy * r.dy + r.dz * r.dz;
   r.active = loaded & finite(r.ox) & finite(r.oy) & finite(r.oz) & finite(r.dx) & finite(r.dy) &
              finite(r.dz) & (dd > F(0.0f)) & (r.tmin <= tmax);
-  r.shear = shear ? RayShear<A>(r.dx, r.dy, r.dz, r.active) : RayShear<A>::unused();
+  if (shear) {
+    r.shear.set(r.dx, r.dy, r.dz, r.active);
+  } else {
+    r.shear.set_unused();
+  }
   r.sides = SlabSides<A>(r.inv_dx, r.inv_dy, r.inv_dz, r.active);
 }
 
@@ -304,8 +308,9 @@ void blend_surfaces(const simd::Mask<A>& on, const FloatSurfaceLanes<A>& from,
 // rays in order, so the batch's rays mostly load whole or from a short window (RowReader), and
 // its columns always store whole: grouping the rows by kind first cost a gather of every ray
 // column and a scalar store of every surface column wherever kinds interleave (perf: most of
-// the box surfaces' time on the course scene). The rows of the other kinds are listed in `rest`, in order, for surfaces_of_kind;
-// their rows here hold nothing of use until it writes them. Returns their count.
+// the box surfaces' time on the course scene). The rows of the other kinds are listed in `rest`, in
+// order, for surfaces_of_kind; their rows here hold nothing of use until it writes them. Returns
+// their count.
 template <class A>
 std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& rays,
                                         std::span<const uint32_t> ray, const HitStream& hits,

@@ -48,7 +48,8 @@ TEST(SingleRay, FrameMatchesThePacketSetUpBitForBit) {
     RayPacket<A> one = broadcast_ray<A>(r);
     F inv_x(1.0f / d[0]), inv_y(1.0f / d[1]), inv_z(1.0f / d[2]);
     simd::Mask<A> all = simd::first_lanes<A>(simd::kWidth<A>);
-    RayShear<A> packet{F(d[0]), F(d[1]), F(d[2]), all};
+    RayShear<A> packet;
+    packet.set(F(d[0]), F(d[1]), F(d[2]), all);
     SlabSides<A> sides(inv_x, inv_y, inv_z, all);
     ASSERT_TRUE(packet.uniform);
     EXPECT_EQ(one.shear.kx, packet.kx) << d[0] << " " << d[1] << " " << d[2];

@@ -32,20 +32,22 @@ struct RayShear {
     return simd::select<A>(is[0], x, simd::select<A>(is[1], y, z));
   }
 
+  // Set in place (set, set_unused) by the packet's set-up: assigning a constructed frame copied
+  // its few hundred bytes per packet (a rep movs in the profile).
   RayShear() = default;
   // The frame of packets that meet no triangle (a scene without any): axes (0, 1, 2) in every
   // lane and no shear, for a division and some thirty selects less per packet. Only triangles
   // read a frame; the hand-over to single rays copies it along.
-  static RayShear unused() {
-    RayShear s;
+  void set_unused() {
+    const simd::Mask<A> yes = F(0.0f) == F(0.0f), no = !yes;
     for (int k = 0; k < 3; ++k)
-      s.x_is[k] = simd::Mask<A>(k == 0), s.y_is[k] = simd::Mask<A>(k == 1),
-      s.z_is[k] = simd::Mask<A>(k == 2);
-    s.sx = F(0.0f), s.sy = F(0.0f), s.sz = F(1.0f);
-    s.uniform = true;
-    return s;
+      x_is[k] = k == 0 ? yes : no, y_is[k] = k == 1 ? yes : no, z_is[k] = k == 2 ? yes : no;
+    sx = F(0.0f), sy = F(0.0f), sz = F(1.0f);
+    uniform = true;
+    kx = 0, ky = 1, kz = 2;
   }
-  RayShear(const F& dx, const F& dy, const F& dz, const simd::Mask<A>& active) {
+  void set(const F& dx, const F& dy, const F& dz, const simd::Mask<A>& active) {
+    kx = 0, ky = 1, kz = 2;
     F ax = xsimd::abs(dx), ay = xsimd::abs(dy), az = xsimd::abs(dz);
     z_is[0] = (ax >= ay) & (ax >= az);
     z_is[1] = (!z_is[0]) & (ay >= az);
