@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cfloat>
+#include <numeric>
 
 #include "raylane/core/ray_offset.h"
 #include "raylane/simd/lane_convert.h"
@@ -320,6 +321,15 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
   constexpr int W = simd::kWidth<A>;
   const SurfaceColumns to = out;  // local: the facing's byte stores alias nothing provably
   const std::size_t n = ray.size();
+  bool any_ours = false;  // a scene of meshes alone has every row in `rest`, read nothing
+  PrimKinds::for_each([&](auto kind) {
+    if constexpr (decltype(kind)::surface_in_float_lanes)
+      any_ours = any_ours || scene.table<decltype(kind)>().size() != 0;
+  });
+  if (!any_ours) {
+    std::iota(rest, rest + n, 0u);
+    return n;
+  }
   std::size_t rest_count = 0;
   for (std::size_t i = 0; i < n; i += W) {
     const int m = int(std::min<std::size_t>(W, n - i));
@@ -329,18 +339,27 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     const simd::RowReader<A> read(ray_rows);  // the rays mostly a run, else close together
     auto col = [&](const float* c) { return read.read(c); };
     const I prim = xsimd::bitwise_cast<I>(col(reinterpret_cast<const float*>(hits.prim.data())));
-    const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
-                                {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
-                                col(hits.t.data())};
     const I tag = (prim >> PrimRef::kRowBits) & I((1 << PrimRef::kTagBits) - 1);
     const I row = prim & I(int32_t(PrimRef::kMaxRows - 1));
     const uint32_t lanes = m == W ? (1u << W) - 1 : (1u << m) - 1;
+    auto lanes_of = [&](PrimTag kind) { return simd::equal<A>(tag, I(int32_t(kind))); };
+    uint32_t ours = 0;  // the lanes whose kind has float surfaces
+    PrimKinds::for_each([&](auto kind) {
+      if constexpr (decltype(kind)::surface_in_float_lanes)
+        ours |= simd::bits<A>(lanes_of(tag_of<decltype(kind)>)) & lanes;
+    });
+    for (uint32_t others = lanes & ~ours; others != 0; others &= others - 1)
+      rest[rest_count++] = uint32_t(i) + uint32_t(std::countr_zero(others));
+    if (ours == 0) continue;  // a mesh's batch: nothing to read or store here
+    const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
+                                {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
+                                col(hits.t.data())};
     FloatSurfaceLanes<A> s{};
     uint32_t done = 0;
     PrimKinds::for_each([&](auto kind) {
       using Kind = decltype(kind);
       if constexpr (Kind::surface_in_float_lanes) {
-        const simd::Mask<A> on = simd::equal<A>(tag, I(int32_t(tag_of<Kind>)));
+        const simd::Mask<A> on = lanes_of(tag_of<Kind>);
         const uint32_t bits = simd::bits<A>(on) & lanes;
         if (bits == 0) return;
         // Lanes of other kinds read the table's row 0, which exists: this kind has a hit.
@@ -354,8 +373,6 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
         done |= bits;
       }
     });
-    for (uint32_t others = lanes & ~done; others != 0; others &= others - 1)
-      rest[rest_count++] = uint32_t(i) + uint32_t(std::countr_zero(others));
     const F cos_d = r.d.x * s.n.x + r.d.y * s.n.y + r.d.z * s.n.z;
     const uint32_t front = simd::bits<A>(cos_d < F(0.0f));
     alignas(64) float buffer[10][W];
