@@ -70,6 +70,22 @@ ShadeBatch random_batch(std::size_t rows, int materials, uint64_t seed) {
   return b;
 }
 
+// Whether row i of batch a and row j of batch b hold the same answers bit for bit.
+::testing::AssertionResult same_answers(const ShadeBatch& a, std::size_t i, const ShadeBatch& b,
+                                        std::size_t j) {
+  auto same = [](float x, float y) {
+    return std::bit_cast<uint32_t>(x) == std::bit_cast<uint32_t>(y);
+  };
+  for (auto c : {&ShadeBatch::wi, &ShadeBatch::value, &ShadeBatch::light_f})
+    for (int k = 0; k < 3; ++k)
+      if (!same((a.*c)[k][i], (b.*c)[k][j]))
+        return ::testing::AssertionFailure() << (a.*c)[k][i] << " against " << (b.*c)[k][j];
+  if (!same(a.pdf[i], b.pdf[j]) || !same(a.light_pdf[i], b.light_pdf[j]))
+    return ::testing::AssertionFailure() << "densities " << a.pdf[i] << ", " << a.light_pdf[i]
+                                         << " against " << b.pdf[j] << ", " << b.light_pdf[j];
+  return ::testing::AssertionSuccess();
+}
+
 // Where the double model has a branch or a singularity within `margin` of this input, float
 // may take the other side: such rows are left out of the comparison (and counted).
 bool near_a_branch(const Material& m, const glm::dvec3& ns, const glm::dvec3& wo,
@@ -316,17 +332,7 @@ TEST(ShadeLanes, DiffuseBatchesAreTheGeneralPathsAnswers) {
     shade_lanes(isa, materials, mixed);
     int sampled = 0;
     for (std::size_t i = 0; i < alone.size(); ++i) {
-      const std::size_t j = at[i];
-      for (auto c : {&ShadeBatch::wi, &ShadeBatch::value, &ShadeBatch::light_f})
-        for (int k = 0; k < 3; ++k) {
-          const ShadeBatch::Column &a = (alone.*c)[k], &m = (mixed.*c)[k];
-          ASSERT_EQ(std::bit_cast<uint32_t>(a[i]), std::bit_cast<uint32_t>(m[j])) << "row " << i;
-        }
-      ASSERT_EQ(std::bit_cast<uint32_t>(alone.pdf[i]), std::bit_cast<uint32_t>(mixed.pdf[j]))
-          << "row " << i;
-      ASSERT_EQ(std::bit_cast<uint32_t>(alone.light_pdf[i]),
-                std::bit_cast<uint32_t>(mixed.light_pdf[j]))
-          << "row " << i;
+      ASSERT_TRUE(same_answers(alone, i, mixed, at[i])) << "row " << i;
       sampled += alone.pdf[i] > 0;
     }
     EXPECT_GT(sampled, 30);
@@ -358,17 +364,7 @@ TEST(ShadeLanes, ShortMaterialTablesAnswerAsGatheredOnes) {
       shade_lanes(isa, gathered, reference);
       int sampled = 0;
       for (std::size_t i = 0; i < permuted.size(); ++i) {
-        for (auto c : {&ShadeBatch::wi, &ShadeBatch::value, &ShadeBatch::light_f})
-          for (int k = 0; k < 3; ++k)
-            ASSERT_EQ(std::bit_cast<uint32_t>((permuted.*c)[k][i]),
-                      std::bit_cast<uint32_t>((reference.*c)[k][i]))
-                << "row " << i;
-        ASSERT_EQ(std::bit_cast<uint32_t>(permuted.pdf[i]),
-                  std::bit_cast<uint32_t>(reference.pdf[i]))
-            << "row " << i;
-        ASSERT_EQ(std::bit_cast<uint32_t>(permuted.light_pdf[i]),
-                  std::bit_cast<uint32_t>(reference.light_pdf[i]))
-            << "row " << i;
+        ASSERT_TRUE(same_answers(permuted, i, reference, i)) << "row " << i;
         sampled += permuted.pdf[i] > 0;
       }
       EXPECT_GT(sampled, 100);
