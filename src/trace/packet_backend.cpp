@@ -3,6 +3,7 @@
 // rows in order; then kind by kind, in double lanes where the kind has them, by surface_ref
 // otherwise), each for the ray as traced, so that t and the point agree.
 #include <algorithm>
+#include <ranges>
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/simd_tracer.h"
@@ -94,23 +95,11 @@ void group_by_prim_kind(const Rows& rows, const PrimOf& prim_of, TraceScratch& s
   }
 }
 
-// The rows [0, n).
-struct AllRows {
-  std::size_t n;
-  struct It {
-    uint32_t r;
-    uint32_t operator*() const { return r; }
-    It& operator++() { return ++r, *this; }
-    bool operator!=(const It& o) const { return r != o.r; }
-  };
-  It begin() const { return {0}; }
-  It end() const { return {uint32_t(n)}; }
-};
-
 void PacketBackend::complete_by_prim_kind(const RayStream& rays, std::vector<Hit>& hits,
                                           std::size_t n, TraceScratch& scratch) const {
   group_by_prim_kind(
-      AllRows{n}, [&](uint32_t i) { return hits[i].prim; }, scratch);
+      std::views::iota(uint32_t(0), uint32_t(n)), [&](uint32_t i) { return hits[i].prim; },
+      scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
     const std::vector<uint32_t>& rows = scratch.by_kind[kind_index<Kind>()];

@@ -341,7 +341,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     const I prim = xsimd::bitwise_cast<I>(col(reinterpret_cast<const float*>(hits.prim.data())));
     const I tag = (prim >> PrimRef::kRowBits) & I((1 << PrimRef::kTagBits) - 1);
     const I row = prim & I(int32_t(PrimRef::kMaxRows - 1));
-    const uint32_t lanes = m == W ? (1u << W) - 1 : (1u << m) - 1;
+    const uint32_t lanes = (1u << m) - 1;  // the batch's own rows
     auto lanes_of = [&](PrimTag kind) { return simd::equal<A>(tag, I(int32_t(kind))); };
     uint32_t ours = 0;  // the lanes whose kind has float surfaces
     PrimKinds::for_each([&](auto kind) {

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "raylane/simd/lane_rows.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane::simd {
@@ -52,14 +53,11 @@ class RowReader {
   explicit RowReader(const uint32_t* rows) {
     constexpr int W = kWidth<A>;
     uint32_t lo = rows[0], hi = rows[0];
-    bool run = true;
-    for (int k = 1; k < W; ++k) {
+    for (int k = 1; k < W; ++k)
       lo = rows[k] < lo ? rows[k] : lo, hi = rows[k] > hi ? rows[k] : hi;
-      run = run && rows[k] == rows[0] + uint32_t(k);
-    }
     idx_ = load<A>(reinterpret_cast<const int32_t*>(rows));
     lo_ = lo, span_ = std::size_t(hi - lo) + 1;
-    way_ = run ? Way::kRun : span_ <= std::size_t(2 * W) ? Way::kWindow : Way::kGather;
+    way_ = one_run<W>(rows) ? Way::kRun : span_ <= std::size_t(2 * W) ? Way::kWindow : Way::kGather;
     if (way_ == Way::kWindow) idx_ = idx_ - Ints<A>(int32_t(lo));
   }
   // col[rows[k]] in lane k.
