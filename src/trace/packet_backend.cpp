@@ -3,7 +3,6 @@
 // rows in order; then kind by kind, in double lanes where the kind has them, by surface_ref
 // otherwise), each for the ray as traced, so that t and the point agree.
 #include <algorithm>
-#include <ranges>
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/trace/simd_tracer.h"
@@ -83,13 +82,15 @@ void PacketBackend::closest(const RayStream& rays, std::vector<Hit>& hits, std::
   complete_by_prim_kind(rays, hits, std::min(with_surface, n), scratch);
 }
 
-// Rows `rows` grouped by their hit's primitive kind into scratch.by_kind: row r where prim_of(r)
-// is valid (a hit), in its kind's list, in order.
-template <class Rows, class PrimOf>
-void group_by_prim_kind(const Rows& rows, const PrimOf& prim_of, TraceScratch& scratch) {
+// Rows row_of(0), …, row_of(n − 1) grouped by their hit's primitive kind into
+// scratch.by_kind: row r where prim_of(r) is valid (a hit), in its kind's list, in order.
+template <class RowOf, class PrimOf>
+void group_by_prim_kind(std::size_t n, const RowOf& row_of, const PrimOf& prim_of,
+                        TraceScratch& scratch) {
   for (auto& list : scratch.by_kind)
     list.clear();
-  for (const uint32_t r : rows) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const uint32_t r = row_of(i);
     const PrimRef prim = prim_of(r);
     if (prim.valid()) scratch.by_kind[std::size_t(prim.tag())].push_back(r);
   }
@@ -98,7 +99,7 @@ void group_by_prim_kind(const Rows& rows, const PrimOf& prim_of, TraceScratch& s
 void PacketBackend::complete_by_prim_kind(const RayStream& rays, std::vector<Hit>& hits,
                                           std::size_t n, TraceScratch& scratch) const {
   group_by_prim_kind(
-      std::views::iota(uint32_t(0), uint32_t(n)), [&](uint32_t i) { return hits[i].prim; },
+      n, [](std::size_t i) { return uint32_t(i); }, [&](uint32_t i) { return hits[i].prim; },
       scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
@@ -127,7 +128,7 @@ void PacketBackend::surfaces(const RayStream& rays, const HitStream& hits,
   scratch.rest.resize(ray.size());
   const std::size_t rest = simd_.float_surfaces(scene_, rays, ray, hits, out, scratch.rest.data());
   group_by_prim_kind(
-      std::span<const uint32_t>(scratch.rest.data(), rest),
+      rest, [&](std::size_t i) { return scratch.rest[i]; },
       [&](uint32_t r) { return PrimRef::from_bits(prim[ray[r]]); }, scratch);
   PrimKinds::for_each([&](auto kind) {
     using Kind = decltype(kind);
