@@ -300,7 +300,7 @@ void blend_surfaces(const simd::Mask<A>& on, const FloatSurfaceLanes<A>& from,
     i = {simd::select<A>(on, f.x, i.x), simd::select<A>(on, f.y, i.y),
          simd::select<A>(on, f.z, i.z)};
   };
-  one(from.p, into.p), one(from.n, into.n), one(from.error, into.error);
+  one(from.p, into.p), one(from.ng, into.ng), one(from.ns, into.ns), one(from.error, into.error);
 }
 
 // The float surfaces of request rows [0, ray.size()) in the rows' order, W rows per batch of
@@ -373,29 +373,25 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
         done |= bits;
       }
     });
-    const F cos_d = r.d.x * s.n.x + r.d.y * s.n.y + r.d.z * s.n.z;
-    const uint32_t front = simd::bits<A>(cos_d < F(0.0f));
-    alignas(64) float buffer[10][W];
-    const F* from[10] = {&s.p.x, &s.p.y, &s.p.z,     &s.n.x,     &s.n.y,
-                         &s.n.z, &cos_d, &s.error.x, &s.error.y, &s.error.z};
-    float* const into[9] = {to.px + i,  to.py + i, to.pz + i, to.ngx + i, to.ngy + i,
-                            to.ngz + i, to.ex + i, to.ey + i, to.ez + i};
-    float* const ns[3] = {to.nsx + i, to.nsy + i, to.nsz + i};
+    const F cos_ns = r.d.x * s.ns.x + r.d.y * s.ns.y + r.d.z * s.ns.z;
+    const uint32_t front =
+        simd::bits<A>(r.d.x * s.ng.x + r.d.y * s.ng.y + r.d.z * s.ng.z < F(0.0f));
+    const F* from[13] = {&s.p.x,  &s.p.y,  &s.p.z,     &s.ng.x,    &s.ng.y,    &s.ng.z, &s.ns.x,
+                         &s.ns.y, &s.ns.z, &s.error.x, &s.error.y, &s.error.z, &cos_ns};
+    float* const into[12] = {to.px + i,  to.py + i,  to.pz + i,  to.ngx + i, to.ngy + i, to.ngz + i,
+                             to.nsx + i, to.nsy + i, to.nsz + i, to.ex + i,  to.ey + i,  to.ez + i};
     if (m == W) {
-      for (int c = 0; c < 3; ++c) {
-        simd::store<A>(into[c], *from[c]), simd::store<A>(into[3 + c], *from[3 + c]);
-        simd::store<A>(ns[c], *from[3 + c]), simd::store<A>(into[6 + c], *from[7 + c]);
-      }
-      simd::store_widened<A>(to.cos_ns + i, cos_d);
+      for (int c = 0; c < 12; ++c)
+        simd::store<A>(into[c], *from[c]);
+      simd::store_widened<A>(to.cos_ns + i, cos_ns);
     } else {
-      for (int c = 0; c < 10; ++c)
+      alignas(64) float buffer[13][W];
+      for (int c = 0; c < 13; ++c)
         from[c]->store_aligned(buffer[c]);
-      for (int c = 0; c < 3; ++c) {
-        std::copy_n(buffer[c], m, into[c]), std::copy_n(buffer[3 + c], m, into[3 + c]);
-        std::copy_n(buffer[3 + c], m, ns[c]), std::copy_n(buffer[7 + c], m, into[6 + c]);
-      }
+      for (int c = 0; c < 12; ++c)
+        std::copy_n(buffer[c], m, into[c]);
       for (int k = 0; k < m; ++k)
-        to.cos_ns[i + std::size_t(k)] = buffer[6][k];
+        to.cos_ns[i + std::size_t(k)] = buffer[12][k];
     }
     for (int k = 0; k < m; ++k)
       to.front[i + std::size_t(k)] = (front >> k) & 1u;

@@ -125,5 +125,83 @@ TEST(TriangleRef, PbrtBadCaseIsNotHit) {
   EXPECT_EQ(intersect_ref(t, 0, r), kInf);
 }
 
+// triangle_surface (pbrt-v4 §6.8.5's barycentric reconstruction) at double and at float: rays
+// aimed at a known point P = Σ bᵢ·pᵢ of random triangles (every b ≥ 0.05, distinct, so that a
+// vertex's weight given to another shows) from 1 to 10 edges away, at least 0.3 of the way
+// along the normal. The point must be P and the shading normal the vertex normals blended by b,
+// within 1e-12 of an edge at double and 1e-4 at float: the float ray passes P within a few
+// roundoffs of |o| + t (about 1e-6 here), which a cosine of 0.3 magnifies less than tenfold, where
+// a wrong weight moves the point by 0.05 of an edge or more.
+template <class N, class V3>
+void expect_barycentric_surfaces(double tolerance) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g;
+  std::normal_distribution<float> gf;
+  auto gauss3 = [&] {  // in order: a constructor's arguments are evaluated in any order
+    const double x = g(rng), y = g(rng);
+    return glm::dvec3(x, y, g(rng));
+  };
+  // Vertices drawn as floats: GCC 12's SLP vectoriser dropped the rounding of double vertices to
+  // float in this loop at -O3 (the point it was aimed at lay off the float triangle's plane).
+  auto vertex = [&](const glm::vec3& centre) {
+    const float x = gf(rng), y = gf(rng);
+    return centre + glm::vec3(x, y, gf(rng));
+  };
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const glm::vec3 centre = vertex(glm::vec3(0.0f)) * 3.0f;
+    const std::array<glm::vec3, 3> v{vertex(centre), vertex(centre), vertex(centre)};
+    const std::array<glm::vec3, 3> vn{glm::vec3(normalize(gauss3())),
+                                      glm::vec3(normalize(gauss3())),
+                                      glm::vec3(normalize(gauss3()))};
+    const glm::dvec3 p0(v[0]), p1(v[1]), p2(v[2]);
+    const glm::dvec3 normal = cross(p1 - p0, p2 - p0);
+    const double edge = std::max({length(p1 - p0), length(p2 - p0), length(p2 - p1)});
+    if (length(normal) < 0.2 * edge * edge) continue;  // a sliver: its barycentrics are fragile
+    double b1 = u(rng), b2 = u(rng);
+    if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+    const double b0 = 1 - b1 - b2;
+    if (std::min({b0, b1, b2}) < 0.05) continue;
+    const glm::dvec3 at = b0 * p0 + b1 * p1 + b2 * p2;
+    const glm::dvec3 away = normalize(gauss3());
+    if (std::abs(dot(away, normalize(normal))) < 0.3) continue;
+    const glm::dvec3 o = at + away * edge * (1 + 9 * u(rng));
+    const V3 ro(o), rd(normalize(at - o));
+    const auto t = static_cast<N>(length(at - glm::dvec3(ro)));
+    const std::array<V3, 3> pv{V3(v[0]), V3(v[1]), V3(v[2])}, nv{V3(vn[0]), V3(vn[1]), V3(vn[2])};
+    const TriangleSurface<V3> s = triangle_surface<N>(pv, nv, ro, rd, t);
+    ASSERT_LE(length(glm::dvec3(s.p) - at), tolerance * edge) << i;
+    const glm::dvec3 ns =
+        normalize(b0 * glm::dvec3(vn[0]) + b1 * glm::dvec3(vn[1]) + b2 * glm::dvec3(vn[2]));
+    ASSERT_LE(length(glm::dvec3(s.ns) - ns), tolerance) << i;
+    ASSERT_LE(length(glm::dvec3(s.ng) - normalize(normal)), tolerance) << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000);
+}
+
+TEST(TriangleSurface, BarycentricPointAndNormalsAtDouble) {
+  expect_barycentric_surfaces<double, glm::dvec3>(1e-12);
+}
+
+TEST(TriangleSurface, BarycentricPointAndNormalsAtFloat) {
+  expect_barycentric_surfaces<float, glm::vec3>(1e-4);
+}
+
+// A degenerate triangle's barycentrics are not numbers: the point is q = o + t·d, bounded as a
+// hit point is (float_hit_point_bound and the vertices' γ7), and the normals are not numbers
+// either, as the reference's were (zero-area triangles are never hit: T4).
+TEST(TriangleSurface, WithoutBarycentricsThePointIsTheTracedOne) {
+  const std::array<glm::vec3, 3> v{glm::vec3(0, 0, 0), glm::vec3(1, 1, 1), glm::vec3(2, 2, 2)};
+  const std::array<glm::vec3, 3> vn{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
+  const glm::vec3 o(0.5f, 0.5f, 3), d(0, 0, -1);
+  const TriangleSurface<glm::vec3> s = triangle_surface<float>(v, vn, o, d, 2.5f);
+  EXPECT_EQ(s.p, glm::vec3(0.5f, 0.5f, 0.5f));
+  const glm::vec3 e = triangle_point_bound<float>(s, v, o, d, 2.5f);
+  EXPECT_GE(e.x, float(2 * gamma_float(7)));
+  EXPECT_GE(e.z, float(2 * gamma_float(7)));
+}
+
 }  // namespace
 }  // namespace raylane

@@ -1,6 +1,7 @@
 // The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces:
-// spheres and boxes in float lanes with their own bounds, sphere_point_bound and
-// box_point_bound; the other kinds rounded from double, float_hit_point_bound), and the rays a
+// spheres, boxes and triangles in float lanes with their own bounds, sphere_point_bound,
+// box_point_bound and triangle_point_bound; the other kinds rounded from double,
+// float_hit_point_bound), and the rays a
 // vertex spawns leave by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes
 // of every kind that the float surfaces cover, at every instruction set, at four scales (unit,
 // far from the origin, tiny, huge):

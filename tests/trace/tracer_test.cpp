@@ -301,10 +301,10 @@ TEST(Tracer, FloatStreamsAnswerAsTheirWidenedRays) {
   with_every_tracer(2000, 300, expect_streams_answer_as_rays);
 }
 
-// What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes and spheres in
-// float lanes, with their bounds — the same steps' scalar float instance, bit for bit; every
-// other surface complete()'s, rounded to float, with float_hit_point_bound computed in double
-// and rounded.
+// What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes, spheres and
+// triangles in float lanes, with their bounds — the same steps' scalar float instance, bit for
+// bit; every other surface complete()'s, rounded to float, with float_hit_point_bound computed
+// in double and rounded.
 struct Columns {
   glm::vec3 p, ng, ns, error;
   double cos_ns;
@@ -331,12 +331,22 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
         sphere_surface<float>(sp.center(i), sp.r[i], ray.o, ray.d, t);
     return from_float(s.p, s.n, sphere_point_bound<float>(s.p, s.offset));
   }
+  if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Triangle>) {
+    const TriangleTable& tri = scene.table<Triangle>();
+    const uint32_t i = hit.prim.row();
+    const std::array<glm::vec3, 3> v{tri.p0(i), tri.p1(i), tri.p2(i)},
+        vn{tri.n0(i), tri.n1(i), tri.n2(i)};
+    const TriangleSurface<glm::vec3> s = triangle_surface<float>(v, vn, ray.o, ray.d, t);
+    const float c = ray.d.x * s.ns.x + ray.d.y * s.ns.y + ray.d.z * s.ns.z;
+    const float g = ray.d.x * s.ng.x + ray.d.y * s.ng.y + ray.d.z * s.ng.z;
+    return {s.p, s.ng, s.ns, triangle_point_bound<float>(s, v, ray.o, ray.d, t), c, g < 0, true};
+  }
   const Rayd rd = ray_cast<double>(ray);
   Hit h = hit;
   tracer.complete(rd, h);
   const Surface& s = h.surface;
   glm::dvec3 error = float_hit_point_bound<double>(rd.o, rd.d, hit.t, s.p);
-  if (hit.prim.tag() == tag_of<Triangle>)
+  if (hit.prim.tag() == tag_of<Triangle>)  // the references' triangles
     error += triangle_vertex_bound(scene.table<Triangle>(), hit.prim.row());
   return {glm::vec3(s.p),
           glm::vec3(s.ng),
@@ -434,8 +444,10 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
     ++kinds[std::size_t(hit.prim.tag())];
   }
   const Scene& scene = tracer.scene();
-  const bool quadrics = scene.table<Sphere>().size() + scene.table<Box>().size() != 0;
-  if (tracer.backend() == TracerBackend::kPacket && quadrics) {
+  const bool in_lanes =
+      scene.table<Sphere>().size() + scene.table<Box>().size() + scene.table<Triangle>().size() !=
+      0;
+  if (tracer.backend() == TracerBackend::kPacket && in_lanes) {
     EXPECT_GT(in_float, int(n / 10));
   }
   EXPECT_GT(back, int(n / 50));
@@ -446,12 +458,16 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   });
 }
 
-// The course scene's triangles are flat (their vertex normals are the face's): bent, so that
-// the shading normal differs from the geometric one.
+// The course scene's triangles are flat (their vertex normals are the face's): bent, each
+// vertex's every component its own way, so that the shading normal differs from the geometric
+// one and a lane reading one vertex's column for another's shows.
 void bend_vertex_normals(Scene& scene) {
   TriangleTable& t = scene.table<Triangle>();
-  for (std::size_t i = 0; i < t.size(); ++i)
-    t.n0x[i] += 0.25f, t.n1y[i] -= 0.25f, t.n2z[i] += 0.25f;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    t.n0x[i] += 0.25f, t.n0y[i] += 0.10f, t.n0z[i] -= 0.15f;
+    t.n1x[i] -= 0.20f, t.n1y[i] -= 0.25f, t.n1z[i] += 0.05f;
+    t.n2x[i] += 0.10f, t.n2y[i] -= 0.20f, t.n2z[i] += 0.25f;
+  }
 }
 
 TEST(Tracer, SurfaceColumnsAreCompletesSurfaces) {

@@ -13,8 +13,10 @@
 
 #include "raylane/core/bounds3.h"
 #include "raylane/core/float_util.h"
+#include "raylane/core/numbers.h"
 #include "raylane/core/prim_ref.h"
 #include "raylane/core/ray.h"
+#include "raylane/core/ray_offset.h"
 #include "raylane/prims/surface.h"
 #include "raylane/prims/table_util.h"
 
@@ -94,11 +96,10 @@ struct Triangle {
   // to 8 pay, for packets and single rays alike (1.31M mesh: 1.2-1.3x); the quadrics and
   // boxes of the lattice lose speed with bigger leaves, so they keep cost 1.
   static constexpr double sah_test_cost = 0.3;
-  // Surfaces one by one (surface_ref): the watertight test's difference of products needs
-  // a fused multiply-add, which SSE4.2 lanes lack, and meshes are a small share of the course
-  // scene's hits.
+  // The render's surfaces in float lanes with their bounds (triangle_packet.h); a hit record's
+  // one by one (surface_ref): it has two normals, which SurfaceLanes does not.
   static constexpr bool surface_in_lanes = false;
-  static constexpr bool surface_in_float_lanes = false;
+  static constexpr bool surface_in_float_lanes = true;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
@@ -145,22 +146,98 @@ inline double intersect_ref(const TriangleTable& tri, uint32_t i, const Rayd& ra
   return w.t;
 }
 
-// The point from the barycentrics (pbrt-v4 Triangle::InteractionFromIntersection), the
-// geometric normal by the winding, the shading normal interpolated from the vertex normals.
+// A triangle hit's surface over the number type (double: the reference; float and float lanes:
+// the render's columns, prims/triangle_packet.h), by barycentric reconstruction (Pharr, Jakob
+// and Humphreys, pbrt-v4 §6.8.5): the point is b0·p0 + b1·p1 + b2·p2, so that it lies on the
+// triangle's plane within a few roundoffs of the vertices whatever the error of t. The
+// barycentrics are the edge functions' shares (Woop et al. 2013) written as triple products with
+// the direction, d·(c × b) and its rotations, of the vertices relative to q = o + t·d: a triple
+// product with d does not change when q moves along d, so t's error does not enter them, and
+// relative to a point on the triangle the vertices are as small as its edges, where relative to
+// the origin the cross products would cancel (the sheared form of the hit test avoids the same).
+// Where the barycentrics are not numbers (a degenerate determinant, or an overflow at huge
+// coordinates) the point is q itself. The geometric normal is by the winding, its edges' cross
+// product scaled by its largest component first so that squaring it neither overflows nor
+// underflows at float; the shading normal is the vertex normals interpolated, or the geometric
+// one where that has no direction.
+template <class V3>
+struct TriangleSurface {
+  V3 p, ng, ns;
+  // |b0·p0| + |b1·p1| + |b2·p2| per component: what triangle_point_bound scales; not a number
+  // where p is q.
+  V3 weight;
+};
+
+template <class N, class V3>
+TriangleSurface<V3> triangle_surface(const std::array<V3, 3>& v, const std::array<V3, 3>& vn,
+                                     const V3& o, const V3& d, const N& t) {
+  using K = Num<N>;
+  auto minus = [](const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; };
+  auto cross3 = [](const V3& a, const V3& b) {
+    return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  };
+  auto dot3 = [](const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  auto scaled = [](const V3& a, const N& s) { return V3{a.x * s, a.y * s, a.z * s}; };
+  auto unit = [&](const V3& a) { return scaled(a, N(1.0) / K::sqrt(dot3(a, a))); };
+  const V3 q{o.x + d.x * t, o.y + d.y * t, o.z + d.z * t};
+  const V3 a = minus(v[0], q), b = minus(v[1], q), c = minus(v[2], q);
+  const N e0 = dot3(d, cross3(c, b)), e1 = dot3(d, cross3(a, c)), e2 = dot3(d, cross3(b, a));
+  const N inv = N(1.0) / (e0 + e1 + e2);
+  const N b0 = e0 * inv, b1 = e1 * inv, b2 = e2 * inv;
+  auto blend = [&](const V3& x0, const V3& x1, const V3& x2) {
+    return V3{b0 * x0.x + b1 * x1.x + b2 * x2.x, b0 * x0.y + b1 * x1.y + b2 * x2.y,
+              b0 * x0.z + b1 * x1.z + b2 * x2.z};
+  };
+  auto weigh = [&](const N& x0, const N& x1, const N& x2) {
+    return K::abs(b0 * x0) + K::abs(b1 * x1) + K::abs(b2 * x2);
+  };
+  TriangleSurface<V3> s;
+  s.weight = V3{weigh(v[0].x, v[1].x, v[2].x), weigh(v[0].y, v[1].y, v[2].y),
+                weigh(v[0].z, v[1].z, v[2].z)};
+  const auto reconstructed = s.weight.x + s.weight.y + s.weight.z < N(HUGE_VAL);  // NaN: false
+  const V3 bp = blend(v[0], v[1], v[2]);
+  s.p = V3{K::select(reconstructed, bp.x, q.x), K::select(reconstructed, bp.y, q.y),
+           K::select(reconstructed, bp.z, q.z)};
+  const V3 g = cross3(minus(v[1], v[0]), minus(v[2], v[0]));
+  s.ng = unit(scaled(g, N(1.0) / K::max(K::max(K::abs(g.x), K::abs(g.y)), K::abs(g.z))));
+  const V3 m = blend(vn[0], vn[1], vn[2]);
+  const N len = K::sqrt(dot3(m, m));
+  const auto usable = (len > N(0.0)) & (len < N(HUGE_VAL));
+  const N inv_len = N(1.0) / len;
+  s.ns = V3{K::select(usable, m.x * inv_len, s.ng.x), K::select(usable, m.y * inv_len, s.ng.y),
+            K::select(usable, m.z * inv_len, s.ng.z)};
+  return s;
+}
+
+// A bound on the error of triangle_surface's point computed in float, for the offset along its
+// normal: γ7·(|b0·p0| + |b1·p1| + |b2·p2|) (pbrt-v4 §6.8.5, eq. 6.33, which also covers the
+// barycentrics' own rounding: they sum to 1 within a few roundoffs, and any that do put the
+// point on the plane within it). The constant carries 2^-20 more for this product's and sum's
+// own float roundings. Where the point is q = o + t·d instead, the hit point's bound
+// (float_hit_point_bound) and the vertices' (triangle_vertex_bound's γ7 of the largest).
+template <class N, class V3>
+V3 triangle_point_bound(const TriangleSurface<V3>& s, const std::array<V3, 3>& v, const V3& o,
+                        const V3& d, const N& t) {
+  using K = Num<N>;
+  const N gamma7(gamma_float(7) * (1 + 0x1p-20));
+  const auto reconstructed = s.weight.x + s.weight.y + s.weight.z < N(HUGE_VAL);
+  const V3 along = float_hit_point_bound<N>(o, d, t, s.p);
+  auto one = [&](const N& w, const N& x0, const N& x1, const N& x2, const N& ak) {
+    const N largest = K::max(K::max(K::abs(x0), K::abs(x1)), K::abs(x2));
+    return K::select(reconstructed, w * gamma7, ak + largest * gamma7);
+  };
+  return V3{one(s.weight.x, v[0].x, v[1].x, v[2].x, along.x),
+            one(s.weight.y, v[0].y, v[1].y, v[2].y, along.y),
+            one(s.weight.z, v[0].z, v[1].z, v[2].z, along.z)};
+}
+
 inline Surface surface_ref(const TriangleTable& tri, uint32_t i, const Rayd& ray, double t) {
-  glm::dvec3 p0(tri.p0(i)), p1(tri.p1(i)), p2(tri.p2(i));
-  glm::dvec3 ng = normalize(cross(p1 - p0, p2 - p0));
-  detail::WoopRef w;
-  Rayd unbounded = ray;
-  unbounded.tmin = -std::numeric_limits<double>::infinity();
-  unbounded.tmax = std::numeric_limits<double>::infinity();
-  if (!detail::woop_ref(tri, i, unbounded, w)) return {ray.at(t), ng, ng};
-  double b0 = w.u / w.det, b1 = w.v / w.det, b2 = w.w / w.det;
-  glm::dvec3 p = b0 * p0 + b1 * p1 + b2 * p2;
-  glm::dvec3 ns =
-      b0 * glm::dvec3(tri.n0(i)) + b1 * glm::dvec3(tri.n1(i)) + b2 * glm::dvec3(tri.n2(i));
-  double len = length(ns);
-  return {p, ng, len > 0 && std::isfinite(len) ? ns / len : ng};
+  const std::array<glm::dvec3, 3> v{glm::dvec3(tri.p0(i)), glm::dvec3(tri.p1(i)),
+                                    glm::dvec3(tri.p2(i))};
+  const std::array<glm::dvec3, 3> vn{glm::dvec3(tri.n0(i)), glm::dvec3(tri.n1(i)),
+                                     glm::dvec3(tri.n2(i))};
+  const TriangleSurface<glm::dvec3> s = triangle_surface<double>(v, vn, ray.o, ray.d, t);
+  return {s.p, s.ng, s.ns};
 }
 
 // What a triangle adds to the bound on its hit point's error (float_hit_point_bound) for the

@@ -4,6 +4,7 @@
 
 #include "raylane/prims/prim_list.h"
 #include "raylane/simd/packet.h"
+#include "raylane/simd/surface_lanes.h"
 
 namespace raylane {
 
@@ -126,6 +127,22 @@ template <class A, class Rows>
     if (!r.shear.uniform) return watertight_rows<A>(tri, rows, LaneShear<A>{r}, r, h);
   }
   watertight_rows<A>(tri, rows, ColumnShear<A>(tri, r), r, h);
+}
+
+// triangle_surface (triangle.h) for one hit per float lane, with its bound
+// (triangle_point_bound).
+template <class A>
+[[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
+    const TriangleTable& tri, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
+  using V3 = simd::FloatVec3<A>;
+  const std::array<V3, 3> v{read_rows3<A>(tri.p0x, tri.p0y, tri.p0z, rows),
+                            read_rows3<A>(tri.p1x, tri.p1y, tri.p1z, rows),
+                            read_rows3<A>(tri.p2x, tri.p2y, tri.p2z, rows)};
+  const std::array<V3, 3> vn{read_rows3<A>(tri.n0x, tri.n0y, tri.n0z, rows),
+                             read_rows3<A>(tri.n1x, tri.n1y, tri.n1z, rows),
+                             read_rows3<A>(tri.n2x, tri.n2y, tri.n2z, rows)};
+  const TriangleSurface<V3> s = triangle_surface<simd::Floats<A>>(v, vn, r.o, r.d, r.t);
+  return {s.p, s.ng, s.ns, triangle_point_bound<simd::Floats<A>>(s, v, r.o, r.d, r.t)};
 }
 
 }  // namespace raylane

@@ -35,10 +35,11 @@ struct FloatHitRayLanes {
   simd::Floats<A> t;
 };
 
-// The point, the unit normal and a componentwise bound on the point's error, in float.
+// The point, the unit geometric and shading normals (the same but for triangles) and a
+// componentwise bound on the point's error, in float.
 template <class A>
 struct FloatSurfaceLanes {
-  simd::FloatVec3<A> p, n, error;
+  simd::FloatVec3<A> p, ng, ns, error;
 };
 
 // The table column c read at one row per float lane: by register permutes where the table is
