@@ -354,7 +354,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
                                 {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
                                 col(hits.t.data())};
-    FloatSurfaceLanes<A> s{};
+    FloatSurfaceLanes<A> s;  // set by the first kind present (not zeroed: a rep stos per batch)
     uint32_t done = 0;
     PrimKinds::for_each([&](auto kind) {
       using Kind = decltype(kind);
