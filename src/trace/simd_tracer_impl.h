@@ -292,15 +292,21 @@ void surfaces_range(const typename Kind::Table& table, const RayStream& rays,
   }
 }
 
-// One batch's float surfaces, blended kind by kind: the lanes `on` of `from` into `into`.
+// The lanes `on` of `from` into `into`.
 template <class A>
-void blend_surfaces(const simd::Mask<A>& on, const FloatSurfaceLanes<A>& from,
-                    FloatSurfaceLanes<A>& into) {
-  auto one = [&](const simd::FloatVec3<A>& f, simd::FloatVec3<A>& i) {
-    i = {simd::select<A>(on, f.x, i.x), simd::select<A>(on, f.y, i.y),
-         simd::select<A>(on, f.z, i.z)};
-  };
-  one(from.p, into.p), one(from.ng, into.ng), one(from.ns, into.ns), one(from.error, into.error);
+void blend3(const simd::Mask<A>& on, const simd::FloatVec3<A>& from, simd::FloatVec3<A>& into) {
+  into = {simd::select<A>(on, from.x, into.x), simd::select<A>(on, from.y, into.y),
+          simd::select<A>(on, from.z, into.z)};
+}
+
+// Whether a kind's shading normal differs from its geometric one (triangles: interpolated from
+// the vertices'); false unless the kind says so.
+template <class Kind>
+constexpr bool has_shading_normal() {
+  if constexpr (requires { Kind::has_shading_normal; })
+    return Kind::has_shading_normal;
+  else
+    return false;
 }
 
 // The float surfaces of request rows [0, ray.size()) in the rows' order, W rows per batch of
@@ -354,7 +360,12 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
                                 {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
                                 col(hits.t.data())};
-    FloatSurfaceLanes<A> s;  // set by the first kind present (not zeroed: a rep stos per batch)
+    // Set by the first kind present. The shading normal is the geometric one but in the lanes
+    // of a kind with its own (`smooth`): blending it for every kind cost the spheres' and
+    // boxes' batches a third set of selects.
+    FloatSurfaceLanes<A> s{};
+    simd::FloatVec3<A> own_ns{};
+    simd::Mask<A> smooth(false);
     uint32_t done = 0;
     PrimKinds::for_each([&](auto kind) {
       using Kind = decltype(kind);
@@ -366,25 +377,32 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
         const FloatSurfaceLanes<A> k =
             surface_float_lanes<A>(scene.table<Kind>(), simd::select<A>(on, row, I(0)), r);
         if (done == 0) {
-          s = k;
+          s.p = k.p, s.ng = k.ng, s.error = k.error;
         } else {
-          blend_surfaces<A>(on, k, s);
+          blend3<A>(on, k.p, s.p), blend3<A>(on, k.ng, s.ng), blend3<A>(on, k.error, s.error);
         }
+        if constexpr (has_shading_normal<Kind>()) own_ns = k.ns, smooth = on;
         done |= bits;
       }
     });
+    s.ns = s.ng;
+    if (simd::any<A>(smooth)) blend3<A>(smooth, own_ns, s.ns);
     const F cos_ns = r.d.x * s.ns.x + r.d.y * s.ns.y + r.d.z * s.ns.z;
     const uint32_t front =
         simd::bits<A>(r.d.x * s.ng.x + r.d.y * s.ng.y + r.d.z * s.ng.z < F(0.0f));
-    const F* from[13] = {&s.p.x,  &s.p.y,  &s.p.z,     &s.ng.x,    &s.ng.y,    &s.ng.z, &s.ns.x,
-                         &s.ns.y, &s.ns.z, &s.error.x, &s.error.y, &s.error.z, &cos_ns};
-    float* const into[12] = {to.px + i,  to.py + i,  to.pz + i,  to.ngx + i, to.ngy + i, to.ngz + i,
-                             to.nsx + i, to.nsy + i, to.nsz + i, to.ex + i,  to.ey + i,  to.ez + i};
     if (m == W) {
-      for (int c = 0; c < 12; ++c)
-        simd::store<A>(into[c], *from[c]);
+      auto store3 = [&](float* x, float* y, float* z, const simd::FloatVec3<A>& v) {
+        simd::store<A>(x + i, v.x), simd::store<A>(y + i, v.y), simd::store<A>(z + i, v.z);
+      };
+      store3(to.px, to.py, to.pz, s.p), store3(to.ngx, to.ngy, to.ngz, s.ng);
+      store3(to.nsx, to.nsy, to.nsz, s.ns), store3(to.ex, to.ey, to.ez, s.error);
       simd::store_widened<A>(to.cos_ns + i, cos_ns);
     } else {
+      const F* from[13] = {&s.p.x,  &s.p.y,  &s.p.z,     &s.ng.x,    &s.ng.y,    &s.ng.z, &s.ns.x,
+                           &s.ns.y, &s.ns.z, &s.error.x, &s.error.y, &s.error.z, &cos_ns};
+      float* const into[12] = {to.px + i,  to.py + i,  to.pz + i,  to.ngx + i,
+                               to.ngy + i, to.ngz + i, to.nsx + i, to.nsy + i,
+                               to.nsz + i, to.ex + i,  to.ey + i,  to.ez + i};
       alignas(64) float buffer[13][W];
       for (int c = 0; c < 13; ++c)
         from[c]->store_aligned(buffer[c]);

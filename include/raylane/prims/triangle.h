@@ -100,6 +100,7 @@ struct Triangle {
   // one by one (surface_ref): it has two normals, which SurfaceLanes does not.
   static constexpr bool surface_in_lanes = false;
   static constexpr bool surface_in_float_lanes = true;
+  static constexpr bool has_shading_normal = true;  // interpolated from the vertex normals
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
