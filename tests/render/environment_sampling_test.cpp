@@ -72,8 +72,8 @@ uint32_t cell_by_scan(const std::vector<double>& f, double u) {
   return last;
 }
 
-// The guide table (render/lights/environment.h) only narrows the search: every u lands in the cell a
-// scan of the whole CDF finds, for weights with empty cells, one spike holding almost all the
+// The guide table (render/lights/environment.h) only narrows the search: every u lands in the cell
+// a scan of the whole CDF finds, for weights with empty cells, one spike holding almost all the
 // weight (many cells between two guide entries), and any size; u at every CDF step, just below
 // it, and at random.
 TEST(EnvironmentSampling, GuidedInversionFindsTheScansCell) {
@@ -151,6 +151,25 @@ TEST(EnvironmentSampling, PdfOfTheSampleIsTheSamplesPdf) {
     ASSERT_NEAR(le.x, s.le.x, 1e-9 * (1 + le.x));
   }
   EXPECT_GT(checked, 199000);
+}
+
+// sample_many takes its rows by image row (a counting sort) and writes each back to its own
+// place: its answers are sample()'s, row by row, bit for bit, for a batch that crosses the
+// map's rows many times over and holds the edge numbers 0 and just below 1.
+TEST(EnvironmentSampling, ManySamplesAreTheOneByOneSamples) {
+  EnvironmentMap env(testing::sun_map(1000), 2, tilted());
+  Rng rng(12);
+  EnvironmentBatch b;
+  b.resize(5000);
+  for (std::size_t i = 0; i < b.u1.size(); ++i)
+    b.u1[i] = rng.uniform(), b.u2[i] = rng.uniform();
+  b.u1[0] = 0, b.u2[0] = 0, b.u1[1] = kBelowOne, b.u2[1] = kBelowOne;
+  env.sample_many(b);
+  for (std::size_t i = 0; i < b.u1.size(); ++i) {
+    const EnvironmentSample want = env.sample(b.u1[i], b.u2[i]);
+    const EnvironmentSample& got = b.out[i];
+    ASSERT_TRUE(want.wi == got.wi && want.le == got.le && want.pdf == got.pdf) << "row " << i;
+  }
 }
 
 TEST(EnvironmentSampling, EdgeNumbersAndPolesGiveNoNaN) {

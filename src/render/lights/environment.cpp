@@ -77,22 +77,23 @@ uint32_t cell_of(double x, uint32_t n) {
 
 // --- PiecewiseConstant1D ---
 
-PiecewiseConstant1D::PiecewiseConstant1D(std::vector<double> f) : func_(std::move(f)) {
-  if (func_.empty()) func_.push_back(0);
-  const std::size_t n = func_.size();
-  cdf_.assign(n + 1, 0.0);
+PiecewiseConstant1D::PiecewiseConstant1D(std::vector<double> f) {
+  if (f.empty()) f.push_back(0);
+  const std::size_t n = f.size();
+  steps_.assign(n + 1, Step{0.0, 0.0});
   double sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    func_[i] = std::isfinite(func_[i]) ? std::abs(func_[i]) : 0.0;
-    sum += func_[i];
-    cdf_[i + 1] = sum;
+    const double w = std::isfinite(f[i]) ? std::abs(f[i]) : 0.0;
+    steps_[i].weight = w;
+    sum += w;
+    steps_[i + 1].cdf = sum;
   }
   integral_ = sum / double(n);
   if (!(sum > 0)) return;  // all zero: the CDF stays 0 and nothing is sampled
   // A cell of weight 0 adds nothing to the running sum, so its CDF step is exactly empty and
   // the search in sample_continuous can never land in it; the last entry is sum/sum = 1.
-  for (double& c : cdf_)
-    c /= sum;
+  for (Step& s : steps_)
+    s.cdf /= sum;
   const uint32_t g = (uint32_t(n) + kCellsPerGuide - 1) / kCellsPerGuide;
   guide_.resize(std::size_t(g) + 1);
   for (uint32_t k = 0; k <= g; ++k)
@@ -107,17 +108,17 @@ uint32_t PiecewiseConstant1D::cell_at(double u) const {
 
 // cell_at(u), searching cells [lo, hi] only: the caller knows cdf[lo] ≤ u < cdf[hi + 1].
 uint32_t PiecewiseConstant1D::cell_within(double u, uint32_t lo, uint32_t hi) const {
-  auto first = cdf_.begin() + lo, last = cdf_.begin() + hi + 2;
-  auto it = std::upper_bound(first, last, u);
-  return uint32_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin() - 1, 0, size() - 1));
+  auto first = steps_.begin() + lo, last = steps_.begin() + hi + 2;
+  auto it = std::upper_bound(first, last, u, [](double x, const Step& s) { return x < s.cdf; });
+  return uint32_t(std::clamp<std::ptrdiff_t>(it - steps_.begin() - 1, 0, size() - 1));
 }
 
 inline std::pair<uint32_t, uint32_t> PiecewiseConstant1D::guided_cells(double u) const {
   const uint32_t n = size(), k = guide_index(u);
   uint32_t lo = guide_[k], hi = guide_[k + 1];
   // u·g may round across an entry's edge k/g: widen to the whole CDF then (rare).
-  if (cdf_[lo] > u) lo = 0;
-  if (hi + 1 < n && cdf_[hi + 1] <= u) hi = n - 1;
+  if (steps_[lo].cdf > u) lo = 0;
+  if (hi + 1 < n && steps_[hi + 1].cdf <= u) hi = n - 1;
   return {lo, hi};
 }
 
@@ -136,11 +137,12 @@ double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* c
   uint32_t i = lo;
   for (uint32_t len = hi - lo + 1; len > 1;) {
     const uint32_t half = len / 2;
-    i = cdf_[i + half] <= u ? i + half : i;
+    i = steps_[i + half].cdf <= u ? i + half : i;
     len -= half;
   }
-  double du = (u - cdf_[i]) / (cdf_[i + 1] - cdf_[i]);  // the step is > 0 (see the constructor)
-  if (pdf) *pdf = func_[i] / integral_;
+  const double lo_cdf = steps_[i].cdf, hi_cdf = steps_[i + 1].cdf;
+  double du = (u - lo_cdf) / (hi_cdf - lo_cdf);  // the step is > 0 (see the constructor)
+  if (pdf) *pdf = steps_[i].weight / integral_;
   if (cell) *cell = i;
   // i/n ≤ x < (i + 1)/n as cell_of sees the edges, though du or the division round up.
   double x = (double(i) + du) / n, end = double(i + 1) / n;
@@ -187,20 +189,33 @@ PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) co
 }
 
 void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const double* u2,
-                                      Sample* out) const {
+                                      Sample* out, std::vector<uint32_t>& order,
+                                      std::vector<uint32_t>& starts) const {
   // The marginal's density rides in out[i].pdf between the two passes.
   for (std::size_t i = 0; i < n; ++i)
     out[i].v = marginal_.sample_continuous(u2[i], &out[i].pdf, &out[i].cell_v);
+  // The rows by image row (a stable counting sort): an image row's conditional tables are
+  // 2·(nu + 1) doubles and its guide, and the rows on one share their cache lines, where in
+  // the rows' own order each found them gone (a 512 × 256 sky's tables are 2 MB).
+  order.resize(n);
+  starts.assign(std::size_t(marginal_.size()) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    ++starts[out[i].cell_v + 1];
+  for (std::size_t v = 1; v < starts.size(); ++v)
+    starts[v] += starts[v - 1];
+  for (std::size_t i = 0; i < n; ++i)
+    order[starts[out[i].cell_v]++] = uint32_t(i);
   // Rows kAhead on have their guide entries fetched, rows kAhead / 2 on the cells those lead
   // to: each row's reads then find the caches warm (a row's chain of dependent misses, guide
   // → CDF → weight, was most of the environment's sampling time).
   constexpr std::size_t kAhead = 8;
-  auto row = [&](std::size_t i) -> const PiecewiseConstant1D& {
-    return conditional_[out[i].cell_v];
+  auto row = [&](std::size_t k) -> const PiecewiseConstant1D& {
+    return conditional_[out[order[k]].cell_v];
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + kAhead < n) row(i + kAhead).prefetch_guide(u1[i + kAhead]);
-    if (i + kAhead / 2 < n) row(i + kAhead / 2).prefetch_cells(u1[i + kAhead / 2]);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k + kAhead < n) row(k + kAhead).prefetch_guide(u1[order[k + kAhead]]);
+    if (k + kAhead / 2 < n) row(k + kAhead / 2).prefetch_cells(u1[order[k + kAhead / 2]]);
+    const std::size_t i = order[k];
     Sample& s = out[i];
     double pdf_u = 0;
     s.u = conditional_[s.cell_v].sample_continuous(u1[i], &pdf_u, &s.cell_u);
@@ -277,11 +292,16 @@ EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
 
 void EnvironmentMap::sample_many(EnvironmentBatch& b) const {
   const std::size_t n = b.u1.size();
-  distribution_.sample_many(n, b.u1.data(), b.u2.data(), b.uv.data());
+  distribution_.sample_many(n, b.u1.data(), b.u2.data(), b.uv.data(), b.order, b.starts);
+  // In the tables' order, by image row: the texels of one row are looked up together.
   constexpr std::size_t kAhead = 4;  // rows whose texels are fetched ahead of their lookup
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + kAhead < n) prefetch_texels(b.uv[i + kAhead].u, b.uv[i + kAhead].v);
-    b.out[i] = direction_of(b.uv[i]);
+  const uint32_t* order = b.order.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k + kAhead < n) {
+      const PiecewiseConstant2D::Sample& ahead = b.uv[order[k + kAhead]];
+      prefetch_texels(ahead.u, ahead.v);
+    }
+    b.out[order[k]] = direction_of(b.uv[order[k]]);
   }
 }
 

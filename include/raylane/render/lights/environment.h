@@ -47,24 +47,23 @@ class PiecewiseConstant1D {
   // The density at x: f[cell(x)] / integral(); 0 outside [0, 1) or when integral() is 0.
   double pdf(double x) const;
   // The density of a whole cell (cell < size()), and its weight as given (after abs).
-  double pdf_of_cell(uint32_t cell) const { return integral_ > 0 ? func_[cell] / integral_ : 0; }
-  double value(uint32_t cell) const { return func_[cell]; }
+  double pdf_of_cell(uint32_t cell) const {
+    return integral_ > 0 ? steps_[cell].weight / integral_ : 0;
+  }
+  double value(uint32_t cell) const { return steps_[cell].weight; }
   // ∫₀¹ f = Σ f / n, the normaliser (and the 2-D marginal's weight of this row).
   double integral() const { return integral_; }
-  uint32_t size() const { return uint32_t(func_.size()); }
+  uint32_t size() const { return uint32_t(steps_.size() - 1); }
   // Asks the caches for the guide entry sample_continuous(u) reads first, and then, once that
   // has arrived, for the CDF and weight it leads to: sample_many's rows, a few rows ahead.
   void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(u)); }
   void prefetch_cells(double u) const {
     if (guide_.empty()) return;
-    const uint32_t lo = guide_[guide_index(u)];
-    __builtin_prefetch(cdf_.data() + lo);
-    __builtin_prefetch(func_.data() + lo);
+    __builtin_prefetch(steps_.data() + guide_[guide_index(u)]);
   }
   // The memory the tables hold, for memory reports.
   std::size_t bytes() const {
-    return (func_.capacity() + cdf_.capacity()) * sizeof(double) +
-           guide_.capacity() * sizeof(uint32_t);
+    return steps_.capacity() * sizeof(Step) + guide_.capacity() * sizeof(uint32_t);
   }
   // One guide entry per this many cells (kGuideBytesPerCell = 4 / this: what it adds a cell).
   static constexpr uint32_t kCellsPerGuide = 4;
@@ -80,8 +79,13 @@ class PiecewiseConstant1D {
   // The cells [lo, hi] that hold the u of [k/g, (k+1)/g) for g guide entries.
   std::pair<uint32_t, uint32_t> guided_cells(double u) const;
 
-  std::vector<double> func_;  // the weights
-  std::vector<double> cdf_;   // n + 1 values from 0 to exactly 1 (all 0 when integral_ is 0)
+  // Cell i's CDF at its start and its weight, side by side: the search ends on a cell's CDF,
+  // and its weight is then in the same cache line (in two arrays, each sample missed twice).
+  struct Step {
+    double cdf;     // n + 1 values from 0 to exactly 1 (all 0 when integral_ is 0)
+    double weight;  // the cell's weight (0 for the end, n)
+  };
+  std::vector<Step> steps_;
   // The guide table (Chen and Asau 1974, "On generating random variates from an empirical
   // distribution"; Devroye 1986, §III.2.4): entry k is the cell whose CDF step holds u = k/g,
   // so that the search for u's cell runs over the few cells between two entries rather than
@@ -113,8 +117,11 @@ class PiecewiseConstant2D {
   Sample sample(double u1, double u2) const;
   // sample(u1[i], u2[i]) into out[i] for i < n: every row's marginal, then every row's
   // conditional, so that the table reads of many rows overlap (one row's chain of dependent
-  // loads left the processor waiting on memory).
-  void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out) const;
+  // loads left the processor waiting on memory), taken in the order of their image rows
+  // (cell_v), which `order` receives (a counting sort: `starts` is its scratch), so that the
+  // rows on one image row share its tables' cache lines.
+  void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out,
+                   std::vector<uint32_t>& order, std::vector<uint32_t>& starts) const;
   // The density sample() has at (u, v); 0 outside [0, 1)².
   double pdf(double u, double v) const;
   // ∫∫ f over [0, 1)²: 0 means nothing can be sampled.
@@ -140,7 +147,12 @@ struct EnvironmentBatch {
   std::vector<double> u1, u2;
   std::vector<PiecewiseConstant2D::Sample> uv;
   std::vector<EnvironmentSample> out;
-  void resize(std::size_t n) { u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n); }
+  // The rows in the order of their image rows, and the counting sort's scratch
+  // (PiecewiseConstant2D::sample_many).
+  std::vector<uint32_t> order, starts;
+  void resize(std::size_t n) {
+    u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n), order.resize(n);
+  }
 };
 
 class EnvironmentMap {
