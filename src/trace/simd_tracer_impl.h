@@ -327,7 +327,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
   constexpr int W = simd::kWidth<A>;
   const SurfaceColumns to = out;  // local: the facing's byte stores alias nothing provably
   const std::size_t n = ray.size();
-  bool any_ours = false;  // a scene of meshes alone has every row in `rest`, read nothing
+  bool any_ours = false;  // a scene of CSG, SDFs or cylinders alone: every row in `rest`
   PrimKinds::for_each([&](auto kind) {
     if constexpr (decltype(kind)::surface_in_float_lanes)
       any_ours = any_ours || scene.table<decltype(kind)>().size() != 0;
@@ -356,7 +356,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     });
     for (uint32_t others = lanes & ~ours; others != 0; others &= others - 1)
       rest[rest_count++] = uint32_t(i) + uint32_t(std::countr_zero(others));
-    if (ours == 0) continue;  // a mesh's batch: nothing to read or store here
+    if (ours == 0) continue;  // a batch of the other kinds: nothing to read or store here
     const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
                                 {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
                                 col(hits.t.data())};

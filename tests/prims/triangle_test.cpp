@@ -142,8 +142,12 @@ void expect_barycentric_surfaces(double tolerance) {
     const double x = g(rng), y = g(rng);
     return glm::dvec3(x, y, g(rng));
   };
-  // Vertices drawn as floats: GCC 12's SLP vectoriser dropped the rounding of double vertices to
-  // float in this loop at -O3 (the point it was aimed at lay off the float triangle's plane).
+  // Vertices and normals drawn as floats, so that the test's double copy of one and the float
+  // one the surface is given are the same number by construction. Drawn as doubles and
+  // rounded, the copies differed by 1e-9 in this -O3 build (the point aimed at lay off the
+  // float triangle's plane, the expected normal off the blended one): the rounding to float
+  // was not applied to both alike, as GCC 12's SLP vectoriser dropped a double → float →
+  // double round trip in PacketBackend::closest's loop (src/trace/packet_backend.cpp).
   auto vertex = [&](const glm::vec3& centre) {
     const float x = gf(rng), y = gf(rng);
     return centre + glm::vec3(x, y, gf(rng));
@@ -152,9 +156,9 @@ void expect_barycentric_surfaces(double tolerance) {
   for (int i = 0; i < 20000; ++i) {
     const glm::vec3 centre = vertex(glm::vec3(0.0f)) * 3.0f;
     const std::array<glm::vec3, 3> v{vertex(centre), vertex(centre), vertex(centre)};
-    const std::array<glm::vec3, 3> vn{glm::vec3(normalize(gauss3())),
-                                      glm::vec3(normalize(gauss3())),
-                                      glm::vec3(normalize(gauss3()))};
+    const glm::vec3 zero(0.0f);
+    const std::array<glm::vec3, 3> vn{normalize(vertex(zero)), normalize(vertex(zero)),
+                                      normalize(vertex(zero))};
     const glm::dvec3 p0(v[0]), p1(v[1]), p2(v[2]);
     const glm::dvec3 normal = cross(p1 - p0, p2 - p0);
     const double edge = std::max({length(p1 - p0), length(p2 - p0), length(p2 - p1)});
@@ -190,17 +194,40 @@ TEST(TriangleSurface, BarycentricPointAndNormalsAtFloat) {
 }
 
 // A degenerate triangle's barycentrics are not numbers: the point is q = o + t·d, bounded as a
-// hit point is (float_hit_point_bound and the vertices' γ7), and the normals are not numbers
-// either, as the reference's were (zero-area triangles are never hit: T4).
+// hit point is (float_hit_point_bound's 34 roundoffs of |o| + |t·d|, and γ7 of the largest
+// vertex coordinate), and its cross product has no direction, so the normal faces the ray
+// (zero-area triangles are never hit, T4, but no input may give a NaN).
 TEST(TriangleSurface, WithoutBarycentricsThePointIsTheTracedOne) {
   const std::array<glm::vec3, 3> v{glm::vec3(0, 0, 0), glm::vec3(1, 1, 1), glm::vec3(2, 2, 2)};
-  const std::array<glm::vec3, 3> vn{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
+  const std::array<glm::vec3, 3> vn{glm::vec3(0, 0, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, 0)};
   const glm::vec3 o(0.5f, 0.5f, 3), d(0, 0, -1);
   const TriangleSurface<glm::vec3> s = triangle_surface<float>(v, vn, o, d, 2.5f);
   EXPECT_EQ(s.p, glm::vec3(0.5f, 0.5f, 0.5f));
+  EXPECT_EQ(s.ng, glm::vec3(0, 0, 1));
+  EXPECT_EQ(s.ns, glm::vec3(0, 0, 1));  // the vertex normals have no direction either
   const glm::vec3 e = triangle_point_bound<float>(s, v, o, d, 2.5f);
-  EXPECT_GE(e.x, float(2 * gamma_float(7)));
-  EXPECT_GE(e.z, float(2 * gamma_float(7)));
+  EXPECT_GE(e.x, float(34 * 0x1p-24 * 0.5 + 2 * gamma_float(7)));
+  EXPECT_GE(e.z, float(34 * 0x1p-24 * 5.5 + 2 * gamma_float(7)));
+}
+
+// Tiny and huge triangles (docs/hard-cases.md T5, T6) at float: edges of 1e-20 at the origin,
+// whose cross product (1e-40) is below float's normal range, and of 1e15, whose shares
+// overflow float: the normals are unit vectors, the point finite and on the plane z = 0, for a
+// ray straight down onto the triangle's centroid.
+TEST(TriangleSurface, TinyAndHugeTrianglesHaveUnitNormals) {
+  for (float s : {1e-20f, 1e-12f, 1e3f, 1e15f}) {
+    SCOPED_TRACE(s);
+    const std::array<glm::vec3, 3> v{glm::vec3(0, 0, 0), glm::vec3(s, 0, 0), glm::vec3(0, s, 0)};
+    const std::array<glm::vec3, 3> vn{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
+    const glm::vec3 o(s / 3, s / 3, s), d(0, 0, -1);
+    const TriangleSurface<glm::vec3> x = triangle_surface<float>(v, vn, o, d, s);
+    EXPECT_EQ(x.ng, glm::vec3(0, 0, 1));
+    EXPECT_EQ(x.ns, glm::vec3(0, 0, 1));
+    EXPECT_TRUE(std::isfinite(x.p.x) && std::isfinite(x.p.y)) << x.p.x << " " << x.p.y;
+    EXPECT_EQ(x.p.z, 0.0f);
+    const glm::vec3 e = triangle_point_bound<float>(x, v, o, d, s);
+    EXPECT_TRUE(std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z));
+  }
 }
 
 }  // namespace

@@ -18,6 +18,8 @@
 //   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
 //                                     primitive subtends, better than by area (spheres)
 //   point_light(t, i)                 the point the course's `lit` view lights from (spheres)
+//   has_shading_normal                a shading normal of its own in the float surfaces
+//                                     (triangles: interpolated from the vertex normals)
 #pragma once
 
 #include <cstddef>

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -180,10 +181,16 @@ TriangleSurface<V3> triangle_surface(const std::array<V3, 3>& v, const std::arra
   auto dot3 = [](const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
   auto scaled = [](const V3& a, const N& s) { return V3{a.x * s, a.y * s, a.z * s}; };
   auto unit = [&](const V3& a) { return scaled(a, N(1.0) / K::sqrt(dot3(a, a))); };
-  const V3 q{o.x + d.x * t, o.y + d.y * t, o.z + d.z * t};
-  const V3 a = minus(v[0], q), b = minus(v[1], q), c = minus(v[2], q);
+  // q relative to p0 first, (o − p0) + t·d: its rounding then scales with the ray's segment,
+  // not with |q| (a mesh far from the origin, a short bounce ray).
+  const V3 op0 = minus(o, v[0]);
+  const V3 q0{op0.x + d.x * t, op0.y + d.y * t, op0.z + d.z * t};
+  const V3 e01 = minus(v[1], v[0]), e02 = minus(v[2], v[0]);
+  const V3 a{K::negate(q0.x), K::negate(q0.y), K::negate(q0.z)}, b = minus(e01, q0),
+                                                                 c = minus(e02, q0);
   const N e0 = dot3(d, cross3(c, b)), e1 = dot3(d, cross3(a, c)), e2 = dot3(d, cross3(b, a));
-  const N inv = N(1.0) / (e0 + e1 + e2);
+  const N sum = e0 + e1 + e2;
+  const N inv = N(1.0) / sum;
   const N b0 = e0 * inv, b1 = e1 * inv, b2 = e2 * inv;
   auto blend = [&](const V3& x0, const V3& x1, const V3& x2) {
     return V3{b0 * x0.x + b1 * x1.x + b2 * x2.x, b0 * x0.y + b1 * x1.y + b2 * x2.y,
@@ -192,15 +199,34 @@ TriangleSurface<V3> triangle_surface(const std::array<V3, 3>& v, const std::arra
   auto weigh = [&](const N& x0, const N& x1, const N& x2) {
     return K::abs(b0 * x0) + K::abs(b1 * x1) + K::abs(b2 * x2);
   };
+  // The barycentrics stand where their sum did not cancel (its rounding is then within two
+  // roundoffs of it: they sum to 1 within a few) and 1/sum is a normal float; a grazing ray or
+  // a hit found just outside the triangle's edge by rounding can give shares of both signs
+  // whose sum is mostly cancellation.
+  const auto shares_agree = K::abs(sum) >= N(0.5) * (K::abs(e0) + K::abs(e1) + K::abs(e2));
+  const V3 w{weigh(v[0].x, v[1].x, v[2].x), weigh(v[0].y, v[1].y, v[2].y),
+             weigh(v[0].z, v[1].z, v[2].z)};
+  const auto reconstructed =
+      shares_agree & (K::abs(sum) < N(0x1p126)) & (w.x + w.y + w.z < N(HUGE_VAL));  // NaN: false
+  const N no(std::numeric_limits<double>::quiet_NaN());
   TriangleSurface<V3> s;
-  s.weight = V3{weigh(v[0].x, v[1].x, v[2].x), weigh(v[0].y, v[1].y, v[2].y),
-                weigh(v[0].z, v[1].z, v[2].z)};
-  const auto reconstructed = s.weight.x + s.weight.y + s.weight.z < N(HUGE_VAL);  // NaN: false
+  s.weight = V3{K::select(reconstructed, w.x, no), K::select(reconstructed, w.y, no),
+                K::select(reconstructed, w.z, no)};
   const V3 bp = blend(v[0], v[1], v[2]);
+  const V3 q{v[0].x + q0.x, v[0].y + q0.y, v[0].z + q0.z};
   s.p = V3{K::select(reconstructed, bp.x, q.x), K::select(reconstructed, bp.y, q.y),
            K::select(reconstructed, bp.z, q.z)};
-  const V3 g = cross3(minus(v[1], v[0]), minus(v[2], v[0]));
-  s.ng = unit(scaled(g, N(1.0) / K::max(K::max(K::abs(g.x), K::abs(g.y)), K::abs(g.z))));
+  // Each component divided by the largest, not multiplied by its reciprocal, which overflows
+  // for a float cross product below 2^-128 (edges of about 1e-20 near the origin). Where the
+  // cross product has no direction in the number type (zero, or infinite for huge edges), the
+  // normal faces the ray.
+  const V3 g = cross3(e01, e02);
+  const N largest = K::max(K::max(K::abs(g.x), K::abs(g.y)), K::abs(g.z));
+  const auto has_normal = (largest > N(0.0)) & (largest < N(HUGE_VAL));
+  const V3 facing = unit(V3{K::negate(d.x), K::negate(d.y), K::negate(d.z)});
+  const V3 gn = unit(V3{g.x / largest, g.y / largest, g.z / largest});
+  s.ng = V3{K::select(has_normal, gn.x, facing.x), K::select(has_normal, gn.y, facing.y),
+            K::select(has_normal, gn.z, facing.z)};
   const V3 m = blend(vn[0], vn[1], vn[2]);
   const N len = K::sqrt(dot3(m, m));
   const auto usable = (len > N(0.0)) & (len < N(HUGE_VAL));
@@ -221,7 +247,7 @@ V3 triangle_point_bound(const TriangleSurface<V3>& s, const std::array<V3, 3>& v
                         const V3& d, const N& t) {
   using K = Num<N>;
   const N gamma7(gamma_float(7) * (1 + 0x1p-20));
-  const auto reconstructed = s.weight.x + s.weight.y + s.weight.z < N(HUGE_VAL);
+  const auto reconstructed = s.weight.x + s.weight.y + s.weight.z < N(HUGE_VAL);  // NaN: false
   const V3 along = float_hit_point_bound<N>(o, d, t, s.p);
   auto one = [&](const N& w, const N& x0, const N& x1, const N& x2, const N& ak) {
     const N largest = K::max(K::max(K::abs(x0), K::abs(x1)), K::abs(x2));

@@ -53,7 +53,7 @@ class PiecewiseConstant1D {
   double value(uint32_t cell) const { return steps_[cell].weight; }
   // ∫₀¹ f = Σ f / n, the normaliser (and the 2-D marginal's weight of this row).
   double integral() const { return integral_; }
-  uint32_t size() const { return uint32_t(steps_.size() - 1); }
+  uint32_t size() const { return steps_.empty() ? 0 : uint32_t(steps_.size() - 1); }
   // Asks the caches for the guide entry sample_continuous(u) reads first, and then, once that
   // has arrived, for the CDF and weight it leads to: sample_many's rows, a few rows ahead.
   void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(u)); }
