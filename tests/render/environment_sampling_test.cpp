@@ -153,9 +153,9 @@ TEST(EnvironmentSampling, PdfOfTheSampleIsTheSamplesPdf) {
   EXPECT_GT(checked, 199000);
 }
 
-// sample_many takes its rows by image row (a counting sort) and writes each back to its own
-// place: its answers are sample()'s, row by row, bit for bit, for a batch that crosses the
-// map's rows many times over and holds the edge numbers 0 and just below 1.
+// sample_many reads the tables a stage at a time across its rows, with prefetches ahead: its
+// answers are sample()'s, row by row, bit for bit, for a batch that crosses the map's rows many
+// times over and holds the edge numbers 0 and just below 1.
 TEST(EnvironmentSampling, ManySamplesAreTheOneByOneSamples) {
   EnvironmentMap env(testing::sun_map(1000), 2, tilted());
   Rng rng(12);

@@ -189,33 +189,20 @@ PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) co
 }
 
 void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const double* u2,
-                                      Sample* out, std::vector<uint32_t>& order,
-                                      std::vector<uint32_t>& starts) const {
+                                      Sample* out) const {
   // The marginal's density rides in out[i].pdf between the two passes.
   for (std::size_t i = 0; i < n; ++i)
     out[i].v = marginal_.sample_continuous(u2[i], &out[i].pdf, &out[i].cell_v);
-  // The rows by image row (a stable counting sort): an image row's conditional tables are
-  // 2·(nu + 1) doubles and its guide, and the rows on one share their cache lines, where in
-  // the rows' own order each found them gone (a 512 × 256 sky's tables are 2 MB).
-  order.resize(n);
-  starts.assign(std::size_t(marginal_.size()) + 1, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    ++starts[out[i].cell_v + 1];
-  for (std::size_t v = 1; v < starts.size(); ++v)
-    starts[v] += starts[v - 1];
-  for (std::size_t i = 0; i < n; ++i)
-    order[starts[out[i].cell_v]++] = uint32_t(i);
   // Rows kAhead on have their guide entries fetched, rows kAhead / 2 on the cells those lead
   // to: each row's reads then find the caches warm (a row's chain of dependent misses, guide
   // → CDF → weight, was most of the environment's sampling time).
   constexpr std::size_t kAhead = 8;
-  auto row = [&](std::size_t k) -> const PiecewiseConstant1D& {
-    return conditional_[out[order[k]].cell_v];
+  auto row = [&](std::size_t i) -> const PiecewiseConstant1D& {
+    return conditional_[out[i].cell_v];
   };
-  for (std::size_t k = 0; k < n; ++k) {
-    if (k + kAhead < n) row(k + kAhead).prefetch_guide(u1[order[k + kAhead]]);
-    if (k + kAhead / 2 < n) row(k + kAhead / 2).prefetch_cells(u1[order[k + kAhead / 2]]);
-    const std::size_t i = order[k];
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + kAhead < n) row(i + kAhead).prefetch_guide(u1[i + kAhead]);
+    if (i + kAhead / 2 < n) row(i + kAhead / 2).prefetch_cells(u1[i + kAhead / 2]);
     Sample& s = out[i];
     double pdf_u = 0;
     s.u = conditional_[s.cell_v].sample_continuous(u1[i], &pdf_u, &s.cell_u);
@@ -266,7 +253,14 @@ glm::dvec3 EnvironmentMap::to_image(const glm::dvec3& d) const {
 
 EnvironmentMap::ImagePoint EnvironmentMap::to_image_point(const glm::dvec3& d) {
   if (!is_finite(d)) return {0, 0, 0};
-  double rxy = std::hypot(d.x, d.y), len = std::hypot(rxy, d.z);
+  // |(x, y)| and |d| by square roots where no square can overflow or leave double's normal
+  // range (the render's directions are unit: within 1 ulp of std::hypot's, which cost as much
+  // as the two arc tangents on the sky scene, by perf), by std::hypot otherwise.
+  const double largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  const bool plain = largest > 1e-100 && largest < 1e100;
+  const double xy = d.x * d.x + d.y * d.y;
+  double rxy = plain ? std::sqrt(xy) : std::hypot(d.x, d.y);
+  double len = plain ? std::sqrt(xy + d.z * d.z) : std::hypot(rxy, d.z);
   if (!(len > 0)) return {0, 0, 0};
   double phi = std::atan2(d.y, d.x);  // (−π, π]; 0 for a direction along ±z
   if (phi < 0) phi += 2 * kPi;
@@ -292,16 +286,11 @@ EnvironmentSample EnvironmentMap::sample(double u1, double u2) const {
 
 void EnvironmentMap::sample_many(EnvironmentBatch& b) const {
   const std::size_t n = b.u1.size();
-  distribution_.sample_many(n, b.u1.data(), b.u2.data(), b.uv.data(), b.order, b.starts);
-  // In the tables' order, by image row: the texels of one row are looked up together.
+  distribution_.sample_many(n, b.u1.data(), b.u2.data(), b.uv.data());
   constexpr std::size_t kAhead = 4;  // rows whose texels are fetched ahead of their lookup
-  const uint32_t* order = b.order.data();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (k + kAhead < n) {
-      const PiecewiseConstant2D::Sample& ahead = b.uv[order[k + kAhead]];
-      prefetch_texels(ahead.u, ahead.v);
-    }
-    b.out[order[k]] = direction_of(b.uv[order[k]]);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + kAhead < n) prefetch_texels(b.uv[i + kAhead].u, b.uv[i + kAhead].v);
+    b.out[i] = direction_of(b.uv[i]);
   }
 }
 

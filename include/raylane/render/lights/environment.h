@@ -117,11 +117,8 @@ class PiecewiseConstant2D {
   Sample sample(double u1, double u2) const;
   // sample(u1[i], u2[i]) into out[i] for i < n: every row's marginal, then every row's
   // conditional, so that the table reads of many rows overlap (one row's chain of dependent
-  // loads left the processor waiting on memory), taken in the order of their image rows
-  // (cell_v), which `order` receives (a counting sort: `starts` is its scratch), so that the
-  // rows on one image row share its tables' cache lines.
-  void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out,
-                   std::vector<uint32_t>& order, std::vector<uint32_t>& starts) const;
+  // loads left the processor waiting on memory).
+  void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out) const;
   // The density sample() has at (u, v); 0 outside [0, 1)².
   double pdf(double u, double v) const;
   // ∫∫ f over [0, 1)²: 0 means nothing can be sampled.
@@ -147,12 +144,7 @@ struct EnvironmentBatch {
   std::vector<double> u1, u2;
   std::vector<PiecewiseConstant2D::Sample> uv;
   std::vector<EnvironmentSample> out;
-  // The rows in the order of their image rows, and the counting sort's scratch
-  // (PiecewiseConstant2D::sample_many).
-  std::vector<uint32_t> order, starts;
-  void resize(std::size_t n) {
-    u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n), order.resize(n);
-  }
+  void resize(std::size_t n) { u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n); }
 };
 
 class EnvironmentMap {
