@@ -398,18 +398,21 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
       store3(to.nsx, to.nsy, to.nsz, s.ns), store3(to.ex, to.ey, to.ez, s.error);
       simd::store_widened<A>(to.cos_ns + i, cos_ns);
     } else {
-      const F* from[13] = {&s.p.x,  &s.p.y,  &s.p.z,     &s.ng.x,    &s.ng.y,    &s.ng.z, &s.ns.x,
-                           &s.ns.y, &s.ns.z, &s.error.x, &s.error.y, &s.error.z, &cos_ns};
-      float* const into[12] = {to.px + i,  to.py + i,  to.pz + i,  to.ngx + i,
-                               to.ngy + i, to.ngz + i, to.nsx + i, to.nsy + i,
-                               to.nsz + i, to.ex + i,  to.ey + i,  to.ez + i};
-      alignas(64) float buffer[13][W];
-      for (int c = 0; c < 13; ++c)
-        from[c]->store_aligned(buffer[c]);
-      for (int c = 0; c < 12; ++c)
-        std::copy_n(buffer[c], m, into[c]);
+      // The batch's m rows, through a buffer. The lanes are stored by value: a table of their
+      // addresses kept the whole batch's surface in memory, and every kind's blend spilled.
+      alignas(64) float buffer[W];
+      auto part = [&](const F& v, float* into) {
+        v.store_aligned(buffer);
+        std::copy_n(buffer, m, into + i);
+      };
+      auto part3 = [&](const simd::FloatVec3<A>& v, float* x, float* y, float* z) {
+        part(v.x, x), part(v.y, y), part(v.z, z);
+      };
+      part3(s.p, to.px, to.py, to.pz), part3(s.ng, to.ngx, to.ngy, to.ngz);
+      part3(s.ns, to.nsx, to.nsy, to.nsz), part3(s.error, to.ex, to.ey, to.ez);
+      cos_ns.store_aligned(buffer);
       for (int k = 0; k < m; ++k)
-        to.cos_ns[i + std::size_t(k)] = buffer[12][k];
+        to.cos_ns[i + std::size_t(k)] = buffer[k];
     }
     for (int k = 0; k < m; ++k)
       to.front[i + std::size_t(k)] = (front >> k) & 1u;

@@ -417,6 +417,17 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   for (std::size_t kind = 0; kind < kPrimKindCount; ++kind)
     for (std::size_t i = 0; i < hits.size(); ++i)
       if (hits[i].hit() && std::size_t(hits[i].prim.tag()) == kind) request.push_back(uint32_t(i));
+  // The request ends in a part batch of the float lanes' kinds at every width (its length 5
+  // more than a multiple of 16: the last batch holds 5 rows of 8 or 16, 1 of 4), which the
+  // lanes store row by row.
+  std::vector<uint32_t> float_kinds;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const PrimTag tag = hits[i].prim.tag();
+    if (hits[i].hit() && (tag == tag_of<Sphere> || tag == tag_of<Box> || tag == tag_of<Triangle>))
+      float_kinds.push_back(uint32_t(i));
+  }
+  for (std::size_t k = 0; !float_kinds.empty() && (k < 5 || request.size() % 16 != 5); ++k)
+    request.push_back(float_kinds[k % float_kinds.size()]);
   const std::size_t n = request.size();
   std::vector<double> cos_ns(n);
   std::vector<float> p[3], ng[3], ns[3], error[3];
