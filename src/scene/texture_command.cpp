@@ -125,9 +125,9 @@ Result<TexelImage> read_scene_texels(ParseState& state, const std::string& path,
   return texels;
 }
 
-// The environment's importance sampling: a weight and a CDF entry (doubles) per pixel, and its
-// guide table's share (render/lights/environment.h). The light shares the scene's texels.
-constexpr uint64_t kEnvironmentExtraBytes = 2 * sizeof(double) + 1;
+// The environment's importance sampling: a fixed-point CDF entry per pixel, and its guide
+// table's share (render/lights/environment.h). The light shares the scene's texels.
+constexpr uint64_t kEnvironmentExtraBytes = sizeof(uint32_t) + 1;
 
 }  // namespace
 

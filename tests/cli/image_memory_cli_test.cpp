@@ -89,19 +89,19 @@ TEST(CliImageMemory, InfoListsEveryImageAndTheFigureRenderNeeds) {
                           "'t.png'"),
             std::string::npos)
       << fits.out;
-  EXPECT_NE(fits.out.find("environment  2048 x 1024, keeps 42.0 MiB, reading peaks at 42.0 MiB: "
+  EXPECT_NE(fits.out.find("environment  2048 x 1024, keeps 18.0 MiB, reading peaks at 18.0 MiB: "
                           "'sky.hdr'"),
             std::string::npos)
       << fits.out;
-  auto tight = run_cli("info s.scn --image-memory 30", dir);
+  auto tight = run_cli("info s.scn --image-memory 15", dir);
   EXPECT_EQ(tight.status, 2) << tight.out;
   EXPECT_NE(tight.out.find("warning: render refuses it: reading its 2048x1024 pixels takes "
-                           "42.0 MiB; the image memory left is 26.0 MiB"),
+                           "18.0 MiB; the image memory left is 11.0 MiB"),
             std::string::npos)
       << tight.out;
   uint64_t n = figure(tight.out);
-  EXPECT_EQ(n, 46u) << tight.out;
-  auto refused = run_cli("render s.scn --spp 1 -o a.hdr --image-memory 30", dir);
+  EXPECT_EQ(n, 22u) << tight.out;
+  auto refused = run_cli("render s.scn --spp 1 -o a.hdr --image-memory 15", dir);
   EXPECT_EQ(refused.status, 2) << refused.out;
   EXPECT_EQ(figure(refused.out), n) << refused.out;
   auto render = run_cli("render s.scn --spp 1 -o a.hdr --image-memory " + std::to_string(n), dir);

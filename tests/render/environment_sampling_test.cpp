@@ -57,19 +57,35 @@ void expect_fits(const EnvironmentMap& env, uint64_t seed) {
   EXPECT_GT(r.p_value, kLevel) << "chi2 = " << r.statistic << " with " << r.dof << " dof";
 }
 
-// The cell a CDF inversion must land in: the i with cdf[i] ≤ u < cdf[i + 1], cdf being the
-// running sums over the total, as PiecewiseConstant1D builds it, found by a linear scan.
-uint32_t cell_by_scan(const std::vector<double>& f, double u) {
-  double total = 0;
-  for (double w : f)
-    total += w;
+// The cell a CDF inversion must land in: the i with cdf[i] ≤ U < cdf[i + 1] for U = ⌊u·kUnits⌋,
+// the CDF being the running sums of the table's own steps (pdf_of_cell · kUnits / n, exact),
+// found by a linear scan.
+uint32_t cell_by_scan(const PiecewiseConstant1D& d, double u) {
+  const double units = std::floor(u * PiecewiseConstant1D::kUnits), n = d.size();
   double sum = 0;
   uint32_t last = 0;
-  for (uint32_t i = 0; i < f.size(); ++i) {
-    if (sum / total <= u && f[i] > 0) last = i;
-    sum += f[i];
+  for (uint32_t i = 0; i < d.size(); ++i) {
+    const double step = d.pdf_of_cell(i) * PiecewiseConstant1D::kUnits / n;
+    if (sum <= units && step > 0) last = i;
+    sum += step;
   }
   return last;
+}
+
+// The steps the table gives the weights: each within 2k + 1 units of the weight's share of
+// kUnits (k cells of weight > 0: rounding moves an end by half a unit, and the lifts that give a
+// tiny cell its unit move the ends after it, and the backward pass those before, by at most one
+// unit each); every cell of weight > 0 has a step, every other none.
+void expect_steps_follow_weights(const PiecewiseConstant1D& d, const std::vector<double>& f) {
+  double total = 0, lit = 0;
+  for (double w : f)
+    total += w, lit += w > 0;
+  const double n = d.size();
+  for (uint32_t i = 0; i < d.size(); ++i) {
+    const double step = d.pdf_of_cell(i) * PiecewiseConstant1D::kUnits / n;
+    EXPECT_NEAR(step, f[i] / total * PiecewiseConstant1D::kUnits, 2 * lit + 1) << "cell " << i;
+    EXPECT_EQ(step > 0, f[i] > 0) << "cell " << i;
+  }
 }
 
 // The guide table (render/lights/environment.h) only narrows the search: every u lands in the cell
@@ -88,13 +104,12 @@ TEST(EnvironmentSampling, GuidedInversionFindsTheScansCell) {
       }
       if (std::all_of(f.begin(), f.end(), [](double w) { return w == 0; })) f[0] = 1;
       PiecewiseConstant1D d(f);
+      expect_steps_follow_weights(d, f);
       std::vector<double> us;
-      double sum = 0, total = 0;
-      for (double w : f)
-        total += w;
-      for (double w : f) {
-        sum += w;
-        us.push_back(sum / total), us.push_back(std::nextafter(sum / total, 0.0));
+      double sum = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        sum += d.pdf_of_cell(i) / n;  // the table's CDF, exactly
+        us.push_back(sum), us.push_back(std::nextafter(sum, 0.0));
       }
       for (int k = 0; k < 2000; ++k)
         us.push_back(rng.uniform());
@@ -104,7 +119,7 @@ TEST(EnvironmentSampling, GuidedInversionFindsTheScansCell) {
         uint32_t cell = 0;
         double pdf = 0;
         d.sample_continuous(u, &pdf, &cell);
-        ASSERT_EQ(cell, cell_by_scan(f, u)) << "n " << n << " shape " << shape << " u " << u;
+        ASSERT_EQ(cell, cell_by_scan(d, u)) << "n " << n << " shape " << shape << " u " << u;
         ASSERT_GT(pdf, 0);
       }
     }

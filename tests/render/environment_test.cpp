@@ -1,5 +1,5 @@
-// The environment light's image side (render/lights/environment.h): the equirectangular mapping and its
-// bilinear lookup, the piecewise-constant distributions, the sampling density's support and
+// The environment light's image side (render/lights/environment.h): the equirectangular mapping and
+// its bilinear lookup, the piecewise-constant distributions, the sampling density's support and
 // shape, the power, and black or broken maps. Sampling against its density is in
 // environment_sampling_test.cpp.
 #include "raylane/render/lights/environment.h"
@@ -127,9 +127,42 @@ TEST(PiecewiseConstant1D, ZeroCellsAreNeverSampledAndThePdfSumsToOne) {
     double u = k < 100000 ? k / 100000.0 : kBelowOne, pdf = 0;
     uint32_t cell = 0;
     double x = d.sample_continuous(u, &pdf, &cell);
-    ASSERT_GT(d.value(cell), 0) << "u = " << u;
+    ASSERT_GT(d.pdf_of_cell(cell), 0) << "u = " << u;
     ASSERT_GT(pdf, 0);
     ASSERT_TRUE(x >= cell / 8.0 && x <= (cell + 1) / 8.0 && x < 1) << x;
+  }
+}
+
+// The fixed-point CDF gives every cell of weight > 0 a step of at least one unit, however small
+// its share, and still ends at exactly one: the densities of the cells sum to exactly 1, a tiny
+// cell is sampled at its unit (where it shows light that MIS must be able to reach), and its
+// density is the step it has. Tiny cells first and last (where the forward pass's lifts pile up
+// against the end).
+TEST(PiecewiseConstant1D, EveryLitCellHasAUnitAndTheDensitiesSumToOne) {
+  for (int layout = 0; layout < 2; ++layout) {
+    std::vector<double> f(2000, 1e-30);
+    f[layout == 0 ? 1999 : 0] = 1;
+    PiecewiseConstant1D d(f);
+    const double n = double(d.size());
+    double sum = 0;
+    for (uint32_t i = 0; i < d.size(); ++i) {
+      ASSERT_GE(d.pdf_of_cell(i), n / PiecewiseConstant1D::kUnits) << "cell " << i;
+      sum += d.pdf_of_cell(i) / n;
+    }
+    EXPECT_EQ(sum, 1.0);  // steps in units of 2^-31 sum exactly in double
+    // The first unit of each tiny cell's step lands in that cell.
+    double unit = 1.0 / PiecewiseConstant1D::kUnits, at = 0;
+    for (uint32_t i = 0; i < d.size(); ++i) {
+      uint32_t cell = 0;
+      double pdf = 0;
+      d.sample_continuous(at, &pdf, &cell);
+      ASSERT_EQ(cell, i) << "layout " << layout;
+      ASSERT_EQ(pdf, d.pdf_of_cell(i));
+      at += d.pdf_of_cell(i) / n;
+      if (f[i] < 1) {
+        ASSERT_LT(d.pdf_of_cell(i) / n, 1.5 * unit);  // one unit: no more than rounding gives
+      }
+    }
   }
 }
 
@@ -146,16 +179,19 @@ TEST(PiecewiseConstant1D, AllZeroSamplesNothing) {
 TEST(PiecewiseConstant2D, SamplesRowThenColumn) {
   // Rows {1, 2, 0} and {0, 0, 3}: Σf = 6 over 6 cells, so ∫∫f = 1 and the density is f.
   PiecewiseConstant2D d({1, 2, 0, 0, 0, 3}, 3, 2);
+  // The row's CDF ends at 1/3 of 2^31 units, rounded: the density and the point within the cell
+  // move by up to half a unit of the 2^31 over the cell's share.
+  const double off = 3 * 0.5 / PiecewiseConstant1D::kUnits;
   EXPECT_DOUBLE_EQ(d.integral(), 1.0);
   // u2 = 1/4: the first row (marginal CDF 0, 1/2, 1), halfway: v = 1/4. u1 = 1/2: the row's
   // CDF is 0, 1/3, 1, 1, so cell 1, a quarter in: u = 1.25/3.
   auto s = d.sample(0.5, 0.25);
   EXPECT_NEAR(s.v, 0.25, 1e-15);
-  EXPECT_NEAR(s.u, 1.25 / 3, 1e-15);
+  EXPECT_NEAR(s.u, 1.25 / 3, off);
   EXPECT_EQ(s.cell_u, 1u);
   EXPECT_EQ(s.cell_v, 0u);
-  EXPECT_DOUBLE_EQ(s.pdf, 2.0);
-  EXPECT_DOUBLE_EQ(d.pdf(s.u, s.v), 2.0);
+  EXPECT_NEAR(s.pdf, 2.0, 2 * off);
+  EXPECT_EQ(d.pdf(s.u, s.v), s.pdf);
   auto t = d.sample(0.1, 0.9);
   EXPECT_EQ(t.cell_u, 2u);  // the second row's only non-zero cell
   EXPECT_EQ(t.cell_v, 1u);

@@ -53,7 +53,7 @@ const char* kAssets = "texture t4k.png\nenvironment sky8k.hdr 1\n";
 TEST(SceneImageMemory, A4kTextureAndAn8kSkyKeepTheirFilesBytes) {
   std::string dir = assets_dir();
   ParseOptions options;
-  options.image_memory = 1024 * kMiB;  // what they need, 864 MiB, and to spare
+  options.image_memory = 1024 * kMiB;  // what they need, 352 MiB, and to spare
   auto p = load(dir, kAssets, options);
   ASSERT_TRUE(p.ok()) << all_errors(p);
   ASSERT_EQ(p.scene.textures.size(), 1u);
@@ -65,12 +65,13 @@ TEST(SceneImageMemory, A4kTextureAndAn8kSkyKeepTheirFilesBytes) {
   EXPECT_EQ(p.scene.environment->texels->at(8191, 4095), glm::vec3(1, 1, 1));
   ASSERT_EQ(p.images.images.size(), 2u);
   EXPECT_EQ(p.images.images[0].kept, 64 * kMiB);
-  // The texels and 17 bytes a pixel of tables (weights, CDF, a quarter of a guide entry).
-  EXPECT_EQ(p.images.images[1].kept, 672 * kMiB);
-  EXPECT_EQ(p.images.wanted, 736 * kMiB);
+  // The texels and 5 bytes a pixel of tables (a fixed-point CDF entry, a quarter of a guide
+  // entry).
+  EXPECT_EQ(p.images.images[1].kept, 288 * kMiB);
+  EXPECT_EQ(p.images.wanted, 352 * kMiB);
 }
 
-// Headers only, as `raylane info` reads them: a 16384×8192 sky takes 2.6 GiB, which the default
+// Headers only, as `raylane info` reads them: a 16384×8192 sky takes 1.1 GiB, which the default
 // of a 24 GiB desktop with 20 GiB available (10 GiB) holds.
 TEST(SceneImageMemory, A16kSkyFitsTheDefaultOfA24GiBDesktop) {
   std::string dir = temp_dir();
@@ -81,7 +82,7 @@ TEST(SceneImageMemory, A16kSkyFitsTheDefaultOfA24GiBDesktop) {
   auto p = load(dir, "environment sky16k.hdr 1\n", options);
   ASSERT_TRUE(p.ok()) << all_errors(p);
   ASSERT_EQ(p.images.images.size(), 1u);
-  EXPECT_EQ(p.images.images[0].kept, 2688 * kMiB);
+  EXPECT_EQ(p.images.images[0].kept, 1152 * kMiB);
   EXPECT_EQ(p.images.images[0].refused, "");
 }
 
@@ -101,8 +102,8 @@ TEST(SceneImageMemory, ARefusalGivesTheFigureThatReadsEveryImage) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(all, m, std::regex("--image-memory ([0-9]+) reads them"))) << all;
   uint64_t mib = std::stoull(m[1]);
-  // The 1024² texture peaks at 11 MiB and its file's 1 KB beside the 736 MiB kept.
-  EXPECT_EQ(mib, 64 + 672 + 11 + 1);
+  // The 1024² texture peaks at 11 MiB and its file's 1 KB beside the 352 MiB kept.
+  EXPECT_EQ(mib, 64 + 288 + 11 + 1);
   options.image_memory = (mib - 1) * kMiB;
   EXPECT_FALSE(load(dir, scene, options).ok());
   options.image_memory = mib * kMiB;

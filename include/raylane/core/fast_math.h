@@ -57,16 +57,15 @@ inline SinCos sincos_2pi(double u) {
   double q = std::nearbyint(4 * u);
   double a = kTwoPi * (u - 0.25 * q);
   double s = fast_math_detail::sin_poly(a), c = fast_math_detail::cos_poly(a);
-  switch (int64_t(q) & 3) {
-    case 0:
-      return {s, c};
-    case 1:
-      return {c, -s};
-    case 2:
-      return {-s, -c};
-    default:
-      return {-c, s};
-  }
+  // The quarter turns, (s, c) → (c, −s) → (−s, −c) → (−c, s), by selects and sign flips rather
+  // than a switch: the quarter of a sampled azimuth is random, and the switch's mispredictions
+  // were a tenth of the sky scene's (callgrind, branch simulation).
+  // Exact: the selects index a pair, and the signs multiply by ±1 (GCC made branches of
+  // conditional negations).
+  const int64_t quarter = int64_t(q);
+  const double pair[2] = {s, c};
+  const double sin = pair[quarter & 1], cos = pair[~quarter & 1];
+  return {sin * double(1 - (quarter & 2)), cos * double(1 - ((quarter + 1) & 2))};
 }
 
 }  // namespace raylane

@@ -1,6 +1,7 @@
 #include "raylane/render/lights/environment.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <utility>
 
@@ -77,72 +78,91 @@ uint32_t cell_of(double x, uint32_t n) {
 
 // --- PiecewiseConstant1D ---
 
+// The running sums of the weights, rounded to units (so that a sum that the weights give exactly,
+// such as 1/4 of the total, is a step of exactly its share), then made to give every cell of
+// weight > 0 at least one unit and to end at exactly kUnits: a forward pass lifts each such
+// cell's end one unit above its start where rounding left it none, and a backward pass from
+// kUnits lowers the ends that the lifts pushed too far. There are at most kMaxCells cells, so
+// the forward pass stays below 2^32 and the backward one above 0.
 PiecewiseConstant1D::PiecewiseConstant1D(std::vector<double> f) {
   if (f.empty()) f.push_back(0);
   const std::size_t n = f.size();
-  steps_.assign(n + 1, Step{0.0, 0.0});
-  double sum = 0;
+  double sum = 0, largest = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double w = std::isfinite(f[i]) ? std::abs(f[i]) : 0.0;
-    steps_[i].weight = w;
-    sum += w;
-    steps_[i + 1].cdf = sum;
+    f[i] = i < kMaxCells && std::isfinite(f[i]) ? std::abs(f[i]) : 0.0;
+    sum += f[i], largest = std::max(largest, f[i]);
   }
   integral_ = sum / double(n);
-  if (!(sum > 0)) return;  // all zero: the CDF stays 0 and nothing is sampled
-  // A cell of weight 0 adds nothing to the running sum, so its CDF step is exactly empty and
-  // the search in sample_continuous can never land in it; the last entry is sum/sum = 1.
-  for (Step& s : steps_)
-    s.cdf /= sum;
-  const uint32_t g = (uint32_t(n) + kCellsPerGuide - 1) / kCellsPerGuide;
+  cdf_.assign(n + 1, 0);
+  if (!(largest > 0)) return;  // all zero: the CDF stays 0 and nothing is sampled
+  // The sums of the weights over the largest, which cannot overflow.
+  double total = 0;
+  for (double w : f)
+    total += w / largest;
+  double running = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(f[i] > 0)) {
+      cdf_[i + 1] = cdf_[i];
+      continue;
+    }
+    running += f[i] / largest;
+    const double rounded = std::nearbyint(std::min(1.0, running / total) * kUnits);
+    cdf_[i + 1] = std::max(uint32_t(rounded), cdf_[i] + 1);
+  }
+  cdf_[n] = kUnits;
+  for (std::size_t i = n - 1; i > 0; --i)
+    cdf_[i] = std::min(cdf_[i], cdf_[i + 1] - (f[i] > 0 ? 1 : 0));
+  build_guide();
+}
+
+// g spans of kUnits / g units, one per kCellsPerGuide cells: entry k is the cell of span k's
+// first unit, ⌈k·kUnits / g⌉, and the last entry the last cell.
+void PiecewiseConstant1D::build_guide() {
+  const uint32_t n = size();
+  const uint32_t g = (n + kCellsPerGuide - 1) / kCellsPerGuide;
   guide_.resize(std::size_t(g) + 1);
-  for (uint32_t k = 0; k <= g; ++k)
-    guide_[k] = cell_at(double(k) / g);
+  first_step_ = std::bit_floor(n);  // the guide's entries are searched over all cells
+  for (uint32_t k = 0; k < g; ++k) {
+    const uint64_t first = ((uint64_t(k) << 31) + g - 1) / g;
+    guide_[k] = cell_within(uint32_t(first), 0, n - 1);
+  }
+  guide_[g] = n - 1;
+  uint32_t longest = 0;
+  for (uint32_t k = 0; k < g; ++k)
+    longest = std::max(longest, guide_[k + 1] - guide_[k]);
+  first_step_ = longest > 0 ? std::bit_floor(longest) : 0;
 }
 
-// The cell i with cdf[i] ≤ u < cdf[i + 1] (cells of zero weight have empty steps and are
-// passed over), by a search of the whole CDF: cdf[0] = 0 ≤ u and u < 1 = cdf[n] bound it.
-uint32_t PiecewiseConstant1D::cell_at(double u) const {
-  return cell_within(u, 0, size() - 1);
-}
-
-// cell_at(u), searching cells [lo, hi] only: the caller knows cdf[lo] ≤ u < cdf[hi + 1].
-uint32_t PiecewiseConstant1D::cell_within(double u, uint32_t lo, uint32_t hi) const {
-  auto first = steps_.begin() + lo, last = steps_.begin() + hi + 2;
-  auto it = std::upper_bound(first, last, u, [](double x, const Step& s) { return x < s.cdf; });
-  return uint32_t(std::clamp<std::ptrdiff_t>(it - steps_.begin() - 1, 0, size() - 1));
-}
-
-inline std::pair<uint32_t, uint32_t> PiecewiseConstant1D::guided_cells(double u) const {
-  const uint32_t n = size(), k = guide_index(u);
-  uint32_t lo = guide_[k], hi = guide_[k + 1];
-  // u·g may round across an entry's edge k/g: widen to the whole CDF then (rare).
-  if (steps_[lo].cdf > u) lo = 0;
-  if (hi + 1 < n && steps_[hi + 1].cdf <= u) hi = n - 1;
-  return {lo, hi};
+// The last cell i in [lo, hi] with cdf[i] ≤ U (the caller knows cdf[lo] ≤ U < cdf[hi + 1]);
+// cells of zero weight have empty steps and are passed over. A binary search whose steps are
+// selects rather than branches, and always as many as the table's longest guided span needs
+// (first_step_, then halves): a search's branches taken at random, and a loop whose trip count
+// varied with the span, were mispredicted and threw away the loads the next rows had started.
+// An index past hi is held at hi + 1, whose entry is above U.
+uint32_t PiecewiseConstant1D::cell_within(uint32_t units, uint32_t lo, uint32_t hi) const {
+  const uint32_t* cdf = cdf_.data();
+  uint32_t i = lo;
+  for (uint32_t step = first_step_; step > 0; step /= 2) {
+    const uint32_t j = std::min(i + step, hi + 1);
+    i = cdf[j] <= units ? j : i;
+  }
+  return i;
 }
 
 double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* cell) const {
   const uint32_t n = size();
   u = std::clamp(u, 0.0, kOneMinusEpsilon);
-  if (!(integral_ > 0)) {
+  if (guide_.empty()) {  // all weights zero
     if (pdf) *pdf = 0;
     if (cell) *cell = std::min(n - 1, uint32_t(u * n));
     return u;
   }
-  const auto [lo, hi] = guided_cells(u);
-  // The last cell i in [lo, hi] with cdf[i] ≤ u (cdf[lo] ≤ u), by a binary search whose steps
-  // are selects rather than branches: the search's branches, taken at random, were mispredicted
-  // and threw away the loads that the next rows had started.
-  uint32_t i = lo;
-  for (uint32_t len = hi - lo + 1; len > 1;) {
-    const uint32_t half = len / 2;
-    i = steps_[i + half].cdf <= u ? i + half : i;
-    len -= half;
-  }
-  const double lo_cdf = steps_[i].cdf, hi_cdf = steps_[i + 1].cdf;
-  double du = (u - lo_cdf) / (hi_cdf - lo_cdf);  // the step is > 0 (see the constructor)
-  if (pdf) *pdf = steps_[i].weight / integral_;
+  const double scaled = u * kUnits;  // exact: kUnits is a power of two
+  const uint32_t at = units(u), k = guide_index(at);
+  const uint32_t i = cell_within(at, guide_[k], guide_[k + 1]);
+  const uint32_t start = cdf_[i], step = cdf_[i + 1] - start;  // step ≥ 1: i holds `at`
+  const double du = (scaled - double(start)) / double(step);
+  if (pdf) *pdf = pdf_of_cell(i);
   if (cell) *cell = i;
   // i/n ≤ x < (i + 1)/n as cell_of sees the edges, though du or the division round up.
   double x = (double(i) + du) / n, end = double(i + 1) / n;
@@ -150,7 +170,7 @@ double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* c
 }
 
 double PiecewiseConstant1D::pdf(double x) const {
-  if (!(x >= 0 && x < 1) || !(integral_ > 0)) return 0;
+  if (!(x >= 0 && x < 1)) return 0;
   return pdf_of_cell(cell_of(x, size()));
 }
 
@@ -217,8 +237,8 @@ double PiecewiseConstant2D::pdf(double u, double v) const {
 }
 
 double PiecewiseConstant2D::pdf_of_cells(uint32_t iu, uint32_t iv) const {
-  // f / ∫∫f, with ∫∫f = Σf / (nu·nv) = the marginal's integral.
-  return conditional_[iv].value(iu) / integral();
+  // The row's density times the column's within it: what sample() draws the cell with.
+  return marginal_.pdf_of_cell(iv) * conditional_[iv].pdf_of_cell(iu);
 }
 
 std::size_t PiecewiseConstant2D::bytes() const {

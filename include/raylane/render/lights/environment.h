@@ -32,65 +32,72 @@ inline double rec709_luminance(const glm::dvec3& rgb) {
 }
 
 // A piecewise-constant density over [0, 1) with n equal cells, sampled by inverting its CDF
-// (PBRT 3rd ed. §13.3.1; pbrt-v4's PiecewiseConstant1D). Cells of zero weight are never
-// sampled, so a sampled x always has pdf(x) > 0.
+// (PBRT 3rd ed. §13.3.1; pbrt-v4's PiecewiseConstant1D). The CDF is held in fixed point, as
+// 32-bit counts of kUnits (2^31) units: 4 bytes a cell rather than a double CDF entry and a
+// double weight (16), so that a large map's tables stay in the caches. A cell's density is its
+// step in units, step·n / kUnits: the density the inversion samples, exactly, so that sample and
+// pdf agree by construction. Cells of zero weight have no step and are never sampled; every
+// other cell has a step of at least one unit, so that no light is left without density.
 class PiecewiseConstant1D {
  public:
   PiecewiseConstant1D() = default;
-  // f: the cells' weights, finite and ≥ 0 (negative values are taken as their magnitude).
+  // f: the cells' weights, finite and ≥ 0 (negative values are taken as their magnitude); at
+  // most kMaxCells of them (more are taken as zero weight).
   explicit PiecewiseConstant1D(std::vector<double> f);
 
   // x in [0, 1) with density pdf(x), found by inverting the CDF at u ∈ [0, 1) (1 is clamped
   // below 1). The cell and the density are returned as well; when the weights are all zero,
   // x = u and *pdf = 0 (nothing can be sampled; callers treat it as invalid).
   double sample_continuous(double u, double* pdf = nullptr, uint32_t* cell = nullptr) const;
-  // The density at x: f[cell(x)] / integral(); 0 outside [0, 1) or when integral() is 0.
+  // The density at x: that of its cell; 0 outside [0, 1) or when integral() is 0.
   double pdf(double x) const;
-  // The density of a whole cell (cell < size()), and its weight as given (after abs).
+  // The density of a whole cell (cell < size()): its step over the cells' mean step.
   double pdf_of_cell(uint32_t cell) const {
-    return integral_ > 0 ? steps_[cell].weight / integral_ : 0;
+    return double(cdf_[cell + 1] - cdf_[cell]) * double(size()) * (1.0 / kUnits);
   }
-  double value(uint32_t cell) const { return steps_[cell].weight; }
-  // ∫₀¹ f = Σ f / n, the normaliser (and the 2-D marginal's weight of this row).
+  // ∫₀¹ f = Σ f / n of the weights as given (after abs), the 2-D marginal's weight of this row.
   double integral() const { return integral_; }
-  uint32_t size() const { return steps_.empty() ? 0 : uint32_t(steps_.size() - 1); }
+  uint32_t size() const { return cdf_.empty() ? 0 : uint32_t(cdf_.size() - 1); }
   // Asks the caches for the guide entry sample_continuous(u) reads first, and then, once that
-  // has arrived, for the CDF and weight it leads to: sample_many's rows, a few rows ahead.
-  void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(u)); }
+  // has arrived, for the CDF entries it leads to: sample_many's rows, a few rows ahead.
+  void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(units(u))); }
   void prefetch_cells(double u) const {
     if (guide_.empty()) return;
-    __builtin_prefetch(steps_.data() + guide_[guide_index(u)]);
+    __builtin_prefetch(cdf_.data() + guide_[guide_index(units(u))]);
   }
   // The memory the tables hold, for memory reports.
   std::size_t bytes() const {
-    return steps_.capacity() * sizeof(Step) + guide_.capacity() * sizeof(uint32_t);
+    return cdf_.capacity() * sizeof(uint32_t) + guide_.capacity() * sizeof(uint32_t);
   }
-  // One guide entry per this many cells (kGuideBytesPerCell = 4 / this: what it adds a cell).
+  // The CDF's units: 2^31, so that the end fits a uint32_t and u·kUnits is exact.
+  static constexpr uint32_t kUnits = uint32_t(1) << 31;
+  // One guide entry per this many cells (what it adds a cell: 4 / this bytes).
   static constexpr uint32_t kCellsPerGuide = 4;
+  // The most cells a table holds: every cell of weight > 0 needs a unit of its own.
+  static constexpr uint32_t kMaxCells = uint32_t(1) << 28;
 
  private:
-  uint32_t cell_at(double u) const;
-  // The guide entry below u (0 without a guide table).
-  uint32_t guide_index(double u) const {
+  // u ∈ [0, 1) in units, rounded down: below kUnits.
+  static uint32_t units(double u) { return uint32_t(u * kUnits); }
+  // The guide entry below U units (0 without a guide table): exact in integers, so U always
+  // lies within the entry's span.
+  uint32_t guide_index(uint32_t units) const {
     const std::size_t g = guide_.size();
-    return g < 2 ? 0 : std::min(uint32_t(g - 2), uint32_t(u * double(g - 1)));
+    return g < 2 ? 0 : uint32_t((uint64_t(units) * (g - 1)) >> 31);
   }
-  uint32_t cell_within(double u, uint32_t lo, uint32_t hi) const;
-  // The cells [lo, hi] that hold the u of [k/g, (k+1)/g) for g guide entries.
-  std::pair<uint32_t, uint32_t> guided_cells(double u) const;
+  // The cell i with cdf[i] ≤ U < cdf[i + 1], searching cells [lo, hi] only.
+  uint32_t cell_within(uint32_t units, uint32_t lo, uint32_t hi) const;
+  void build_guide();
 
-  // Cell i's CDF at its start and its weight, side by side: the search ends on a cell's CDF,
-  // and its weight is then in the same cache line (in two arrays, each sample missed twice).
-  struct Step {
-    double cdf;     // n + 1 values from 0 to exactly 1 (all 0 when integral_ is 0)
-    double weight;  // the cell's weight (0 for the end, n)
-  };
-  std::vector<Step> steps_;
+  // n + 1 running sums in units, from 0 to exactly kUnits (all 0 when integral_ is 0).
+  std::vector<uint32_t> cdf_;
   // The guide table (Chen and Asau 1974, "On generating random variates from an empirical
-  // distribution"; Devroye 1986, §III.2.4): entry k is the cell whose CDF step holds u = k/g,
-  // so that the search for u's cell runs over the few cells between two entries rather than
-  // all n: the same cell as a search of the whole CDF, at a quarter of a word per cell.
+  // distribution"; Devroye 1986, §III.2.4): entry k is the cell that holds the first unit of
+  // span k of g equal spans, so that the search for u's cell runs over the few cells between
+  // two entries rather than all n: the same cell as a search of the whole CDF, at a quarter of
+  // a word per cell.
   std::vector<uint32_t> guide_;
+  uint32_t first_step_ = 0;  // the largest power of two ≤ the longest span, hi − lo
   double integral_ = 0;
 };
 
