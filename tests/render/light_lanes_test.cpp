@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "env_maps.h"
 #include "raylane/core/strings.h"
 #include "raylane/core/warps.h"
+#include "raylane/image/pfm.h"
 #include "raylane/prims/sphere_cone.h"
 #include "raylane/render/lights/lights.h"
 #include "raylane/render/samplers/rng.h"
@@ -276,7 +279,7 @@ void expect_cone_row_near(const Scene& scene, const LightQueries& q, std::size_t
 // float direction (ConeBatch::wi_float) the row's where the sample is valid, 0 where not. Counts
 // the kinds picked.
 void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights, LightQueries& q,
-                                  int* kinds_seen) {
+                                  int* kinds_seen, bool with_cones = true) {
   std::array<std::vector<float>, 3> wi_float;
   for (int k = 0; k < 3; ++k) {
     wi_float[k].assign(q.cones.radius.size(), -1.0f);
@@ -317,7 +320,7 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
                   same_bits(q.cones.dist[i], float(want.dist)))
           << "query " << i;
     }
-    EXPECT_GT(cones, 0);
+    EXPECT_EQ(cones > 0, with_cones);
   }
 }
 
@@ -373,6 +376,31 @@ TEST(LightLanes, SampleManyIsSampleForOneSphereLight) {
   int kinds_seen[8] = {};
   expect_sample_many_is_sample(parsed.scene, lights, q, kinds_seen);
   EXPECT_EQ(kinds_seen[std::size_t(tag_of<Sphere>)], int(q.size() * supported_isas().size()));
+}
+
+// Under an environment: alone (LightSampler's path without picks or cones), and beside a
+// sphere light (the rows that pick it sampled together among the cones' rows). Every row's
+// sample is sample()'s, bit for bit.
+TEST(LightLanes, SampleManyIsSampleUnderAnEnvironment) {
+  const std::string map = testing::temp_dir() + "/sun.pfm";
+  std::ofstream(map, std::ios::binary) << encode_pfm(testing::sun_map(50));
+  for (bool with_sphere : {false, true}) {
+    SCOPED_TRACE(with_sphere ? "with a sphere light" : "alone");
+    auto parsed = parse_scene(
+        "camera 0 0 0 1\nenvironment \"" + map + "\" 1\nbrdf 0.5 0.5 0.5 0 0 0 1\n" +
+            (with_sphere ? "light 5 5 5\nsphere 0 3 0 0.5\n" : "") + "box -4 -4 -4 8 0.1 8\n",
+        "sky.scn");
+    ASSERT_TRUE(parsed.ok());
+    LightSampler lights(parsed.scene);
+    LightQueries q;
+    set_queries_around(q, 2003, 17);
+    int kinds_seen[8] = {};
+    expect_sample_many_is_sample(parsed.scene, lights, q, kinds_seen, with_sphere);
+    int valid = 0;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      valid += q.valid(i);
+    EXPECT_GT(valid, int(q.size()) / 2);
+  }
 }
 
 // Moving sphere lights (one textured) next to a still sphere and a box, each row at its own

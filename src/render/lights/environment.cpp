@@ -314,25 +314,26 @@ void EnvironmentMap::sample_many(EnvironmentBatch& b) const {
   }
 }
 
-// The two image rows the lookup at (u, v) reads, near its texel (the lookup's neighbours lie
-// in the same lines or the next).
+// The texels the lookup at (u, v) reads, found as it finds them (its columns lie in one line,
+// or two at the seam; its rows are the one above or the one below the point's, as v falls).
 void EnvironmentMap::prefetch_texels(double u, double v) const {
   const TexelImage& t = *texels_;
-  const uint32_t x = std::min(t.width - 1, uint32_t(u * t.width));
-  const uint32_t y = std::min(t.height - 1, uint32_t(v * t.height));
-  const uint32_t y2 = std::min(t.height - 1, y + 1);
-  auto at = [&](uint32_t row) { return std::size_t(row) * t.width + x; };
-  switch (t.format) {
-    case TexelFormat::kSrgb8:
-    case TexelFormat::kRgbe:
-      __builtin_prefetch(t.packed.data() + at(y)), __builtin_prefetch(t.packed.data() + at(y2));
-      break;
-    case TexelFormat::kHalf:
-      __builtin_prefetch(t.half.data() + 3 * at(y)), __builtin_prefetch(t.half.data() + 3 * at(y2));
-      break;
-    case TexelFormat::kFloat:
-      __builtin_prefetch(t.rgb.data() + 3 * at(y)), __builtin_prefetch(t.rgb.data() + 3 * at(y2));
-      break;
+  const TexelSpan<double> sx = repeat_span(u * t.width, t.width);
+  const TexelSpan<double> sy = clamp_span(v * t.height, t.height);
+  for (const uint32_t row : {sy.a, sy.b}) {
+    const std::size_t at = std::size_t(row) * t.width + sx.a;
+    switch (t.format) {
+      case TexelFormat::kSrgb8:
+      case TexelFormat::kRgbe:
+        __builtin_prefetch(t.packed.data() + at);
+        break;
+      case TexelFormat::kHalf:
+        __builtin_prefetch(t.half.data() + 3 * at);
+        break;
+      case TexelFormat::kFloat:
+        __builtin_prefetch(t.rgb.data() + 3 * at);
+        break;
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "raylane/render/materials/texturing.h"
 
@@ -296,6 +297,13 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
 void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Sphere>)
     return sample_one_sphere(isa, q);
+  if (lights_.empty() && env_choice_ > 0) {
+    // The environment is the only light: every row samples it, without a pick or a cone's
+    // inputs (which only the cone kernel reads, and no row has a cone).
+    q.environment_rows.resize(q.size());
+    std::iota(q.environment_rows.begin(), q.environment_rows.end(), 0u);
+    return sample_environment_rows(q);
+  }
   ConeBatch& cb = q.cones;
   const std::size_t n = q.size();
   // Each row's light; a sphere's rows get its center (a moving one's at the row's time),
