@@ -13,12 +13,14 @@
 #include "raylane/render/lights/environment.h"
 #include "raylane/render/samplers/rng.h"
 #include "support/estimate.h"
+#include "support/same_bits.h"
 
 namespace raylane {
 namespace {
 
 using testing::Estimate;
 using testing::estimate;
+using testing::same_bits;
 
 constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
@@ -184,6 +186,34 @@ TEST(EnvironmentSampling, ManySamplesAreTheOneByOneSamples) {
     const EnvironmentSample want = env.sample(b.u1[i], b.u2[i]);
     const EnvironmentSample& got = b.out[i];
     ASSERT_TRUE(want.wi == got.wi && want.le == got.le && want.pdf == got.pdf) << "row " << i;
+  }
+}
+
+// seen_many looks up its rows with prefetches ahead: its answers are seen()'s, row by row, bit
+// for bit, for directions of every length (unit ones, long and short ones, a zero vector and a
+// NaN) and the poles, under a map that samples and one that does not.
+TEST(EnvironmentSampling, ManySeenAreTheOneByOneSeen) {
+  Image black(4, 2);
+  for (const EnvironmentMap& env : {EnvironmentMap(testing::sun_map(1000), 2, tilted()),
+                                    EnvironmentMap(black, 1, glm::dmat3(1.0))}) {
+    Rng rng(13);
+    EnvironmentSeenBatch b;
+    for (int i = 0; i < 3000; ++i) {
+      const glm::dvec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      b.dir.push_back(i % 3 == 0 ? d * (1e-3 + 1e3 * rng.uniform()) : d);
+    }
+    b.dir[7] = glm::dvec3(0, 0, 0), b.dir[8] = glm::dvec3(std::nan(""), 0, 1);
+    b.dir[9] = env.rotation() * glm::dvec3(0, 0, 1), b.dir[10] = -b.dir[9];
+    env.seen_many(b);
+    ASSERT_EQ(b.seen.size(), b.dir.size());
+    int lit = 0;
+    for (std::size_t i = 0; i < b.dir.size(); ++i) {
+      const EnvironmentMap::Seen want = env.seen(b.dir[i]);
+      const EnvironmentMap::Seen& got = b.seen[i];
+      ASSERT_TRUE(same_bits(want.le, got.le) && same_bits(want.pdf, got.pdf)) << "row " << i;
+      lit += got.pdf > 0;
+    }
+    EXPECT_EQ(lit > 0, env.can_sample());
   }
 }
 

@@ -236,6 +236,12 @@ double PiecewiseConstant2D::pdf(double u, double v) const {
   return pdf_of_cells(cell_of(u, nu), cell_of(v, nv));
 }
 
+void PiecewiseConstant2D::prefetch_pdf(double u, double v) const {
+  if (!(u >= 0 && u < 1 && v >= 0 && v < 1)) return;
+  const uint32_t nv = marginal_.size(), nu = conditional_[0].size();
+  conditional_[cell_of(v, nv)].prefetch_cell(cell_of(u, nu));
+}
+
 double PiecewiseConstant2D::pdf_of_cells(uint32_t iu, uint32_t iv) const {
   // The row's density times the column's within it: what sample() draws the cell with.
   return marginal_.pdf_of_cell(iv) * conditional_[iv].pdf_of_cell(iu);
@@ -367,6 +373,24 @@ double EnvironmentMap::pdf_at(const ImagePoint& p) const {
 EnvironmentMap::Seen EnvironmentMap::seen(const glm::dvec3& dir_world) const {
   ImagePoint p = to_image_point(to_image(dir_world));
   return {radiance_uv(p.u, p.v), can_sample() ? pdf_at(p) : 0.0};
+}
+
+void EnvironmentMap::seen_many(EnvironmentSeenBatch& b) const {
+  const std::size_t n = b.dir.size();
+  b.point.resize(n), b.seen.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    b.point[i] = to_image_point(to_image(b.dir[i]));
+  const bool sampled = can_sample();
+  constexpr std::size_t kAhead = 4;  // rows whose texels and CDF entries are fetched ahead
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + kAhead < n) {
+      const ImagePoint& ahead = b.point[i + kAhead];
+      prefetch_texels(ahead.u, ahead.v);
+      if (sampled) distribution_.prefetch_pdf(ahead.u, ahead.v);
+    }
+    const ImagePoint& p = b.point[i];
+    b.seen[i] = {radiance_uv(p.u, p.v), sampled ? pdf_at(p) : 0.0};
+  }
 }
 
 // Φ = π r² ∫ s·lum(E(ω)) dω: the light arriving from each direction ω is a parallel beam, and

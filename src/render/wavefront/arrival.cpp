@@ -33,13 +33,23 @@ void add_emission(ThreadContext& ctx, PathState& p, const Rayd& ray, const Hit& 
   p.radiance += p.beta * le * w;
 }
 
-// What a path gains when its ray leaves the scene: the environment (its density for MIS is the
-// environment's).
-void add_escape(ThreadContext& ctx, PathState& p, const Rayd& ray) {
-  const EnvironmentMap::Seen seen = ctx.lights.escaped_with_pdf(ray.d);
-  if (seen.le == glm::dvec3(0, 0, 0)) return;
-  double w = emission_weight(ctx, p, [&] { return seen.pdf; });
-  p.radiance += p.beta * seen.le * w;
+// What the paths gain whose rays left the scene (w.escaped): the environment, looked up for all
+// of them at once (its density for MIS is the environment's).
+void add_escapes(ThreadContext& ctx) {
+  Wavefront& w = ctx.wave;
+  if (w.escaped.empty()) return;
+  EnvironmentSeenBatch& b = w.escapes;
+  b.dir.resize(w.escaped.size());
+  for (std::size_t i = 0; i < w.escaped.size(); ++i)
+    b.dir[i] = ray_of(w.rays.rays, w.escaped[i]).d;
+  ctx.lights.escaped_many(b);
+  for (std::size_t i = 0; i < w.escaped.size(); ++i) {
+    const EnvironmentMap::Seen& seen = b.seen[i];
+    if (seen.le == glm::dvec3(0, 0, 0)) continue;
+    PathState& p = w.paths[w.rays.path[w.escaped[i]]];
+    double weight = emission_weight(ctx, p, [&] { return seen.pdf; });
+    p.radiance += p.beta * seen.le * weight;
+  }
 }
 
 // Each primitive kind's material column, taken once per wavefront: a hit's material is then
@@ -111,6 +121,7 @@ void sort_arrivals(ThreadContext& ctx) {
   const bool environment = ctx.lights.environment() != nullptr;
   const uint32_t max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
   w.double_vertices.clear();
+  w.escaped.clear();
   if (lanes) start_lane_vertices(ctx, w.rays.size());
   LaneRowWriter lane_rows(w.lane_vertices);
   const uint32_t* prim = w.hits.prim.data();
@@ -122,7 +133,7 @@ void sort_arrivals(ThreadContext& ctx) {
     PathState& p = paths[path];
     const PrimRef hit = PrimRef::from_bits(prim[k]);
     if (!hit.valid()) {
-      if (environment) add_escape(ctx, p, ray_of(w.rays.rays, k));
+      if (environment) w.escaped.push_back(uint32_t(k));
       continue;
     }
     const uint32_t material = material_of(hit);
@@ -141,6 +152,7 @@ void sort_arrivals(ThreadContext& ctx) {
       w.double_vertices.push(uint32_t(k), material, depth);
   }
   w.lane_vertices.count = lane_rows.count;
+  add_escapes(ctx);
 }
 
 }  // namespace raylane::path_detail

@@ -172,6 +172,10 @@ struct alignas(128) Wavefront {
   std::vector<uint8_t> blocked;  // blocked[q] for shadow ray q
   DoubleVertexQueue double_vertices;
   LaneVertexQueue lane_vertices;
+  // The rays that left the scene under an environment (this step), and what they see: looked
+  // up together after the hits are sorted.
+  std::vector<uint32_t> escaped;
+  EnvironmentSeenBatch escapes;
   TraceScratch scratch;
   std::vector<TileInFlight> tiles;  // block b holds paths [b·kTile², (b + 1)·kTile²)
   std::size_t camera_rays = 0;      // rays [0, camera_rays) of `rays` are camera rays (this step)

@@ -61,6 +61,7 @@ class PiecewiseConstant1D {
   // Asks the caches for the guide entry sample_continuous(u) reads first, and then, once that
   // has arrived, for the CDF entries it leads to: sample_many's rows, a few rows ahead.
   void prefetch_guide(double u) const { __builtin_prefetch(guide_.data() + guide_index(units(u))); }
+  void prefetch_cell(uint32_t cell) const { __builtin_prefetch(cdf_.data() + cell); }
   void prefetch_cells(double u) const {
     if (guide_.empty()) return;
     __builtin_prefetch(cdf_.data() + guide_[guide_index(units(u))]);
@@ -128,6 +129,8 @@ class PiecewiseConstant2D {
   void sample_many(std::size_t n, const double* u1, const double* u2, Sample* out) const;
   // The density sample() has at (u, v); 0 outside [0, 1)².
   double pdf(double u, double v) const;
+  // Asks the caches for the CDF entries pdf(u, v) reads (u, v ∈ [0, 1)).
+  void prefetch_pdf(double u, double v) const;
   // ∫∫ f over [0, 1)²: 0 means nothing can be sampled.
   double integral() const { return marginal_.integral(); }
   std::size_t bytes() const;
@@ -154,6 +157,8 @@ struct EnvironmentBatch {
   void resize(std::size_t n) { u1.resize(n), u2.resize(n), uv.resize(n), out.resize(n); }
 };
 
+struct EnvironmentSeenBatch;
+
 class EnvironmentMap {
  public:
   // image: linear RGB, top row first, at least 1×1, every value finite and ≥ 0 (the image
@@ -178,8 +183,18 @@ class EnvironmentMap {
     double pdf = 0;
   };
   Seen seen(const glm::dvec3& dir_world) const;
+  // seen() for each of the batch's directions (its dir into its seen), the same answers: every
+  // direction's image point first, then the lookups with the texels of rows a few ahead
+  // prefetched (one escaped ray at a time waited on its texels' lines).
+  void seen_many(EnvironmentSeenBatch& b) const;
   // s·E at image coordinates (u, v) ∈ [0, 1)²: the same filter, without the direction.
   glm::dvec3 radiance_uv(double u, double v) const;
+
+  // The image point (u, v) of an image-space direction, and its sin θ (0 at the poles or for
+  // a zero vector).
+  struct ImagePoint {
+    double u = 0, v = 0, sin_theta = 0;
+  };
 
   // A direction drawn ∝ luminance × sin θ (piecewise constant over the pixels) from u1, u2 ∈
   // [0, 1): pdf = pdf_uv / (2π² sin θ), the Jacobian of (u, v) ↦ direction being
@@ -212,11 +227,6 @@ class EnvironmentMap {
   std::size_t bytes() const;
 
  private:
-  // The image point (u, v) of an image-space direction, and its sin θ (0 at the poles or for
-  // a zero vector).
-  struct ImagePoint {
-    double u, v, sin_theta;
-  };
   static ImagePoint to_image_point(const glm::dvec3& d_image);
   double pdf_at(const ImagePoint& p) const;              // pdf() of a direction's image point
   glm::dvec3 to_image(const glm::dvec3& d_world) const;  // Rᵀ·d: R is orthonormal
@@ -233,6 +243,14 @@ class EnvironmentMap {
   glm::dmat3 rotation_{1.0};
   PiecewiseConstant2D distribution_;  // ∝ cell-average luminance × sin θ of the row centre
   double luminance_integral_ = 0;     // ∫ s·lum(E) dω
+};
+
+// Many escaped rays' directions and what they see (EnvironmentMap::seen_many), reused between
+// calls.
+struct EnvironmentSeenBatch {
+  std::vector<glm::dvec3> dir;
+  std::vector<EnvironmentMap::ImagePoint> point;  // seen_many's scratch
+  std::vector<EnvironmentMap::Seen> seen;
 };
 
 }  // namespace raylane

@@ -128,6 +128,13 @@ class LightSampler {
     s.pdf *= env_choice_;
     return s;
   }
+  // escaped_with_pdf for each of the batch's directions (EnvironmentMap::seen_many).
+  void escaped_many(EnvironmentSeenBatch& b) const {
+    if (!env_) return;
+    env_->seen_many(b);
+    for (EnvironmentMap::Seen& s : b.seen)
+      s.pdf *= env_choice_;
+  }
   const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
 
  private:
