@@ -6,6 +6,7 @@
 // Bsdf::evaluate.)
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -60,11 +61,14 @@ inline SinCos sincos_2pi(double u) {
   // The quarter turns, (s, c) → (c, −s) → (−s, −c) → (−c, s), by selects and sign flips rather
   // than a switch: the quarter of a sampled azimuth is random, and the switch's mispredictions
   // were a tenth of the sky scene's (callgrind, branch simulation).
-  // Exact: the selects index a pair, and the signs multiply by ±1 (GCC made branches of
-  // conditional negations).
+  // Exact: the selects take one value's bits or the other's by a mask, and the signs multiply
+  // by ±1 (GCC made branches of conditional selects and negations; a pair in memory indexed by
+  // the quarter stalled on the store's forwarding).
   const int64_t quarter = int64_t(q);
-  const double pair[2] = {s, c};
-  const double sin = pair[quarter & 1], cos = pair[~quarter & 1];
+  const uint64_t odd = uint64_t(0) - uint64_t(quarter & 1);  // all ones for an odd quarter
+  const uint64_t sb = std::bit_cast<uint64_t>(s), cb = std::bit_cast<uint64_t>(c);
+  const double sin = std::bit_cast<double>((sb & ~odd) | (cb & odd));
+  const double cos = std::bit_cast<double>((cb & ~odd) | (sb & odd));
   return {sin * double(1 - (quarter & 2)), cos * double(1 - ((quarter + 1) & 2))};
 }
 

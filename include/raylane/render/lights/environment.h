@@ -232,7 +232,7 @@ class EnvironmentMap {
   glm::dvec3 to_image(const glm::dvec3& d_world) const;  // Rᵀ·d: R is orthonormal
   glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
   // The direction, radiance and solid-angle density of a point the distribution sampled.
-  EnvironmentSample direction_of(const PiecewiseConstant2D::Sample& uv) const;
+  void direction_of(const PiecewiseConstant2D::Sample& uv, EnvironmentSample& s) const;
   void prefetch_texels(double u, double v) const;  // sample_many's rows ahead
   void build_distribution();
   // ∫ lum(E) dω over the sphere (unscaled), from the rows' mean luminances.
