@@ -126,7 +126,8 @@ Result<TexelImage> read_scene_texels(ParseState& state, const std::string& path,
 }
 
 // The environment's importance sampling: a fixed-point CDF entry per pixel, and its guide
-// table's share (render/lights/environment.h). The light shares the scene's texels.
+// table's share (render/lights/environment.h). The light shares the scene's texels. (Each row's
+// table adds about 70 bytes, not counted: 0.3 MB for the largest sky the limits allow.)
 constexpr uint64_t kEnvironmentExtraBytes = sizeof(uint32_t) + 1;
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "env_maps.h"
@@ -164,6 +165,40 @@ TEST(PiecewiseConstant1D, EveryLitCellHasAUnitAndTheDensitiesSumToOne) {
       }
     }
   }
+}
+
+// A search takes as many select steps as the table's longest guided span needs. Empty cells
+// at the end (the marginal of a map whose lower half is black) lie past the last lit cell and
+// must not make the last span long: eight lit cells then a thousand empty ones search as eight
+// cells do, and the last unit still lands in the last lit cell.
+TEST(PiecewiseConstant1D, EmptyCellsAtTheEndDoNotLengthenTheSearch) {
+  std::vector<double> f(1008, 0.0);
+  for (int i = 0; i < 8; ++i)
+    f[std::size_t(i)] = 1 + i;
+  PiecewiseConstant1D d(f);
+  EXPECT_LE(d.search_steps(), 3u);  // a span of at most 7 cells: steps 4, 2, 1
+  uint32_t cell = 0;
+  double pdf = 0;
+  d.sample_continuous(0x1.fffffffffffffp-1, &pdf, &cell);
+  EXPECT_EQ(cell, 7u);
+  EXPECT_GT(pdf, 0);
+  // The same cells in front of the empty ones search as long as the lit cells need.
+  std::reverse(f.begin(), f.end());
+  EXPECT_LE(PiecewiseConstant1D(f).search_steps(), 3u);
+}
+
+// The environment's sampling tables take 5 bytes a pixel (docs/scene-language.md, "Image
+// memory": a CDF entry and a quarter of a guide entry) and a few words a row, besides the
+// texels the scene holds.
+TEST(PiecewiseConstant2D, TablesTakeFiveBytesAPixel) {
+  const uint32_t w = 256, h = 64;
+  EnvironmentMap env(
+      testing::make_image(
+          w, h, [](uint32_t x, uint32_t y) { return glm::vec3(1 + x % 7, 1 + y % 3, 1); }),
+      1, glm::dmat3(1.0));
+  const std::size_t tables = env.bytes() - sizeof(EnvironmentMap) - env.texels().bytes();
+  EXPECT_GE(tables, std::size_t(5) * w * h);
+  EXPECT_LE(tables, std::size_t(5) * w * h + 128 * std::size_t(h) + 4096);
 }
 
 TEST(PiecewiseConstant1D, AllZeroSamplesNothing) {

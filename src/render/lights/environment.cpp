@@ -126,7 +126,10 @@ void PiecewiseConstant1D::build_guide() {
     const uint64_t first = ((uint64_t(k) << 31) + g - 1) / g;
     guide_[k] = cell_within(uint32_t(first), 0, n - 1);
   }
-  guide_[g] = n - 1;
+  // The last entry is the last cell of weight > 0, the one that holds the last unit (not the
+  // last cell: a table that ends in empty cells, such as the marginal of a map whose lower half
+  // is black, would have a last span over all of them, and every search as many steps).
+  guide_[g] = cell_within(kUnits - 1, 0, n - 1);
   uint32_t longest = 0;
   for (uint32_t k = 0; k < g; ++k)
     longest = std::max(longest, guide_[k + 1] - guide_[k]);
@@ -151,8 +154,8 @@ uint32_t PiecewiseConstant1D::cell_within(uint32_t units, uint32_t lo, uint32_t 
 
 double PiecewiseConstant1D::sample_continuous(double u, double* pdf, uint32_t* cell) const {
   const uint32_t n = size();
-  u = std::clamp(u, 0.0, kOneMinusEpsilon);
-  if (guide_.empty()) {  // all weights zero
+  u = u >= 0 ? std::min(u, kOneMinusEpsilon) : 0.0;  // NaN too: to 0
+  if (guide_.empty()) {                              // all weights zero
     if (pdf) *pdf = 0;
     if (cell) *cell = std::min(n - 1, uint32_t(u * n));
     return u;
@@ -203,7 +206,8 @@ PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) co
   double pdf_v = 0, pdf_u = 0;
   s.v = marginal_.sample_continuous(u2, &pdf_v, &s.cell_v);
   s.u = conditional_[s.cell_v].sample_continuous(u1, &pdf_u, &s.cell_u);
-  // The joint density f / ∫∫f, written as pdf() writes it so the two agree bit for bit.
+  // The joint density, the row's times the column's, written as pdf() writes it so the two
+  // agree bit for bit.
   s.pdf = (pdf_v > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
   return s;
 }
@@ -215,7 +219,7 @@ void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const dou
     out[i].v = marginal_.sample_continuous(u2[i], &out[i].pdf, &out[i].cell_v);
   // Rows kAhead on have their guide entries fetched, rows kAhead / 2 on the cells those lead
   // to: each row's reads then find the caches warm (a row's chain of dependent misses, guide
-  // → CDF → weight, was most of the environment's sampling time).
+  // → CDF, was most of the environment's sampling time).
   constexpr std::size_t kAhead = 8;
   auto row = [&](std::size_t i) -> const PiecewiseConstant1D& {
     return conditional_[out[i].cell_v];
@@ -231,7 +235,7 @@ void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const dou
 }
 
 double PiecewiseConstant2D::pdf(double u, double v) const {
-  if (!(u >= 0 && u < 1 && v >= 0 && v < 1) || !(integral() > 0)) return 0;
+  if (!(u >= 0 && u < 1 && v >= 0 && v < 1) || conditional_.empty()) return 0;
   uint32_t nv = marginal_.size(), nu = conditional_[0].size();
   return pdf_of_cells(cell_of(u, nu), cell_of(v, nv));
 }
@@ -322,8 +326,9 @@ void EnvironmentMap::sample_many(EnvironmentBatch& b) const {
   }
 }
 
-// The texels the lookup at (u, v) reads, found as it finds them (its columns lie in one line,
-// or two at the seam; its rows are the one above or the one below the point's, as v falls).
+// The texels the lookup at (u, v) reads, found as it finds them: its left column's, in its two
+// rows (the one above or the one below the point's, as v falls). The right column's usually
+// lie in the same lines.
 void EnvironmentMap::prefetch_texels(double u, double v) const {
   const TexelImage& t = *texels_;
   const TexelSpan<double> sx = repeat_span(u * t.width, t.width);

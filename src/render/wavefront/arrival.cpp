@@ -117,7 +117,7 @@ void sort_arrivals(ThreadContext& ctx) {
   const bool lanes = ctx.settings.shading == Shading::kFloat;
   const MaterialColumns material_of(scene);
   const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
-  // Without an environment an escaped ray adds nothing (add_escape would find 0).
+  // Without an environment an escaped ray adds nothing (add_escapes would find 0).
   const bool environment = ctx.lights.environment() != nullptr;
   const uint32_t max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
   w.double_vertices.clear();

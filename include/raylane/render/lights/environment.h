@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -70,6 +71,8 @@ class PiecewiseConstant1D {
   std::size_t bytes() const {
     return cdf_.capacity() * sizeof(uint32_t) + guide_.capacity() * sizeof(uint32_t);
   }
+  // The number of select steps a search of this table takes (the same for every u).
+  uint32_t search_steps() const { return uint32_t(std::bit_width(first_step_)); }
   // The CDF's units: 2^31, so that the end fits a uint32_t and u·kUnits is exact.
   static constexpr uint32_t kUnits = uint32_t(1) << 31;
   // One guide entry per this many cells (what it adds a cell: 4 / this bytes).
@@ -79,7 +82,9 @@ class PiecewiseConstant1D {
 
  private:
   // u ∈ [0, 1) in units, rounded down: below kUnits.
-  static uint32_t units(double u) { return uint32_t(u * kUnits); }
+  static uint32_t units(double u) {
+    return u >= 0 ? uint32_t(std::min(u, 0x1.fffffffffffffp-1) * kUnits) : 0;  // NaN: 0
+  }
   // The guide entry below U units (0 without a guide table): exact in integers, so U always
   // lies within the entry's span.
   uint32_t guide_index(uint32_t units) const {
@@ -104,7 +109,8 @@ class PiecewiseConstant1D {
 
 // A piecewise-constant density over [0, 1)² on an nu × nv grid: v drawn from the marginal
 // over rows, then u from that row's conditional (pbrt-v4's PiecewiseConstant2D; PBRT 3rd ed.
-// §13.6.7). The joint density of a cell is f(u, v) / ∫∫f.
+// §13.6.7). The joint density of a cell is its row's density in the marginal times its own in
+// the row's conditional: f(u, v) / ∫∫f, up to the tables' units.
 class PiecewiseConstant2D {
  public:
   struct Sample {
@@ -136,7 +142,7 @@ class PiecewiseConstant2D {
   std::size_t bytes() const;
 
  private:
-  double pdf_of_cells(uint32_t iu, uint32_t iv) const;  // f / ∫∫f of one cell
+  double pdf_of_cells(uint32_t iu, uint32_t iv) const;  // the density of one cell
 
   std::vector<PiecewiseConstant1D> conditional_;  // one per row, over u
   PiecewiseConstant1D marginal_;                  // over v, weights = the rows' integrals
@@ -233,7 +239,7 @@ class EnvironmentMap {
   glm::dvec3 texel(uint32_t x, uint32_t y) const;        // unscaled RGB in double
   // The direction, radiance and solid-angle density of a point the distribution sampled.
   void direction_of(const PiecewiseConstant2D::Sample& uv, EnvironmentSample& s) const;
-  void prefetch_texels(double u, double v) const;  // sample_many's rows ahead
+  void prefetch_texels(double u, double v) const;  // sample_many's and seen_many's rows ahead
   void build_distribution();
   // ∫ lum(E) dω over the sphere (unscaled), from the rows' mean luminances.
   double luminance_sphere_integral(const std::vector<double>& row_mean) const;

@@ -130,7 +130,7 @@ class LightSampler {
   }
   // escaped_with_pdf for each of the batch's directions (EnvironmentMap::seen_many).
   void escaped_many(EnvironmentSeenBatch& b) const {
-    if (!env_) return;
+    if (!env_) return b.seen.assign(b.dir.size(), {});
     env_->seen_many(b);
     for (EnvironmentMap::Seen& s : b.seen)
       s.pdf *= env_choice_;
