@@ -206,9 +206,10 @@ PiecewiseConstant2D::Sample PiecewiseConstant2D::sample(double u1, double u2) co
   double pdf_v = 0, pdf_u = 0;
   s.v = marginal_.sample_continuous(u2, &pdf_v, &s.cell_v);
   s.u = conditional_[s.cell_v].sample_continuous(u1, &pdf_u, &s.cell_u);
-  // The joint density, the row's times the column's, written as pdf() writes it so the two
-  // agree bit for bit.
-  s.pdf = (pdf_v > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
+  // The joint density, the row's times the column's: the two densities are the cells' own
+  // (pdf_of_cell), so this is pdf_of_cells(cell_u, cell_v), bit for bit, as pdf() computes it,
+  // without reading the tables again (0 where a table samples nothing).
+  s.pdf = pdf_v * pdf_u;
   return s;
 }
 
@@ -230,7 +231,7 @@ void PiecewiseConstant2D::sample_many(std::size_t n, const double* u1, const dou
     Sample& s = out[i];
     double pdf_u = 0;
     s.u = conditional_[s.cell_v].sample_continuous(u1[i], &pdf_u, &s.cell_u);
-    s.pdf = (s.pdf > 0 && pdf_u > 0) ? pdf_of_cells(s.cell_u, s.cell_v) : 0.0;
+    s.pdf *= pdf_u;  // as sample() computes it
   }
 }
 
