@@ -40,7 +40,11 @@ TexelSpan<T> repeat_span(T c, uint32_t size) {
   T x = c - T(0.5);
   T f = std::floor(x);
   T w = x - f;
-  T m = f - std::floor(f / T(size)) * T(size);
+  // f − ⌊f/n⌋·n, without the division where f lies within a turn of the image (every lookup of
+  // a coordinate in [0, 1)): ⌊f/n⌋ is 0 or −1 there, so these are the same values. The
+  // division's latency was the wait of every environment lookup's first texel load (perf).
+  const T n = T(size);
+  T m = f >= 0 && f < n ? f : f < 0 && f >= -n ? f + n : f - std::floor(f / n) * n;
   uint32_t a = m >= 0 && m < T(size) ? uint32_t(m) : 0;
   return {a, a + 1 == size ? 0 : a + 1, w};
 }
