@@ -1,7 +1,7 @@
 // The one texel lookup of textures and the environment, written once over the number type T:
 // double for the reference path tracer, float for single-precision kernels (the float lanes run
-// it lane by lane: render/materials/texel_lanes.h). docs/design.md, "Texel storage and lookup", states the
-// contract:
+// it lane by lane: render/materials/texel_lanes.h). docs/design.md, "Texel storage and lookup",
+// states the contract:
 // - coordinates in [0, 1) across the image, texel centres at (k + 1/2) / size;
 // - bilinear between the four texel centres around the point (PBRT 3rd ed. §10.4.3);
 // - textures repeat in u and v, with v UP the image (v = 0 is the file's bottom row); the
