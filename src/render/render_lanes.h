@@ -1,11 +1,10 @@
 // The render's lane kernels, compiled once per instruction set (render_lanes_sse42.cpp,
 // render_lanes_avx2.cpp, render_lanes_avx512.cpp, each from the same *_impl.h sources) into one
 // table of entry points each: the BSDF, the Sobol groups, the sphere lights' cones, what follows
-// the BSDF, both at once (the scatter kernel), the row filter and the pinhole's camera rays. The
-// public functions (shade_lanes, sobol_groups, sample_cones, finish_vertices, scatter_vertices,
-// filter_rows, pinhole_rays) look their kernel up
-// here, the one place an instruction set picks one (as bvh/build_lanes.h does for the builder).
-// This header has no xsimd.
+// the BSDF, both at once with the queues' write-back (the scatter kernel) and the pinhole's
+// camera rays. The public functions (shade_lanes, sobol_groups, sample_cones, finish_vertices,
+// scatter_vertices, pinhole_rays) look their kernel up here, the one place an instruction set picks
+// one (as bvh/build_lanes.h does for the builder). This header has no xsimd.
 #pragma once
 
 #include <cstddef>
@@ -34,11 +33,10 @@ struct RenderLanes {
                           const LightQueries* lights, VertexBatch& batch);
   // scatter_vertices (render/vertex_lanes.h).
   void (*scatter_vertices)(const LaneMaterials& materials, const VertexRules& rules,
-                           ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch);
+                           ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch,
+                           VertexQueues& queues);
   // gather_wo (render/vertex_lanes.h).
   void (*gather_wo)(const RayStream& rays, const uint32_t* rows, std::size_t n, ShadeBatch& shade);
-  // filter_rows (render/vertex_lanes.h): returns the rows kept.
-  std::size_t (*filter_rows)(const RowFilter& filter, std::size_t rows);
   // pinhole_rays (render/camera/camera_lanes.h) for the points [0, the count rounded down to the
   // lane width): returns that count.
   std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);

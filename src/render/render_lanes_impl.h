@@ -24,7 +24,7 @@ constexpr RenderLanes render_lanes_for() {
   return {shade_lanes_range<A>,  sobol_groups_and_numbers<A>,
           sample_cones_range<A>, finish_vertices_range<A>,
           scatter_range<A>,      gather_wo_range<A>,
-          filter_rows_range<A>,  pinhole_rays_range<A>};
+          pinhole_rays_range<A>};
 }
 
 }  // namespace raylane::detail

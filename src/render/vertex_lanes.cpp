@@ -34,12 +34,9 @@ void gather_wo(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t
 }
 
 void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules& rules,
-                      ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch) {
-  detail::render_lanes(isa).scatter_vertices(materials, rules, bsdf, lights, batch);
-}
-
-std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows) {
-  return detail::render_lanes(isa).filter_rows(filter, rows);
+                      ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch,
+                      VertexQueues& queues) {
+  detail::render_lanes(isa).scatter_vertices(materials, rules, bsdf, lights, batch, queues);
 }
 
 }  // namespace raylane

@@ -50,55 +50,78 @@ struct VertexLanes {
         along(offset_along_normal<F<A>>(load3<A>(b.p_error, i), ng)) {}
 };
 
-// The shadow ray's contribution (render/vertex_steps.h), origin and end, for rows [i, i + W).
+// The shadow ray of rows [i, i + W): its contribution (render/vertex_steps.h), origin, direction
+// (the light point's, as the BSDF was evaluated toward it) and end, and whether there is one.
 template <class A>
-void shadow_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const ShadeBatch& bsdf,
-                  const LightQueries& lights, const VertexLanes<A>& v, VertexBatch& b,
-                  std::size_t i) {
-  const FloatVec3<A> wi = load3<A>(bsdf.light_wi, i), le = load3<A>(lights.le, i);
+struct ShadowLanes {
+  FloatVec3<A> c, from, wi;
+  F<A> tmax;
+  M<A> ok;
+};
+
+template <class A>
+ShadowLanes<A> shadow_lanes(const VertexRules& rules, const BsdfAnswers<A>& a,
+                            const ShadeBatch& bsdf, const LightQueries& lights,
+                            const VertexLanes<A>& v, std::size_t i) {
+  ShadowLanes<A> s;
+  s.wi = load3<A>(bsdf.light_wi, i);
+  const FloatVec3<A> le = load3<A>(lights.le, i);
   const FloatVec3<A> f{a.light_f[0], a.light_f[1], a.light_f[2]};
   const F<A> pdf = simd::load<A>(lights.cones.pdf.data() + i);
-  const FloatVec3<A> c = shadow_ray_contribution(rules.mis, v.beta, f, le, pdf, a.light_pdf);
-  for (int k = 0; k < 3; ++k)
-    simd::store_widened<A>(b.shadow_c[k].data() + i, k == 0 ? c.x : k == 1 ? c.y : c.z);
-  const FloatVec3<A> from = offset_origin_by<F<A>>(v.p, v.along, v.ng, wi);
-  store3<A>(b.shadow_o, i, from);
+  s.c = shadow_ray_contribution(rules.mis, v.beta, f, le, pdf, a.light_pdf);
+  s.from = offset_origin_by<F<A>>(v.p, v.along, v.ng, s.wi);
   const F<A> dist = simd::load<A>(lights.cones.dist.data() + i);
-  simd::store<A>(b.shadow_tmax.data() + i, shadow_tmax<F<A>>(from, v.p, wi, dist));
-  // No light point (pdf 0, or NaN): no shadow ray, whatever the other columns hold.
-  simd::store<A>(b.shadow_ok.data() + i,
-                 as_flag<A>((pdf > F<A>(0.0f)) & !all_zero<A>(f) & all_finite<A>(c)));
+  s.tmax = shadow_tmax<F<A>>(s.from, v.p, s.wi, dist);
+  // No light point (pdf 0, or NaN): no shadow ray, whatever the other lanes hold.
+  s.ok = (pdf > F<A>(0.0f)) & !all_zero<A>(f) & all_finite<A>(s.c);
+  return s;
 }
 
-// The throughput after the BSDF's sample (beta·value / pdf, then roulette) and the next origin.
+// The throughput after the BSDF's sample (beta·value / pdf, then roulette), the next origin,
+// and whether the path goes on.
 template <class A>
-void continue_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const VertexLanes<A>& v,
-                    VertexBatch& b, std::size_t i) {
+struct NextLanes {
+  FloatVec3<A> beta, o;
+  M<A> alive;
+};
+
+template <class A>
+NextLanes<A> next_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const VertexLanes<A>& v,
+                        const VertexBatch& b, std::size_t i) {
   const FloatVec3<A> value{a.value[0], a.value[1], a.value[2]};
-  FloatVec3<A> nb = sampled_throughput(v.beta, value, a.pdf);
+  NextLanes<A> n;
+  n.beta = sampled_throughput(v.beta, value, a.pdf);
   M<A> alive = a.pdf > F<A>(0.0f);
   if (rules.roulette) {  // each row's survival (1 where it has no roulette)
     const F<A> u = simd::load<A>(b.u_roulette.data() + i);
     const F<A> s = simd::load<A>(b.survival.data() + i);
     alive = alive & !(u >= s);
-    nb = survivor_throughput(nb, s);
+    n.beta = survivor_throughput(n.beta, s);
   }
-  alive = alive & all_finite<A>(nb) & !all_zero<A>(nb);
-  store3<A>(b.next_beta, i, nb);
-  store3<A>(b.next_o, i, offset_origin_by<F<A>>(v.p, v.along, v.ng, a.wi));
-  simd::store<A>(b.alive.data() + i, as_flag<A>(alive));
+  n.alive = alive & all_finite<A>(n.beta) & !all_zero<A>(n.beta);
+  n.o = offset_origin_by<F<A>>(v.p, v.along, v.ng, a.wi);
+  return n;
 }
 
-// The steps after the BSDF for rows [i, i + W), from its answers.
+// finish_vertices' steps for rows [i, i + W), into the batch's columns.
 template <class A>
 void vertex_steps(const VertexRules& rules, const BsdfAnswers<A>& a, const ShadeBatch& bsdf,
                   const LightQueries* lights, VertexBatch& b, std::size_t i) {
   const VertexLanes<A> v(b, i);
-  if (lights)
-    shadow_lanes<A>(rules, a, bsdf, *lights, v, b, i);
-  else
+  if (lights) {
+    const ShadowLanes<A> s = shadow_lanes<A>(rules, a, bsdf, *lights, v, i);
+    for (int k = 0; k < 3; ++k)
+      simd::store_widened<A>(b.shadow_c[k].data() + i, k == 0 ? s.c.x : k == 1 ? s.c.y : s.c.z);
+    store3<A>(b.shadow_o, i, s.from);
+    simd::store<A>(b.shadow_tmax.data() + i, s.tmax);
+    simd::store<A>(b.shadow_ok.data() + i, as_flag<A>(s.ok));
+  } else {
     simd::store<A>(b.shadow_ok.data() + i, F<A>(0.0f));
-  continue_lanes<A>(rules, a, v, b, i);
+  }
+  const NextLanes<A> n = next_lanes<A>(rules, a, v, b, i);
+  store3<A>(b.next_beta, i, n.beta);
+  store3<A>(b.next_o, i, n.o);
+  simd::store<A>(b.alive.data() + i, as_flag<A>(n.alive));
 }
 
 // finish_vertices: the BSDF's answers read from its columns.
@@ -119,19 +142,56 @@ void finish_vertices_range(const VertexRules& rules, const ShadeBatch& bsdf,
   }
 }
 
+// The kept lanes of three registers into three destinations at `at`.
+template <class A>
+void pack3(const simd::LanePacker<A>& pack, const std::array<float*, 3>& to, std::size_t at,
+           const FloatVec3<A>& v) {
+  pack.store(to[0] + at, v.x), pack.store(to[1] + at, v.y), pack.store(to[2] + at, v.z);
+}
+
 // scatter_vertices: the BSDF and the steps after it, a batch of rows at a time, the BSDF's
-// answers in registers; only the sampled direction and density are stored (the write-back
-// reads them).
+// answers and the steps' results in registers, each ray packed into its queue as it is made.
+// The destinations are copied first: stores through them may alias anything not provably local,
+// and their pointers would be reloaded after each one.
 template <class A>
 void scatter_range(const LaneMaterials& materials, const VertexRules& rules, ShadeBatch& bsdf,
-                   const LightQueries* lights, VertexBatch& b) {
+                   const LightQueries* lights, VertexBatch& b, VertexQueues& queues) {
   constexpr std::size_t W = simd::kWidth<A>;
-  for (std::size_t i = 0; i < b.size(); i += W) {
+  const VertexQueues q = queues;
+  const std::size_t n = b.size();
+  std::size_t next = 0, shadows = 0;
+  for (std::size_t i = 0; i < n; i += W) {
     const BsdfAnswers<A> a = bsdf_answers<A>(materials, bsdf, i);
-    store3<A>(bsdf.wi, i, a.wi);
     simd::store<A>(bsdf.pdf.data() + i, a.pdf);
-    vertex_steps<A>(rules, a, bsdf, lights, b, i);
+    // The batch's own rows: the last batch's padding lanes are queued nowhere.
+    const uint32_t rows = n - i >= W ? (1u << W) - 1 : (1u << (n - i)) - 1;
+    const simd::Ints<A> path =
+        simd::Ints<A>::load_unaligned(reinterpret_cast<const int32_t*>(q.path + i));
+    const VertexLanes<A> v(b, i);
+    if (lights) {
+      const ShadowLanes<A> s = shadow_lanes<A>(rules, a, bsdf, *lights, v, i);
+      const simd::LanePacker<A> pack(simd::bits<A>(s.ok) & rows);
+      pack3<A>(pack, q.shadow_o, shadows, s.from);
+      pack3<A>(pack, q.shadow_d, shadows, s.wi);
+      pack.store(q.shadow_tmax + shadows, s.tmax);
+      pack.store(q.shadow_light + shadows,
+                 simd::Ints<A>::load_unaligned(
+                     reinterpret_cast<const int32_t*>(lights->light.data() + i)));
+      pack.store(q.shadow_path + shadows, path);
+      pack.store_widened(q.shadow_c[0] + shadows, s.c.x);
+      pack.store_widened(q.shadow_c[1] + shadows, s.c.y);
+      pack.store_widened(q.shadow_c[2] + shadows, s.c.z);
+      shadows += std::size_t(pack.count());
+    }
+    const NextLanes<A> nx = next_lanes<A>(rules, a, v, b, i);
+    store3<A>(b.next_beta, i, nx.beta);
+    const simd::LanePacker<A> pack(simd::bits<A>(nx.alive) & rows);
+    pack3<A>(pack, q.next_o, next, nx.o);
+    pack3<A>(pack, q.next_d, next, a.wi);
+    pack.store(q.next_path + next, path);
+    next += std::size_t(pack.count());
   }
+  queues.next_count = next, queues.shadow_count = shadows;
 }
 
 // gather_wo: a batch of rows reads the stream's columns through a RowReader (the render's rows
@@ -151,42 +211,6 @@ void gather_wo_range(const RayStream& rays, const uint32_t* rows, std::size_t n,
   for (; i < n; ++i)
     for (int c = 0; c < 3; ++c)
       to[c][i] = -from[c][rows[i]];
-}
-
-// filter_rows: whole lane batches through the compressing stores, the last rows one by one.
-// The filter is copied first: the stores go through char pointers, which may alias anything the
-// compiler cannot see is local, so it reloaded every column pointer and count after each store
-// (3 % of a render, perf).
-template <class A>
-std::size_t filter_rows_range(const RowFilter& filter, std::size_t n) {
-  constexpr std::size_t W = simd::kWidth<A>, WD = simd::kDoubleWidth<A>;
-  const RowFilter f = filter;
-  auto at = [](const void* p, std::size_t bytes) { return static_cast<const char*>(p) + bytes; };
-  auto to = [](void* p, std::size_t bytes) { return static_cast<char*>(p) + bytes; };
-  std::size_t m = 0, i = 0;
-  for (; i + W <= n; i += W) {
-    // "not 0" as the scalar rows test it: a NaN flag keeps its row.
-    const uint32_t keep = simd::bits<A>(!(simd::load<A>(f.keep + i) == F<A>(0.0f)));
-    for (int c = 0; c < f.columns4; ++c)
-      simd::store_compressed32<A>(to(f.to4[c], 4 * m), at(f.from4[c], 4 * i), keep);
-    std::size_t kept = m;
-    for (std::size_t j = 0; j < W; j += WD) {
-      const uint32_t part = (keep >> j) & ((1u << WD) - 1);
-      for (int c = 0; c < f.columns8; ++c)
-        simd::store_compressed64<A>(to(f.to8[c], 8 * kept), at(f.from8[c], 8 * (i + j)), part);
-      kept += std::size_t(simd::popcount<A>(part));
-    }
-    m = kept;
-  }
-  for (; i < n; ++i) {
-    if (f.keep[i] == 0) continue;
-    for (int c = 0; c < f.columns4; ++c)
-      std::memcpy(to(f.to4[c], 4 * m), at(f.from4[c], 4 * i), 4);
-    for (int c = 0; c < f.columns8; ++c)
-      std::memcpy(to(f.to8[c], 8 * m), at(f.from8[c], 8 * i), 8);
-    ++m;
-  }
-  return m;
 }
 
 }  // namespace raylane::detail

@@ -273,9 +273,88 @@ TEST(VertexLanes, ScalarStepsOnKnownValues) {
   EXPECT_FALSE(next_throughput<double>(rules, {1, 1, 1}, {1, 1, 1}, 0, 0.5, next));
 }
 
-// scatter_vertices is shade_lanes then finish_vertices, bit for bit: the same BSDF answers,
-// kept in registers instead of columns.
-TEST(VertexLanes, ScatterIsTheBsdfThenTheStepsAfterIt) {
+// A scatter kernel's queues, each destination with `room` values and canaries after them.
+struct Queues {
+  static constexpr uint32_t kCanary = 0xdeadbeefu;
+  std::array<std::vector<float>, 3> next_o, next_d, shadow_o, shadow_d;
+  std::vector<float> shadow_tmax;
+  std::vector<uint32_t> next_path, shadow_path, shadow_light;
+  std::array<std::vector<double>, 3> shadow_c;
+  std::size_t room;
+  VertexQueues q;
+
+  Queues(std::size_t room, std::size_t canaries, const uint32_t* path) : room(room) {
+    const std::size_t n = room + canaries;
+    const float f = std::bit_cast<float>(kCanary);
+    for (auto* c : {&next_o, &next_d, &shadow_o, &shadow_d})
+      for (std::size_t k = 0; k < 3; ++k)
+        (*c)[k].assign(n, f);
+    shadow_tmax.assign(n, f);
+    for (auto* c : {&next_path, &shadow_path, &shadow_light})
+      c->assign(n, kCanary);
+    for (auto& c : shadow_c)
+      c.assign(n, std::bit_cast<double>(uint64_t(kCanary)));
+    q.path = path;
+    for (std::size_t k = 0; k < 3; ++k) {
+      q.next_o[k] = next_o[k].data(), q.next_d[k] = next_d[k].data();
+      q.shadow_o[k] = shadow_o[k].data(), q.shadow_d[k] = shadow_d[k].data();
+      q.shadow_c[k] = shadow_c[k].data();
+    }
+    q.next_path = next_path.data(), q.shadow_path = shadow_path.data();
+    q.shadow_light = shadow_light.data(), q.shadow_tmax = shadow_tmax.data();
+  }
+  // Whether every value at or past `room` is still its canary.
+  bool canaries_alive() const {
+    bool alive = true;
+    for (std::size_t r = room; r < next_path.size(); ++r) {
+      for (const auto* c : {&next_o, &next_d, &shadow_o, &shadow_d})
+        for (std::size_t k = 0; k < 3; ++k)
+          alive = alive && std::bit_cast<uint32_t>((*c)[k][r]) == kCanary;
+      for (std::size_t k = 0; k < 3; ++k)
+        alive = alive && std::bit_cast<uint64_t>(shadow_c[k][r]) == uint64_t(kCanary);
+      alive = alive && std::bit_cast<uint32_t>(shadow_tmax[r]) == kCanary &&
+              next_path[r] == kCanary && shadow_path[r] == kCanary && shadow_light[r] == kCanary;
+    }
+    return alive;
+  }
+};
+
+// The kernel's queues are finish_vertices' columns (after shade_lanes) filtered by its flags, in
+// row order, bit for bit.
+void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<uint32_t>& path,
+                                        std::size_t n, bool lights, const Queues& got) {
+  const VertexBatch& y = apart.vertex;
+  std::size_t next = 0, shadows = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (lights && y.shadow_ok[i] != 0) {
+      const std::size_t m = shadows++;
+      ASSERT_TRUE(m < got.q.shadow_count && same_bits(row(got.shadow_c, m), row(y.shadow_c, i)) &&
+                  same_bits(row(got.shadow_o, m), row(y.shadow_o, i)) &&
+                  same_bits(row(got.shadow_d, m), row(apart.bsdf.light_wi, i)) &&
+                  same_bits(got.shadow_tmax[m], y.shadow_tmax[i]) &&
+                  got.shadow_light[m] == apart.lights.light[i].bits() &&
+                  got.shadow_path[m] == path[i])
+          << "shadow ray of row " << i;
+    }
+    if (y.alive[i] != 0) {
+      const std::size_t m = next++;
+      ASSERT_TRUE(m < got.q.next_count && same_bits(row(got.next_o, m), row(y.next_o, i)) &&
+                  same_bits(row(got.next_d, m), row(apart.bsdf.wi, i)) &&
+                  got.next_path[m] == path[i])
+          << "next ray of row " << i;
+    }
+  }
+  EXPECT_EQ(got.q.shadow_count, shadows);
+  EXPECT_EQ(got.q.next_count, next);
+  EXPECT_TRUE(got.canaries_alive()) << "a destination written at or past its room";
+}
+
+// scatter_vertices is shade_lanes then finish_vertices, then a filter of their rows by their
+// flags into the queues, bit for bit: the same BSDF answers, kept in registers instead of
+// columns, and the rays packed as they are made. At every instruction set, for row counts from
+// 0 to 40 (whole lane batches and partial last ones, whose padding lanes must queue nothing) and
+// 5003, with and without lights; nothing written at or past the rows rounded up to 16.
+TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
   std::vector<Material> materials(3);
   materials[0].kd = {0.5f, 0.4f, 0.3f};
   materials[1].kd = {0.2f, 0.2f, 0.2f}, materials[1].ks = {0.5f, 0.5f, 0.5f},
@@ -284,105 +363,58 @@ TEST(VertexLanes, ScatterIsTheBsdfThenTheStepsAfterIt) {
   materials[2].alpha = 200, materials[2].ior = 1.5f;
   const LaneMaterials lanes(materials);
   Rng rng(23);
-  std::vector<Vertex> vs;
-  for (int i = 0; i < 5003; ++i)
-    vs.push_back(random_vertex(rng, i));
-  for (Isa isa : supported_isas()) {
-    SCOPED_TRACE(std::string(isa_name(isa)));
-    const VertexRules rules{true, true, 0.8};
-    Batches b;
-    fill(b, vs, rules, true);
-    ShadeBatch& sb = b.bsdf;
-    for (std::size_t i = 0; i < vs.size(); ++i) {
-      const Vec n = random_unit(rng);
-      for (std::size_t k = 0; k < 3; ++k)
-        sb.n[k][i] = n[k];
-      sb.material[i] = int32_t(i % 3);
-      sb.u_lobe[i] = float(rng.uniform()), sb.u1[i] = float(rng.uniform());
-      sb.u2[i] = float(rng.uniform());
-    }
-    Batches apart = b;
-    shade_lanes(isa, lanes, apart.bsdf);
-    finish_vertices(isa, rules, apart.bsdf, &apart.lights, apart.vertex);
-    scatter_vertices(isa, lanes, rules, b.bsdf, &b.lights, b.vertex);
-    int alive = 0;
-    for (std::size_t i = 0; i < vs.size(); ++i) {
-      const VertexBatch &x = b.vertex, &y = apart.vertex;
-      ASSERT_TRUE(x.shadow_ok[i] == y.shadow_ok[i] && x.alive[i] == y.alive[i]) << "row " << i;
-      ASSERT_TRUE(same_bits(row(b.bsdf.wi, i), row(apart.bsdf.wi, i)) &&
-                  same_bits(b.bsdf.pdf[i], apart.bsdf.pdf[i]))
-          << "row " << i;
-      if (x.shadow_ok[i] != 0) {
-        ASSERT_TRUE(same_bits(row(x.shadow_c, i), row(y.shadow_c, i)) &&
-                    same_bits(row(x.shadow_o, i), row(y.shadow_o, i)) &&
-                    same_bits(x.shadow_tmax[i], y.shadow_tmax[i]))
-            << "row " << i;
-      }
-      if (x.alive[i] != 0) {
-        ASSERT_TRUE(same_bits(row(x.next_beta, i), row(y.next_beta, i)) &&
-                    same_bits(row(x.next_o, i), row(y.next_o, i)))
-            << "row " << i;
-      }
-      alive += x.alive[i] != 0;
-    }
-    EXPECT_GT(alive, 1000);
-  }
-}
-
-// filter_rows keeps the rows whose flag is not 0, in order, in every 4- and 8-byte column, at
-// every instruction set: for batches of every length from 0 to 70 (whole lane batches and a
-// tail), flags all on, all off, alternating, in runs and at random, NaN payloads and −0
-// carried as bits. Nothing at or past the batch's rows is written.
-TEST(VertexLanes, FilterRowsKeepsTheFlaggedRowsInOrder) {
-  Rng rng(5);
-  for (Isa isa : supported_isas()) {
-    SCOPED_TRACE(std::string(isa_name(isa)));
-    for (std::size_t n = 0; n <= 70; ++n)
-      for (int pattern = 0; pattern < 5; ++pattern) {
-        std::vector<float> keep(n);
-        std::vector<double> wide(n);
-        std::vector<float> narrow(n);
-        std::vector<uint32_t> index(n);
-        for (std::size_t r = 0; r < n; ++r) {
-          const bool on = pattern == 0   ? true
-                          : pattern == 1 ? false
-                          : pattern == 2 ? r % 2 == 0
-                          : pattern == 3 ? (r / 5) % 2 == 1
-                                         : rng.uniform() < 0.7;
-          keep[r] = on ? 1.0f : 0.0f;
-          narrow[r] = r % 7 == 3 ? -0.0f : float(rng.uniform()) - 0.5f;
-          wide[r] = r % 11 == 4 ? std::bit_cast<double>(0x7ff8000000001234ull) : rng.uniform();
-          index[r] = uint32_t(rng.uniform() * 4e9);
+  std::vector<std::size_t> sizes;
+  for (std::size_t n = 0; n <= 40; ++n)
+    sizes.push_back(n);
+  sizes.push_back(5003);
+  for (Isa isa : supported_isas())
+    for (std::size_t n : sizes)
+      for (bool lights : {true, false}) {
+        SCOPED_TRACE(cat(isa_name(isa), " rows ", n, " lights ", lights));
+        // The padding rows past n hold an earlier wavefront's vertices, as the render's do (the
+        // columns never shrink): rows to be queued nowhere, though they would go on.
+        const std::size_t padded = (n + 15) / 16 * 16;
+        std::vector<Vertex> vs;
+        for (std::size_t i = 0; i < padded; ++i)
+          vs.push_back(random_vertex(rng, int(i)));
+        const VertexRules rules{true, true, 0.8};
+        Batches b;
+        fill(b, vs, rules, true);
+        vs.resize(n);
+        b.vertex.resize(n), b.bsdf.resize(n), b.lights.resize(n);
+        ShadeBatch& sb = b.bsdf;
+        std::vector<uint32_t> path(padded);
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec nv = random_unit(rng);
+          for (std::size_t k = 0; k < 3; ++k)
+            sb.n[k][i] = nv[k];
+          sb.material[i] = int32_t(i % 3);
+          sb.u_lobe[i] = float(rng.uniform()), sb.u1[i] = float(rng.uniform());
+          sb.u2[i] = float(rng.uniform());
+          b.lights.light[i] = PrimRef::from_bits(uint32_t(rng.uniform() * 4e9));
+          path[i] = uint32_t(rng.uniform() * 4e9);
         }
-        const uint32_t canary = 0xdeadbeefu;
-        const std::size_t room = n + 20;
-        std::vector<float> narrow_out(room, std::bit_cast<float>(canary));
-        std::vector<uint32_t> index_out(room, canary);
-        std::vector<double> wide_out(room, std::bit_cast<double>(uint64_t(canary)));
-        RowFilter f;
-        f.keep = keep.data();
-        f.add(narrow.data(), narrow_out.data());
-        f.add(index.data(), index_out.data());
-        f.add(wide.data(), wide_out.data());
-        const std::size_t kept = filter_rows(isa, f, n);
-        std::size_t m = 0;
-        for (std::size_t r = 0; r < n; ++r) {
-          if (keep[r] == 0) continue;
-          ASSERT_EQ(std::bit_cast<uint32_t>(narrow_out[m]), std::bit_cast<uint32_t>(narrow[r]))
-              << "n " << n << " pattern " << pattern << " row " << r;
-          ASSERT_EQ(index_out[m], index[r]) << "n " << n << " row " << r;
-          ASSERT_EQ(std::bit_cast<uint64_t>(wide_out[m]), std::bit_cast<uint64_t>(wide[r]))
-              << "n " << n << " pattern " << pattern << " row " << r;
-          ++m;
+        const LightQueries* with = lights ? &b.lights : nullptr;
+        Batches apart = b;
+        shade_lanes(isa, lanes, apart.bsdf);
+        finish_vertices(isa, rules, apart.bsdf, with, apart.vertex);
+        Queues got(padded, 20, path.data());
+        scatter_vertices(isa, lanes, rules, b.bsdf, with, b.vertex, got.q);
+        for (std::size_t i = 0; i < n; ++i)
+          ASSERT_TRUE(same_bits(row(b.vertex.next_beta, i), row(apart.vertex.next_beta, i)) &&
+                      same_bits(b.bsdf.pdf[i], apart.bsdf.pdf[i]))
+              << "row " << i;
+        expect_queues_are_the_flagged_rows(apart, path, n, lights, got);
+        if (n == 5003) {
+          EXPECT_GT(got.q.next_count, 1000u);
+          if (lights) {
+            EXPECT_GT(got.q.shadow_count, 1000u);
+          }
         }
-        ASSERT_EQ(kept, m) << "n " << n << " pattern " << pattern;
-        for (std::size_t r = n; r < room; ++r) {
-          ASSERT_EQ(std::bit_cast<uint32_t>(narrow_out[r]), canary) << "past the rows";
-          ASSERT_EQ(index_out[r], canary) << "past the rows";
-          ASSERT_EQ(std::bit_cast<uint64_t>(wide_out[r]), uint64_t(canary)) << "past the rows";
+        if (!lights) {
+          EXPECT_EQ(got.q.shadow_count, 0u);
         }
       }
-  }
 }
 
 // gather_wo puts row r's direction turned around, the stream's ray rows[r]'s, into the BSDF's

@@ -60,32 +60,6 @@ struct VertexBatch {
   std::size_t size_ = 0;
 };
 
-// A stream filter over a batch's rows, for the write-back of shadow rays and next rays: the
-// rows whose keep flag is not 0 (the vertex lanes' shadow_ok or alive), copied in order from
-// each source column into its destination (filter_rows returns how many). Columns hold 4-byte
-// values (floats, indices) or 8-byte ones (doubles), moved as they are. A destination needs
-// room for `rows` values; what lies past the kept ones is overwritten (the lanes store whole
-// registers), nothing at or past `rows`.
-struct RowFilter {
-  static constexpr int kMaxColumns = 10;
-  const float* keep = nullptr;
-  std::array<const void*, kMaxColumns> from4{}, from8{};
-  std::array<void*, kMaxColumns> to4{}, to8{};
-  int columns4 = 0, columns8 = 0;
-
-  template <class T>
-  void add(const T* from, T* to) {
-    static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values");
-    static_assert(std::is_trivially_copyable_v<T>, "values moved as bytes");
-    assert((sizeof(T) == 4 ? columns4 : columns8) < kMaxColumns);
-    if constexpr (sizeof(T) == 4)
-      from4[columns4] = from, to4[columns4++] = to;
-    else
-      from8[columns8] = from, to8[columns8++] = to;
-  }
-};
-std::size_t filter_rows(Isa isa, const RowFilter& filter, std::size_t rows);
-
 // The rows' rays' directions turned around, for the BSDF: row r's is the stream's ray rows[r]
 // (r < n), into shade.wo bit for bit. The batch must have room for n rows (resize).
 void gather_wo(Isa isa, const RayStream& rays, const uint32_t* rows, std::size_t n,
@@ -105,11 +79,34 @@ struct VertexRules {
 void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
                      const LightQueries* lights, VertexBatch& batch);
 
+// Where the scatter kernel queues its rows' rays, each queue in row order from its
+// destinations' first element: the next rays (origin, direction and path) of the rows that go
+// on, finish_vertices' rows with `alive`, and the shadow rays (origin, direction toward the light
+// point, end, light, path and contribution) of the rows that cast one, its rows with
+// `shadow_ok`. Every destination needs room for the batch's rows rounded up to 16: the lanes
+// store whole registers, and what lies past the queued rows is overwritten. Without lights the
+// shadow destinations are not written and may be null.
+struct VertexQueues {
+  const uint32_t* path = nullptr;  // row r's path, into both queues
+  std::array<float*, 3> next_o{}, next_d{};
+  uint32_t* next_path = nullptr;
+  std::array<float*, 3> shadow_o{}, shadow_d{};
+  float* shadow_tmax = nullptr;
+  uint32_t* shadow_light = nullptr;  // the row's LightQueries::light, as its bits
+  uint32_t* shadow_path = nullptr;
+  std::array<double*, 3> shadow_c{};
+  // The kernel's answers: how many rows each queue took.
+  std::size_t next_count = 0, shadow_count = 0;
+};
+
 // shade_lanes and finish_vertices in one pass over the rows (the scatter kernel): the BSDF's
-// sample (wi and pdf stored in `bsdf` for the write-back; value, light_f and light_pdf are not
-// stored) and at once the steps after it.
+// sample and at once the steps after it, and their rays straight into the queues, the rows that
+// cast none dropped as they go (a filter over finish_vertices' columns, fused). Stored for the
+// paths' write-back: `bsdf.pdf` and `batch.next_beta` (every row); wi, value, light_f,
+// light_pdf and finish_vertices' other columns are not stored.
 void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules& rules,
-                      ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch);
+                      ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch,
+                      VertexQueues& queues);
 
 // The steps for one vertex, at double for the double shading and at float as the lanes' scalar
 // twin (T double or float). The ray origins are offset_origin<T>(p, error, ng, direction), the

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane::simd {
@@ -32,14 +33,15 @@ inline bool one_run(const uint32_t* rows) {
   return run;
 }
 
-// Compaction, a stream filter's step: the values at from[0, N) whose bit in `keep` is set,
-// packed to the front and stored at to[0, N), N the lane count for values of their size
-// (kWidth<A> for 4 bytes, kDoubleWidth<A> for 8). All N lanes are stored: those past the
-// kept ones hold nothing of use (a filter writing at its kept count m ≤ the rows read so far
-// stays within them). AVX-512 compresses in a register and stores it whole (vpcompressd's
-// memory form is slow on AMD's cores); AVX2 permutes by the kept lanes' indices, which a
-// 256-entry table holds 3 bits each; SSE4.2 copies every lane and advances past the kept ones
-// (no branch on the data). Bytes are moved as they are (floats, integers alike).
+// Compaction, a stream filter's step, on values in registers, for a filter fused into the
+// kernel that computes them (the scatter kernel's queues): the lanes `keep` marks, packed to the
+// front and stored whole at to[0, W). All W lanes are stored: those past the kept ones hold
+// nothing of use (a filter writing at its kept count m ≤ the rows read so far stays within
+// them). One mask's permutation is worked out once for every column it packs. AVX-512
+// compresses in a register and stores it whole (vpcompressd's memory form is slow on AMD's
+// cores); AVX2 permutes by the kept lanes' indices, which a 256-entry table holds 3 bits each;
+// SSE4.2 copies every lane and advances past the kept ones (no branch on the data). Bits are
+// moved as they are (floats, integers alike; NaN payloads and −0 too).
 namespace detail {
 // Entry m: the indices of m's set bits in order, 3 bits each from bit 0. (A plain array: a
 // std::array's operator[] would be an ordinary inline function emitted by the per-ISA units.)
@@ -53,17 +55,9 @@ inline constexpr PackedLanes kPackedLanes = [] {
       if (m & (1u << i)) t.entry[m] |= i << (3 * k++);
   return t;
 }();
-// AVX2: eight 32-bit lanes permuted so that the kept ones come first. (A template on A, unused,
-// so that each instruction set's unit keeps its own copy, compiled with its own flags.)
-template <class A>
-inline __m256i compress8(__m256i v, uint32_t keep) {
-  const __m256i idx =
-      _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(kPackedLanes.entry[keep & 0xff])),
-                                         _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
-                       _mm256_set1_epi32(7));
-  return _mm256_permutevar8x32_epi32(v, idx);
-}
 // SSE4.2: `lanes` values of `bytes` each, every one copied, the output advanced past the kept.
+// (A template on A, unused, so that each instruction set's unit keeps its own copy, compiled
+// with its own flags.)
 template <class A>
 inline void compress_copy(void* to, const void* from, uint32_t keep, int lanes, int bytes) {
   auto* out = static_cast<unsigned char*>(to);
@@ -76,30 +70,58 @@ inline void compress_copy(void* to, const void* from, uint32_t keep, int lanes, 
 }  // namespace detail
 
 template <class A>
-inline void store_compressed32(void* to, const void* from, uint32_t keep) {
-  if constexpr (kWidth<A> == 16) {
-    _mm512_storeu_si512(to, _mm512_maskz_compress_epi32(__mmask16(keep), _mm512_loadu_si512(from)));
-  } else if constexpr (kWidth<A> == 8) {
-    const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
-    _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, keep));
-  } else {
-    detail::compress_copy<A>(to, from, keep, kWidth<A>, 4);
+class LanePacker {
+ public:
+  explicit LanePacker(uint32_t keep) : keep_(keep) {
+    if constexpr (kWidth<A> == 8) {
+      index_ = Ints<A>(_mm256_and_si256(
+          _mm256_srlv_epi32(_mm256_set1_epi32(int(detail::kPackedLanes.entry[keep & 0xff])),
+                            _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21)),
+          _mm256_set1_epi32(7)));
+    }
   }
-}
-template <class A>
-inline void store_compressed64(void* to, const void* from, uint32_t keep) {
-  if constexpr (kDoubleWidth<A> == 8) {
-    _mm512_storeu_si512(to, _mm512_maskz_compress_epi64(__mmask8(keep), _mm512_loadu_si512(from)));
-  } else if constexpr (kDoubleWidth<A> == 4) {
-    // Four 64-bit lanes as eight 32-bit ones: each kept lane keeps both its halves (bit i of
-    // keep becomes bits 2i and 2i + 1).
-    const uint32_t pairs =
-        (keep & 1u) * 3u | (keep & 2u) * 6u | (keep & 4u) * 12u | (keep & 8u) * 24u;
-    const __m256i v = _mm256_loadu_si256(static_cast<const __m256i*>(from));
-    _mm256_storeu_si256(static_cast<__m256i*>(to), detail::compress8<A>(v, pairs));
-  } else {
-    detail::compress_copy<A>(to, from, keep, kDoubleWidth<A>, 8);
+  // How many lanes are kept: how far the destinations' counts advance.
+  int count() const { return popcount<A>(keep_); }
+  void store(float* to, const Floats<A>& v) const {
+    if constexpr (kWidth<A> == 4) {
+      alignas(16) float lanes[4];
+      v.store_aligned(lanes);
+      detail::compress_copy<A>(to, lanes, keep_, 4, 4);
+    } else {
+      packed(v).store_unaligned(to);
+    }
   }
-}
+  void store(uint32_t* to, const Ints<A>& v) const {
+    store(reinterpret_cast<float*>(to), xsimd::bitwise_cast<Floats<A>>(v));
+  }
+  // The kept lanes widened to double (exactly) and stored at to[0, W): packed as floats first,
+  // then widened, so that the doubles need no permutation of their own.
+  void store_widened(double* to, const Floats<A>& v) const {
+    if constexpr (kWidth<A> == 4) {
+      alignas(16) float lanes[4];
+      v.store_aligned(lanes);
+      for (int i = 0, out = 0; i < 4; ++i) {
+        to[out] = double(lanes[i]);
+        out += int((keep_ >> i) & 1u);
+      }
+    } else {
+      simd::store_widened<A>(to, packed(v));
+    }
+  }
+
+ private:
+  // AVX2 and AVX-512: the kept lanes first, in a register.
+  Floats<A> packed(const Floats<A>& v) const {
+    if constexpr (kWidth<A> == 16) {
+      return _mm512_maskz_compress_ps(__mmask16(keep_), __m512(v));
+    } else {
+      return _mm256_castsi256_ps(
+          _mm256_permutevar8x32_epi32(_mm256_castps_si256(__m256(v)), __m256i(index_)));
+    }
+  }
+
+  uint32_t keep_;
+  Ints<A> index_{};  // AVX2: the permutation's lane indices
+};
 
 }  // namespace raylane::simd

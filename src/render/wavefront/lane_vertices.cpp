@@ -300,10 +300,7 @@ void shade_lane_vertices(ThreadContext& ctx) {
   rules.roulette = roulette_columns(ctx);
   draw_numbers(ctx, lights, rules.roulette);
   light_columns(ctx, lights);
-  ctx.lanes.kernels.scatter_vertices(ctx.lanes.materials, rules, lv.shade,
-                                     lights ? &lv.light_queries : nullptr, lv.vertices);
-  if (lights) write_lane_shadow_rays(ctx);
-  write_lane_next_rays(ctx);
+  scatter_lane_vertices(ctx, rules, lights);
 }
 
 }  // namespace raylane::path_detail

@@ -1,5 +1,6 @@
-// The lane shading's last passes: the vertex lanes' shadow rays and next rays, filtered in lanes
-// into the next_shadows and next_rays queues, and the throughputs back to the paths.
+// The lane shading's last pass: the scatter kernel (render/vertex_lanes.h), which packs its shadow
+// rays and next rays straight into the next_shadows and next_rays queues as it makes them, then
+// the throughputs back to the paths.
 #include <algorithm>
 #include <limits>
 #include <type_traits>
@@ -20,84 +21,80 @@ struct Column3View {
   glm::vec<3, T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
 };
 
-// Room for `rows` more rows at the end of a stream (trimmed by the caller to what was kept).
+// Room for `rows` more rows at the end of a stream, as many as the kernel's whole registers
+// store (VertexQueues): the caller trims it to what was queued.
 std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
-  const std::size_t at = s.size();
-  s.resize(at + rows);
-  if (aimed) s.aim.resize(at + rows);
+  const std::size_t at = s.size(), room = (rows + 15) / 16 * 16;
+  s.resize(at + room);
+  if (aimed) s.aim.resize(at + room);
   return at;
 }
 
-}  // namespace
-
-// The vertex lanes' shadow rays queued, each aimed at its light: the origin and end as the
-// lanes rounded them, the direction as the BSDF was evaluated toward it (the light point's,
-// rounded to float), and each one's query. A filter over the rows, in lanes.
-void write_lane_shadow_rays(ThreadContext& ctx) {
+// The rows' paths get the vertex's throughput, point and BSDF density (every row: a path that
+// ends here is not read again, and the write spares a branch per row).
+void write_back_paths(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
-  LaneVertexQueue& lv = w.lane_vertices;
+  const LaneVertexQueue& lv = w.lane_vertices;
   const VertexBatch& vb = lv.vertices;
-  const std::size_t n = lv.count;
-  ShadowQueue& q = w.next_shadows;
-  RayStream& s = q.rays;
-  const std::size_t at = grow_stream(s, n, true), queued = q.size();
-  q.resize_queries(queued + n);
-  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>,
-                "a light's PrimRef is its 32 bits");
-  RowFilter f;
-  f.keep = vb.shadow_ok.data();
-  f.add(vb.shadow_o[0].data(), s.ox.data() + at);
-  f.add(vb.shadow_o[1].data(), s.oy.data() + at);
-  f.add(vb.shadow_o[2].data(), s.oz.data() + at);
-  f.add(lv.shade.light_wi[0].data(), s.dx.data() + at);
-  f.add(lv.shade.light_wi[1].data(), s.dy.data() + at);
-  f.add(lv.shade.light_wi[2].data(), s.dz.data() + at);
-  f.add(vb.shadow_tmax.data(), s.tmax.data() + at);
-  f.add(reinterpret_cast<const uint32_t*>(lv.light_queries.light.data()), s.aim.data() + at);
-  f.add(lv.path.data(), q.path.data() + queued);
-  for (std::size_t k = 0; k < 3; ++k)
-    f.add(vb.shadow_c[k].data(), q.contribution[k].data() + queued);
-  const std::size_t kept = ctx.lanes.kernels.filter_rows(f, n);
-  std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
-  s.resize(at + kept), s.aim.resize(at + kept);
-  q.resize_queries(queued + kept);
-}
-
-// The vertex lanes' throughputs back to the paths (every row: a path that ends here is not
-// read again, and the write spares a branch per row), then the next rays of the paths that go
-// on and their list, filtered in lanes.
-void write_lane_next_rays(ThreadContext& ctx) {
-  Wavefront& w = ctx.wave;
-  LaneVertexQueue& lv = w.lane_vertices;
-  const VertexBatch& vb = lv.vertices;
-  const std::size_t n = lv.count;
   const Column3View<float> beta(vb.next_beta), p(vb.p);
   const float* pdf = lv.shade.pdf.data();
   const uint32_t* row_path = lv.path.data();
   PathState* paths = w.paths.data();
-  for (std::size_t r = 0; r < n; ++r) {
+  for (std::size_t r = 0; r < lv.count; ++r) {
     PathState& path = paths[row_path[r]];
     path.beta = beta[r];
     path.prev_p = p[r];
     path.prev_pdf = pdf[r];
     path.prev_specular = false;
   }
-  RayStream& s = w.next_rays.rays;
+}
+
+}  // namespace
+
+void scatter_lane_vertices(ThreadContext& ctx, const VertexRules& rules, bool lights) {
+  Wavefront& w = ctx.wave;
+  LaneVertexQueue& lv = w.lane_vertices;
+  const std::size_t n = lv.count;
+  VertexQueues q;
+  q.path = lv.path.data();
+  RayStream& next = w.next_rays.rays;
   Column<uint32_t>& next_paths = w.next_rays.path;
-  const std::size_t at = grow_stream(s, n, false), listed = next_paths.size();
-  next_paths.resize(listed + n);
-  RowFilter f;
-  f.keep = vb.alive.data();
-  for (std::size_t k = 0; k < 3; ++k)
-    f.add(vb.next_o[k].data(), (k == 0 ? s.ox : k == 1 ? s.oy : s.oz).data() + at);
-  for (std::size_t k = 0; k < 3; ++k)
-    f.add(lv.shade.wi[k].data(), (k == 0 ? s.dx : k == 1 ? s.dy : s.dz).data() + at);
-  f.add(row_path, next_paths.data() + listed);
-  const std::size_t kept = ctx.lanes.kernels.filter_rows(f, n);
-  std::fill_n(s.tmin.begin() + std::ptrdiff_t(at), kept, 0.0f);
-  std::fill_n(s.tmax.begin() + std::ptrdiff_t(at), kept, std::numeric_limits<float>::infinity());
-  s.resize(at + kept);
-  next_paths.resize(listed + kept);
+  const std::size_t next_at = grow_stream(next, n, false), listed = next_paths.size();
+  next_paths.resize(next.size());
+  q.next_o = {next.ox.data() + next_at, next.oy.data() + next_at, next.oz.data() + next_at};
+  q.next_d = {next.dx.data() + next_at, next.dy.data() + next_at, next.dz.data() + next_at};
+  q.next_path = next_paths.data() + listed;
+  ShadowQueue& sq = w.next_shadows;
+  RayStream& shadow = sq.rays;
+  std::size_t shadow_at = shadow.size(), queued = sq.size();
+  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>,
+                "a light's PrimRef is its 32 bits");
+  if (lights) {
+    shadow_at = grow_stream(shadow, n, true);
+    sq.resize_queries(queued + shadow.size() - shadow_at);
+    q.shadow_o = {shadow.ox.data() + shadow_at, shadow.oy.data() + shadow_at,
+                  shadow.oz.data() + shadow_at};
+    q.shadow_d = {shadow.dx.data() + shadow_at, shadow.dy.data() + shadow_at,
+                  shadow.dz.data() + shadow_at};
+    q.shadow_tmax = shadow.tmax.data() + shadow_at;
+    q.shadow_light = shadow.aim.data() + shadow_at;
+    q.shadow_path = sq.path.data() + queued;
+    for (std::size_t k = 0; k < 3; ++k)
+      q.shadow_c[k] = sq.contribution[k].data() + queued;
+  }
+  ctx.lanes.kernels.scatter_vertices(ctx.lanes.materials, rules, lv.shade,
+                                     lights ? &lv.light_queries : nullptr, lv.vertices, q);
+  std::fill_n(next.tmin.begin() + std::ptrdiff_t(next_at), q.next_count, 0.0f);
+  std::fill_n(next.tmax.begin() + std::ptrdiff_t(next_at), q.next_count,
+              std::numeric_limits<float>::infinity());
+  next.resize(next_at + q.next_count);
+  next_paths.resize(listed + q.next_count);
+  if (lights) {
+    std::fill_n(shadow.tmin.begin() + std::ptrdiff_t(shadow_at), q.shadow_count, 0.0f);
+    shadow.resize(shadow_at + q.shadow_count), shadow.aim.resize(shadow_at + q.shadow_count);
+    sq.resize_queries(queued + q.shadow_count);
+  }
+  write_back_paths(ctx);
 }
 
 }  // namespace raylane::path_detail

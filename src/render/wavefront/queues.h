@@ -130,7 +130,10 @@ struct LaneVertexQueue {
   LightQueries light_queries;  // light group numbers and light points, when lights are sampled
   VertexBatch vertices;        // the scatter kernel's vertices: shadow rays, next rays
 
+  // Room for n rows, padded to 16 as the batches are (the scatter kernel reads `path` in whole
+  // registers).
   void grow(std::size_t n) {
+    n = (n + 15) / 16 * 16;
     if (path.size() >= n) return;
     path.resize(n), ray.resize(n), material.resize(n), depth.resize(n), cos_ns.resize(n);
     front.resize(n), pixel_seed.resize(n);

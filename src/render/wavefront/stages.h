@@ -38,7 +38,9 @@ void start_lane_vertices(ThreadContext& ctx, std::size_t most);
 // lane_vertices.cpp: the lane_vertices queue at once, in columns and lanes: their shadow rays
 // and next rays into next_shadows and next_rays (through lane_write_back.cpp).
 void shade_lane_vertices(ThreadContext& ctx);
-void write_lane_shadow_rays(ThreadContext& ctx);
-void write_lane_next_rays(ThreadContext& ctx);
+// lane_write_back.cpp: the scatter kernel over the lane_vertices rows, whose columns the
+// stages before filled (with their light points where `lights`): its rays straight into
+// next_shadows and next_rays, then the throughputs back to the paths.
+void scatter_lane_vertices(ThreadContext& ctx, const VertexRules& rules, bool lights);
 
 }  // namespace raylane::path_detail
