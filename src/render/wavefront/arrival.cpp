@@ -28,7 +28,7 @@ void add_emission(ThreadContext& ctx, PathState& p, const Rayd& ray, const Hit& 
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, [&] {
-    return ctx.lights.pdf(p.prev_p, ray.d, hit, ray.time);  // a moving light's at the ray's time
+    return ctx.lights.pdf(glm::dvec3(p.prev_p), ray.d, hit, ray.time);  // a moving light's at the ray's time
   });
   p.radiance += p.beta * le * w;
 }

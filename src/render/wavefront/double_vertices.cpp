@@ -76,7 +76,7 @@ void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, con
 bool continue_path(const Tracer& tracer, PathState& p, const Rayd& ray, const Hit& hit,
                    const BsdfSample& s, double u_roulette, const VertexRules& rules, Rayd& next) {
   if (!next_throughput(rules, p.beta, s.value, s.pdf, u_roulette, p.beta)) return false;
-  p.prev_p = hit.surface.p;
+  p.prev_p = glm::vec3(hit.surface.p);
   p.prev_pdf = s.pdf;
   p.prev_specular = s.specular;
   glm::dvec3 o =

@@ -21,10 +21,12 @@
 
 namespace raylane::path_detail {
 
-// A path between wavefronts. Its ray is not here: it waits in a RayQueue. Two cache lines, the
-// first holding what the lane shading's passes over arrivals and shadow rays read (sort_arrivals:
-// depth, seed, throughput; add_unblocked_shadows: radiance), so each touches one line per path
-// (112 bytes unaligned straddled two or three).
+// A path between wavefronts. Its ray is not here: it waits in a RayQueue. Two cache lines: the
+// first holds what the arrivals read and the vertices' write-back writes (sort_arrivals: depth,
+// seed, throughput, and for an emitter's MIS weight the vertex before; write_back_paths: the
+// throughput and that vertex), the second what the shadow rays and emitters add to (radiance),
+// so that each pass over the paths touches one line per path (112 bytes unaligned straddled two
+// or three, and the write-back touched both lines while the vertex lay on the second).
 struct alignas(64) PathState {
   // The depth its ray in flight arrives at: 0 for the camera ray, one more at every vertex
   // that sends the path on (sort_arrivals counts it). A wavefront that refills holds paths of
@@ -34,13 +36,17 @@ struct alignas(64) PathState {
                                // find what it meets
   uint64_t pixel_seed = 0;     // the Sobol sampler's scramble of this pixel
   glm::dvec3 beta{1, 1, 1};    // throughput
-  glm::dvec3 radiance{0, 0, 0};
-  // The second line: what the vertex's write-back leaves for the next arrival's MIS weight.
-  glm::dvec3 prev_p{};  // the vertex the ray left (for the light pdf of MIS)
-  double prev_pdf = 0;  // the BSDF density of the ray's direction
+  double prev_pdf = 0;         // the BSDF density of the ray's direction
+  // The vertex the ray left, for the light's density in an emitter's MIS weight: the lanes'
+  // float point as it is; the double shading's rounded to float (a relative change of 2^-24 in
+  // a point that only weighs the emission, far below the density's own roundoff).
+  glm::vec3 prev_p{};
+  // The second line.
+  alignas(64) glm::dvec3 radiance{0, 0, 0};
   std::size_t pixel = 0;
 };
 static_assert(sizeof(PathState) == 128, "two cache lines");
+static_assert(offsetof(PathState, prev_p) + sizeof(glm::vec3) <= 64, "the arrivals' line");
 
 // Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
 struct RayQueue {
