@@ -4,8 +4,6 @@
 // values bit for bit (tests/render/sobol_test.cpp).
 #pragma once
 
-#include <type_traits>
-
 #include "raylane/render/samplers/rng.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/render/samplers/sobol_steps.h"
@@ -18,24 +16,21 @@ template <class A>
 using U32 = simd::UInts<A>;
 
 // The rows' group seeds, group_seed_of (mix64 of the pixel's seed and the group's salt) split
-// into the index's scramble (low half) and the components' seed (high half). In 64-bit lanes
-// where the instruction set multiplies them (AVX-512DQ's vpmullq); a row at a time elsewhere
-// (AVX2 and SSE4.2 have no 64-bit low multiply).
+// into the index's scramble (low half) and the components' seed (high half), in 64-bit lanes
+// (simd::U64Lanes: AVX2 and SSE4.2 build the 64-bit product from 32-bit ones). Row by row
+// they were a quarter of the Sobol groups' instructions at AVX2.
 template <class A>
 void group_seeds(uint32_t group, SobolBatch& b) {
-  const uint64_t salt = group_salt(group);
-  if constexpr (std::is_base_of_v<xsimd::avx512dq, A>) {
-    using U64 = xsimd::batch<uint64_t, A>;
-    constexpr std::size_t W = U64::size;
-    for (std::size_t i = 0; i < b.padded_size(); i += W) {
-      const U64 z = splitmix64_finaliser(U64::load_unaligned(b.seed.data() + i) ^ U64(salt));
-      simd::store_halves<A>(b.scramble.data() + i, b.component.data() + i, z);
-    }
-  } else {
-    for (std::size_t i = 0; i < b.padded_size(); ++i) {
-      const uint64_t g = mix64(b.seed[i] ^ salt);
-      b.scramble[i] = uint32_t(g), b.component[i] = uint32_t(g >> 32);
-    }
+  using U64 = simd::U64Lanes<A>;
+  constexpr std::size_t W = U64::V::size;
+  const U64 salt(group_salt(group));
+  // The columns' pointers in locals: the stores could alias the batch's own.
+  const uint64_t* seed = b.seed.data();
+  uint32_t *scramble = b.scramble.data(), *component = b.component.data();
+  const std::size_t n = b.padded_size();
+  for (std::size_t i = 0; i < n; i += W) {
+    const U64 z = splitmix64_finaliser(U64(U64::V::load_unaligned(seed + i)) ^ salt);
+    simd::store_halves<A>(scramble + i, component + i, z.v);
   }
 }
 
@@ -45,12 +40,14 @@ template <class A>
 void sobol_groups_range(uint32_t reversed_index, uint32_t group, unsigned which, SobolBatch& b) {
   constexpr std::size_t W = simd::kWidth<A>;
   group_seeds<A>(group, b);
-  for (std::size_t i = 0; i < b.padded_size(); i += W) {
-    U32<A> scramble = U32<A>::load_unaligned(b.scramble.data() + i);
-    U32<A> seeds = U32<A>::load_unaligned(b.component.data() + i);
-    sobol_group_bits(
-        U32<A>(reversed_index), scramble, seeds, which,
-        [&](uint32_t c, const U32<A>& bits) { bits.store_unaligned(b.u[c].data() + i); });
+  // The columns' pointers in locals: the stores could alias the batch's own.
+  const uint32_t *scramble = b.scramble.data(), *component = b.component.data();
+  uint32_t* u[4] = {b.u[0].data(), b.u[1].data(), b.u[2].data(), b.u[3].data()};
+  const std::size_t n = b.padded_size();
+  for (std::size_t i = 0; i < n; i += W) {
+    sobol_group_bits(U32<A>(reversed_index), U32<A>::load_unaligned(scramble + i),
+                     U32<A>::load_unaligned(component + i), which,
+                     [&](uint32_t c, const U32<A>& bits) { bits.store_unaligned(u[c] + i); });
   }
 }
 
