@@ -241,9 +241,8 @@ struct ColumnSink {
     simd::store_narrowed<A>(out.ex + r, error.x), simd::store_narrowed<A>(out.ey + r, error.y);
     simd::store_narrowed<A>(out.ez + r, error.z);
     cos_d.store_unaligned(out.cos_ns + r);
-    const uint32_t front = simd::bits<A>(cos_d < simd::Doubles<A>(0.0));
-    for (int k = 0; k < simd::kDoubleWidth<A>; ++k)
-      out.front[r + k] = (front >> k) & 1u;
+    simd::store_flags<A>(out.front + r, simd::bits<A>(cos_d < simd::Doubles<A>(0.0)),
+                         simd::kDoubleWidth<A>);
   }
 };
 
@@ -340,8 +339,12 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
   for (std::size_t i = 0; i < n; i += W) {
     const int m = int(std::min<std::size_t>(W, n - i));
     alignas(64) uint32_t ray_rows[W];
-    for (int k = 0; k < W; ++k)
-      ray_rows[k] = ray[i + std::size_t(std::min(k, m - 1))];
+    if (m == W) {
+      std::copy_n(ray.data() + i, W, ray_rows);
+    } else {
+      for (int k = 0; k < W; ++k)
+        ray_rows[k] = ray[i + std::size_t(std::min(k, m - 1))];
+    }
     const simd::RowReader<A> read(ray_rows);  // the rays mostly a run, else close together
     auto col = [&](const float* c) { return read.read(c); };
     const I prim = xsimd::bitwise_cast<I>(col(reinterpret_cast<const float*>(hits.prim.data())));
@@ -414,8 +417,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
       for (int k = 0; k < m; ++k)
         to.cos_ns[i + std::size_t(k)] = buffer[k];
     }
-    for (int k = 0; k < m; ++k)
-      to.front[i + std::size_t(k)] = (front >> k) & 1u;
+    simd::store_flags<A>(to.front + i, front, m);
   }
   return rest_count;
 }

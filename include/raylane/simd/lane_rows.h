@@ -33,6 +33,25 @@ inline bool one_run(const uint32_t* rows) {
   return run;
 }
 
+// Bits [0, n) of `bits` as n bytes, 0 or 1 each, at to[0, n) (n ≤ 16): a facing column written
+// from a mask in one or two stores where a loop stored a byte at a time (8 % of the render's
+// surface pass). Each group of eight bits is spread to the low bit of eight bytes by three
+// shift-and-mask steps (each moves half of the remaining bits as far as they must go).
+template <class A>
+inline void store_flags(uint8_t* to, uint32_t bits, int n) {
+  auto spread = [](uint64_t x) {
+    x = (x | (x << 28)) & 0x0000000f0000000full;
+    x = (x | (x << 14)) & 0x0003000300030003ull;
+    return (x | (x << 7)) & 0x0101010101010101ull;
+  };
+  const uint64_t low = spread(bits & 0xffu);
+  std::memcpy(to, &low, std::size_t(n < 8 ? n : 8));
+  if (n > 8) {
+    const uint64_t high = spread((bits >> 8) & 0xffu);
+    std::memcpy(to + 8, &high, std::size_t(n - 8));
+  }
+}
+
 // Compaction, a stream filter's step, on values in registers, for a filter fused into the
 // kernel that computes them (the scatter kernel's queues): the lanes `keep` marks, packed to the
 // front and stored whole at to[0, W). All W lanes are stored: those past the kept ones hold
