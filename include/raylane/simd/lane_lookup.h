@@ -23,15 +23,19 @@ inline Floats<A> lookup(const float* col, std::size_t n, const Ints<A>& idx) {
   constexpr std::size_t W = std::size_t(kWidth<A>);
   if constexpr (W == 16) {
     if (n <= 2 * W) {
-      const __m512 low(load_first<A>(col, int(n < W ? n : W)));
-      const __m512 high = n > W ? __m512(load_first<A>(col + W, int(n - W))) : _mm512_setzero_ps();
+      if (n <= W)  // one register: one permute
+        return Floats<A>(_mm512_permutexvar_ps(__m512i(idx), __m512(load_first<A>(col, int(n)))));
+      const __m512 low(load_first<A>(col, int(W)));
+      const __m512 high(load_first<A>(col + W, int(n - W)));
       // Bit 4 of each index picks the register, bits 0-3 the lane.
       return Floats<A>(_mm512_permutex2var_ps(low, __m512i(idx), high));
     }
   } else if constexpr (W == 8) {
+    if (n <= W)  // one register: one permute (the course scene's spheres and boxes)
+      return Floats<A>(_mm256_permutevar8x32_ps(__m256(load_first<A>(col, int(n))), __m256i(idx)));
     if (n <= 2 * W) {
-      const __m256 low(load_first<A>(col, int(n < W ? n : W)));
-      const __m256 high = n > W ? __m256(load_first<A>(col + W, int(n - W))) : _mm256_setzero_ps();
+      const __m256 low(load_first<A>(col, int(W)));
+      const __m256 high(load_first<A>(col + W, int(n - W)));
       // VPERMPS reads bits 0-2 of each index; lanes whose index is 8 or more take the high one.
       const __m256 from_low = _mm256_permutevar8x32_ps(low, __m256i(idx));
       const __m256 from_high = _mm256_permutevar8x32_ps(high, __m256i(idx));
