@@ -59,10 +59,14 @@ struct ShadowLanes {
   M<A> ok;
 };
 
+// Inlined always, as next_lanes: called out of line (GCC's choice once the kernel grew), its
+// eleven registers of answers went back through memory.
 template <class A>
-ShadowLanes<A> shadow_lanes(const VertexRules& rules, const BsdfAnswers<A>& a,
-                            const ShadeBatch& bsdf, const LightQueries& lights,
-                            const VertexLanes<A>& v, std::size_t i) {
+[[gnu::always_inline]] inline ShadowLanes<A> shadow_lanes(const VertexRules& rules,
+                                                          const BsdfAnswers<A>& a,
+                                                          const ShadeBatch& bsdf,
+                                                          const LightQueries& lights,
+                                                          const VertexLanes<A>& v, std::size_t i) {
   ShadowLanes<A> s;
   s.wi = load3<A>(bsdf.light_wi, i);
   const FloatVec3<A> le = load3<A>(lights.le, i);
@@ -86,8 +90,10 @@ struct NextLanes {
 };
 
 template <class A>
-NextLanes<A> next_lanes(const VertexRules& rules, const BsdfAnswers<A>& a, const VertexLanes<A>& v,
-                        const VertexBatch& b, std::size_t i) {
+[[gnu::always_inline]] inline NextLanes<A> next_lanes(const VertexRules& rules,
+                                                      const BsdfAnswers<A>& a,
+                                                      const VertexLanes<A>& v, const VertexBatch& b,
+                                                      std::size_t i) {
   const FloatVec3<A> value{a.value[0], a.value[1], a.value[2]};
   NextLanes<A> n;
   n.beta = sampled_throughput(v.beta, value, a.pdf);

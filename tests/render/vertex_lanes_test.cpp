@@ -320,7 +320,8 @@ struct Queues {
 };
 
 // The kernel's queues are finish_vertices' columns (after shade_lanes) filtered by its flags, in
-// row order, bit for bit.
+// row order, bit for bit (an origin or end that is NaN in both may differ in its sign:
+// same_or_nan).
 void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<uint32_t>& path,
                                         std::size_t n, bool lights, const Queues& got) {
   const VertexBatch& y = apart.vertex;
@@ -329,16 +330,16 @@ void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<
     if (lights && y.shadow_ok[i] != 0) {
       const std::size_t m = shadows++;
       ASSERT_TRUE(m < got.q.shadow_count && same_bits(row(got.shadow_c, m), row(y.shadow_c, i)) &&
-                  same_bits(row(got.shadow_o, m), row(y.shadow_o, i)) &&
+                  same_origin(row(got.shadow_o, m), row(y.shadow_o, i)) &&
                   same_bits(row(got.shadow_d, m), row(apart.bsdf.light_wi, i)) &&
-                  same_bits(got.shadow_tmax[m], y.shadow_tmax[i]) &&
+                  same_or_nan(got.shadow_tmax[m], y.shadow_tmax[i]) &&
                   got.shadow_light[m] == apart.lights.light[i].bits() &&
                   got.shadow_path[m] == path[i])
           << "shadow ray of row " << i;
     }
     if (y.alive[i] != 0) {
       const std::size_t m = next++;
-      ASSERT_TRUE(m < got.q.next_count && same_bits(row(got.next_o, m), row(y.next_o, i)) &&
+      ASSERT_TRUE(m < got.q.next_count && same_origin(row(got.next_o, m), row(y.next_o, i)) &&
                   same_bits(row(got.next_d, m), row(apart.bsdf.wi, i)) &&
                   got.next_path[m] == path[i])
           << "next ray of row " << i;
