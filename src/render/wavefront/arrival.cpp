@@ -28,7 +28,8 @@ void add_emission(ThreadContext& ctx, PathState& p, const Rayd& ray, const Hit& 
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, [&] {
-    return ctx.lights.pdf(glm::dvec3(p.prev_p), ray.d, hit, ray.time);  // a moving light's at the ray's time
+    return ctx.lights.pdf(glm::dvec3(p.prev_p), ray.d, hit,
+                          ray.time);  // a moving light's at the ray's time
   });
   p.radiance += p.beta * le * w;
 }
@@ -111,12 +112,33 @@ struct LaneRowWriter {
 
 }  // namespace
 
+namespace {
+
+// The arrivals that leave the lane rows' loop, out of line (noinline): inlined, their vector
+// growth and the emission's double work kept the loop's pointers from registers, and every
+// lane row reloaded them.
+[[gnu::noinline]] void arrive_at_emitter(ThreadContext& ctx, PathState& p, std::size_t k) {
+  const Rayd ray = ray_of(ctx.wave.rays.rays, k);
+  add_emission(ctx, p, ray, ctx.wave.record(k, ctx.tracer, ray));
+}
+[[gnu::noinline]] void queue_double_vertex(Wavefront& w, uint32_t k, uint32_t material,
+                                           uint32_t depth) {
+  w.double_vertices.push(k, material, depth);
+}
+[[gnu::noinline]] void queue_escape(Wavefront& w, uint32_t k) {
+  w.escaped.push_back(k);
+}
+
+}  // namespace
+
 void sort_arrivals(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
-  const bool lanes = ctx.settings.shading == Shading::kFloat;
   const MaterialColumns material_of(scene);
   const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
+  // The route of the materials shaded in lanes; none with the double shading.
+  const bool lanes = ctx.settings.shading == Shading::kFloat;
+  const auto to_lanes = lanes ? LaneMaterials::Route::kLanes : LaneMaterials::Route::kNone;
   // Without an environment an escaped ray adds nothing (add_escapes would find 0).
   const bool environment = ctx.lights.environment() != nullptr;
   const uint32_t max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
@@ -133,23 +155,22 @@ void sort_arrivals(ThreadContext& ctx) {
     PathState& p = paths[path];
     const PrimRef hit = PrimRef::from_bits(prim[k]);
     if (!hit.valid()) {
-      if (environment) w.escaped.push_back(uint32_t(k));
+      if (environment) queue_escape(w, uint32_t(k));
       continue;
     }
     const uint32_t material = material_of(hit);
     const LaneMaterials::Route to = route[material];
     if (to == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing: the path ends
-      const Rayd ray = ray_of(w.rays.rays, k);
-      add_emission(ctx, p, ray, w.record(k, ctx.tracer, ray));
+      arrive_at_emitter(ctx, p, k);
       continue;
     }
     const uint32_t depth = p.depth;
     if (depth >= max_depth) continue;
     p.depth = depth + 1;  // where the ray it sends on (if any) arrives
-    if (lanes && to == LaneMaterials::Route::kLanes)
+    if (to == to_lanes)
       lane_rows.push(path, uint32_t(k), material, depth, p);
     else
-      w.double_vertices.push(uint32_t(k), material, depth);
+      queue_double_vertex(w, uint32_t(k), material, depth);
   }
   w.lane_vertices.count = lane_rows.count;
   add_escapes(ctx);

@@ -52,8 +52,10 @@ struct LaneMaterials {
   // arrives at a back face (beer_transmittance is 1 for every other material).
   bool any_absorbing = false;
   // Where a hit on the material goes when the wavefront arrives: it ends its path (an
-  // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit.
-  enum class Route : uint8_t { kEmitter, kLanes, kDouble };
+  // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit. (kNone is no
+  // material's: what the arrivals compare against for the lanes when the double shading takes
+  // every hit.)
+  enum class Route : uint8_t { kEmitter, kLanes, kDouble, kNone };
   std::vector<Route> route;
   // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):
   // a sample's lobe number is never read (u < 1 = pd picks the diffuse lobe; black rows are
