@@ -17,27 +17,30 @@ namespace raylane::simd {
 // col[idx[i]] per lane, for a column of n floats and each idx[i] in [0, n): exactly what
 // gather<A>(col, idx) answers. Columns of up to 2·kWidth<A> floats are permuted (AVX-512,
 // AVX2); longer ones, and SSE4.2 (no variable float permute across its four lanes that beats
-// its lane-by-lane loads), gather.
+// its lane-by-lane loads), gather. `readable` is how many floats from col may be read (n
+// unless the column is padded): where it covers whole registers they load plainly, else their
+// loads are masked at n.
 template <class A>
-inline Floats<A> lookup(const float* col, std::size_t n, const Ints<A>& idx) {
+[[gnu::always_inline]] inline Floats<A> lookup(const float* col, std::size_t n, const Ints<A>& idx,
+                                               std::size_t readable = 0) {
   constexpr std::size_t W = std::size_t(kWidth<A>);
   if constexpr (W == 16) {
+    if (n <= W)  // one register: one permute
+      return Floats<A>(_mm512_permutexvar_ps(
+          __m512i(idx), __m512(readable >= W ? load<A>(col) : load_first<A>(col, int(n)))));
     if (n <= 2 * W) {
-      if (n <= W)  // one register: one permute
-        return Floats<A>(_mm512_permutexvar_ps(__m512i(idx), __m512(load_first<A>(col, int(n)))));
-      const __m512 low(load_first<A>(col, int(W)));
-      const __m512 high(load_first<A>(col + W, int(n - W)));
+      const __m512 high(readable >= 2 * W ? load<A>(col + W) : load_first<A>(col + W, int(n - W)));
       // Bit 4 of each index picks the register, bits 0-3 the lane.
-      return Floats<A>(_mm512_permutex2var_ps(low, __m512i(idx), high));
+      return Floats<A>(_mm512_permutex2var_ps(__m512(load<A>(col)), __m512i(idx), high));
     }
   } else if constexpr (W == 8) {
     if (n <= W)  // one register: one permute (the course scene's spheres and boxes)
-      return Floats<A>(_mm256_permutevar8x32_ps(__m256(load_first<A>(col, int(n))), __m256i(idx)));
+      return Floats<A>(_mm256_permutevar8x32_ps(
+          __m256(readable >= W ? load<A>(col) : load_first<A>(col, int(n))), __m256i(idx)));
     if (n <= 2 * W) {
-      const __m256 low(load_first<A>(col, int(W)));
-      const __m256 high(load_first<A>(col + W, int(n - W)));
+      const __m256 high(readable >= 2 * W ? load<A>(col + W) : load_first<A>(col + W, int(n - W)));
       // VPERMPS reads bits 0-2 of each index; lanes whose index is 8 or more take the high one.
-      const __m256 from_low = _mm256_permutevar8x32_ps(low, __m256i(idx));
+      const __m256 from_low = _mm256_permutevar8x32_ps(__m256(load<A>(col)), __m256i(idx));
       const __m256 from_high = _mm256_permutevar8x32_ps(high, __m256i(idx));
       const __m256i in_high = _mm256_cmpgt_epi32(__m256i(idx), _mm256_set1_epi32(int32_t(W) - 1));
       return Floats<A>(_mm256_blendv_ps(from_low, from_high, _mm256_castsi256_ps(in_high)));

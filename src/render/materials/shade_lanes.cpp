@@ -57,6 +57,14 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
     if (in_lanes.back() && (pr.back() > 0 || pt.back() > 0)) lobe_unread = false;
     if (in_lanes.back() && m.kt != glm::vec3(0, 0, 0)) any_absorbing = true;
   }
+  count = rows.size();
+  const std::size_t padded = (count + kLookupPadding - 1) / kLookupPadding * kLookupPadding;
+  for (auto* c3 : {&kd, &ks})
+    for (std::vector<float>& c : *c3)
+      c.resize(padded, 0.0f);
+  for (std::vector<float>* c :
+       {&pd, &pr, &pt, &alpha, &ior, &d_scale, &pm_scale, &g1_scale, &microfacet, &alpha_g2})
+    c->resize(padded, 0.0f);
 }
 
 void ShadeBatch::resize(std::size_t rows) {

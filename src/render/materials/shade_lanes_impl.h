@@ -69,7 +69,7 @@ struct LaneBsdf {
     auto idx = simd::load<A>(b.material.data() + i);
     // The materials' columns are short: read by register permutes where they fit (lookup).
     auto gather = [&](const std::vector<float>& col) {
-      return simd::lookup<A>(col.data(), col.size(), idx);
+      return simd::lookup<A>(col.data(), m.count, idx, col.size());
     };
     // A textured scene's rows carry their own Kd and lobe probabilities (ShadeBatch::per_row_kd).
     const bool rows = b.per_row_kd;

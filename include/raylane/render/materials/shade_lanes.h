@@ -32,6 +32,12 @@ LobeChances lobe_chances(const glm::vec3& kd, const glm::vec3& ks, const glm::ve
 struct LaneMaterials {
   explicit LaneMaterials(const std::vector<Material>& materials);
 
+  // How many materials (rows). The float columns below hold them and zeros after, up to a
+  // multiple of kLookupPadding, so that the lanes read a column in whole registers (two of
+  // AVX-512's for up to 32 materials) without masking the loads (simd::lookup).
+  static constexpr std::size_t kLookupPadding = 32;
+  std::size_t count = 0;
+
   std::array<std::vector<float>, 3> kd, ks;
   std::vector<float> pd, pr, pt;  // lobe probabilities |Kd|/s, |Ks|/s, |Kt|/s (all 0: black)
   std::vector<float> alpha, ior;
