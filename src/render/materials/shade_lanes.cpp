@@ -55,6 +55,7 @@ LaneMaterials::LaneMaterials(const std::vector<Material>& materials) {
                     : in_lanes.back() ? Route::kLanes
                                       : Route::kDouble);
     if (in_lanes.back() && (pr.back() > 0 || pt.back() > 0)) lobe_unread = false;
+    if (route.back() == Route::kLanes && !has_lobes.back()) any_black = true;
     if (in_lanes.back() && m.kt != glm::vec3(0, 0, 0)) any_absorbing = true;
   }
   count = rows.size();

@@ -8,6 +8,7 @@
 // the rays and the paths back. (Each step once gathered what it needed from the hits and paths
 // itself: seven passes over the rows, 18 % of a render.)
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "raylane/render/materials/bsdf.h"
@@ -180,6 +181,23 @@ bool reflects(const uint8_t* has_lobes, double cos_ns, uint32_t m) {
   return cos_ns != 0 && std::isfinite(cos_ns) && has_lobes[m];
 }
 
+// Whether every queued row's BSDF reflects something, in a loop without a branch per row that
+// the compiler vectorises: the shading normal's test per row, the materials' only where some
+// material shaded in lanes is black (a byte per row from a table does not vectorise). The
+// row-by-row scan it replaces was 20M instructions of the course scene's 1.46G.
+bool all_reflect(const LaneVertexQueue& rows, const LaneMaterials& lm, std::size_t n) {
+  const double* cos_ns = rows.cos_ns.data();
+  unsigned ok = 1;
+  for (std::size_t r = 0; r < n; ++r)
+    ok &= unsigned(cos_ns[r] != 0) & unsigned(std::abs(cos_ns[r]) <= DBL_MAX);
+  if (lm.any_black) {
+    const uint32_t* material = rows.material.data();
+    for (std::size_t r = 0; r < n; ++r)
+      ok &= lm.has_lobes[material[r]];
+  }
+  return ok != 0;
+}
+
 // The queued rows whose BSDF reflects something, kept in order with their columns so far (the
 // rest dropped). Seldom any to drop: one pass finds out, a second moves rows only then.
 void drop_black_rows(ThreadContext& ctx) {
@@ -188,13 +206,13 @@ void drop_black_rows(ThreadContext& ctx) {
   const LaneMaterials& lm = ctx.lanes.materials;
   LaneVertexQueue& rows = lv;
   const std::size_t n = lv.count;
+  if (all_reflect(rows, lm, n)) return;
   const double* cos_ns = rows.cos_ns.data();
   const uint32_t* material = rows.material.data();
   std::size_t first = 0;
   const uint8_t* has_lobes = lm.has_lobes.data();
   while (first < n && reflects(has_lobes, cos_ns[first], material[first]))
     ++first;
-  if (first == n) return;
   const Columns3Out<float> p(lv.vertices.p), p_error(lv.vertices.p_error), ng(lv.vertices.ng);
   const Columns3Out<float> ns(lv.shade.n), beta(lv.vertices.beta);
   std::size_t kept = first;

@@ -54,6 +54,7 @@ struct LaneMaterials {
   std::vector<uint8_t> textured;
   bool any_textured = false;
   std::vector<uint8_t> has_lobes;  // 1 where pd + pr + pt > 0 (0: the Bsdf is black)
+  bool any_black = false;          // some material shaded in lanes has no lobes
   // Some material shaded in lanes transmits (Kt ≠ 0), so Beer's law may weigh a path that
   // arrives at a back face (beer_transmittance is 1 for every other material).
   bool any_absorbing = false;
