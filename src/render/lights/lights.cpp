@@ -285,9 +285,9 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   constexpr std::size_t kBlock = 16;
   for (std::size_t b = 0; b < n; b += kBlock) {
     const std::size_t end = std::min(n, b + kBlock);
-    bool any = false;
+    unsigned any = 0;  // an unsigned OR, which the compiler vectorises (a bool's it did not)
     for (std::size_t r = b; r < end; ++r)
-      any |= !(solid_angle[r] > 0);
+      any |= unsigned(!(solid_angle[r] > 0));
     if (!any) continue;
     for (std::size_t r = b; r < end; ++r)
       if (!(solid_angle[r] > 0)) q.set(r, finish_sphere_row(q, r, 0));
