@@ -34,9 +34,10 @@ inline bool one_run(const uint32_t* rows) {
 }
 
 // Bits [0, n) of `bits` as n bytes, 0 or 1 each, at to[0, n) (n ≤ 16): a facing column written
-// from a mask in one or two stores where a loop stored a byte at a time (8 % of the render's
-// surface pass). Each group of eight bits is spread to the low bit of eight bytes by three
-// shift-and-mask steps (each moves half of the remaining bits as far as they must go).
+// from a mask in one or two stores where a loop stored a byte at a time (a store per row, in
+// a pass whose other stores are whole registers). Each group of eight bits is spread to the low bit
+// of eight bytes by three shift-and-mask steps (each moves half of the remaining bits as far as
+// they must go).
 template <class A>
 inline void store_flags(uint8_t* to, uint32_t bits, int n) {
   auto spread = [](uint64_t x) {

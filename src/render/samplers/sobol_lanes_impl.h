@@ -8,6 +8,7 @@
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/render/samplers/sobol_steps.h"
 #include "raylane/simd/lane_numbers.h"
+#include "raylane/simd/lane_u64.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane::detail {
@@ -17,8 +18,8 @@ using U32 = simd::UInts<A>;
 
 // The rows' group seeds, group_seed_of (mix64 of the pixel's seed and the group's salt) split
 // into the index's scramble (low half) and the components' seed (high half), in 64-bit lanes
-// (simd::U64Lanes: AVX2 and SSE4.2 build the 64-bit product from 32-bit ones). Row by row
-// they were a quarter of the Sobol groups' instructions at AVX2.
+// (simd::U64Lanes: AVX2 and SSE4.2 build the 64-bit product from 32-bit ones), written once
+// with mix64 (render/samplers/rng.h).
 template <class A>
 void group_seeds(uint32_t group, SobolBatch& b) {
   using U64 = simd::U64Lanes<A>;

@@ -184,7 +184,7 @@ bool reflects(const uint8_t* has_lobes, double cos_ns, uint32_t m) {
 // Whether every queued row's BSDF reflects something, in a loop without a branch per row that
 // the compiler vectorises: the shading normal's test per row, the materials' only where some
 // material shaded in lanes is black (a byte per row from a table does not vectorise). The
-// row-by-row scan it replaces was 20M instructions of the course scene's 1.46G.
+// row-by-row scan, a branch and a table byte per row, now runs only where some row does not.
 bool all_reflect(const LaneVertexQueue& rows, const LaneMaterials& lm, std::size_t n) {
   const double* cos_ns = rows.cos_ns.data();
   unsigned ok = 1;
