@@ -7,3 +7,11 @@ const RenderLanes& render_lanes(Isa isa) {
 }
 
 }  // namespace raylane::detail
+
+namespace raylane {
+
+void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out) {
+  detail::render_lanes(isa).sort_arrivals(in, out);
+}
+
+}  // namespace raylane

@@ -1,15 +1,17 @@
 // The render's lane kernels, compiled once per instruction set (render_lanes_sse42.cpp,
 // render_lanes_avx2.cpp, render_lanes_avx512.cpp, each from the same *_impl.h sources) into one
 // table of entry points each: the BSDF, the Sobol groups, the sphere lights' cones, what follows
-// the BSDF, both at once with the queues' write-back (the scatter kernel) and the pinhole's
-// camera rays. The public functions (shade_lanes, sobol_groups, sample_cones, finish_vertices,
-// scatter_vertices, pinhole_rays) look their kernel up here, the one place an instruction set picks
-// one (as bvh/build_lanes.h does for the builder). This header has no xsimd.
+// the BSDF, both at once with the queues' write-back (the scatter kernel), the pinhole's camera
+// rays and the arrivals' sort. The public functions (shade_lanes, sobol_groups, sample_cones,
+// finish_vertices, scatter_vertices, pinhole_rays, sort_arrival_rows) look their kernel up here,
+// the one place an instruction set picks one (as bvh/build_lanes.h does for the builder). This
+// header has no xsimd.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
+#include "raylane/render/arrival_lanes.h"
 #include "raylane/render/camera/camera_lanes.h"
 #include "raylane/render/lights/light_lanes.h"
 #include "raylane/render/materials/shade_lanes.h"
@@ -40,6 +42,8 @@ struct RenderLanes {
   // pinhole_rays (render/camera/camera_lanes.h) for the points [0, the count rounded down to the
   // lane width): returns that count.
   std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);
+  // sort_arrival_rows (render/arrival_lanes.h).
+  void (*sort_arrivals)(const ArrivalColumns& in, ArrivalRows& out);
 };
 
 extern const RenderLanes kRenderLanesSse42, kRenderLanesAvx2, kRenderLanesAvx512;

@@ -3,6 +3,7 @@
 // with their own flags. Include from those files only.
 #pragma once
 
+#include "render/arrival_lanes_impl.h"
 #include "render/camera/camera_lanes_impl.h"
 #include "render/lights/light_lanes_impl.h"
 #include "render/materials/shade_lanes_impl.h"
@@ -24,7 +25,7 @@ constexpr RenderLanes render_lanes_for() {
   return {shade_lanes_range<A>,  sobol_groups_and_numbers<A>,
           sample_cones_range<A>, finish_vertices_range<A>,
           scatter_range<A>,      gather_wo_range<A>,
-          pinhole_rays_range<A>};
+          pinhole_rays_range<A>, sort_arrival_rows_range<A>};
 }
 
 }  // namespace raylane::detail

@@ -3,7 +3,9 @@
 // here), or a queue of vertices to shade.
 #include <algorithm>
 #include <array>
+#include <span>
 
+#include "raylane/render/arrival_lanes.h"
 #include "raylane/render/vertex_steps.h"
 #include "render/wavefront/stages.h"
 
@@ -80,53 +82,47 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane_vertices rows sort_arrivals appends, with the path's throughput for the scatter
-// kernel, read while the path is at hand (a pass of its own gathered it again from the paths
-// scattered in memory). Their columns' pointers and the count are held in locals
-// through the loop (stores through the queue's vectors could alias its count and pointers, so
-// the compiler reloaded them at every row).
-struct LaneRowWriter {
-  uint32_t *path, *ray, *material, *depth;
-  uint64_t* pixel_seed;
-  float *beta_x, *beta_y, *beta_z;
-  std::size_t count;
-  explicit LaneRowWriter(LaneVertexQueue& q)
-      : path(q.path.data()),
-        ray(q.ray.data()),
-        material(q.material.data()),
-        depth(q.depth.data()),
-        pixel_seed(q.pixel_seed.data()),
-        beta_x(q.vertices.beta[0].data()),
-        beta_y(q.vertices.beta[1].data()),
-        beta_z(q.vertices.beta[2].data()),
-        count(q.count) {}
-  void push(uint32_t p, uint32_t k, uint32_t m, uint32_t d, const PathState& state) {
-    const std::size_t r = count++;
-    path[r] = p, ray[r] = k, material[r] = m, depth[r] = d;
-    pixel_seed[r] = state.pixel_seed;
-    // Beer's law on a back face follows with the surfaces (lane_vertices.cpp, path_columns).
-    beta_x[r] = float(state.beta.x), beta_y[r] = float(state.beta.y);
-    beta_z[r] = float(state.beta.z);
+// The lane rows' columns that come from their paths: the Sobol seed and the throughput for the
+// scatter kernel (Beer's law on a back face follows with the surfaces: lane_vertices.cpp,
+// path_columns). Each path also steps to the depth its next ray arrives at. The columns'
+// pointers are held in locals: stores through the queue's vectors could alias them.
+void copy_path_columns(Wavefront& w, std::size_t rows) {
+  LaneVertexQueue& lv = w.lane_vertices;
+  const uint32_t *path = lv.path.data(), *depth = lv.depth.data();
+  uint64_t* pixel_seed = lv.pixel_seed.data();
+  float *beta_x = lv.vertices.beta[0].data(), *beta_y = lv.vertices.beta[1].data();
+  float* beta_z = lv.vertices.beta[2].data();
+  PathState* paths = w.paths.data();
+  for (std::size_t r = 0; r < rows; ++r) {
+    PathState& p = paths[path[r]];
+    pixel_seed[r] = p.pixel_seed;
+    beta_x[r] = float(p.beta.x), beta_y[r] = float(p.beta.y), beta_z[r] = float(p.beta.z);
+    p.depth = depth[r] + 1;  // where the ray it sends on (if any) arrives
   }
-};
-
-}  // namespace
-
-namespace {
-
-// The arrivals that leave the lane rows' loop, out of line (noinline): inlined, their vector
-// growth and the emission's double work kept the loop's pointers from registers, and every
-// lane row reloaded them.
-[[gnu::noinline]] void arrive_at_emitter(ThreadContext& ctx, PathState& p, std::size_t k) {
-  const Rayd ray = ray_of(ctx.wave.rays.rays, k);
-  add_emission(ctx, p, ray, ctx.wave.record(k, ctx.tracer, ray));
 }
-[[gnu::noinline]] void queue_double_vertex(Wavefront& w, uint32_t k, uint32_t material,
-                                           uint32_t depth) {
-  w.double_vertices.push(k, material, depth);
-}
-[[gnu::noinline]] void queue_escape(Wavefront& w, uint32_t k) {
-  w.escaped.push_back(k);
+
+// The arrivals the lanes leave to scalar code, in ray order: an escape under an environment,
+// an emitter (both end the path), a vertex shaded in double.
+void finish_rare_arrivals(ThreadContext& ctx, const MaterialColumns& material_of,
+                          std::span<const uint32_t> rare) {
+  Wavefront& w = ctx.wave;
+  const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
+  for (const uint32_t k : rare) {
+    PathState& p = w.paths[w.rays.path[k]];
+    const PrimRef hit = PrimRef::from_bits(w.hits.prim[k]);
+    if (!hit.valid()) {
+      w.escaped.push_back(k);
+      continue;
+    }
+    const uint32_t material = material_of(hit);
+    if (route[material] == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing
+      const Rayd ray = ray_of(w.rays.rays, k);
+      add_emission(ctx, p, ray, w.record(k, ctx.tracer, ray));
+      continue;
+    }
+    w.double_vertices.push(k, material, p.depth);
+    ++p.depth;
+  }
 }
 
 }  // namespace
@@ -134,45 +130,38 @@ namespace {
 void sort_arrivals(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   const Scene& scene = ctx.tracer.scene();
-  const MaterialColumns material_of(scene);
-  const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
+  const std::size_t n = w.rays.size();
+  using Route = LaneMaterials::Route;
   // The route of the materials shaded in lanes; none with the double shading.
   const bool lanes = ctx.settings.shading == Shading::kFloat;
-  const auto to_lanes = lanes ? LaneMaterials::Route::kLanes : LaneMaterials::Route::kNone;
+  ArrivalColumns in;
+  in.prim = w.hits.prim.data(), in.ray_path = w.rays.path.data(), in.count = n;
+  static_assert(sizeof(PathState) % sizeof(uint32_t) == 0, "the depths' stride in words");
+  in.path_depth = &w.paths.data()->depth;
+  in.depth_stride = uint32_t(sizeof(PathState) / sizeof(uint32_t));
+  PrimKinds::for_each([&](auto kind) {
+    const auto& table = scene.table<decltype(kind)>();
+    if (table.size() != 0) in.material_of[kind_index<decltype(kind)>()] = table.material.data();
+  });
+  in.route = reinterpret_cast<const uint32_t*>(ctx.lanes.materials.route.data());
+  in.emitter_route = uint32_t(Route::kEmitter);
+  in.lanes_route = uint32_t(lanes ? Route::kLanes : Route::kNone);
+  in.max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
   // Without an environment an escaped ray adds nothing (add_escapes would find 0).
-  const bool environment = ctx.lights.environment() != nullptr;
-  const uint32_t max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
+  in.environment = ctx.lights.environment() != nullptr;
   w.double_vertices.clear();
   w.escaped.clear();
-  if (lanes) start_lane_vertices(ctx, w.rays.size());
-  LaneRowWriter lane_rows(w.lane_vertices);
-  const uint32_t* prim = w.hits.prim.data();
-  const uint32_t* ray_path = w.rays.path.data();
-  PathState* paths = w.paths.data();
-  const std::size_t n = w.rays.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const uint32_t path = ray_path[k];
-    PathState& p = paths[path];
-    const PrimRef hit = PrimRef::from_bits(prim[k]);
-    if (!hit.valid()) {
-      if (environment) queue_escape(w, uint32_t(k));
-      continue;
-    }
-    const uint32_t material = material_of(hit);
-    const LaneMaterials::Route to = route[material];
-    if (to == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing: the path ends
-      arrive_at_emitter(ctx, p, k);
-      continue;
-    }
-    const uint32_t depth = p.depth;
-    if (depth >= max_depth) continue;
-    p.depth = depth + 1;  // where the ray it sends on (if any) arrives
-    if (to == to_lanes)
-      lane_rows.push(path, uint32_t(k), material, depth, p);
-    else
-      queue_double_vertex(w, uint32_t(k), material, depth);
-  }
-  w.lane_vertices.count = lane_rows.count;
+  w.rare_arrivals.resize((n + 15) / 16 * 16);
+  if (lanes) start_lane_vertices(ctx, n);
+  LaneVertexQueue& lv = w.lane_vertices;
+  ArrivalRows out;
+  out.path = lv.path.data(), out.ray = lv.ray.data(), out.material = lv.material.data();
+  out.depth = lv.depth.data(), out.rare = w.rare_arrivals.data();
+  ctx.lanes.kernels.sort_arrivals(in, out);
+  copy_path_columns(w, out.lanes);
+  lv.count = out.lanes;
+  finish_rare_arrivals(ctx, MaterialColumns(scene),
+                       std::span<const uint32_t>(w.rare_arrivals.data(), out.rare_count));
   add_escapes(ctx);
 }
 

@@ -184,6 +184,8 @@ struct alignas(128) Wavefront {
   // The rays that left the scene under an environment (this step), and what they see: looked
   // up together after the hits are sorted.
   std::vector<uint32_t> escaped;
+  // The rays whose arrival scalar code finishes (sort_arrival_rows' rare rows).
+  std::vector<uint32_t> rare_arrivals;
   EnvironmentSeenBatch escapes;
   TraceScratch scratch;
   std::vector<TileInFlight> tiles;  // block b holds paths [b·kTile², (b + 1)·kTile²)

@@ -61,8 +61,8 @@ struct LaneMaterials {
   // Where a hit on the material goes when the wavefront arrives: it ends its path (an
   // emitter), or it is shaded in lanes or in double (in_lanes), one load per hit. (kNone is no
   // material's: what the arrivals compare against for the lanes when the double shading takes
-  // every hit.)
-  enum class Route : uint8_t { kEmitter, kLanes, kDouble, kNone };
+  // every hit.) 32 bits, so that the arrivals' lanes gather it (render/arrival_lanes.h).
+  enum class Route : uint32_t { kEmitter, kLanes, kDouble, kNone };
   std::vector<Route> route;
   // Every material shaded in lanes is diffuse alone or black (pr = pt = 0, so pd is 1 or 0):
   // a sample's lobe number is never read (u < 1 = pd picks the diffuse lobe; black rows are

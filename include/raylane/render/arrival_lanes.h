@@ -1,0 +1,69 @@
+// Where a wavefront's rays arrived, sorted in SIMD lanes (the path tracer's arrival stage,
+// src/render/wavefront/arrival.cpp): each ray's hit, its material and the material's route, and
+// its path's depth decide whether the hit is a vertex shaded in lanes, a rarer case that scalar
+// code finishes (an escape under an environment, an emitter, a vertex shaded in double), or the
+// end of the path (a miss without an environment, a path at its last bounce). A batch of rays is
+// classified at once and its lane rows packed into their columns; a row by row loop paid a
+// branch chain and a queue's push per ray.
+//
+// Baseline code includes this header; the kernel lives in the per-ISA translation units
+// src/render/render_lanes_<isa>.cpp, picked at run time through their table
+// (src/render/render_lanes.h).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "raylane/prims/prim_list.h"
+#include "raylane/simd/isa.h"
+
+namespace raylane {
+
+// What the kernel reads: rays [0, count) of a wavefront.
+struct ArrivalColumns {
+  const uint32_t* prim = nullptr;      // ray k's hit (PrimRef bits; kInvalidBits for a miss)
+  const uint32_t* ray_path = nullptr;  // ray k's path
+  std::size_t count = 0;
+  // Path p's depth is path_depth[p · depth_stride] (the paths' own records).
+  const uint32_t* path_depth = nullptr;
+  uint32_t depth_stride = 1;
+  // Each kind's material column (the scene's tables), by PrimTag; null for a kind no hit
+  // can have (an empty table).
+  std::array<const uint32_t*, kPrimKindCount> material_of{};
+  // Material m's route (LaneMaterials::Route as an integer): route[m].
+  const uint32_t* route = nullptr;
+  uint32_t emitter_route = 0;  // the route of emitters
+  uint32_t lanes_route = 0;    // the route shaded in lanes (one no material has: none)
+  uint32_t max_depth = 0;      // a path at this depth sends no ray on
+  bool environment = false;    // whether an escape sees something
+};
+
+// What it writes. The lane rows' columns and the rare rows need room for count rows rounded up
+// to 16 (whole registers are stored).
+struct ArrivalRows {
+  // The vertices shaded in lanes, in ray order: path, ray, material, depth.
+  uint32_t *path = nullptr, *ray = nullptr, *material = nullptr, *depth = nullptr;
+  std::size_t lanes = 0;
+  // The rays whose arrival scalar code finishes, in order: escapes under an environment,
+  // emitters, and vertices shaded in double (not at the last bounce).
+  uint32_t* rare = nullptr;
+  std::size_t rare_count = 0;
+};
+
+// The reference: sort_arrival_rows' answer for ray k, one ray at a time.
+enum class Arrival { kEnd, kLanes, kRare };
+inline Arrival arrival_of(const ArrivalColumns& in, std::size_t k) {
+  const PrimRef hit = PrimRef::from_bits(in.prim[k]);
+  if (!hit.valid()) return in.environment ? Arrival::kRare : Arrival::kEnd;
+  const uint32_t route = in.route[in.material_of[std::size_t(hit.tag())][hit.row()]];
+  if (route == in.emitter_route) return Arrival::kRare;
+  if (in.path_depth[std::size_t(in.ray_path[k]) * in.depth_stride] >= in.max_depth)
+    return Arrival::kEnd;
+  return route == in.lanes_route ? Arrival::kLanes : Arrival::kRare;
+}
+
+// Sorts rays [0, in.count) into out's lane rows and rare rows (both from 0).
+void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out);
+
+}  // namespace raylane

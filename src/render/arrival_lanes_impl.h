@@ -1,0 +1,79 @@
+// sort_arrival_rows (render/arrival_lanes.h) in lanes, instantiated per instruction set by
+// src/render/render_lanes_<isa>.cpp. Include from nowhere else. Its answers are arrival_of's,
+// ray by ray (tests/render/arrival_lanes_test.cpp).
+#pragma once
+
+#include <algorithm>
+
+#include "raylane/render/arrival_lanes.h"
+#include "raylane/simd/lane_rows.h"
+#include "raylane/simd/lanes.h"
+
+namespace raylane::detail {
+
+template <class A>
+void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
+  using I = simd::Ints<A>;
+  using F = simd::Floats<A>;
+  constexpr int W = simd::kWidth<A>;
+  auto ints = [](const F& v) { return xsimd::bitwise_cast<I>(v); };
+  // Integer columns gathered as floats: a gather moves bits, it does not convert them.
+  auto gather = [&](const uint32_t* col, const I& idx) {
+    return ints(simd::gather<A>(reinterpret_cast<const float*>(col), idx));
+  };
+  auto load_rows = [&](const uint32_t* col, std::size_t k, int m) {
+    const float* at = reinterpret_cast<const float*>(col + k);
+    return ints(m == W ? simd::load<A>(at) : simd::load_first<A>(at, m));
+  };
+  // The kinds a hit can have (their tables have rows), listed once.
+  std::array<int32_t, kPrimKindCount> tags{};
+  std::size_t kinds = 0;
+  for (std::size_t t = 0; t < kPrimKindCount; ++t)
+    if (in.material_of[t] != nullptr) tags[kinds++] = int32_t(t);
+  const I invalid(int32_t(PrimRef::kInvalidBits)), row_mask(int32_t(PrimRef::kMaxRows - 1));
+  const I emitter(int32_t(in.emitter_route)), lanes_route(int32_t(in.lanes_route));
+  const I max_depth(int32_t(in.max_depth)), stride(int32_t(in.depth_stride));
+  const uint32_t escapes_seen = in.environment ? ~0u : 0u;
+  std::size_t lanes = 0, rare = 0;
+  for (std::size_t k = 0; k < in.count; k += W) {
+    const int m = int(std::min<std::size_t>(W, in.count - k));
+    const uint32_t own = (1u << m) - 1;  // m ≤ 16
+    const I prim = load_rows(in.prim, k, m), path = load_rows(in.ray_path, k, m);
+    const uint32_t missed = simd::bits<A>(simd::equal<A>(prim, invalid)) & own;
+    const uint32_t hit = own & ~missed;
+    // The material: each kind present from its own column, at row 0 in the other lanes (a
+    // kind with hits has a row 0).
+    const I tag = (prim >> PrimRef::kRowBits) & I((1 << PrimRef::kTagBits) - 1);
+    const I row = prim & row_mask;
+    I material(0);
+    for (std::size_t j = 0; j < kinds; ++j) {
+      const simd::Mask<A> on = simd::equal<A>(tag, I(tags[j]));
+      if ((simd::bits<A>(on) & hit) == 0) continue;
+      const I rows = simd::select<A>(on, row, I(0));
+      material = simd::select<A>(on, gather(in.material_of[std::size_t(tags[j])], rows), material);
+    }
+    const I route = gather(in.route, material);
+    const I depth = gather(in.path_depth, path * stride);
+    const uint32_t to_emitter = simd::bits<A>(simd::equal<A>(route, emitter)) & hit;
+    const uint32_t goes_on = simd::bits<A>(xsimd::bool_cast(depth < max_depth)) & hit;
+    const uint32_t in_lanes =
+        simd::bits<A>(simd::equal<A>(route, lanes_route)) & goes_on & ~to_emitter;
+    const uint32_t to_rare =
+        (missed & escapes_seen) | to_emitter | (goes_on & ~to_emitter & ~in_lanes);
+    const I ray = I(int32_t(k)) + simd::lane_index<A>();
+    if (in_lanes != 0) {  // never with the double shading, whose call passes no columns
+      const simd::LanePacker<A> vertex(in_lanes);
+      vertex.store(out.path + lanes, path), vertex.store(out.ray + lanes, ray);
+      vertex.store(out.material + lanes, material), vertex.store(out.depth + lanes, depth);
+      lanes += std::size_t(vertex.count());
+    }
+    if (to_rare != 0) {
+      const simd::LanePacker<A> other(to_rare);
+      other.store(out.rare + rare, ray);
+      rare += std::size_t(other.count());
+    }
+  }
+  out.lanes = lanes, out.rare_count = rare;
+}
+
+}  // namespace raylane::detail

@@ -1,0 +1,149 @@
+// The arrivals' sort in lanes (render/arrival_lanes.h) against arrival_of, ray by ray, at every
+// instruction set this CPU has: random wavefronts of hits on several kinds, misses with and
+// without an environment, emitters, materials shaded in lanes and in double, paths below, at
+// and past the last bounce, the double shading's call (no route shaded in lanes), and every
+// length from 0 to past two registers, so that each lane of a last partial batch is met.
+#include "raylane/render/arrival_lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "raylane/core/strings.h"
+#include "raylane/render/samplers/rng.h"
+
+namespace raylane {
+namespace {
+
+// Routes as LaneMaterials numbers them (the kernel takes any numbers).
+constexpr uint32_t kEmitter = 0, kLanes = 1, kDouble = 2, kNone = 3;
+
+struct Wavefront {
+  std::vector<uint32_t> prim, ray_path;
+  std::vector<uint32_t> depths;  // path p's depth at depths[p · stride]
+  std::array<std::vector<uint32_t>, kPrimKindCount> materials;
+  std::vector<uint32_t> route;
+  static constexpr uint32_t kStride = 3;  // the depth among other words, as in PathState
+
+  ArrivalColumns columns(bool environment, bool lanes) const {
+    ArrivalColumns in;
+    in.prim = prim.data(), in.ray_path = ray_path.data(), in.count = prim.size();
+    in.path_depth = depths.data(), in.depth_stride = kStride;
+    for (std::size_t t = 0; t < kPrimKindCount; ++t)
+      if (!materials[t].empty()) in.material_of[t] = materials[t].data();
+    in.route = route.data();
+    in.emitter_route = kEmitter, in.lanes_route = lanes ? kLanes : kNone;
+    in.max_depth = 5, in.environment = environment;
+    return in;
+  }
+};
+
+// n rays of `paths` paths (each ray its own path in a real wavefront; shared here too, which
+// the sort must not mind), hitting kinds 0, 1 and 4 (the others' tables empty), a tenth missing.
+Wavefront random_wavefront(std::size_t n, Rng& rng) {
+  Wavefront w;
+  const std::size_t paths = n + 3, material_count = 9;
+  for (uint32_t m = 0; m < material_count; ++m)
+    w.route.push_back(m < 2 ? kEmitter : m < 6 ? kLanes : kDouble);
+  const std::size_t kinds[3] = {0, 1, 4}, rows[3] = {5, 70, 2};
+  for (int j = 0; j < 3; ++j)
+    for (std::size_t r = 0; r < rows[j]; ++r)
+      w.materials[kinds[j]].push_back(uint32_t(rng.uniform() * material_count));
+  w.depths.assign(paths * Wavefront::kStride, 0xdeadbeefu);
+  for (std::size_t p = 0; p < paths; ++p)
+    w.depths[p * Wavefront::kStride] = uint32_t(rng.uniform() * 7);  // 0..6 around max 5
+  for (std::size_t k = 0; k < n; ++k) {
+    w.ray_path.push_back(uint32_t(rng.uniform() * double(paths)));
+    if (rng.uniform() < 0.1) {
+      w.prim.push_back(PrimRef::invalid().bits());
+      continue;
+    }
+    const int j = int(rng.uniform() * 3);
+    const uint32_t row = uint32_t(rng.uniform() * double(rows[j]));
+    w.prim.push_back(PrimRef(PrimTag(kinds[j]), row).bits());
+  }
+  return w;
+}
+
+// Room for n rows rounded up to 16, and the canary past it.
+struct Rows {
+  std::vector<uint32_t> path, ray, material, depth, rare;
+  explicit Rows(std::size_t n) {
+    const std::size_t room = (n + 15) / 16 * 16 + 1;
+    for (auto* c : {&path, &ray, &material, &depth, &rare})
+      c->assign(room, 0xfeedu);
+  }
+  ArrivalRows out() {
+    ArrivalRows o;
+    o.path = path.data(), o.ray = ray.data(), o.material = material.data();
+    o.depth = depth.data(), o.rare = rare.data();
+    return o;
+  }
+};
+
+void expect_sorted_as_reference(Isa isa, const Wavefront& w, bool environment, bool lanes) {
+  const ArrivalColumns in = w.columns(environment, lanes);
+  Rows got(in.count);
+  ArrivalRows out = got.out();
+  sort_arrival_rows(isa, in, out);
+  std::size_t lane = 0, rare = 0;
+  for (std::size_t k = 0; k < in.count; ++k) {
+    SCOPED_TRACE(cat("ray ", k));
+    const Arrival a = arrival_of(in, k);
+    if (a == Arrival::kLanes) {
+      ASSERT_LT(lane, out.lanes);
+      const PrimRef hit = PrimRef::from_bits(w.prim[k]);
+      EXPECT_EQ(got.ray[lane], k);
+      EXPECT_EQ(got.path[lane], w.ray_path[k]);
+      EXPECT_EQ(got.material[lane], w.materials[std::size_t(hit.tag())][hit.row()]);
+      EXPECT_EQ(got.depth[lane], w.depths[w.ray_path[k] * Wavefront::kStride]);
+      ++lane;
+    } else if (a == Arrival::kRare) {
+      ASSERT_LT(rare, out.rare_count);
+      EXPECT_EQ(got.rare[rare], k);
+      ++rare;
+    }
+  }
+  EXPECT_EQ(out.lanes, lane);
+  EXPECT_EQ(out.rare_count, rare);
+  const std::size_t canary = got.path.size() - 1;
+  for (auto* c : {&got.path, &got.ray, &got.material, &got.depth, &got.rare})
+    EXPECT_EQ((*c)[canary], 0xfeedu) << "a store past the room";
+}
+
+TEST(ArrivalLanes, SortsEveryRayAsTheReferenceDoes) {
+  Rng rng(11);
+  for (Isa isa : supported_isas())
+    for (std::size_t n : {0, 1, 3, 4, 7, 8, 9, 15, 16, 17, 31, 33, 40, 1001}) {
+      const Wavefront w = random_wavefront(n, rng);
+      for (bool environment : {false, true})
+        for (bool lanes : {true, false}) {
+          SCOPED_TRACE(
+              cat(isa_name(isa), " rays ", n, " environment ", environment, " lanes ", lanes));
+          expect_sorted_as_reference(isa, w, environment, lanes);
+        }
+    }
+}
+
+// The reference's own order of decisions: an emitter ends its path at any depth, a miss
+// whatever its path's depth, and a path at the last bounce sends no vertex.
+TEST(ArrivalLanes, ReferenceOrdersItsDecisions) {
+  Wavefront w;
+  w.route = {kEmitter, kLanes, kDouble};
+  w.materials[0] = {0, 1, 2};
+  w.depths = {5, 0, 0, 4, 0, 0};  // path 0 at the last bounce (max 5), path 1 below it
+  w.prim = {PrimRef(PrimTag(0), 0).bits(), PrimRef(PrimTag(0), 1).bits(),
+            PrimRef(PrimTag(0), 2).bits(), PrimRef::invalid().bits(),
+            PrimRef(PrimTag(0), 1).bits(), PrimRef(PrimTag(0), 2).bits()};
+  w.ray_path = {0, 0, 0, 0, 1, 1};
+  const ArrivalColumns in = w.columns(true, true);
+  const Arrival want[6] = {Arrival::kRare, Arrival::kEnd,   Arrival::kEnd,
+                           Arrival::kRare, Arrival::kLanes, Arrival::kRare};
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_EQ(arrival_of(in, k), want[k]) << "ray " << k;
+  EXPECT_EQ(arrival_of(w.columns(false, true), 3), Arrival::kEnd);
+  EXPECT_EQ(arrival_of(w.columns(true, false), 4), Arrival::kRare);
+}
+
+}  // namespace
+}  // namespace raylane
