@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "raylane/render/arrival_lanes.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_rows.h"
 #include "raylane/simd/lanes.h"
 
@@ -32,7 +33,15 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
     if (in.material_of[t] != nullptr) tags[kinds++] = int32_t(t);
   const I invalid(int32_t(PrimRef::kInvalidBits)), row_mask(int32_t(PrimRef::kMaxRows - 1));
   const I emitter(int32_t(in.emitter_route)), lanes_route(int32_t(in.lanes_route));
-  const I max_depth(int32_t(in.max_depth)), stride(int32_t(in.depth_stride));
+  const I max_depth(int32_t(in.max_depth));
+  // A batch's throughputs as float lanes: the last batch's through a copy (the columns end at
+  // the count).
+  auto beta_lanes = [&](int c, std::size_t k, int m) {
+    if (m == W) return simd::load_narrowed<A>(in.beta[std::size_t(c)] + k);
+    alignas(64) double part[W] = {};
+    std::copy_n(in.beta[std::size_t(c)] + k, m, part);
+    return simd::load_narrowed<A>(part);
+  };
   const uint32_t escapes_seen = in.environment ? ~0u : 0u;
   std::size_t lanes = 0, rare = 0;
   for (std::size_t k = 0; k < in.count; k += W) {
@@ -53,7 +62,7 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
       material = simd::select<A>(on, gather(in.material_of[std::size_t(tags[j])], rows), material);
     }
     const I route = gather(in.route, material);
-    const I depth = gather(in.path_depth, path * stride);
+    const I depth = load_rows(in.depth, k, m);
     const uint32_t to_emitter = simd::bits<A>(simd::equal<A>(route, emitter)) & hit;
     const uint32_t goes_on = simd::bits<A>(xsimd::bool_cast(depth < max_depth)) & hit;
     const uint32_t in_lanes =
@@ -65,6 +74,8 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
       const simd::LanePacker<A> vertex(in_lanes);
       vertex.store(out.path + lanes, path), vertex.store(out.ray + lanes, ray);
       vertex.store(out.material + lanes, material), vertex.store(out.depth + lanes, depth);
+      for (int c = 0; c < 3; ++c)
+        vertex.store(out.beta[std::size_t(c)] + lanes, beta_lanes(c, k, m));
       lanes += std::size_t(vertex.count());
     }
     if (to_rare != 0) {

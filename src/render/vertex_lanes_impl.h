@@ -195,6 +195,14 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
     pack3<A>(pack, q.next_o, next, nx.o);
     pack3<A>(pack, q.next_d, next, a.wi);
     pack.store(q.next_path + next, path);
+    pack.store_widened(q.next_beta[0] + next, nx.beta.x);
+    pack.store_widened(q.next_beta[1] + next, nx.beta.y);
+    pack.store_widened(q.next_beta[2] + next, nx.beta.z);
+    pack3<A>(pack, q.next_prev_p, next, v.p);
+    pack.store_widened(q.next_prev_pdf + next, a.pdf);
+    pack.store(q.next_depth + next,
+               simd::Ints<A>::load_unaligned(reinterpret_cast<const int32_t*>(q.depth + i)) +
+                   simd::Ints<A>(1));
     next += std::size_t(pack.count());
   }
   queues.next_count = next, queues.shadow_count = shadows;

@@ -19,16 +19,16 @@ namespace {
 constexpr uint32_t kEmitter = 0, kLanes = 1, kDouble = 2, kNone = 3;
 
 struct Wavefront {
-  std::vector<uint32_t> prim, ray_path;
-  std::vector<uint32_t> depths;  // path p's depth at depths[p · stride]
+  std::vector<uint32_t> prim, ray_path, depth;
+  std::array<std::vector<double>, 3> beta;
   std::array<std::vector<uint32_t>, kPrimKindCount> materials;
   std::vector<uint32_t> route;
-  static constexpr uint32_t kStride = 3;  // the depth among other words, as in PathState
 
   ArrivalColumns columns(bool environment, bool lanes) const {
     ArrivalColumns in;
     in.prim = prim.data(), in.ray_path = ray_path.data(), in.count = prim.size();
-    in.path_depth = depths.data(), in.depth_stride = kStride;
+    in.depth = depth.data();
+    in.beta = {beta[0].data(), beta[1].data(), beta[2].data()};
     for (std::size_t t = 0; t < kPrimKindCount; ++t)
       if (!materials[t].empty()) in.material_of[t] = materials[t].data();
     in.route = route.data();
@@ -38,8 +38,9 @@ struct Wavefront {
   }
 };
 
-// n rays of `paths` paths (each ray its own path in a real wavefront; shared here too, which
-// the sort must not mind), hitting kinds 0, 1 and 4 (the others' tables empty), a tenth missing.
+// n rays of n + 3 paths, hitting kinds 0, 1 and 4 (the others' tables empty), a tenth missing,
+// with throughputs that round to float at every distance from a float (and some that do not
+// fit one).
 Wavefront random_wavefront(std::size_t n, Rng& rng) {
   Wavefront w;
   const std::size_t paths = n + 3, material_count = 9;
@@ -49,11 +50,11 @@ Wavefront random_wavefront(std::size_t n, Rng& rng) {
   for (int j = 0; j < 3; ++j)
     for (std::size_t r = 0; r < rows[j]; ++r)
       w.materials[kinds[j]].push_back(uint32_t(rng.uniform() * material_count));
-  w.depths.assign(paths * Wavefront::kStride, 0xdeadbeefu);
-  for (std::size_t p = 0; p < paths; ++p)
-    w.depths[p * Wavefront::kStride] = uint32_t(rng.uniform() * 7);  // 0..6 around max 5
   for (std::size_t k = 0; k < n; ++k) {
     w.ray_path.push_back(uint32_t(rng.uniform() * double(paths)));
+    w.depth.push_back(uint32_t(rng.uniform() * 7));  // 0..6 around the last bounce, 5
+    for (auto& c : w.beta)
+      c.push_back(rng.uniform() < 0.05 ? 1e39 : rng.uniform() * 3);
     if (rng.uniform() < 0.1) {
       w.prim.push_back(PrimRef::invalid().bits());
       continue;
@@ -68,15 +69,20 @@ Wavefront random_wavefront(std::size_t n, Rng& rng) {
 // Room for n rows rounded up to 16, and the canary past it.
 struct Rows {
   std::vector<uint32_t> path, ray, material, depth, rare;
+  std::array<std::vector<float>, 3> beta;
+  static constexpr float kCanary = -7.5f;
   explicit Rows(std::size_t n) {
     const std::size_t room = (n + 15) / 16 * 16 + 1;
     for (auto* c : {&path, &ray, &material, &depth, &rare})
       c->assign(room, 0xfeedu);
+    for (auto& c : beta)
+      c.assign(room, kCanary);
   }
   ArrivalRows out() {
     ArrivalRows o;
     o.path = path.data(), o.ray = ray.data(), o.material = material.data();
     o.depth = depth.data(), o.rare = rare.data();
+    o.beta = {beta[0].data(), beta[1].data(), beta[2].data()};
     return o;
   }
 };
@@ -96,7 +102,9 @@ void expect_sorted_as_reference(Isa isa, const Wavefront& w, bool environment, b
       EXPECT_EQ(got.ray[lane], k);
       EXPECT_EQ(got.path[lane], w.ray_path[k]);
       EXPECT_EQ(got.material[lane], w.materials[std::size_t(hit.tag())][hit.row()]);
-      EXPECT_EQ(got.depth[lane], w.depths[w.ray_path[k] * Wavefront::kStride]);
+      EXPECT_EQ(got.depth[lane], w.depth[k]);
+      for (std::size_t c = 0; c < 3; ++c)  // rounded to nearest, as a cast rounds
+        EXPECT_EQ(got.beta[c][lane], float(w.beta[c][k])) << "component " << c;
       ++lane;
     } else if (a == Arrival::kRare) {
       ASSERT_LT(rare, out.rare_count);
@@ -109,6 +117,8 @@ void expect_sorted_as_reference(Isa isa, const Wavefront& w, bool environment, b
   const std::size_t canary = got.path.size() - 1;
   for (auto* c : {&got.path, &got.ray, &got.material, &got.depth, &got.rare})
     EXPECT_EQ((*c)[canary], 0xfeedu) << "a store past the room";
+  for (const auto& c : got.beta)
+    EXPECT_EQ(c[canary], Rows::kCanary) << "a store past the room";
 }
 
 TEST(ArrivalLanes, SortsEveryRayAsTheReferenceDoes) {
@@ -131,7 +141,7 @@ TEST(ArrivalLanes, ReferenceOrdersItsDecisions) {
   Wavefront w;
   w.route = {kEmitter, kLanes, kDouble};
   w.materials[0] = {0, 1, 2};
-  w.depths = {5, 0, 0, 4, 0, 0};  // path 0 at the last bounce (max 5), path 1 below it
+  w.depth = {5, 5, 5, 5, 4, 4};  // rays 0-3 at the last bounce (max 5), 4 and 5 below it
   w.prim = {PrimRef(PrimTag(0), 0).bits(), PrimRef(PrimTag(0), 1).bits(),
             PrimRef(PrimTag(0), 2).bits(), PrimRef::invalid().bits(),
             PrimRef(PrimTag(0), 1).bits(), PrimRef(PrimTag(0), 2).bits()};

@@ -276,44 +276,54 @@ TEST(VertexLanes, ScalarStepsOnKnownValues) {
 // A scatter kernel's queues, each destination with `room` values and canaries after them.
 struct Queues {
   static constexpr uint32_t kCanary = 0xdeadbeefu;
-  std::array<std::vector<float>, 3> next_o, next_d, shadow_o, shadow_d;
+  std::array<std::vector<float>, 3> next_o, next_d, shadow_o, shadow_d, next_prev_p;
   std::vector<float> shadow_tmax;
-  std::vector<uint32_t> next_path, shadow_path, shadow_light;
-  std::array<std::vector<double>, 3> shadow_c;
+  std::vector<uint32_t> next_path, shadow_path, shadow_light, next_depth;
+  std::array<std::vector<double>, 3> shadow_c, next_beta;
+  std::vector<double> next_prev_pdf;
   std::size_t room;
   VertexQueues q;
 
-  Queues(std::size_t room, std::size_t canaries, const uint32_t* path) : room(room) {
+  Queues(std::size_t room, std::size_t canaries, const uint32_t* path, const uint32_t* depth)
+      : room(room) {
     const std::size_t n = room + canaries;
     const float f = std::bit_cast<float>(kCanary);
-    for (auto* c : {&next_o, &next_d, &shadow_o, &shadow_d})
+    const double d = std::bit_cast<double>(uint64_t(kCanary));
+    for (auto* c : {&next_o, &next_d, &shadow_o, &shadow_d, &next_prev_p})
       for (std::size_t k = 0; k < 3; ++k)
         (*c)[k].assign(n, f);
     shadow_tmax.assign(n, f);
-    for (auto* c : {&next_path, &shadow_path, &shadow_light})
+    for (auto* c : {&next_path, &shadow_path, &shadow_light, &next_depth})
       c->assign(n, kCanary);
-    for (auto& c : shadow_c)
-      c.assign(n, std::bit_cast<double>(uint64_t(kCanary)));
-    q.path = path;
+    for (auto* c3 : {&shadow_c, &next_beta})
+      for (auto& c : *c3)
+        c.assign(n, d);
+    next_prev_pdf.assign(n, d);
+    q.path = path, q.depth = depth;
     for (std::size_t k = 0; k < 3; ++k) {
       q.next_o[k] = next_o[k].data(), q.next_d[k] = next_d[k].data();
       q.shadow_o[k] = shadow_o[k].data(), q.shadow_d[k] = shadow_d[k].data();
-      q.shadow_c[k] = shadow_c[k].data();
+      q.shadow_c[k] = shadow_c[k].data(), q.next_beta[k] = next_beta[k].data();
+      q.next_prev_p[k] = next_prev_p[k].data();
     }
     q.next_path = next_path.data(), q.shadow_path = shadow_path.data();
     q.shadow_light = shadow_light.data(), q.shadow_tmax = shadow_tmax.data();
+    q.next_prev_pdf = next_prev_pdf.data(), q.next_depth = next_depth.data();
   }
   // Whether every value at or past `room` is still its canary.
   bool canaries_alive() const {
     bool alive = true;
     for (std::size_t r = room; r < next_path.size(); ++r) {
-      for (const auto* c : {&next_o, &next_d, &shadow_o, &shadow_d})
+      for (const auto* c : {&next_o, &next_d, &shadow_o, &shadow_d, &next_prev_p})
         for (std::size_t k = 0; k < 3; ++k)
           alive = alive && std::bit_cast<uint32_t>((*c)[k][r]) == kCanary;
       for (std::size_t k = 0; k < 3; ++k)
-        alive = alive && std::bit_cast<uint64_t>(shadow_c[k][r]) == uint64_t(kCanary);
+        alive = alive && std::bit_cast<uint64_t>(shadow_c[k][r]) == uint64_t(kCanary) &&
+                std::bit_cast<uint64_t>(next_beta[k][r]) == uint64_t(kCanary);
       alive = alive && std::bit_cast<uint32_t>(shadow_tmax[r]) == kCanary &&
-              next_path[r] == kCanary && shadow_path[r] == kCanary && shadow_light[r] == kCanary;
+              next_path[r] == kCanary && shadow_path[r] == kCanary && shadow_light[r] == kCanary &&
+              next_depth[r] == kCanary &&
+              std::bit_cast<uint64_t>(next_prev_pdf[r]) == uint64_t(kCanary);
     }
     return alive;
   }
@@ -321,9 +331,11 @@ struct Queues {
 
 // The kernel's queues are finish_vertices' columns (after shade_lanes) filtered by its flags, in
 // row order, bit for bit (an origin or end that is NaN in both may differ in its sign:
-// same_or_nan).
+// same_or_nan); a next ray carries the new throughput and the BSDF's density widened, the
+// vertex's point and the depth after the row's.
 void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<uint32_t>& path,
-                                        std::size_t n, bool lights, const Queues& got) {
+                                        const std::vector<uint32_t>& depth, std::size_t n,
+                                        bool lights, const Queues& got) {
   const VertexBatch& y = apart.vertex;
   std::size_t next = 0, shadows = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -343,6 +355,11 @@ void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<
                   same_bits(row(got.next_d, m), row(apart.bsdf.wi, i)) &&
                   got.next_path[m] == path[i])
           << "next ray of row " << i;
+      ASSERT_TRUE(same_bits(row(got.next_beta, m), glm::dvec3(row(y.next_beta, i))) &&
+                  same_bits(row(got.next_prev_p, m), row(y.p, i)) &&
+                  same_bits(got.next_prev_pdf[m], double(apart.bsdf.pdf[i])) &&
+                  got.next_depth[m] == depth[i] + 1)
+          << "what the next ray of row " << i << " carries";
     }
   }
   EXPECT_EQ(got.q.shadow_count, shadows);
@@ -384,7 +401,7 @@ TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
         vs.resize(n);
         b.vertex.resize(n), b.bsdf.resize(n), b.lights.resize(n);
         ShadeBatch& sb = b.bsdf;
-        std::vector<uint32_t> path(padded);
+        std::vector<uint32_t> path(padded), depth(padded);
         for (std::size_t i = 0; i < n; ++i) {
           const Vec nv = random_unit(rng);
           for (std::size_t k = 0; k < 3; ++k)
@@ -393,19 +410,19 @@ TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
           sb.u_lobe[i] = float(rng.uniform()), sb.u1[i] = float(rng.uniform());
           sb.u2[i] = float(rng.uniform());
           b.lights.light[i] = PrimRef::from_bits(uint32_t(rng.uniform() * 4e9));
-          path[i] = uint32_t(rng.uniform() * 4e9);
+          path[i] = uint32_t(rng.uniform() * 4e9), depth[i] = uint32_t(rng.uniform() * 70);
         }
         const LightQueries* with = lights ? &b.lights : nullptr;
         Batches apart = b;
         shade_lanes(isa, lanes, apart.bsdf);
         finish_vertices(isa, rules, apart.bsdf, with, apart.vertex);
-        Queues got(padded, 20, path.data());
+        Queues got(padded, 20, path.data(), depth.data());
         scatter_vertices(isa, lanes, rules, b.bsdf, with, b.vertex, got.q);
         for (std::size_t i = 0; i < n; ++i)
           ASSERT_TRUE(same_bits(row(b.vertex.next_beta, i), row(apart.vertex.next_beta, i)) &&
                       same_bits(b.bsdf.pdf[i], apart.bsdf.pdf[i]))
               << "row " << i;
-        expect_queues_are_the_flagged_rows(apart, path, n, lights, got);
+        expect_queues_are_the_flagged_rows(apart, path, depth, n, lights, got);
         if (n == 5003) {
           EXPECT_GT(got.q.next_count, 1000u);
           if (lights) {

@@ -2,9 +2,10 @@
 // src/render/wavefront/arrival.cpp): each ray's hit, its material and the material's route, and
 // its path's depth decide whether the hit is a vertex shaded in lanes, a rarer case that scalar
 // code finishes (an escape under an environment, an emitter, a vertex shaded in double), or the
-// end of the path (a miss without an environment, a path at its last bounce). A batch of rays is
-// classified at once and its lane rows packed into their columns; a row by row loop paid a
-// branch chain and a queue's push per ray.
+// end of the path (a miss without an environment, a path at its last bounce). The lane rows
+// take what their rays carry of their paths (the depth, the throughput) as they are packed. A batch
+// of rays is classified at once and its lane rows packed into their columns; a row by row loop paid
+// a branch chain and a queue's push per ray.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -25,9 +26,9 @@ struct ArrivalColumns {
   const uint32_t* prim = nullptr;      // ray k's hit (PrimRef bits; kInvalidBits for a miss)
   const uint32_t* ray_path = nullptr;  // ray k's path
   std::size_t count = 0;
-  // Path p's depth is path_depth[p · depth_stride] (the paths' own records).
-  const uint32_t* path_depth = nullptr;
-  uint32_t depth_stride = 1;
+  // What ray k carries of its path: the depth it arrives at, the throughput.
+  const uint32_t* depth = nullptr;
+  std::array<const double*, 3> beta{};
   // Each kind's material column (the scene's tables), by PrimTag; null for a kind no hit
   // can have (an empty table).
   std::array<const uint32_t*, kPrimKindCount> material_of{};
@@ -42,8 +43,10 @@ struct ArrivalColumns {
 // What it writes. The lane rows' columns and the rare rows need room for count rows rounded up
 // to 16 (whole registers are stored).
 struct ArrivalRows {
-  // The vertices shaded in lanes, in ray order: path, ray, material, depth.
+  // The vertices shaded in lanes, in ray order: path, ray, material, depth, and the throughput
+  // rounded to float.
   uint32_t *path = nullptr, *ray = nullptr, *material = nullptr, *depth = nullptr;
+  std::array<float*, 3> beta{};
   std::size_t lanes = 0;
   // The rays whose arrival scalar code finishes, in order: escapes under an environment,
   // emitters, and vertices shaded in double (not at the last bounce).
@@ -58,8 +61,7 @@ inline Arrival arrival_of(const ArrivalColumns& in, std::size_t k) {
   if (!hit.valid()) return in.environment ? Arrival::kRare : Arrival::kEnd;
   const uint32_t route = in.route[in.material_of[std::size_t(hit.tag())][hit.row()]];
   if (route == in.emitter_route) return Arrival::kRare;
-  if (in.path_depth[std::size_t(in.ray_path[k]) * in.depth_stride] >= in.max_depth)
-    return Arrival::kEnd;
+  if (in.depth[k] >= in.max_depth) return Arrival::kEnd;
   return route == in.lanes_route ? Arrival::kLanes : Arrival::kRare;
 }
 

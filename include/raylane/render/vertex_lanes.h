@@ -87,9 +87,16 @@ void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
 // store whole registers, and what lies past the queued rows is overwritten. Without lights the
 // shadow destinations are not written and may be null.
 struct VertexQueues {
-  const uint32_t* path = nullptr;  // row r's path, into both queues
+  const uint32_t* path = nullptr;   // row r's path, into both queues
+  const uint32_t* depth = nullptr;  // row r's depth; its next ray's is one more
   std::array<float*, 3> next_o{}, next_d{};
   uint32_t* next_path = nullptr;
+  // What the next ray carries of its path (render/wavefront/queues.h, PathCarry): the new
+  // throughput, the vertex it leaves and the BSDF's density, its depth.
+  std::array<double*, 3> next_beta{};
+  std::array<float*, 3> next_prev_p{};
+  double* next_prev_pdf = nullptr;
+  uint32_t* next_depth = nullptr;
   std::array<float*, 3> shadow_o{}, shadow_d{};
   float* shadow_tmax = nullptr;
   uint32_t* shadow_light = nullptr;  // the row's LightQueries::light, as its bits
@@ -100,10 +107,10 @@ struct VertexQueues {
 };
 
 // shade_lanes and finish_vertices in one pass over the rows (the scatter kernel): the BSDF's
-// sample and at once the steps after it, and their rays straight into the queues, the rows that
-// cast none dropped as they go (a filter over finish_vertices' columns, fused). Stored for the
-// paths' write-back: `bsdf.pdf` and `batch.next_beta` (every row); wi, value, light_f,
-// light_pdf and finish_vertices' other columns are not stored.
+// sample and at once the steps after it, and their rays straight into the queues with what
+// they carry of their paths, the rows that cast none dropped as they go (a filter over
+// finish_vertices' columns, fused). Also stored, for every row: `bsdf.pdf` and
+// `batch.next_beta`; wi, value, light_f, light_pdf and finish_vertices' other columns are not.
 void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules& rules,
                       ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch,
                       VertexQueues& queues);

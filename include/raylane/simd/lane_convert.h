@@ -1,8 +1,8 @@
 // Float lanes to double lanes and back, through memory: a kernel that computes in one precision
 // and reads or writes columns of the other (the BVH builder's sweep, the tracer's double
 // surfaces into float columns, the pinhole camera's double rays, the scatter kernel's shadow
-// contributions). Widening is exact; narrowing rounds to nearest, as a scalar cast does. For the
-// per-ISA units, as simd/lanes.h.
+// contributions and throughputs, the arrivals' throughputs). Widening is exact; narrowing rounds to
+// nearest, as a scalar cast does. For the per-ISA units, as simd/lanes.h.
 #pragma once
 
 #include "raylane/simd/lanes.h"
@@ -34,6 +34,24 @@ inline void store_narrowed(float* p, const Doubles<A>& v) {
   } else {
     static_assert(kDoubleWidth<A> == 2, "two, four or eight double lanes");
     _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(__m128d(v)));
+  }
+}
+
+// p[0, W) rounded to nearest float (as a scalar cast rounds), W the float lanes' count.
+template <class A>
+inline Floats<A> load_narrowed(const double* p) {
+  if constexpr (kWidth<A> == 16) {
+    const __m256 lo = _mm512_cvtpd_ps(_mm512_loadu_pd(p));
+    const __m256 hi = _mm512_cvtpd_ps(_mm512_loadu_pd(p + 8));
+    return Floats<A>(_mm512_castpd_ps(
+        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1)));
+  } else if constexpr (kWidth<A> == 8) {
+    return Floats<A>(_mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(p + 4)),
+                                     _mm256_cvtpd_ps(_mm256_loadu_pd(p))));
+  } else {
+    static_assert(kWidth<A> == 4, "four, eight or sixteen float lanes");
+    return Floats<A>(
+        _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(p)), _mm_cvtpd_ps(_mm_loadu_pd(p + 2))));
   }
 }
 

@@ -18,22 +18,24 @@ namespace {
 // the MIS share after another bounce, nothing for NEE alone (light sampling counted it
 // already). `light_pdf` is called only for the MIS share.
 template <class LightPdf>
-double emission_weight(const ThreadContext& ctx, const PathState& p, LightPdf light_pdf) {
+double emission_weight(const ThreadContext& ctx, const Carried& p, LightPdf light_pdf) {
   bool sampled_light_too = p.depth > 0 && !p.prev_specular;
   if (!sampled_light_too || ctx.settings.integrator == Integrator::kBrdf) return 1;
   if (ctx.settings.integrator == Integrator::kNee) return 0;
   return power_heuristic(p.prev_pdf, light_pdf());
 }
 
-// What a path gains where it hits an emitter (its density for MIS is the light sampler's).
-void add_emission(ThreadContext& ctx, PathState& p, const Rayd& ray, const Hit& hit) {
+// What a path gains where its ray, carrying p, hits an emitter (its density for MIS is the
+// light sampler's).
+void add_emission(ThreadContext& ctx, PathState& path, const Carried& p, const Rayd& ray,
+                  const Hit& hit) {
   glm::dvec3 le = ctx.lights.emitted(hit);
   if (le == glm::dvec3(0, 0, 0)) return;
   double w = emission_weight(ctx, p, [&] {
     return ctx.lights.pdf(glm::dvec3(p.prev_p), ray.d, hit,
                           ray.time);  // a moving light's at the ray's time
   });
-  p.radiance += p.beta * le * w;
+  path.radiance += p.beta * le * w;
 }
 
 // What the paths gain whose rays left the scene (w.escaped): the environment, looked up for all
@@ -49,9 +51,9 @@ void add_escapes(ThreadContext& ctx) {
   for (std::size_t i = 0; i < w.escaped.size(); ++i) {
     const EnvironmentMap::Seen& seen = b.seen[i];
     if (seen.le == glm::dvec3(0, 0, 0)) continue;
-    PathState& p = w.paths[w.rays.path[w.escaped[i]]];
+    const Carried p = w.rays.carry.get(w.escaped[i]);
     double weight = emission_weight(ctx, p, [&] { return seen.pdf; });
-    p.radiance += p.beta * seen.le * weight;
+    w.paths[w.rays.path[w.escaped[i]]].radiance += p.beta * seen.le * weight;
   }
 }
 
@@ -82,23 +84,15 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane rows' columns that come from their paths: the Sobol seed and the throughput for the
-// scatter kernel (Beer's law on a back face follows with the surfaces: lane_vertices.cpp,
-// path_columns). Each path also steps to the depth its next ray arrives at. The columns'
-// pointers are held in locals: stores through the queue's vectors could alias them.
-void copy_path_columns(Wavefront& w, std::size_t rows) {
+// The lane rows' Sobol seeds, from their paths. The columns' pointers are held in locals:
+// stores through the queue's vectors could alias them.
+void copy_seeds(Wavefront& w, std::size_t rows) {
   LaneVertexQueue& lv = w.lane_vertices;
-  const uint32_t *path = lv.path.data(), *depth = lv.depth.data();
+  const uint32_t* path = lv.path.data();
   uint64_t* pixel_seed = lv.pixel_seed.data();
-  float *beta_x = lv.vertices.beta[0].data(), *beta_y = lv.vertices.beta[1].data();
-  float* beta_z = lv.vertices.beta[2].data();
-  PathState* paths = w.paths.data();
-  for (std::size_t r = 0; r < rows; ++r) {
-    PathState& p = paths[path[r]];
-    pixel_seed[r] = p.pixel_seed;
-    beta_x[r] = float(p.beta.x), beta_y[r] = float(p.beta.y), beta_z[r] = float(p.beta.z);
-    p.depth = depth[r] + 1;  // where the ray it sends on (if any) arrives
-  }
+  const PathState* paths = w.paths.data();
+  for (std::size_t r = 0; r < rows; ++r)
+    pixel_seed[r] = paths[path[r]].pixel_seed;
 }
 
 // The arrivals the lanes leave to scalar code, in ray order: an escape under an environment,
@@ -108,7 +102,6 @@ void finish_rare_arrivals(ThreadContext& ctx, const MaterialColumns& material_of
   Wavefront& w = ctx.wave;
   const LaneMaterials::Route* route = ctx.lanes.materials.route.data();
   for (const uint32_t k : rare) {
-    PathState& p = w.paths[w.rays.path[k]];
     const PrimRef hit = PrimRef::from_bits(w.hits.prim[k]);
     if (!hit.valid()) {
       w.escaped.push_back(k);
@@ -117,11 +110,11 @@ void finish_rare_arrivals(ThreadContext& ctx, const MaterialColumns& material_of
     const uint32_t material = material_of(hit);
     if (route[material] == LaneMaterials::Route::kEmitter) {  // emitters reflect nothing
       const Rayd ray = ray_of(w.rays.rays, k);
-      add_emission(ctx, p, ray, w.record(k, ctx.tracer, ray));
+      add_emission(ctx, w.paths[w.rays.path[k]], w.rays.carry.get(k), ray,
+                   w.record(k, ctx.tracer, ray));
       continue;
     }
-    w.double_vertices.push(k, material, p.depth);
-    ++p.depth;
+    w.double_vertices.push(k, material);
   }
 }
 
@@ -134,11 +127,11 @@ void sort_arrivals(ThreadContext& ctx) {
   using Route = LaneMaterials::Route;
   // The route of the materials shaded in lanes; none with the double shading.
   const bool lanes = ctx.settings.shading == Shading::kFloat;
+  const PathCarry& carry = w.rays.carry;
   ArrivalColumns in;
   in.prim = w.hits.prim.data(), in.ray_path = w.rays.path.data(), in.count = n;
-  static_assert(sizeof(PathState) % sizeof(uint32_t) == 0, "the depths' stride in words");
-  in.path_depth = &w.paths.data()->depth;
-  in.depth_stride = uint32_t(sizeof(PathState) / sizeof(uint32_t));
+  in.depth = carry.depth.data();
+  in.beta = {carry.beta[0].data(), carry.beta[1].data(), carry.beta[2].data()};
   PrimKinds::for_each([&](auto kind) {
     const auto& table = scene.table<decltype(kind)>();
     if (table.size() != 0) in.material_of[kind_index<decltype(kind)>()] = table.material.data();
@@ -157,8 +150,10 @@ void sort_arrivals(ThreadContext& ctx) {
   ArrivalRows out;
   out.path = lv.path.data(), out.ray = lv.ray.data(), out.material = lv.material.data();
   out.depth = lv.depth.data(), out.rare = w.rare_arrivals.data();
+  VertexBatch& vb = lv.vertices;
+  out.beta = {vb.beta[0].data(), vb.beta[1].data(), vb.beta[2].data()};
   ctx.lanes.kernels.sort_arrivals(in, out);
-  copy_path_columns(w, out.lanes);
+  copy_seeds(w, out.lanes);
   lv.count = out.lanes;
   finish_rare_arrivals(ctx, MaterialColumns(scene),
                        std::span<const uint32_t>(w.rare_arrivals.data(), out.rare_count));

@@ -92,6 +92,8 @@ uint32_t make_camera_rays(ThreadContext& ctx, const Camera& cam, uint32_t x0, ui
   into.path.resize(n);
   for (uint32_t i = 0; i < n; ++i)
     into.path[i] = first + i;
+  into.carry.resize(n);
+  into.carry.fill(0, n, Carried{});  // depth 0, throughput 1
   const bool sobol = ctx.settings.sampler == Sampler::kSobol;
   SobolBatch& s = w.lane_vertices.sobol;
   if (sobol) {

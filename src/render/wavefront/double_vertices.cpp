@@ -58,10 +58,10 @@ LightSample sample_light_point(ThreadContext& ctx, const PathState& p, const Ray
 }
 
 // The shadow ray toward a sampled light point, given the BSDF's f·|cos θi| and density there.
-void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, const Rayd& ray,
+void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const glm::dvec3& beta, const Rayd& ray,
                       const Hit& hit, const LightSample& ls, const glm::dvec3& f, double bsdf_pdf) {
   glm::dvec3 c{};
-  if (!shadow_contribution(vertex_rules(ctx, 0), p.beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
+  if (!shadow_contribution(vertex_rules(ctx, 0), beta, f, ls.le, ls.pdf, bsdf_pdf, c)) return;
   glm::dvec3 o =
       offset_ray_origin(hit.surface.p, ctx.tracer.hit_point_bound(ray, hit), hit.surface.ng, ls.wi);
   ShadowQueue& s = ctx.wave.next_shadows;
@@ -71,23 +71,26 @@ void queue_shadow_ray(ThreadContext& ctx, uint32_t path, const PathState& p, con
   s.push_back(path, c);
 }
 
-// After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`).
-// False when the path ends here.
-bool continue_path(const Tracer& tracer, PathState& p, const Rayd& ray, const Hit& hit,
+// After the BSDF's sample: the throughput, Russian roulette, the next ray (into `next`) and
+// what it carries (into `p`, from the vertex's). False when the path ends here.
+bool continue_path(const Tracer& tracer, Carried& p, const Rayd& ray, const Hit& hit,
                    const BsdfSample& s, double u_roulette, const VertexRules& rules, Rayd& next) {
   if (!next_throughput(rules, p.beta, s.value, s.pdf, u_roulette, p.beta)) return false;
   p.prev_p = glm::vec3(hit.surface.p);
   p.prev_pdf = s.pdf;
   p.prev_specular = s.specular;
+  ++p.depth;
   glm::dvec3 o =
       offset_ray_origin(hit.surface.p, tracer.hit_point_bound(ray, hit), hit.surface.ng, s.wi);
   next = {o, s.wi};
   return true;
 }
 
-// One vertex with the double Bsdf: light sampling, then the next direction.
-bool shade_vertex_double(ThreadContext& ctx, uint32_t path, PathState& p, const Rayd& ray,
-                         const Hit& hit, const Material& material, uint32_t depth, Rayd& next) {
+// One vertex with the double Bsdf, its ray carrying c: light sampling, then the next direction
+// (c then what the next ray carries).
+bool shade_vertex_double(ThreadContext& ctx, uint32_t path, const PathState& p, Carried& c,
+                         const Rayd& ray, const Hit& hit, const Material& material, Rayd& next) {
+  const uint32_t depth = c.depth;
   // A textured Kd: the material with Kd times the image at the hit (lobe choice follows it).
   Material m = material;
   if (m.texture >= 0)
@@ -99,7 +102,7 @@ bool shade_vertex_double(ThreadContext& ctx, uint32_t path, PathState& p, const 
     LightSample ls = sample_light_point(ctx, p, ray, hit, depth);
     if (ls.valid()) {
       BsdfEval e = bsdf.evaluate(ls.wi);
-      queue_shadow_ray(ctx, path, p, ray, hit, ls, e.f, e.pdf);
+      queue_shadow_ray(ctx, path, c.beta, ray, hit, ls, e.f, e.pdf);
     }
   }
   auto u = draw(ctx, p, Dims::bsdf_group(depth), kBsdfDrawOrder);
@@ -107,7 +110,7 @@ bool shade_vertex_double(ThreadContext& ctx, uint32_t path, PathState& p, const 
   if (!s.valid()) return false;
   const VertexRules rules = vertex_rules(ctx, depth);
   double u_roulette = rules.roulette ? roulette_uniform(ctx, u) : 0.0;
-  return continue_path(ctx.tracer, p, ray, hit, s, u_roulette, rules, next);
+  return continue_path(ctx.tracer, c, ray, hit, s, u_roulette, rules, next);
 }
 
 }  // namespace
@@ -118,15 +121,14 @@ void shade_double_vertices(ThreadContext& ctx) {
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   for (std::size_t i = 0; i < q.ray.size(); ++i) {
     const uint32_t k = q.ray[i], path = w.rays.path[k];
-    PathState& p = w.paths[path];
     const Rayd ray = ray_of(w.rays.rays, k);
     const Hit hit = w.record(k, ctx.tracer, ray);
     const Material& m = materials[q.material[i]];
-    p.beta = p.beta * beer_transmittance(m, hit.front_face, hit.t);
+    Carried c = w.rays.carry.get(k);
+    c.beta = c.beta * beer_transmittance(m, hit.front_face, hit.t);
     Rayd next;
-    if (!shade_vertex_double(ctx, path, p, ray, hit, m, q.depth[i], next)) continue;
-    w.next_rays.path.push_back(path);
-    RayAppender(w.next_rays.rays, 1, false).push(ray_cast<float>(next));
+    if (!shade_vertex_double(ctx, path, w.paths[path], c, ray, hit, m, next)) continue;
+    w.next_rays.push(path, ray_cast<float>(next), c);
   }
 }
 

@@ -277,8 +277,8 @@ void texture_columns(ThreadContext& ctx) {
 
 // The rows' directions turned around (wo, from the stream's float rays), and Beer's law on the
 // segment just travelled for the rows that met a back face: their throughput, which
-// sort_arrivals took as it was, again from the path's times the transmittance (in double, then
-// rounded, as the double shading). Beer's law is 1 on a front face.
+// sort_arrivals took as it was, again from what the ray carries times the transmittance (in
+// double, then rounded, as the double shading). Beer's law is 1 on a front face.
 void path_columns(ThreadContext& ctx) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
@@ -286,15 +286,16 @@ void path_columns(ThreadContext& ctx) {
   const std::size_t n = lv.count;
   ctx.lanes.kernels.gather_wo(w.rays.rays, rows.ray.data(), n, lv.shade);
   if (!ctx.lanes.materials.any_absorbing) return;
-  const PathState* paths = w.paths.data();
+  const PathCarry& carry = w.rays.carry;
   const std::vector<Material>& materials = ctx.tracer.scene().materials;
   const Columns3Out<float> beta(lv.vertices.beta);
   const float* t = w.hits.t.data();
   const uint8_t* front = rows.front.data();
   for (std::size_t r = 0; r < n; ++r) {
     if (front[r]) continue;
-    const PathState& path = paths[rows.path[r]];
-    beta.set(r, path.beta * beer_transmittance(materials[rows.material[r]], false, t[rows.ray[r]]));
+    const uint32_t k = rows.ray[r];
+    const glm::dvec3 carried(carry.beta[0][k], carry.beta[1][k], carry.beta[2][k]);
+    beta.set(r, carried * beer_transmittance(materials[rows.material[r]], false, t[k]));
   }
 }
 

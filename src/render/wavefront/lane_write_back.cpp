@@ -1,6 +1,6 @@
 // The lane shading's last pass: the scatter kernel (render/vertex_lanes.h), which packs its shadow
-// rays and next rays straight into the next_shadows and next_rays queues as it makes them, then
-// the throughputs back to the paths.
+// rays and next rays straight into the next_shadows and next_rays queues as it makes them, the
+// next rays with what they carry of their paths.
 #include <algorithm>
 #include <limits>
 #include <type_traits>
@@ -11,16 +11,6 @@ namespace raylane::path_detail {
 
 namespace {
 
-// The three columns of c as pointers, taken once per pass: the passes below read a dozen
-// columns per row, more than the registers that would keep the vectors' own pointers.
-template <class T>
-struct Column3View {
-  const T *x, *y, *z;
-  explicit Column3View(const std::array<std::vector<T>, 3>& c)
-      : x(c[0].data()), y(c[1].data()), z(c[2].data()) {}
-  glm::vec<3, T> operator[](std::size_t r) const { return {x[r], y[r], z[r]}; }
-};
-
 // Room for `rows` more rows at the end of a stream, as many as the kernel's whole registers
 // store (VertexQueues): the caller trims it to what was queued.
 std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
@@ -28,25 +18,6 @@ std::size_t grow_stream(RayStream& s, std::size_t rows, bool aimed) {
   s.resize(at + room);
   if (aimed) s.aim.resize(at + room);
   return at;
-}
-
-// The rows' paths get the vertex's throughput, point and BSDF density (every row: a path that
-// ends here is not read again, and the write spares a branch per row).
-void write_back_paths(ThreadContext& ctx) {
-  Wavefront& w = ctx.wave;
-  const LaneVertexQueue& lv = w.lane_vertices;
-  const VertexBatch& vb = lv.vertices;
-  const Column3View<float> beta(vb.next_beta), p(vb.p);
-  const float* pdf = lv.shade.pdf.data();
-  const uint32_t* row_path = lv.path.data();
-  PathState* paths = w.paths.data();
-  for (std::size_t r = 0; r < lv.count; ++r) {
-    PathState& path = paths[row_path[r]];
-    path.beta = beta[r];
-    path.prev_p = p[r];
-    path.prev_pdf = pdf[r];
-    path.prev_specular = false;
-  }
 }
 
 }  // namespace
@@ -64,6 +35,14 @@ void scatter_lane_vertices(ThreadContext& ctx, const VertexRules& rules, bool li
   q.next_o = {next.ox.data() + next_at, next.oy.data() + next_at, next.oz.data() + next_at};
   q.next_d = {next.dx.data() + next_at, next.dy.data() + next_at, next.dz.data() + next_at};
   q.next_path = next_paths.data() + listed;
+  q.depth = lv.depth.data();
+  PathCarry& carry = w.next_rays.carry;
+  carry.resize(next.size());
+  q.next_beta = {carry.beta[0].data() + listed, carry.beta[1].data() + listed,
+                 carry.beta[2].data() + listed};
+  q.next_prev_p = {carry.prev_p[0].data() + listed, carry.prev_p[1].data() + listed,
+                   carry.prev_p[2].data() + listed};
+  q.next_prev_pdf = carry.prev_pdf.data() + listed, q.next_depth = carry.depth.data() + listed;
   ShadowQueue& sq = w.next_shadows;
   RayStream& shadow = sq.rays;
   std::size_t shadow_at = shadow.size(), queued = sq.size();
@@ -89,12 +68,13 @@ void scatter_lane_vertices(ThreadContext& ctx, const VertexRules& rules, bool li
               std::numeric_limits<float>::infinity());
   next.resize(next_at + q.next_count);
   next_paths.resize(listed + q.next_count);
+  carry.resize(listed + q.next_count);
+  std::fill_n(carry.prev_specular.begin() + std::ptrdiff_t(listed), q.next_count, uint8_t(0));
   if (lights) {
     std::fill_n(shadow.tmin.begin() + std::ptrdiff_t(shadow_at), q.shadow_count, 0.0f);
     shadow.resize(shadow_at + q.shadow_count), shadow.aim.resize(shadow_at + q.shadow_count);
     sq.resize_queries(queued + q.shadow_count);
   }
-  write_back_paths(ctx);
 }
 
 }  // namespace raylane::path_detail

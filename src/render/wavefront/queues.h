@@ -21,52 +21,121 @@
 
 namespace raylane::path_detail {
 
-// A path between wavefronts. Its ray is not here: it waits in a RayQueue. Two cache lines: the
-// first holds what the arrivals read and the vertices' write-back writes (sort_arrivals: depth,
-// seed, throughput, and for an emitter's MIS weight the vertex before; write_back_paths: the
-// throughput and that vertex), the second what the shadow rays and emitters add to (radiance),
-// so that each pass over the paths touches one line per path (112 bytes unaligned straddled two
-// or three, and the write-back touched both lines while the vertex lay on the second).
-struct alignas(64) PathState {
-  // The depth its ray in flight arrives at: 0 for the camera ray, one more at every vertex
-  // that sends the path on (sort_arrivals counts it). A wavefront that refills holds paths of
-  // different depths side by side.
-  uint32_t depth = 0;
-  bool prev_specular = false;  // the ray was drawn from a Dirac lobe: light sampling could not
-                               // find what it meets
-  uint64_t pixel_seed = 0;     // the Sobol sampler's scramble of this pixel
-  glm::dvec3 beta{1, 1, 1};    // throughput
-  double prev_pdf = 0;         // the BSDF density of the ray's direction
+// A path between wavefronts: what stays with its pixel. What changes from bounce to bounce
+// travels with its ray (PathCarry).
+struct PathState {
+  uint64_t pixel_seed = 0;  // the Sobol sampler's scramble of this pixel
+  glm::dvec3 radiance{0, 0, 0};
+  std::size_t pixel = 0;
+};
+
+// What a path carries to the vertex its ray arrives at, one ray's worth (PathCarry holds it
+// as columns).
+struct Carried {
+  glm::dvec3 beta{1, 1, 1};  // throughput
+  double prev_pdf = 0;       // the BSDF density of the ray's direction
   // The vertex the ray left, for the light's density in an emitter's MIS weight: the lanes'
   // float point as it is; the double shading's rounded to float (a relative change of 2^-24 in
   // a point that only weighs the emission, far below the density's own roundoff).
   glm::vec3 prev_p{};
-  // The second line.
-  alignas(64) glm::dvec3 radiance{0, 0, 0};
-  std::size_t pixel = 0;
+  // The depth the ray arrives at: 0 for the camera ray, one more at every vertex that sends the
+  // path on. A wavefront that refills holds paths of different depths side by side.
+  uint32_t depth = 0;
+  bool prev_specular = false;  // drawn from a Dirac lobe: light sampling could not find what
+                               // the ray meets
 };
-static_assert(sizeof(PathState) == 128, "two cache lines");
-static_assert(offsetof(PathState, prev_p) + sizeof(glm::vec3) <= 64, "the arrivals' line");
 
-// Rays to trace, in the float columns the tracer reads: ray k is path[k]'s.
+// The paths' state carried by their rays, as columns beside the rays (pbrt-v4's wavefront
+// integrator carries each path's depth, throughput and previous vertex in its ray queue's
+// items the same way: Pharr, Jakob, Humphreys, 4th ed., §15.2). The stages read it in ray
+// order, and the scatter kernel packs it with the next rays it makes; a record per path would
+// be read and written at the paths' scattered slots instead.
+struct PathCarry {
+  std::array<Column<double>, 3> beta;
+  Column<double> prev_pdf;
+  std::array<Column<float>, 3> prev_p;
+  Column<uint32_t> depth;
+  Column<uint8_t> prev_specular;
+
+  template <class F>
+  void for_each_column(F f) {
+    for (auto& c : beta)
+      f(c);
+    f(prev_pdf);
+    for (auto& c : prev_p)
+      f(c);
+    f(depth), f(prev_specular);
+  }
+  void resize(std::size_t n) {
+    for_each_column([n](auto& c) { c.resize(n); });
+  }
+  Carried get(std::size_t k) const {
+    Carried c;
+    c.beta = {beta[0][k], beta[1][k], beta[2][k]}, c.prev_pdf = prev_pdf[k];
+    c.prev_p = {prev_p[0][k], prev_p[1][k], prev_p[2][k]};
+    c.depth = depth[k], c.prev_specular = prev_specular[k] != 0;
+    return c;
+  }
+  void set(std::size_t k, const Carried& c) {
+    for (int j = 0; j < 3; ++j)
+      beta[std::size_t(j)][k] = c.beta[j], prev_p[std::size_t(j)][k] = c.prev_p[j];
+    prev_pdf[k] = c.prev_pdf, depth[k] = c.depth, prev_specular[k] = c.prev_specular ? 1 : 0;
+  }
+  // Rows [at, at + n) set to c.
+  void fill(std::size_t at, std::size_t n, const Carried& c) {
+    auto to = [&](auto& col, auto v) { std::fill_n(col.begin() + std::ptrdiff_t(at), n, v); };
+    for (std::size_t j = 0; j < 3; ++j)
+      to(beta[j], c.beta[int(j)]), to(prev_p[j], c.prev_p[int(j)]);
+    to(prev_pdf, c.prev_pdf), to(depth, c.depth), to(prev_specular, uint8_t(c.prev_specular));
+  }
+  void swap(PathCarry& other) {
+    beta.swap(other.beta), prev_pdf.swap(other.prev_pdf), prev_p.swap(other.prev_p);
+    depth.swap(other.depth), prev_specular.swap(other.prev_specular);
+  }
+};
+
+// Rays to trace, in the float columns the tracer reads: ray k is path[k]'s, and carries its
+// state (carry, row k).
 struct RayQueue {
   Column<uint32_t> path;  // index into the wavefront's paths
   RayStream rays;
+  PathCarry carry;
 
   std::size_t size() const { return path.size(); }
   bool empty() const { return path.empty(); }
-  void clear() { path.clear(), rays.clear(); }
-  void swap(RayQueue& other) { path.swap(other.path), std::swap(rays, other.rays); }
-  // The rays of `other` after these (their tmin, tmax and paths; no aims or times: a stream of
-  // camera and bounce rays has neither before stamp_times).
+  void clear() { path.clear(), rays.clear(), carry.resize(0); }
+  void swap(RayQueue& other) {
+    path.swap(other.path), std::swap(rays, other.rays), carry.swap(other.carry);
+  }
+  // One more ray, path p's, carrying c.
+  void push(uint32_t p, const Rayf& ray, const Carried& c) {
+    const std::size_t k = size();
+    path.push_back(p);
+    RayAppender(rays, 1, false).push(ray);
+    carry.resize(k + 1), carry.set(k, c);
+  }
+  // The rays of `other` after these (their tmin, tmax, paths and state; no aims or times: a
+  // stream of camera and bounce rays has neither before stamp_times).
   void append(const RayQueue& other) {
     const std::size_t at = size(), n = other.size();
-    path.resize(at + n), rays.resize(at + n);
+    path.resize(at + n), rays.resize(at + n), carry.resize(at + n);
     std::copy_n(other.path.begin(), n, path.begin() + std::ptrdiff_t(at));
     const RayStream& o = other.rays;
     for (auto c : {&RayStream::ox, &RayStream::oy, &RayStream::oz, &RayStream::dx, &RayStream::dy,
                    &RayStream::dz, &RayStream::tmin, &RayStream::tmax})
       std::copy_n((o.*c).begin(), n, (rays.*c).begin() + std::ptrdiff_t(at));
+    append_carry(other.carry, at, n);
+  }
+
+ private:
+  void append_carry(const PathCarry& o, std::size_t at, std::size_t n) {
+    auto copy = [&](const auto& from, auto& to) {
+      std::copy_n(from.begin(), n, to.begin() + std::ptrdiff_t(at));
+    };
+    for (std::size_t j = 0; j < 3; ++j)
+      copy(o.beta[j], carry.beta[j]), copy(o.prev_p[j], carry.prev_p[j]);
+    copy(o.prev_pdf, carry.prev_pdf), copy(o.depth, carry.depth);
+    copy(o.prev_specular, carry.prev_specular);
   }
 };
 
@@ -106,14 +175,11 @@ struct CameraPoints {
   void resize(std::size_t n) { x.resize(n), y.resize(n), jx.resize(n), jy.resize(n); }
 };
 
-// Hits on a material shaded one by one in double: ray k of the wavefront, its material row,
-// the vertex's depth.
+// Hits on a material shaded one by one in double: ray k of the wavefront, its material row.
 struct DoubleVertexQueue {
-  std::vector<uint32_t> ray, material, depth;
-  void clear() { ray.clear(), material.clear(), depth.clear(); }
-  void push(uint32_t k, uint32_t m, uint32_t d) {
-    ray.push_back(k), material.push_back(m), depth.push_back(d);
-  }
+  std::vector<uint32_t> ray, material;
+  void clear() { ray.clear(), material.clear(); }
+  void push(uint32_t k, uint32_t m) { ray.push_back(k), material.push_back(m); }
 };
 
 // Hits on a material shaded in lanes, as columns: row r is vertex r of every batch below
