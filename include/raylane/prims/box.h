@@ -115,44 +115,46 @@ struct BoxSurface {
   V3 p, n;
 };
 // Inlined always: a call passes the lanes through memory (GCC kept it out of line in the
-// render's surface pass, spilling every operand).
+// render's surface pass, spilling every operand). The axes are spelled out by value, not
+// walked through arrays of pointers to the vectors' members: pointers kept the point and the
+// normal in memory, and GCC copied them there and back 8 bytes at a time.
 template <class N, class V3>
 [[gnu::always_inline]] inline BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o,
                                                          const V3& d, const N& t) {
   using K = Num<N>;
-  const N* los[3] = {&lo.x, &lo.y, &lo.z};
-  const N* his[3] = {&hi.x, &hi.y, &hi.z};
-  const N* os[3] = {&o.x, &o.y, &o.z};
-  const N* ds[3] = {&d.x, &d.y, &d.z};
   N entry(-HUGE_VAL), exit(HUGE_VAL), entry_axis(-1.0), exit_axis(-1.0);
-  for (int k = 0; k < 3; ++k) {  // detail::box_slab's steps
-    const N inv = N(1.0) / *ds[k];
-    const auto neg = K::sign_bit(*ds[k]);
-    const N tn = (K::select(neg, *his[k], *los[k]) - *os[k]) * inv;
-    const N tf = (K::select(neg, *los[k], *his[k]) - *os[k]) * inv;
+  auto slab = [&](const N& lo_k, const N& hi_k, const N& o_k, const N& d_k, double k) {
+    const N inv = N(1.0) / d_k;  // detail::box_slab's steps
+    const auto neg = K::sign_bit(d_k);
+    const N tn = (K::select(neg, hi_k, lo_k) - o_k) * inv;
+    const N tf = (K::select(neg, lo_k, hi_k) - o_k) * inv;
     const auto nearer = tn > entry, farther = tf < exit;
     entry = K::select(nearer, tn, entry);
-    entry_axis = K::select(nearer, N(double(k)), entry_axis);
+    entry_axis = K::select(nearer, N(k), entry_axis);
     exit = K::select(farther, tf, exit);
-    exit_axis = K::select(farther, N(double(k)), exit_axis);
-  }
+    exit_axis = K::select(farther, N(k), exit_axis);
+  };
+  slab(lo.x, hi.x, o.x, d.x, 0.0), slab(lo.y, hi.y, o.y, d.y, 1.0);
+  slab(lo.z, hi.z, o.z, d.z, 2.0);
   // The nearer end of the interval: t may come from a float kernel, so never compare exactly.
   const auto entering =
       (entry_axis >= N(0.0)) & ((exit_axis < N(0.0)) | (K::abs(t - entry) <= K::abs(t - exit)));
   const N axis = K::select(entering, entry_axis, K::select(exit_axis >= N(0.0), exit_axis, N(0.0)));
-  BoxSurface<V3> out{V3{o.x + d.x * t, o.y + d.y * t, o.z + d.z * t}, V3{N(0.0), N(0.0), N(0.0)}};
-  N* ps[3] = {&out.p.x, &out.p.y, &out.p.z};
-  N* ns[3] = {&out.n.x, &out.n.y, &out.n.z};
-  for (int k = 0; k < 3; ++k) {
-    const auto on = axis == N(double(k));
-    // Entering, the face looks back at the ray; leaving, it looks along it.
-    const auto neg = K::sign_bit(*ds[k]);
-    const N sign =
-        K::select(entering, K::select(neg, N(1.0), N(-1.0)), K::select(neg, N(-1.0), N(1.0)));
-    *ns[k] = K::select(on, sign, N(0.0));
-    *ps[k] = K::select(on, K::select(sign > N(0.0), *his[k], *los[k]), *ps[k]);
-  }
-  return out;
+  // Entering, the face looks back at the ray; leaving, it looks along it.
+  auto sign = [&](const N& d_k) {
+    const auto neg = K::sign_bit(d_k);
+    return K::select(entering, K::select(neg, N(1.0), N(-1.0)), K::select(neg, N(-1.0), N(1.0)));
+  };
+  const N sx = sign(d.x), sy = sign(d.y), sz = sign(d.z);
+  auto normal = [&](const N& sign_k, double k) { return K::select(axis == N(k), sign_k, N(0.0)); };
+  // The point o + t·d, snapped onto the face's plane on its axis.
+  auto point = [&](const N& lo_k, const N& hi_k, const N& o_k, const N& d_k, const N& sign_k,
+                   double k) {
+    return K::select(axis == N(k), K::select(sign_k > N(0.0), hi_k, lo_k), o_k + d_k * t);
+  };
+  return {V3{point(lo.x, hi.x, o.x, d.x, sx, 0.0), point(lo.y, hi.y, o.y, d.y, sy, 1.0),
+             point(lo.z, hi.z, o.z, d.z, sz, 2.0)},
+          V3{normal(sx, 0.0), normal(sy, 1.0), normal(sz, 2.0)}};
 }
 
 // A bound on the error of box_surface's point computed in float, for the offset along its
