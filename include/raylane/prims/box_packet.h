@@ -48,7 +48,8 @@ template <class A>
   const simd::FloatVec3<A> lo = read_rows3<A>(b.lox, b.loy, b.loz, rows);
   const simd::FloatVec3<A> hi = read_rows3<A>(b.hix, b.hiy, b.hiz, rows);
   const BoxSurface<simd::FloatVec3<A>> s = box_surface<simd::Floats<A>>(lo, hi, r.o, r.d, r.t);
-  return {s.p, s.n, s.n, box_point_bound<simd::Floats<A>>(lo, hi, r.o, r.d, r.t, s)};
+  return surface_lanes_of<A>(s.p, s.n, s.n,
+                             box_point_bound<simd::Floats<A>>(lo, hi, r.o, r.d, r.t, s));
 }
 
 }  // namespace raylane

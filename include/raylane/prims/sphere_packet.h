@@ -62,7 +62,7 @@ template <class A>
   const simd::FloatVec3<A> c = read_rows3<A>(s.cx, s.cy, s.cz, rows);
   const SphereSurface<simd::FloatVec3<A>> x =
       sphere_surface<simd::Floats<A>>(c, read_rows<A>(s.r, rows), r.o, r.d, r.t);
-  return {x.p, x.n, x.n, sphere_point_bound<simd::Floats<A>>(x.p, x.offset)};
+  return surface_lanes_of<A>(x.p, x.n, x.n, sphere_point_bound<simd::Floats<A>>(x.p, x.offset));
 }
 
 }  // namespace raylane

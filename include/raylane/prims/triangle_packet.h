@@ -142,7 +142,8 @@ template <class A>
                              read_rows3<A>(tri.n1x, tri.n1y, tri.n1z, rows),
                              read_rows3<A>(tri.n2x, tri.n2y, tri.n2z, rows)};
   const TriangleSurface<V3> s = triangle_surface<simd::Floats<A>>(v, vn, r.o, r.d, r.t);
-  return {s.p, s.ng, s.ns, triangle_point_bound<simd::Floats<A>>(s, v, r.o, r.d, r.t)};
+  return surface_lanes_of<A>(s.p, s.ng, s.ns,
+                             triangle_point_bound<simd::Floats<A>>(s, v, r.o, r.d, r.t));
 }
 
 }  // namespace raylane

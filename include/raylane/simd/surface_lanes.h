@@ -42,6 +42,21 @@ struct FloatSurfaceLanes {
   simd::FloatVec3<A> p, ng, ns, error;
 };
 
+// A FloatSurfaceLanes from its parts, assigned lane register by lane register: built as an
+// aggregate from the kinds' surface structs, GCC moved the registers through the stack in
+// 16-byte halves, half of them through general registers.
+template <class A>
+[[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_lanes_of(
+    const simd::FloatVec3<A>& p, const simd::FloatVec3<A>& ng, const simd::FloatVec3<A>& ns,
+    const simd::FloatVec3<A>& error) {
+  FloatSurfaceLanes<A> out;
+  out.p.x = p.x, out.p.y = p.y, out.p.z = p.z;
+  out.ng.x = ng.x, out.ng.y = ng.y, out.ng.z = ng.z;
+  out.ns.x = ns.x, out.ns.y = ns.y, out.ns.z = ns.z;
+  out.error.x = error.x, out.error.y = error.y, out.error.z = error.z;
+  return out;
+}
+
 // The table column c read at one row per float lane: by register permutes where the table is
 // short (a scene's handful of boxes or spheres), else gathered (simd/lane_lookup.h).
 template <class A>
