@@ -7,6 +7,7 @@
 
 #include "raylane/render/arrival_lanes.h"
 #include "raylane/simd/lane_convert.h"
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_rows.h"
 #include "raylane/simd/lanes.h"
 
@@ -18,9 +19,10 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
   using F = simd::Floats<A>;
   constexpr int W = simd::kWidth<A>;
   auto ints = [](const F& v) { return xsimd::bitwise_cast<I>(v); };
-  // Integer columns gathered as floats: a gather moves bits, it does not convert them.
-  auto gather = [&](const uint32_t* col, const I& idx) {
-    return ints(simd::gather<A>(reinterpret_cast<const float*>(col), idx));
+  // Integer columns read as floats, by permutes where they are short (a scene's handful of
+  // boxes and materials) or gathers: both move bits, neither converts them.
+  auto read = [&](const uint32_t* col, std::size_t n, const I& idx) {
+    return ints(simd::lookup<A>(reinterpret_cast<const float*>(col), n, idx));
   };
   auto load_rows = [&](const uint32_t* col, std::size_t k, int m) {
     const float* at = reinterpret_cast<const float*>(col + k);
@@ -59,9 +61,10 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
       const simd::Mask<A> on = simd::equal<A>(tag, I(tags[j]));
       if ((simd::bits<A>(on) & hit) == 0) continue;
       const I rows = simd::select<A>(on, row, I(0));
-      material = simd::select<A>(on, gather(in.material_of[std::size_t(tags[j])], rows), material);
+      const std::size_t t = std::size_t(tags[j]);
+      material = simd::select<A>(on, read(in.material_of[t], in.rows_of[t], rows), material);
     }
-    const I route = gather(in.route, material);
+    const I route = read(in.route, in.materials, material);
     const I depth = load_rows(in.depth, k, m);
     const uint32_t to_emitter = simd::bits<A>(simd::equal<A>(route, emitter)) & hit;
     const uint32_t goes_on = simd::bits<A>(xsimd::bool_cast(depth < max_depth)) & hit;

@@ -30,8 +30,9 @@ struct Wavefront {
     in.depth = depth.data();
     in.beta = {beta[0].data(), beta[1].data(), beta[2].data()};
     for (std::size_t t = 0; t < kPrimKindCount; ++t)
-      if (!materials[t].empty()) in.material_of[t] = materials[t].data();
-    in.route = route.data();
+      if (!materials[t].empty())
+        in.material_of[t] = materials[t].data(), in.rows_of[t] = materials[t].size();
+    in.route = route.data(), in.materials = route.size();
     in.emitter_route = kEmitter, in.lanes_route = lanes ? kLanes : kNone;
     in.max_depth = 5, in.environment = environment;
     return in;
@@ -46,7 +47,8 @@ Wavefront random_wavefront(std::size_t n, Rng& rng) {
   const std::size_t paths = n + 3, material_count = 9;
   for (uint32_t m = 0; m < material_count; ++m)
     w.route.push_back(m < 2 ? kEmitter : m < 6 ? kLanes : kDouble);
-  const std::size_t kinds[3] = {0, 1, 4}, rows[3] = {5, 70, 2};
+  const std::size_t kinds[3] = {0, 1, 4},
+                    rows[3] = {5, 70, 12};  // one register, a gather, two registers (AVX2)
   for (int j = 0; j < 3; ++j)
     for (std::size_t r = 0; r < rows[j]; ++r)
       w.materials[kinds[j]].push_back(uint32_t(rng.uniform() * material_count));

@@ -29,11 +29,13 @@ struct ArrivalColumns {
   // What ray k carries of its path: the depth it arrives at, the throughput.
   const uint32_t* depth = nullptr;
   std::array<const double*, 3> beta{};
-  // Each kind's material column (the scene's tables), by PrimTag; null for a kind no hit
-  // can have (an empty table).
+  // Each kind's material column (the scene's tables) and the column's length (a CSG table's
+  // counts leaves, not blocks), by PrimTag; null for a kind no hit can have (an empty table).
   std::array<const uint32_t*, kPrimKindCount> material_of{};
-  // Material m's route (LaneMaterials::Route as an integer): route[m].
+  std::array<std::size_t, kPrimKindCount> rows_of{};
+  // Material m's route (LaneMaterials::Route as an integer): route[m], m < materials.
   const uint32_t* route = nullptr;
+  std::size_t materials = 0;
   uint32_t emitter_route = 0;  // the route of emitters
   uint32_t lanes_route = 0;    // the route shaded in lanes (one no material has: none)
   uint32_t max_depth = 0;      // a path at this depth sends no ray on

@@ -134,9 +134,12 @@ void sort_arrivals(ThreadContext& ctx) {
   in.beta = {carry.beta[0].data(), carry.beta[1].data(), carry.beta[2].data()};
   PrimKinds::for_each([&](auto kind) {
     const auto& table = scene.table<decltype(kind)>();
-    if (table.size() != 0) in.material_of[kind_index<decltype(kind)>()] = table.material.data();
+    if (table.size() == 0) return;
+    in.material_of[kind_index<decltype(kind)>()] = table.material.data();
+    in.rows_of[kind_index<decltype(kind)>()] = table.material.size();  // CSG: per leaf
   });
   in.route = reinterpret_cast<const uint32_t*>(ctx.lanes.materials.route.data());
+  in.materials = ctx.lanes.materials.route.size();
   in.emitter_route = uint32_t(Route::kEmitter);
   in.lanes_route = uint32_t(lanes ? Route::kLanes : Route::kNone);
   in.max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
