@@ -2,10 +2,10 @@
 // render_lanes_avx2.cpp, render_lanes_avx512.cpp, each from the same *_impl.h sources) into one
 // table of entry points each: the BSDF, the Sobol groups, the sphere lights' cones, what follows
 // the BSDF, both at once with the queues' write-back (the scatter kernel), the pinhole's camera
-// rays and the arrivals' sort. The public functions (shade_lanes, sobol_groups, sample_cones,
-// finish_vertices, scatter_vertices, pinhole_rays, sort_arrival_rows) look their kernel up here,
-// the one place an instruction set picks one (as bvh/build_lanes.h does for the builder). This
-// header has no xsimd.
+// rays, the arrivals' sort and the live blocks' bits. The public functions (shade_lanes,
+// sobol_groups, sample_cones, finish_vertices, scatter_vertices, pinhole_rays, sort_arrival_rows,
+// blocks_of_paths) look their kernel up here, the one place an instruction set picks one (as
+// bvh/build_lanes.h does for the builder). This header has no xsimd.
 #pragma once
 
 #include <cstddef>
@@ -44,6 +44,8 @@ struct RenderLanes {
   std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);
   // sort_arrival_rows (render/arrival_lanes.h).
   void (*sort_arrivals)(const ArrivalColumns& in, ArrivalRows& out);
+  // blocks_of_paths (render/path_blocks.h).
+  uint64_t (*blocks_of_paths)(const uint32_t* path, std::size_t n, unsigned shift);
 };
 
 extern const RenderLanes kRenderLanesSse42, kRenderLanesAvx2, kRenderLanesAvx512;

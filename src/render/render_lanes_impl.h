@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/arrival_lanes_impl.h"
+#include "render/blocks_lanes_impl.h"
 #include "render/camera/camera_lanes_impl.h"
 #include "render/lights/light_lanes_impl.h"
 #include "render/materials/shade_lanes_impl.h"
@@ -22,10 +23,11 @@ void sobol_groups_and_numbers(uint32_t reversed_index, uint32_t group, unsigned 
 
 template <class A>
 constexpr RenderLanes render_lanes_for() {
-  return {shade_lanes_range<A>,  sobol_groups_and_numbers<A>,
-          sample_cones_range<A>, finish_vertices_range<A>,
-          scatter_range<A>,      gather_wo_range<A>,
-          pinhole_rays_range<A>, sort_arrival_rows_range<A>};
+  return {shade_lanes_range<A>,    sobol_groups_and_numbers<A>,
+          sample_cones_range<A>,   finish_vertices_range<A>,
+          scatter_range<A>,        gather_wo_range<A>,
+          pinhole_rays_range<A>,   sort_arrival_rows_range<A>,
+          blocks_of_paths_range<A>};
 }
 
 }  // namespace raylane::detail

@@ -8,6 +8,8 @@ namespace raylane::path_detail {
 namespace {
 
 constexpr uint32_t kTilePaths = kTile * kTile;  // path slots per block
+constexpr unsigned kTileShift = 8;              // path >> kTileShift: its block
+static_assert(kTilePaths == 1u << kTileShift);
 
 // CPU time of the calling thread: a tile's cost without the time the thread spent preempted
 // (on a shared machine wall time made a few tiles look 8x their cost).
@@ -131,26 +133,9 @@ void add_to_film(ThreadContext& ctx, const TileInFlight& tile, Film& f) {
   }
 }
 
-// The blocks that hold a path of `paths` as bits (block b: bit b; at most 64 blocks). ORs
-// into registers: counting into each tile's `live` instead chained every increment on the one
-// before through memory (2.6 % of a render). Four registers, so that each OR waits on the one
-// four paths back rather than on the last (one OR chain was most of the tiles' bookkeeping).
-uint64_t blocks_of(const Column<uint32_t>& paths) {
-  uint64_t b[4] = {0, 0, 0, 0};
-  const uint32_t* p = paths.data();
-  const std::size_t n = paths.size();
-  std::size_t i = 0;
-  for (; i + 4 <= n; i += 4)
-    for (int k = 0; k < 4; ++k)
-      b[k] |= uint64_t(1) << (p[i + k] / kTilePaths);
-  for (; i < n; ++i)
-    b[0] |= uint64_t(1) << (p[i] / kTilePaths);
-  return b[0] | b[1] | b[2] | b[3];
-}
-
 // Each tile's `live`: its rays and shadow rays waiting, counted where they are read (MPI's tile
 // costs) or where the blocks outnumber a word's bits; else 1 for a tile that has any.
-void mark_live_tiles(Wavefront& w, bool counted) {
+void mark_live_tiles(const ThreadContext& ctx, Wavefront& w, bool counted) {
   for (TileInFlight& t : w.tiles)
     t.live = 0;
   if (counted || w.tiles.size() > 64) {
@@ -160,6 +145,12 @@ void mark_live_tiles(Wavefront& w, bool counted) {
       ++w.tiles[p / kTilePaths].live;
     return;
   }
+  // The blocks holding a path as bits (block b: bit b; at most 64 blocks), ORed in lanes:
+  // counting into each tile's `live` chained every increment on the one before through
+  // memory, and a scalar loop paid a shift and an OR per path.
+  auto blocks_of = [&](const Column<uint32_t>& paths) {
+    return ctx.lanes.kernels.blocks_of_paths(paths.data(), paths.size(), kTileShift);
+  };
   const uint64_t blocks = blocks_of(w.rays.path) | blocks_of(w.shadows.path);
   for (std::size_t b = 0; b < w.tiles.size(); ++b)
     w.tiles[b].live = uint32_t(blocks >> b & 1u);
@@ -178,7 +169,7 @@ void finish_tiles(ThreadContext& ctx, Film& f, double step_seconds,
     for (TileInFlight& t : w.tiles)
       if (t.tile >= 0 && rays > 0) t.seconds += step_seconds * double(t.live) / double(rays);
   }
-  mark_live_tiles(w, !tile_seconds.empty());
+  mark_live_tiles(ctx, w, !tile_seconds.empty());
   PhaseClock clock(ctx.settings.time_phases);
   for (TileInFlight& t : w.tiles) {
     if (t.tile < 0 || t.live > 0) continue;
