@@ -84,15 +84,19 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane rows' Sobol seeds, from their paths. The columns' pointers are held in locals:
-// stores through the queue's vectors could alias them.
+// The lane rows' Sobol seeds: their paths' salted by the groups of their depths
+// (LaneVertexQueue::light_seed, bsdf_seed). The columns' pointers are held in locals: stores
+// through the queue's vectors could alias them.
 void copy_seeds(Wavefront& w, std::size_t rows) {
   LaneVertexQueue& lv = w.lane_vertices;
-  const uint32_t* path = lv.path.data();
-  uint64_t* pixel_seed = lv.pixel_seed.data();
+  const uint32_t *path = lv.path.data(), *depth = lv.depth.data();
+  uint64_t *light_seed = lv.light_seed.data(), *bsdf_seed = lv.bsdf_seed.data();
   const PathState* paths = w.paths.data();
-  for (std::size_t r = 0; r < rows; ++r)
-    pixel_seed[r] = paths[path[r]].pixel_seed;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const uint64_t seed = paths[path[r]].pixel_seed;
+    light_seed[r] = seed ^ group_salt(Dims::light_group(depth[r]));
+    bsdf_seed[r] = seed ^ group_salt(Dims::bsdf_group(depth[r]));
+  }
 }
 
 // The arrivals the lanes leave to scalar code, in ray order: an escape under an environment,

@@ -54,18 +54,6 @@ bool roulette_columns(ThreadContext& ctx) {
   return any != 0;
 }
 
-// The rows' Sobol seeds for the group each row draws at its own depth: the pixel's seed salted
-// by the group (sobol.h, group_salt), so that one call for group 0 draws every row's group.
-template <class GroupOf>
-void salt_seeds(ThreadContext& ctx, GroupOf group_of) {
-  LaneVertexQueue& lv = ctx.wave.lane_vertices;
-  const uint64_t* pixel_seed = lv.pixel_seed.data();
-  const uint32_t* depth = lv.depth.data();
-  uint64_t* seed = lv.sobol.seed.data();
-  for (std::size_t r = 0; r < lv.count; ++r)
-    seed[r] = pixel_seed[r] ^ group_salt(group_of(depth[r]));
-}
-
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
 // the double shading's order (light, BSDF, roulette where the row has it).
 void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
@@ -90,8 +78,9 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
     to.as_float = {q.cones.u1.data(), q.cones.u2.data(), nullptr, nullptr};
     to.as_double = {nullptr, nullptr, read > 2 ? q.u_light.data() : nullptr,
                     read > 3 ? q.u_part.data() : nullptr};
-    salt_seeds(ctx, Dims::light_group);
+    s.seed.swap(lv.light_seed);  // the rows' seeds for their light groups, and back
     sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, first_components(read), to);
+    s.seed.swap(lv.light_seed);
   }
   // Roulette's number only where a row has roulette (the vertex lanes read it only then).
   // The lobe's number only where a material has more than one lobe (else 0, which picks the
@@ -103,8 +92,9 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   SobolNumbers to;
   to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
   if (roulette) to.as_float[3] = lv.vertices.u_roulette.data();
-  salt_seeds(ctx, Dims::bsdf_group);
+  s.seed.swap(lv.bsdf_seed);
   sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, 3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
+  s.seed.swap(lv.bsdf_seed);
 }
 
 // The rows' light points (sphere lights in lanes), with the float direction the BSDF is
@@ -220,7 +210,7 @@ void drop_black_rows(ThreadContext& ctx) {
     if (!reflects(has_lobes, cos_ns[r], material[r])) continue;
     rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
-    rows.pixel_seed[kept] = rows.pixel_seed[r];
+    rows.light_seed[kept] = rows.light_seed[r], rows.bsdf_seed[kept] = rows.bsdf_seed[r];
     p.move(kept, r), p_error.move(kept, r), ng.move(kept, r), ns.move(kept, r);
     beta.move(kept, r);
     ++kept;

@@ -191,9 +191,10 @@ struct LaneVertexQueue {
   std::vector<uint32_t> ray;       // index into the wavefront's rays and hits
   std::vector<uint32_t> material;  // the hit's material row
   std::vector<uint32_t> depth;     // the vertex's depth (its Sobol groups, its roulette)
-  // The path's PathState::pixel_seed, copied as the row is queued (the path is at hand then),
-  // so that the Sobol groups' seeds are a pass over columns, not a gather from the paths.
-  std::vector<uint64_t> pixel_seed;
+  // The Sobol seeds of the row's light and BSDF groups: its path's PathState::pixel_seed salted
+  // by the group of the row's depth (sobol.h, group_salt), so that one call for group 0 draws
+  // every row's own group. Made as the row is queued (the path is at hand then).
+  std::vector<uint64_t> light_seed, bsdf_seed;
   // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
@@ -208,7 +209,7 @@ struct LaneVertexQueue {
     n = (n + 15) / 16 * 16;
     if (path.size() >= n) return;
     path.resize(n), ray.resize(n), material.resize(n), depth.resize(n), cos_ns.resize(n);
-    front.resize(n), pixel_seed.resize(n);
+    front.resize(n), light_seed.resize(n), bsdf_seed.resize(n);
   }
 };
 
