@@ -9,6 +9,7 @@
 #include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_rows.h"
+#include "raylane/simd/lane_u64.h"
 #include "raylane/simd/lanes.h"
 
 namespace raylane::detail {
@@ -88,6 +89,52 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
     }
   }
   out.lanes = lanes, out.rare_count = rare;
+}
+
+// row_path_columns in lanes: a register of 64-bit lanes at a time (four rows on AVX2, eight on
+// AVX-512), the seeds gathered from the paths, the salts' products in simd::U64Lanes, the
+// survival a select on the depth; row_path_columns_of's steps for the rows after the last whole
+// register, and on SSE4.2 (no gathers) for all of them. (GCC left the plain loop scalar.)
+template <class A>
+bool row_path_columns_range(const RowPathColumns& c) {
+  using U64 = simd::U64Lanes<A>;
+  constexpr std::size_t N = U64::V::size;  // rows per step: the 64-bit lanes
+  std::size_t r = 0;
+  unsigned any = 0;
+  if constexpr (N >= 4) {
+    const U64 base(c.light_salt), step(c.salt_step), offset(c.bsdf_offset);
+    const long long* seeds = reinterpret_cast<const long long*>(c.pixel_seed);
+    for (; r + N <= c.count; r += N) {
+      typename U64::V seed, depth;
+      if constexpr (N == 8) {
+        const __m256i path = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.path + r));
+        const __m256i d = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.depth + r));
+        const __m256i idx = _mm256_mullo_epi32(path, _mm256_set1_epi32(int(c.seed_stride)));
+        seed = _mm512_i32gather_epi64(idx, seeds, 8), depth = _mm512_cvtepu32_epi64(d);
+        const __m256i on = _mm256_cmpgt_epi32(d, _mm256_set1_epi32(int(c.roulette_from) - 1));
+        _mm256_storeu_ps(c.survival_of_row + r,
+                         _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps(c.survival),
+                                          _mm256_castsi256_ps(on)));
+        any |= unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(on)));
+      } else {
+        const __m128i path = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c.path + r));
+        const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c.depth + r));
+        const __m128i idx = _mm_mullo_epi32(path, _mm_set1_epi32(int(c.seed_stride)));
+        seed = _mm256_i32gather_epi64(seeds, idx, 8), depth = _mm256_cvtepu32_epi64(d);
+        const __m128i on = _mm_cmpgt_epi32(d, _mm_set1_epi32(int(c.roulette_from) - 1));
+        _mm_storeu_ps(c.survival_of_row + r, _mm_blendv_ps(_mm_set1_ps(1.0f),
+                                                           _mm_set1_ps(c.survival),
+                                                           _mm_castsi128_ps(on)));
+        any |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(on)));
+      }
+      const U64 light = base + U64(depth) * step;
+      (U64(seed) ^ light).v.store_unaligned(c.light_seed + r);
+      (U64(seed) ^ (light + offset)).v.store_unaligned(c.bsdf_seed + r);
+    }
+  }
+  for (; r < c.count; ++r)
+    any |= row_path_columns_of(c, r) ? 1u : 0u;
+  return any != 0;
 }
 
 }  // namespace raylane::detail

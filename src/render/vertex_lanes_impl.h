@@ -168,7 +168,6 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
   std::size_t next = 0, shadows = 0;
   for (std::size_t i = 0; i < n; i += W) {
     const BsdfAnswers<A> a = bsdf_answers<A>(materials, bsdf, i);
-    simd::store<A>(bsdf.pdf.data() + i, a.pdf);
     // The batch's own rows: the last batch's padding lanes are queued nowhere.
     const uint32_t rows = n - i >= W ? (1u << W) - 1 : (1u << (n - i)) - 1;
     const simd::Ints<A> path =
@@ -190,7 +189,6 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
       shadows += std::size_t(pack.count());
     }
     const NextLanes<A> nx = next_lanes<A>(rules, a, v, b, i);
-    store3<A>(b.next_beta, i, nx.beta);
     const simd::LanePacker<A> pack(simd::bits<A>(nx.alive) & rows);
     pack3<A>(pack, q.next_o, next, nx.o);
     pack3<A>(pack, q.next_d, next, a.wi);

@@ -11,6 +11,7 @@
 
 #include "raylane/core/strings.h"
 #include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sobol.h"
 
 namespace raylane {
 namespace {
@@ -155,6 +156,67 @@ TEST(ArrivalLanes, ReferenceOrdersItsDecisions) {
     EXPECT_EQ(arrival_of(in, k), want[k]) << "ray " << k;
   EXPECT_EQ(arrival_of(w.columns(false, true), 3), Arrival::kEnd);
   EXPECT_EQ(arrival_of(w.columns(true, false), 4), Arrival::kRare);
+}
+
+// The rows' seeds and survival in lanes against row_path_columns_of, row by row and bit for
+// bit, at every instruction set: every count from 0 to past two registers and a long one,
+// depths on both sides of roulette's first (and roulette from depth 0), seeds with every bit
+// pattern, paths read at a stride.
+TEST(ArrivalLanes, RowPathColumnsAreTheReferences) {
+  Rng rng(17);
+  constexpr uint32_t kStride = 5, kPaths = 300;
+  std::vector<uint64_t> seeds(kPaths * kStride, 0x5eed5eed5eed5eedull);
+  for (uint32_t p = 0; p < kPaths; ++p)
+    seeds[p * kStride] = uint64_t(rng.uniform() * 0x1p32) << 32 | uint64_t(rng.uniform() * 0x1p32);
+  for (Isa isa : supported_isas())
+    for (std::size_t n : {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 33, 40, 1001})
+      for (uint32_t from : {0u, 2u}) {
+        SCOPED_TRACE(cat(isa_name(isa), " rows ", n, " roulette from ", from));
+        std::vector<uint32_t> path(n), depth(n);
+        for (std::size_t r = 0; r < n; ++r)
+          path[r] = uint32_t(rng.uniform() * kPaths), depth[r] = uint32_t(rng.uniform() * 5);
+        RowPathColumns c;
+        c.path = path.data(), c.depth = depth.data(), c.count = n;
+        c.pixel_seed = seeds.data(), c.seed_stride = kStride;
+        c.light_salt = group_salt(1), c.salt_step = group_salt(2), c.bsdf_offset = group_salt(5);
+        c.roulette_from = from, c.survival = 0.8f;
+        std::vector<uint64_t> light(n + 1, 7), bsdf(n + 1, 7), want_light(n), want_bsdf(n);
+        std::vector<float> survival(n + 1, -1.0f), want_survival(n);
+        c.light_seed = light.data(), c.bsdf_seed = bsdf.data(), c.survival_of_row = survival.data();
+        const bool any = row_path_columns(isa, c);
+        RowPathColumns ref = c;
+        ref.light_seed = want_light.data(), ref.bsdf_seed = want_bsdf.data();
+        ref.survival_of_row = want_survival.data();
+        bool want_any = false;
+        for (std::size_t r = 0; r < n; ++r)
+          want_any = row_path_columns_of(ref, r) || want_any;
+        EXPECT_EQ(any, want_any);
+        for (std::size_t r = 0; r < n; ++r) {
+          ASSERT_EQ(light[r], want_light[r]) << "row " << r;
+          ASSERT_EQ(bsdf[r], want_bsdf[r]) << "row " << r;
+          ASSERT_EQ(survival[r], want_survival[r]) << "row " << r;
+        }
+        EXPECT_TRUE(light[n] == 7 && bsdf[n] == 7 && survival[n] == -1.0f) << "past the rows";
+      }
+}
+
+// The salts row_path_columns takes are group_salt's of the rows' groups: the light group's
+// and the BSDF group's at every depth, as the render passes them (linear in the depth).
+TEST(ArrivalLanes, RowSaltsAreTheGroupsSalts) {
+  RowPathColumns c;
+  const uint64_t seed = 0x0123456789abcdefull;
+  const uint32_t path = 0;
+  c.pixel_seed = &seed, c.path = &path;
+  c.light_salt = group_salt(1), c.salt_step = group_salt(3) - group_salt(1);
+  c.bsdf_offset = group_salt(2) - group_salt(1);
+  for (uint32_t d : {0u, 1u, 7u, 63u, 100000u}) {
+    uint64_t light, bsdf;
+    float survival;
+    c.depth = &d, c.light_seed = &light, c.bsdf_seed = &bsdf, c.survival_of_row = &survival;
+    row_path_columns_of(c, 0);
+    EXPECT_EQ(light, seed ^ group_salt(1 + 2 * d)) << d;
+    EXPECT_EQ(bsdf, seed ^ group_salt(2 + 2 * d)) << d;
+  }
 }
 
 }  // namespace

@@ -418,10 +418,6 @@ TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
         finish_vertices(isa, rules, apart.bsdf, with, apart.vertex);
         Queues got(padded, 20, path.data(), depth.data());
         scatter_vertices(isa, lanes, rules, b.bsdf, with, b.vertex, got.q);
-        for (std::size_t i = 0; i < n; ++i)
-          ASSERT_TRUE(same_bits(row(b.vertex.next_beta, i), row(apart.vertex.next_beta, i)) &&
-                      same_bits(b.bsdf.pdf[i], apart.bsdf.pdf[i]))
-              << "row " << i;
         expect_queues_are_the_flagged_rows(apart, path, depth, n, lights, got);
         if (n == 5003) {
           EXPECT_GT(got.q.next_count, 1000u);

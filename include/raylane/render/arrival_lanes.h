@@ -70,4 +70,35 @@ inline Arrival arrival_of(const ArrivalColumns& in, std::size_t k) {
 // Sorts rays [0, in.count) into out's lane rows and rare rows (both from 0).
 void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out);
 
+// What the lane rows take from their paths and depths once they are sorted: each row's Sobol
+// seeds for its light group and its BSDF group (its path's pixel seed salted by the group of its
+// depth: light salt = light_salt + depth·salt_step, BSDF salt = light salt + bsdf_offset, all
+// modulo 2^64, as group_salt of render/samplers/sobol.h gives them) and roulette's survival
+// probability (`survival` from depth roulette_from on, else 1).
+struct RowPathColumns {
+  const uint32_t *path = nullptr, *depth = nullptr;
+  std::size_t count = 0;
+  const uint64_t* pixel_seed = nullptr;  // path p's at pixel_seed[p · seed_stride]
+  uint32_t seed_stride = 1;
+  uint64_t light_salt = 0, salt_step = 0, bsdf_offset = 0;
+  uint32_t roulette_from = 0;
+  float survival = 1;
+  uint64_t *light_seed = nullptr, *bsdf_seed = nullptr;  // out
+  float* survival_of_row = nullptr;                      // out
+};
+
+// Row r's columns, one row at a time: the lanes' reference. Returns whether it has roulette.
+inline bool row_path_columns_of(const RowPathColumns& c, std::size_t r) {
+  const uint64_t seed = c.pixel_seed[std::size_t(c.path[r]) * c.seed_stride];
+  const uint64_t light = c.light_salt + uint64_t(c.depth[r]) * c.salt_step;
+  c.light_seed[r] = seed ^ light;
+  c.bsdf_seed[r] = seed ^ (light + c.bsdf_offset);
+  const bool roulette = c.depth[r] >= c.roulette_from;
+  c.survival_of_row[r] = roulette ? c.survival : 1.0f;
+  return roulette;
+}
+
+// Every row's; returns whether any has roulette.
+bool row_path_columns(Isa isa, const RowPathColumns& c);
+
 }  // namespace raylane

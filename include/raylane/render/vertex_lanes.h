@@ -109,8 +109,8 @@ struct VertexQueues {
 // shade_lanes and finish_vertices in one pass over the rows (the scatter kernel): the BSDF's
 // sample and at once the steps after it, and their rays straight into the queues with what
 // they carry of their paths, the rows that cast none dropped as they go (a filter over
-// finish_vertices' columns, fused). Also stored, for every row: `bsdf.pdf` and
-// `batch.next_beta`; wi, value, light_f, light_pdf and finish_vertices' other columns are not.
+// finish_vertices' columns, fused). The BSDF's and finish_vertices' own columns are not stored:
+// what a row hands on is in its rays.
 void scatter_vertices(Isa isa, const LaneMaterials& materials, const VertexRules& rules,
                       ShadeBatch& bsdf, const LightQueries* lights, VertexBatch& batch,
                       VertexQueues& queues);

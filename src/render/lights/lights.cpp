@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 
 #include "raylane/render/materials/texturing.h"
 
@@ -269,8 +270,10 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   sample_cones(isa, cb, &every_row);
   // The fills' values in locals: stores into the columns may alias the sampler's members, so
   // GCC reloaded the light at every row (perf: a third of this function's time).
-  const PrimRef light = lights_[0];
-  std::fill_n(q.light.begin(), n, light);
+  // The light as its 32 bits (the scatter kernel reads the column so): GCC did not vectorise a
+  // fill of the class.
+  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>);
+  std::fill_n(reinterpret_cast<uint32_t*>(q.light.data()), n, lights_[0].bits());
   for (int c = 0; c < 3; ++c)
     std::fill_n(q.le[std::size_t(c)].begin(), n, float(le_[0][c]));
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t

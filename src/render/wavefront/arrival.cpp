@@ -3,6 +3,7 @@
 // here), or a queue of vertices to shade.
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <span>
 
 #include "raylane/render/arrival_lanes.h"
@@ -84,19 +85,28 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane rows' Sobol seeds: their paths' salted by the groups of their depths
-// (LaneVertexQueue::light_seed, bsdf_seed). The columns' pointers are held in locals: stores
-// through the queue's vectors could alias them.
-void copy_seeds(Wavefront& w, std::size_t rows) {
+// The lane rows' columns made from their paths and depths as they are queued, in lanes
+// (row_path_columns): the Sobol seeds, their paths' salted by the groups of their depths
+// (LaneVertexQueue::light_seed, bsdf_seed; a group is linear in the depth, Dims, and so is
+// its salt, group_salt), and roulette's survival probability (VertexBatch::survival: 1 where
+// the row's depth has no roulette, has_roulette). Returns whether any row has roulette.
+bool row_columns(ThreadContext& ctx, std::size_t rows) {
+  Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
-  const uint32_t *path = lv.path.data(), *depth = lv.depth.data();
-  uint64_t *light_seed = lv.light_seed.data(), *bsdf_seed = lv.bsdf_seed.data();
-  const PathState* paths = w.paths.data();
-  for (std::size_t r = 0; r < rows; ++r) {
-    const uint64_t seed = paths[path[r]].pixel_seed;
-    light_seed[r] = seed ^ group_salt(Dims::light_group(depth[r]));
-    bsdf_seed[r] = seed ^ group_salt(Dims::bsdf_group(depth[r]));
-  }
+  RowPathColumns c;
+  c.path = lv.path.data(), c.depth = lv.depth.data(), c.count = rows;
+  static_assert(sizeof(PathState) % sizeof(uint64_t) == 0 && offsetof(PathState, pixel_seed) == 0,
+                "the seeds' stride in words");
+  c.pixel_seed = &w.paths.data()->pixel_seed;
+  c.seed_stride = uint32_t(sizeof(PathState) / sizeof(uint64_t));
+  c.light_salt = group_salt(Dims::light_group(0));
+  c.salt_step = group_salt(Dims::light_group(1)) - c.light_salt;
+  c.bsdf_offset = group_salt(Dims::bsdf_group(0)) - c.light_salt;
+  c.roulette_from = uint32_t(std::max(ctx.settings.rr_depth - 1, 0));
+  c.survival = float(kRouletteSurvival);
+  c.light_seed = lv.light_seed.data(), c.bsdf_seed = lv.bsdf_seed.data();
+  c.survival_of_row = lv.vertices.survival.data();
+  return ctx.lanes.kernels.row_path_columns(c);
 }
 
 // The arrivals the lanes leave to scalar code, in ray order: an escape under an environment,
@@ -160,7 +170,7 @@ void sort_arrivals(ThreadContext& ctx) {
   VertexBatch& vb = lv.vertices;
   out.beta = {vb.beta[0].data(), vb.beta[1].data(), vb.beta[2].data()};
   ctx.lanes.kernels.sort_arrivals(in, out);
-  copy_seeds(w, out.lanes);
+  lv.any_roulette = row_columns(ctx, out.lanes);
   lv.count = out.lanes;
   finish_rare_arrivals(ctx, MaterialColumns(scene),
                        std::span<const uint32_t>(w.rare_arrivals.data(), out.rare_count));

@@ -18,21 +18,23 @@ uint32_t tile_paths(ThreadContext& ctx, const Camera& cam, uint32_t x0, uint32_t
   std::vector<PathState>& paths = ctx.wave.paths;
   CameraPoints& points = ctx.wave.camera;
   if (paths.size() < first + kTile * kTile) paths.resize(first + kTile * kTile);
-  points.x.clear(), points.y.clear();
-  uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
-  uint32_t i = first;
+  const uint32_t x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
+  points.resize(std::size_t(x1 - x0) * (y1 - y0));
+  double *px = points.x.data(), *py = points.y.data();  // locals: the stores may alias them
+  PathState* path = paths.data() + first;
+  const uint64_t image_seed = ctx.settings.seed;
+  uint32_t i = 0;
   for (uint32_t by = y0; by < y1; by += kBlock)
     for (uint32_t bx = x0; bx < x1; bx += kBlock)
       for (uint32_t y = by; y < std::min(by + kBlock, y1); ++y)
-        for (uint32_t x = bx; x < std::min(bx + kBlock, x1); ++x) {
-          PathState p;
+        for (uint32_t x = bx; x < std::min(bx + kBlock, x1); ++x, ++i) {
+          PathState& p = path[i];
           p.pixel = std::size_t(cam.height - 1 - y) * cam.width + x;
-          p.pixel_seed = mix64(ctx.settings.seed ^ mix64(p.pixel));
-          paths[i++] = p;
-          points.x.push_back(double(x)), points.y.push_back(double(y));
+          p.pixel_seed = mix64(image_seed ^ mix64(p.pixel));
+          p.radiance = glm::dvec3(0, 0, 0);
+          px[i] = double(x), py[i] = double(y);
         }
-  points.resize(points.x.size());
-  return i - first;
+  return i;
 }
 
 // The pinhole's camera rays with Sobol numbers: the jitter from the lanes straight into the

@@ -35,25 +35,6 @@ void set_light_numbers(LightQueries& q, std::size_t r, const std::array<double, 
   q.u_light[r] = u[2], q.u_part[r] = u[3];
 }
 
-// Whether row r has Russian roulette (at its own depth), and its survival probability in the
-// vertex lanes' column (1 without: VertexBatch::survival). Returns whether any row has it.
-bool roulette_columns(ThreadContext& ctx) {
-  LaneVertexQueue& lv = ctx.wave.lane_vertices;
-  float* survival = lv.vertices.survival.data();
-  const uint32_t* depth = lv.depth.data();
-  const int rr_depth = ctx.settings.rr_depth;  // read once: the stores below may alias it
-  const std::size_t n = lv.count;
-  // Without branches: a wavefront mixes depths, and a branch per row on the depth mispredicts.
-  const float survival_of[2] = {1.0f, float(kRouletteSurvival)};
-  unsigned any = 0;
-  for (std::size_t r = 0; r < n; ++r) {
-    const unsigned roulette = has_roulette(rr_depth, depth[r]) ? 1u : 0u;
-    survival[r] = survival_of[roulette];
-    any |= roulette;
-  }
-  return any != 0;
-}
-
 // The rows' numbers: Sobol groups for all of them at once in lanes, or MT19937 row by row in
 // the double shading's order (light, BSDF, roulette where the row has it).
 void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
@@ -211,6 +192,7 @@ void drop_black_rows(ThreadContext& ctx) {
     rows.path[kept] = rows.path[r], rows.ray[kept] = rows.ray[r], rows.depth[kept] = rows.depth[r];
     rows.material[kept] = rows.material[r], rows.front[kept] = rows.front[r];
     rows.light_seed[kept] = rows.light_seed[r], rows.bsdf_seed[kept] = rows.bsdf_seed[r];
+    lv.vertices.survival[kept] = lv.vertices.survival[r];
     p.move(kept, r), p_error.move(kept, r), ng.move(kept, r), ns.move(kept, r);
     beta.move(kept, r);
     ++kept;
@@ -306,7 +288,7 @@ void shade_lane_vertices(ThreadContext& ctx) {
   hit_columns(ctx, lights);
   texture_columns(ctx);
   path_columns(ctx);
-  rules.roulette = roulette_columns(ctx);
+  rules.roulette = lv.any_roulette;  // the survival column came with the rows (arrival.cpp)
   draw_numbers(ctx, lights, rules.roulette);
   light_columns(ctx, lights);
   scatter_lane_vertices(ctx, rules, lights);

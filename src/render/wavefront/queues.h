@@ -195,6 +195,7 @@ struct LaneVertexQueue {
   // by the group of the row's depth (sobol.h, group_salt), so that one call for group 0 draws
   // every row's own group. Made as the row is queued (the path is at hand then).
   std::vector<uint64_t> light_seed, bsdf_seed;
+  bool any_roulette = false;  // some row plays Russian roulette (VertexBatch::survival)
   // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
