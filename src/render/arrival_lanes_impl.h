@@ -14,6 +14,45 @@
 
 namespace raylane::detail {
 
+// The lane rows' seeds and survival (row_path_columns_of's steps) in lanes: the seeds a
+// register of 64-bit lanes at a time, gathered from the paths (simd::gather_u64) and salted in
+// simd::U64Lanes; the survival a select on the depth in float lanes. GCC left the plain loop
+// scalar. The rows after the last whole register take the reference's steps.
+template <class A>
+bool row_path_columns_range(const ArrivalColumns& in, const ArrivalRows& out, std::size_t n) {
+  using U64 = simd::U64Lanes<A>;
+  using I = simd::Ints<A>;
+  using F = simd::Floats<A>;
+  constexpr std::size_t N = U64::V::size, W = std::size_t(simd::kWidth<A>);
+  const U64 base(in.light_salt), step(in.salt_step), offset(in.bsdf_offset);
+  std::size_t r = 0;
+  for (; r + N <= n; r += N) {
+    const U64 seed = simd::gather_u64<A>(in.pixel_seed, out.path + r, in.seed_stride);
+    const U64 light = base + simd::load_widened<A>(out.depth + r) * step;
+    (seed ^ light).v.store_unaligned(out.light_seed + r);
+    (seed ^ (light + offset)).v.store_unaligned(out.bsdf_seed + r);
+  }
+  for (; r < n; ++r)  // the reference's steps (its survival written again below)
+    row_path_columns_of(in, out, r);
+  // Depths below 2^31 (ArrivalColumns): a signed compare is the unsigned one.
+  const I first(int32_t(in.roulette_from) - 1);
+  const F with(in.survival), without(1.0f);
+  uint32_t any = 0;
+  std::size_t i = 0;
+  for (; i + W <= n; i += W) {
+    const simd::Mask<A> on =
+        xsimd::bool_cast(simd::load<A>(reinterpret_cast<const int32_t*>(out.depth + i)) > first);
+    simd::store<A>(out.survival + i, simd::select<A>(on, with, without));
+    any |= simd::bits<A>(on);
+  }
+  for (; i < n; ++i) {
+    const bool roulette = out.depth[i] >= in.roulette_from;
+    out.survival[i] = roulette ? in.survival : 1.0f;
+    any |= roulette ? 1u : 0u;
+  }
+  return any != 0;
+}
+
 template <class A>
 void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
   using I = simd::Ints<A>;
@@ -89,52 +128,7 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
     }
   }
   out.lanes = lanes, out.rare_count = rare;
-}
-
-// row_path_columns in lanes: a register of 64-bit lanes at a time (four rows on AVX2, eight on
-// AVX-512), the seeds gathered from the paths, the salts' products in simd::U64Lanes, the
-// survival a select on the depth; row_path_columns_of's steps for the rows after the last whole
-// register, and on SSE4.2 (no gathers) for all of them. (GCC left the plain loop scalar.)
-template <class A>
-bool row_path_columns_range(const RowPathColumns& c) {
-  using U64 = simd::U64Lanes<A>;
-  constexpr std::size_t N = U64::V::size;  // rows per step: the 64-bit lanes
-  std::size_t r = 0;
-  unsigned any = 0;
-  if constexpr (N >= 4) {
-    const U64 base(c.light_salt), step(c.salt_step), offset(c.bsdf_offset);
-    const long long* seeds = reinterpret_cast<const long long*>(c.pixel_seed);
-    for (; r + N <= c.count; r += N) {
-      typename U64::V seed, depth;
-      if constexpr (N == 8) {
-        const __m256i path = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.path + r));
-        const __m256i d = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.depth + r));
-        const __m256i idx = _mm256_mullo_epi32(path, _mm256_set1_epi32(int(c.seed_stride)));
-        seed = _mm512_i32gather_epi64(idx, seeds, 8), depth = _mm512_cvtepu32_epi64(d);
-        const __m256i on = _mm256_cmpgt_epi32(d, _mm256_set1_epi32(int(c.roulette_from) - 1));
-        _mm256_storeu_ps(c.survival_of_row + r,
-                         _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps(c.survival),
-                                          _mm256_castsi256_ps(on)));
-        any |= unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(on)));
-      } else {
-        const __m128i path = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c.path + r));
-        const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c.depth + r));
-        const __m128i idx = _mm_mullo_epi32(path, _mm_set1_epi32(int(c.seed_stride)));
-        seed = _mm256_i32gather_epi64(seeds, idx, 8), depth = _mm256_cvtepu32_epi64(d);
-        const __m128i on = _mm_cmpgt_epi32(d, _mm_set1_epi32(int(c.roulette_from) - 1));
-        _mm_storeu_ps(c.survival_of_row + r, _mm_blendv_ps(_mm_set1_ps(1.0f),
-                                                           _mm_set1_ps(c.survival),
-                                                           _mm_castsi128_ps(on)));
-        any |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(on)));
-      }
-      const U64 light = base + U64(depth) * step;
-      (U64(seed) ^ light).v.store_unaligned(c.light_seed + r);
-      (U64(seed) ^ (light + offset)).v.store_unaligned(c.bsdf_seed + r);
-    }
-  }
-  for (; r < c.count; ++r)
-    any |= row_path_columns_of(c, r) ? 1u : 0u;
-  return any != 0;
+  if (in.pixel_seed != nullptr) out.any_roulette = row_path_columns_range<A>(in, out, lanes);
 }
 
 }  // namespace raylane::detail

@@ -16,10 +16,6 @@ void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out) {
   detail::render_lanes(isa).sort_arrivals(in, out);
 }
 
-bool row_path_columns(Isa isa, const RowPathColumns& columns) {
-  return detail::render_lanes(isa).row_path_columns(columns);
-}
-
 uint64_t blocks_of_paths(Isa isa, const uint32_t* path, std::size_t n, unsigned shift) {
   return detail::render_lanes(isa).blocks_of_paths(path, n, shift);
 }

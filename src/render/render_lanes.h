@@ -4,8 +4,8 @@
 // the BSDF, both at once with the queues' write-back (the scatter kernel), the pinhole's camera
 // rays, the arrivals' sort and the live blocks' bits. The public functions (shade_lanes,
 // sobol_groups, sample_cones, finish_vertices, scatter_vertices, pinhole_rays, sort_arrival_rows,
-// row_path_columns, blocks_of_paths) look their kernel up here, the one place an instruction set
-// picks one (as bvh/build_lanes.h does for the builder). This header has no xsimd.
+// blocks_of_paths) look their kernel up here, the one place an instruction set picks one (as
+// bvh/build_lanes.h does for the builder). This header has no xsimd.
 #pragma once
 
 #include <cstddef>
@@ -44,8 +44,6 @@ struct RenderLanes {
   std::size_t (*pinhole_rays)(const Camera& cam, const PixelPoints& points, RayStream& out);
   // sort_arrival_rows (render/arrival_lanes.h).
   void (*sort_arrivals)(const ArrivalColumns& in, ArrivalRows& out);
-  // row_path_columns (render/arrival_lanes.h).
-  bool (*row_path_columns)(const RowPathColumns& columns);
   // blocks_of_paths (render/path_blocks.h).
   uint64_t (*blocks_of_paths)(const uint32_t* path, std::size_t n, unsigned shift);
 };

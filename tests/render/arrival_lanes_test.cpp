@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 #include "raylane/core/strings.h"
@@ -40,17 +41,17 @@ struct Wavefront {
   }
 };
 
-// n rays of n + 3 paths, hitting kinds 0, 1 and 4 (the others' tables empty), a tenth missing,
-// with throughputs that round to float at every distance from a float (and some that do not
-// fit one).
+// n rays of n + 3 paths, hitting kinds 0, 1, 4 and 5 (the others' tables empty), a tenth
+// missing, with throughputs that round to float at every distance from a float (and some that
+// do not fit one). The kinds' columns and the routes are read by one register, two (at AVX2
+// and at AVX-512) or a gather (simd::lookup).
 Wavefront random_wavefront(std::size_t n, Rng& rng) {
   Wavefront w;
-  const std::size_t paths = n + 3, material_count = 9;
+  const std::size_t paths = n + 3, material_count = 20;
   for (uint32_t m = 0; m < material_count; ++m)
-    w.route.push_back(m < 2 ? kEmitter : m < 6 ? kLanes : kDouble);
-  const std::size_t kinds[3] = {0, 1, 4},
-                    rows[3] = {5, 70, 12};  // one register, a gather, two registers (AVX2)
-  for (int j = 0; j < 3; ++j)
+    w.route.push_back(m % 9 < 2 ? kEmitter : m % 9 < 6 ? kLanes : kDouble);
+  const std::size_t kinds[4] = {0, 1, 4, 5}, rows[4] = {5, 70, 12, 24};
+  for (int j = 0; j < 4; ++j)
     for (std::size_t r = 0; r < rows[j]; ++r)
       w.materials[kinds[j]].push_back(uint32_t(rng.uniform() * material_count));
   for (std::size_t k = 0; k < n; ++k) {
@@ -62,7 +63,7 @@ Wavefront random_wavefront(std::size_t n, Rng& rng) {
       w.prim.push_back(PrimRef::invalid().bits());
       continue;
     }
-    const int j = int(rng.uniform() * 3);
+    const int j = int(rng.uniform() * 4);
     const uint32_t row = uint32_t(rng.uniform() * double(rows[j]));
     w.prim.push_back(PrimRef(PrimTag(kinds[j]), row).bits());
   }
@@ -158,39 +159,56 @@ TEST(ArrivalLanes, ReferenceOrdersItsDecisions) {
   EXPECT_EQ(arrival_of(w.columns(true, false), 4), Arrival::kRare);
 }
 
-// The rows' seeds and survival in lanes against row_path_columns_of, row by row and bit for
-// bit, at every instruction set: every count from 0 to past two registers and a long one,
-// depths on both sides of roulette's first (and roulette from depth 0), seeds with every bit
-// pattern, paths read at a stride.
+// The lane rows' seeds and survival in lanes against row_path_columns_of, row by row and bit
+// for bit, at every instruction set: wavefronts whose every ray is a lane vertex (so the rows
+// are the rays), every count from 0 to past two registers and a long one, depths on both sides
+// of roulette's first (from depth 0, and from above every depth: no row has it), seeds and
+// salts with every bit pattern (the products' cross terms), paths read at a stride.
 TEST(ArrivalLanes, RowPathColumnsAreTheReferences) {
   Rng rng(17);
   constexpr uint32_t kStride = 5, kPaths = 300;
+  auto bits64 = [&] {
+    return uint64_t(rng.uniform() * 0x1p32) << 32 | uint64_t(rng.uniform() * 0x1p32);
+  };
   std::vector<uint64_t> seeds(kPaths * kStride, 0x5eed5eed5eed5eedull);
   for (uint32_t p = 0; p < kPaths; ++p)
-    seeds[p * kStride] = uint64_t(rng.uniform() * 0x1p32) << 32 | uint64_t(rng.uniform() * 0x1p32);
+    seeds[p * kStride] = bits64();
   for (Isa isa : supported_isas())
     for (std::size_t n : {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 33, 40, 1001})
-      for (uint32_t from : {0u, 2u}) {
+      for (uint32_t from : {0u, 2u, 0x7fffffffu}) {
         SCOPED_TRACE(cat(isa_name(isa), " rows ", n, " roulette from ", from));
-        std::vector<uint32_t> path(n), depth(n);
-        for (std::size_t r = 0; r < n; ++r)
-          path[r] = uint32_t(rng.uniform() * kPaths), depth[r] = uint32_t(rng.uniform() * 5);
-        RowPathColumns c;
-        c.path = path.data(), c.depth = depth.data(), c.count = n;
-        c.pixel_seed = seeds.data(), c.seed_stride = kStride;
-        c.light_salt = group_salt(1), c.salt_step = group_salt(2), c.bsdf_offset = group_salt(5);
-        c.roulette_from = from, c.survival = 0.8f;
-        std::vector<uint64_t> light(n + 1, 7), bsdf(n + 1, 7), want_light(n), want_bsdf(n);
-        std::vector<float> survival(n + 1, -1.0f), want_survival(n);
-        c.light_seed = light.data(), c.bsdf_seed = bsdf.data(), c.survival_of_row = survival.data();
-        const bool any = row_path_columns(isa, c);
-        RowPathColumns ref = c;
+        Wavefront w;
+        w.route = {kLanes};
+        w.materials[0] = {0};
+        for (std::size_t k = 0; k < n; ++k) {
+          w.prim.push_back(PrimRef(PrimTag(0), 0).bits());
+          w.ray_path.push_back(uint32_t(rng.uniform() * kPaths));
+          w.depth.push_back(k % 7 == 3 ? 0x70000000u + uint32_t(k) : uint32_t(rng.uniform() * 5));
+          for (auto& c : w.beta)
+            c.push_back(1.0);
+        }
+        ArrivalColumns in = w.columns(false, true);
+        in.max_depth = 0x7fffffffu;
+        in.pixel_seed = seeds.data(), in.seed_stride = kStride;
+        in.light_salt = bits64(), in.salt_step = bits64(), in.bsdf_offset = bits64();
+        in.roulette_from = from, in.survival = 0.8f;
+        Rows got(n);
+        ArrivalRows out = got.out();
+        const std::size_t room = got.path.size();
+        std::vector<uint64_t> light(room, 7), bsdf(room, 7);
+        std::vector<float> survival(room, -1.0f);
+        out.light_seed = light.data(), out.bsdf_seed = bsdf.data(), out.survival = survival.data();
+        sort_arrival_rows(isa, in, out);
+        ASSERT_EQ(out.lanes, n);
+        std::vector<uint64_t> want_light(n), want_bsdf(n);
+        std::vector<float> want_survival(n);
+        ArrivalRows ref = out;
         ref.light_seed = want_light.data(), ref.bsdf_seed = want_bsdf.data();
-        ref.survival_of_row = want_survival.data();
+        ref.survival = want_survival.data();
         bool want_any = false;
         for (std::size_t r = 0; r < n; ++r)
-          want_any = row_path_columns_of(ref, r) || want_any;
-        EXPECT_EQ(any, want_any);
+          want_any = row_path_columns_of(in, ref, r) || want_any;
+        EXPECT_EQ(out.any_roulette, want_any);
         for (std::size_t r = 0; r < n; ++r) {
           ASSERT_EQ(light[r], want_light[r]) << "row " << r;
           ASSERT_EQ(bsdf[r], want_bsdf[r]) << "row " << r;
@@ -200,20 +218,23 @@ TEST(ArrivalLanes, RowPathColumnsAreTheReferences) {
       }
 }
 
-// The salts row_path_columns takes are group_salt's of the rows' groups: the light group's
-// and the BSDF group's at every depth, as the render passes them (linear in the depth).
+// The salts the render passes (src/render/wavefront/arrival.cpp: group_salt of the light and
+// BSDF groups at depths 0 and 1) are group_salt's of the rows' groups at every depth, as
+// row_path_columns_of makes them.
 TEST(ArrivalLanes, RowSaltsAreTheGroupsSalts) {
-  RowPathColumns c;
   const uint64_t seed = 0x0123456789abcdefull;
   const uint32_t path = 0;
-  c.pixel_seed = &seed, c.path = &path;
-  c.light_salt = group_salt(1), c.salt_step = group_salt(3) - group_salt(1);
-  c.bsdf_offset = group_salt(2) - group_salt(1);
+  ArrivalColumns in;
+  in.pixel_seed = &seed;
+  in.light_salt = group_salt(1), in.salt_step = group_salt(3) - group_salt(1);
+  in.bsdf_offset = group_salt(2) - group_salt(1);
   for (uint32_t d : {0u, 1u, 7u, 63u, 100000u}) {
     uint64_t light, bsdf;
     float survival;
-    c.depth = &d, c.light_seed = &light, c.bsdf_seed = &bsdf, c.survival_of_row = &survival;
-    row_path_columns_of(c, 0);
+    ArrivalRows out;
+    out.path = const_cast<uint32_t*>(&path), out.depth = &d;
+    out.light_seed = &light, out.bsdf_seed = &bsdf, out.survival = &survival;
+    row_path_columns_of(in, out, 0);
     EXPECT_EQ(light, seed ^ group_salt(1 + 2 * d)) << d;
     EXPECT_EQ(bsdf, seed ^ group_salt(2 + 2 * d)) << d;
   }

@@ -117,7 +117,7 @@ struct BoxSurface {
 // Inlined always: a call passes the lanes through memory (GCC kept it out of line in the
 // render's surface pass, spilling every operand). The axes are spelled out by value, not
 // walked through arrays of pointers to the vectors' members: pointers kept the point and the
-// normal in memory, and GCC copied them there and back 8 bytes at a time.
+// normal in memory, and GCC copied them there and back piece by piece.
 template <class N, class V3>
 [[gnu::always_inline]] inline BoxSurface<V3> box_surface(const V3& lo, const V3& hi, const V3& o,
                                                          const V3& d, const N& t) {

@@ -3,7 +3,8 @@
 // its path's depth decide whether the hit is a vertex shaded in lanes, a rarer case that scalar
 // code finishes (an escape under an environment, an emitter, a vertex shaded in double), or the
 // end of the path (a miss without an environment, a path at its last bounce). The lane rows
-// take what their rays carry of their paths (the depth, the throughput) as they are packed. A batch
+// take what their rays carry of their paths (the depth, the throughput) as they are packed,
+// then their Sobol seeds and roulette's survival from their paths and depths. A batch
 // of rays is classified at once and its lane rows packed into their columns; a row by row loop paid
 // a branch chain and a queue's push per ray.
 //
@@ -38,8 +39,19 @@ struct ArrivalColumns {
   std::size_t materials = 0;
   uint32_t emitter_route = 0;  // the route of emitters
   uint32_t lanes_route = 0;    // the route shaded in lanes (one no material has: none)
-  uint32_t max_depth = 0;      // a path at this depth sends no ray on
+  uint32_t max_depth = 0;      // a path at this depth sends no ray on (depths below 2^31)
   bool environment = false;    // whether an escape sees something
+  // For the lane rows' columns from their paths and depths (row_path_columns_of; none where
+  // pixel_seed is null): path p's pixel seed at pixel_seed[p · seed_stride] (p · seed_stride
+  // below 2^31); a row's light group salt light_salt + depth · salt_step and its BSDF group's
+  // that plus bsdf_offset, modulo 2^64 (group_salt of render/samplers/sobol.h is linear in the
+  // group, and the groups in the depth); roulette's survival from depth roulette_from on
+  // (below 2^31), else 1.
+  const uint64_t* pixel_seed = nullptr;
+  uint32_t seed_stride = 1;
+  uint64_t light_salt = 0, salt_step = 0, bsdf_offset = 0;
+  uint32_t roulette_from = 0;
+  float survival = 1;
 };
 
 // What it writes. The lane rows' columns and the rare rows need room for count rows rounded up
@@ -54,6 +66,11 @@ struct ArrivalRows {
   // emitters, and vertices shaded in double (not at the last bounce).
   uint32_t* rare = nullptr;
   std::size_t rare_count = 0;
+  // The lane rows' Sobol seeds for their light and BSDF groups and roulette's survival, and
+  // whether any row has roulette (where ArrivalColumns::pixel_seed is set).
+  uint64_t *light_seed = nullptr, *bsdf_seed = nullptr;
+  float* survival = nullptr;
+  bool any_roulette = false;
 };
 
 // The reference: sort_arrival_rows' answer for ray k, one ray at a time.
@@ -70,35 +87,16 @@ inline Arrival arrival_of(const ArrivalColumns& in, std::size_t k) {
 // Sorts rays [0, in.count) into out's lane rows and rare rows (both from 0).
 void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out);
 
-// What the lane rows take from their paths and depths once they are sorted: each row's Sobol
-// seeds for its light group and its BSDF group (its path's pixel seed salted by the group of its
-// depth: light salt = light_salt + depth·salt_step, BSDF salt = light salt + bsdf_offset, all
-// modulo 2^64, as group_salt of render/samplers/sobol.h gives them) and roulette's survival
-// probability (`survival` from depth roulette_from on, else 1).
-struct RowPathColumns {
-  const uint32_t *path = nullptr, *depth = nullptr;
-  std::size_t count = 0;
-  const uint64_t* pixel_seed = nullptr;  // path p's at pixel_seed[p · seed_stride]
-  uint32_t seed_stride = 1;
-  uint64_t light_salt = 0, salt_step = 0, bsdf_offset = 0;
-  uint32_t roulette_from = 0;
-  float survival = 1;
-  uint64_t *light_seed = nullptr, *bsdf_seed = nullptr;  // out
-  float* survival_of_row = nullptr;                      // out
-};
-
-// Row r's columns, one row at a time: the lanes' reference. Returns whether it has roulette.
-inline bool row_path_columns_of(const RowPathColumns& c, std::size_t r) {
-  const uint64_t seed = c.pixel_seed[std::size_t(c.path[r]) * c.seed_stride];
-  const uint64_t light = c.light_salt + uint64_t(c.depth[r]) * c.salt_step;
-  c.light_seed[r] = seed ^ light;
-  c.bsdf_seed[r] = seed ^ (light + c.bsdf_offset);
-  const bool roulette = c.depth[r] >= c.roulette_from;
-  c.survival_of_row[r] = roulette ? c.survival : 1.0f;
+// Lane row r's columns from its path and depth (out.path[r], out.depth[r]), one row at a time:
+// the lanes' reference. Returns whether the row has roulette.
+inline bool row_path_columns_of(const ArrivalColumns& in, const ArrivalRows& out, std::size_t r) {
+  const uint64_t seed = in.pixel_seed[std::size_t(out.path[r]) * in.seed_stride];
+  const uint64_t light = in.light_salt + uint64_t(out.depth[r]) * in.salt_step;
+  out.light_seed[r] = seed ^ light;
+  out.bsdf_seed[r] = seed ^ (light + in.bsdf_offset);
+  const bool roulette = out.depth[r] >= in.roulette_from;
+  out.survival[r] = roulette ? in.survival : 1.0f;
   return roulette;
 }
-
-// Every row's; returns whether any has roulette.
-bool row_path_columns(Isa isa, const RowPathColumns& c);
 
 }  // namespace raylane

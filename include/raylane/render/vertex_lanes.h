@@ -84,8 +84,10 @@ void finish_vertices(Isa isa, const VertexRules& rules, const ShadeBatch& bsdf,
 // on, finish_vertices' rows with `alive`, and the shadow rays (origin, direction toward the light
 // point, end, light, path and contribution) of the rows that cast one, its rows with
 // `shadow_ok`. Every destination needs room for the batch's rows rounded up to 16: the lanes
-// store whole registers, and what lies past the queued rows is overwritten. Without lights the
-// shadow destinations are not written and may be null.
+// store whole registers, and what lies past the queued rows is overwritten; `path` and `depth`
+// are read so too. Without lights the shadow destinations are not written and may be null. The
+// caller fills what the kernel does not: the rays' tmin and tmax, the next rays' specular flag
+// (0: lanes shade no Dirac lobe).
 struct VertexQueues {
   const uint32_t* path = nullptr;   // row r's path, into both queues
   const uint32_t* depth = nullptr;  // row r's depth; its next ray's is one more

@@ -66,4 +66,38 @@ struct U64Lanes {
   }
 };
 
+// base[idx[k] · stride] in 64-bit lane k, for the lanes' N 32-bit indices at idx (each
+// idx[k] · stride below 2^31: the gathers' indices are signed): one 64-bit gather on AVX2 and
+// AVX-512, two loads on SSE4.2 (no gathers).
+template <class A>
+inline U64Lanes<A> gather_u64(const uint64_t* base, const uint32_t* idx, uint32_t stride) {
+  using V = typename U64Lanes<A>::V;
+  const long long* from = reinterpret_cast<const long long*>(base);
+  if constexpr (V::size == 8) {
+    const __m256i i = _mm256_mullo_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(idx)),
+                                         _mm256_set1_epi32(int(stride)));
+    return V(_mm512_i32gather_epi64(i, from, 8));
+  } else if constexpr (V::size == 4) {
+    const __m128i i = _mm_mullo_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(idx)),
+                                      _mm_set1_epi32(int(stride)));
+    return V(_mm256_i32gather_epi64(from, i, 8));
+  } else {
+    return V(
+        _mm_set_epi64x(from[std::size_t(idx[1]) * stride], from[std::size_t(idx[0]) * stride]));
+  }
+}
+
+// p[0, N) widened to the lanes' 64 bits (zero-extended).
+template <class A>
+inline U64Lanes<A> load_widened(const uint32_t* p) {
+  using V = typename U64Lanes<A>::V;
+  if constexpr (V::size == 8) {
+    return V(_mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p))));
+  } else if constexpr (V::size == 4) {
+    return V(_mm256_cvtepu32_epi64(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
+  } else {
+    return V(_mm_cvtepu32_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+  }
+}
+
 }  // namespace raylane::simd

@@ -248,6 +248,23 @@ inline UInts<A> reverse_bits(const UInts<A>& x) {
   }
 }
 
+// 1 << b in each lane, 0 where b is 32 or more: AVX2's and AVX-512's variable shifts give 0
+// there by definition (C++'s shift would be undefined); SSE4.2 has none, so lane by lane.
+template <class A>
+inline UInts<A> bit_of(const UInts<A>& b) {
+  if constexpr (kWidth<A> == 16) {
+    return UInts<A>(_mm512_sllv_epi32(_mm512_set1_epi32(1), __m512i(b)));
+  } else if constexpr (kWidth<A> == 8) {
+    return UInts<A>(_mm256_sllv_epi32(_mm256_set1_epi32(1), __m256i(b)));
+  } else {
+    alignas(16) uint32_t lanes[4];
+    b.store_aligned(lanes);
+    for (uint32_t& x : lanes)
+      x = x < 32 ? 1u << x : 0u;
+    return UInts<A>::load_aligned(lanes);
+  }
+}
+
 // -x exactly, the sign bit flipped (as the scalar minus does): xsimd 8.1's unary minus computes
 // 0 − x on AVX-512, which leaves +0 at +0 and a NaN's sign as it was.
 template <class B>

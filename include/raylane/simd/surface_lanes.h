@@ -44,7 +44,7 @@ struct FloatSurfaceLanes {
 
 // A FloatSurfaceLanes from its parts, assigned lane register by lane register: built as an
 // aggregate from the kinds' surface structs, GCC moved the registers through the stack in
-// 16-byte halves, half of them through general registers.
+// pieces, some of them through general registers.
 template <class A>
 [[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_lanes_of(
     const simd::FloatVec3<A>& p, const simd::FloatVec3<A>& ng, const simd::FloatVec3<A>& ns,

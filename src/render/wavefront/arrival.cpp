@@ -85,30 +85,6 @@ void add_unblocked_shadows(ThreadContext& ctx) {
 
 namespace {
 
-// The lane rows' columns made from their paths and depths as they are queued, in lanes
-// (row_path_columns): the Sobol seeds, their paths' salted by the groups of their depths
-// (LaneVertexQueue::light_seed, bsdf_seed; a group is linear in the depth, Dims, and so is
-// its salt, group_salt), and roulette's survival probability (VertexBatch::survival: 1 where
-// the row's depth has no roulette, has_roulette). Returns whether any row has roulette.
-bool row_columns(ThreadContext& ctx, std::size_t rows) {
-  Wavefront& w = ctx.wave;
-  LaneVertexQueue& lv = w.lane_vertices;
-  RowPathColumns c;
-  c.path = lv.path.data(), c.depth = lv.depth.data(), c.count = rows;
-  static_assert(sizeof(PathState) % sizeof(uint64_t) == 0 && offsetof(PathState, pixel_seed) == 0,
-                "the seeds' stride in words");
-  c.pixel_seed = &w.paths.data()->pixel_seed;
-  c.seed_stride = uint32_t(sizeof(PathState) / sizeof(uint64_t));
-  c.light_salt = group_salt(Dims::light_group(0));
-  c.salt_step = group_salt(Dims::light_group(1)) - c.light_salt;
-  c.bsdf_offset = group_salt(Dims::bsdf_group(0)) - c.light_salt;
-  c.roulette_from = uint32_t(std::max(ctx.settings.rr_depth - 1, 0));
-  c.survival = float(kRouletteSurvival);
-  c.light_seed = lv.light_seed.data(), c.bsdf_seed = lv.bsdf_seed.data();
-  c.survival_of_row = lv.vertices.survival.data();
-  return ctx.lanes.kernels.row_path_columns(c);
-}
-
 // The arrivals the lanes leave to scalar code, in ray order: an escape under an environment,
 // an emitter (both end the path), a vertex shaded in double.
 void finish_rare_arrivals(ThreadContext& ctx, const MaterialColumns& material_of,
@@ -159,6 +135,18 @@ void sort_arrivals(ThreadContext& ctx) {
   in.max_depth = uint32_t(std::max(ctx.settings.max_depth, 0));
   // Without an environment an escaped ray adds nothing (add_escapes would find 0).
   in.environment = ctx.lights.environment() != nullptr;
+  // The lane rows' Sobol seeds (LaneVertexQueue::light_seed, bsdf_seed: the path's pixel seed
+  // salted by the groups of the row's depth, Dims) and roulette's survival
+  // (VertexBatch::survival, has_roulette's rows).
+  static_assert(sizeof(PathState) % sizeof(uint64_t) == 0 && offsetof(PathState, pixel_seed) == 0,
+                "the seeds' stride in words");
+  in.pixel_seed = &w.paths.data()->pixel_seed;
+  in.seed_stride = uint32_t(sizeof(PathState) / sizeof(uint64_t));
+  in.light_salt = group_salt(Dims::light_group(0));
+  in.salt_step = group_salt(Dims::light_group(1)) - in.light_salt;
+  in.bsdf_offset = group_salt(Dims::bsdf_group(0)) - in.light_salt;
+  in.roulette_from = uint32_t(std::max(ctx.settings.rr_depth - 1, 0));
+  in.survival = float(kRouletteSurvival);
   w.double_vertices.clear();
   w.escaped.clear();
   w.rare_arrivals.resize((n + 15) / 16 * 16);
@@ -167,10 +155,12 @@ void sort_arrivals(ThreadContext& ctx) {
   ArrivalRows out;
   out.path = lv.path.data(), out.ray = lv.ray.data(), out.material = lv.material.data();
   out.depth = lv.depth.data(), out.rare = w.rare_arrivals.data();
+  out.light_seed = lv.light_seed.data(), out.bsdf_seed = lv.bsdf_seed.data();
+  out.survival = lv.vertices.survival.data();
   VertexBatch& vb = lv.vertices;
   out.beta = {vb.beta[0].data(), vb.beta[1].data(), vb.beta[2].data()};
   ctx.lanes.kernels.sort_arrivals(in, out);
-  lv.any_roulette = row_columns(ctx, out.lanes);
+  lv.any_roulette = out.any_roulette;
   lv.count = out.lanes;
   finish_rare_arrivals(ctx, MaterialColumns(scene),
                        std::span<const uint32_t>(w.rare_arrivals.data(), out.rare_count));

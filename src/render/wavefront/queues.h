@@ -195,7 +195,10 @@ struct LaneVertexQueue {
   // by the group of the row's depth (sobol.h, group_salt), so that one call for group 0 draws
   // every row's own group. Made as the row is queued (the path is at hand then).
   std::vector<uint64_t> light_seed, bsdf_seed;
-  bool any_roulette = false;  // some row plays Russian roulette (VertexBatch::survival)
+  // Some row plays Russian roulette (VertexBatch::survival). Set as the rows are queued, so it
+  // may stay true after drop_black_rows drops every such row: roulette's numbers are then drawn
+  // for rows that survive anyway (survival 1), the images the same.
+  bool any_roulette = false;
   // From the hit's surface (Tracer::surfaces): dot(ns, d), and whether the ray met the front.
   std::vector<double> cos_ns;
   std::vector<uint8_t> front;
@@ -228,7 +231,7 @@ struct TileInFlight {
 // (escaped rays and emitters are finished as they are sorted), and shading fills `next_rays`
 // and `next_shadows`. With the Sobol sampler the wavefront refills: when its rays run low, the
 // next tile's camera rays join the paths still going (path.cpp), so the paths of a step may be
-// at any depth, each its own (PathState::depth).
+// at any depth, each its own (the depth its ray carries: PathCarry::depth).
 // Aligned to 128 bytes (a cache line and the one the adjacent-line prefetcher pairs with it):
 // the threads' wavefronts sit side by side in one vector, and a queue's resizes write vector
 // headers another thread would otherwise read its columns' pointers next to.

@@ -25,8 +25,8 @@ void add_camera_aovs(const ThreadContext& ctx, Film& film);
 void add_unblocked_shadows(ThreadContext& ctx);
 // arrival.cpp: where each ray of `rays` arrives. An escaped ray gets the environment, a hit on
 // an emitter its emission (both end the path); a hit on a material that may scatter is queued
-// in lane_vertices (where the settings and the material allow) or double_vertices, at its
-// path's depth, and the path's depth counts the vertex.
+// in lane_vertices (where the settings and the material allow) or double_vertices, at the
+// depth its ray carries (the lane rows with their Sobol seeds and roulette's survival).
 void sort_arrivals(ThreadContext& ctx);
 
 // double_vertices.cpp: the double_vertices queue, one by one with the double Bsdf: their
@@ -40,7 +40,7 @@ void start_lane_vertices(ThreadContext& ctx, std::size_t most);
 void shade_lane_vertices(ThreadContext& ctx);
 // lane_write_back.cpp: the scatter kernel over the lane_vertices rows, whose columns the
 // stages before filled (with their light points where `lights`): its rays straight into
-// next_shadows and next_rays, then the throughputs back to the paths.
+// next_shadows and next_rays, the next rays with what they carry of their paths.
 void scatter_lane_vertices(ThreadContext& ctx, const VertexRules& rules, bool lights);
 
 }  // namespace raylane::path_detail
