@@ -13,6 +13,8 @@
 #include "raylane/core/strings.h"
 #include "raylane/render/samplers/rng.h"
 #include "raylane/render/samplers/sobol.h"
+#include "raylane/scene/parser.h"
+#include "support/paths.h"
 
 namespace raylane {
 namespace {
@@ -237,6 +239,47 @@ TEST(ArrivalLanes, RowSaltsAreTheGroupsSalts) {
     row_path_columns_of(in, out, 0);
     EXPECT_EQ(light, seed ^ group_salt(1 + 2 * d)) << d;
     EXPECT_EQ(bsdf, seed ^ group_salt(2 + 2 * d)) << d;
+  }
+}
+
+// The render's material columns (set_material_columns) give every row a hit can name the
+// material Scene::material_of gives it, through the lanes' short-column permutes and gathers:
+// on scenes of spheres, boxes, cylinders and triangles, of CSG (whose material column counts
+// leaves, not blocks) and of SDFs, at every instruction set.
+TEST(ArrivalLanes, MaterialsAreTheScenes) {
+  for (const char* file : {"scenes/testscene.scn", "scenes/csg.scn", "scenes/sdf.scn"}) {
+    auto p = load_scene_file(testing::source_path(file));
+    ASSERT_TRUE(p.ok()) << file;
+    const Scene& scene = p.scene;
+    ArrivalColumns in;
+    set_material_columns(scene, in);
+    std::vector<uint32_t> prim, want, route(scene.materials.size(), kLanes);
+    PrimKinds::for_each([&](auto kind) {  // every row a hit can name: a CSG hit names its leaf
+      using Kind = decltype(kind);
+      for (std::size_t r = 0; r < scene.table<Kind>().material.size(); ++r) {
+        prim.push_back(PrimRef(tag_of<Kind>, uint32_t(r)).bits());
+        want.push_back(scene.material_of(PrimRef::from_bits(prim.back())));
+      }
+    });
+    ASSERT_FALSE(prim.empty()) << file;
+    const std::vector<uint32_t> zeros(prim.size(), 0);
+    const std::array<std::vector<double>, 3> ones{std::vector<double>(prim.size(), 1.0),
+                                                  std::vector<double>(prim.size(), 1.0),
+                                                  std::vector<double>(prim.size(), 1.0)};
+    in.prim = prim.data(), in.ray_path = zeros.data(), in.depth = zeros.data();
+    in.count = prim.size();
+    in.beta = {ones[0].data(), ones[1].data(), ones[2].data()};
+    in.route = route.data(), in.materials = route.size();
+    in.emitter_route = kEmitter, in.lanes_route = kLanes, in.max_depth = 1;
+    for (Isa isa : supported_isas()) {
+      SCOPED_TRACE(cat(file, " ", isa_name(isa)));
+      Rows got(prim.size());
+      ArrivalRows out = got.out();
+      sort_arrival_rows(isa, in, out);
+      ASSERT_EQ(out.lanes, prim.size());
+      for (std::size_t k = 0; k < prim.size(); ++k)
+        ASSERT_EQ(got.material[k], want[k]) << "row " << k << " of kind " << (prim[k] >> 29);
+    }
   }
 }
 

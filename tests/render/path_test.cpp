@@ -439,7 +439,8 @@ TEST_P(FloatShading, HasTheDoubleShadingsMean) {
 
 INSTANTIATE_TEST_SUITE_P(PathTracer, FloatShading,
                          ::testing::Values("scenes/testscene.scn", "scenes/testscene-textured.scn",
-                                           "scenes/testscene-sky.scn"));
+                                           "scenes/testscene-sky.scn", "scenes/csg.scn",
+                                           "scenes/sdf.scn"));
 
 }  // namespace
 }  // namespace raylane

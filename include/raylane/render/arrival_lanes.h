@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "raylane/prims/prim_list.h"
+#include "raylane/scene/scene.h"
 #include "raylane/simd/isa.h"
 
 namespace raylane {
@@ -86,6 +87,10 @@ inline Arrival arrival_of(const ArrivalColumns& in, std::size_t k) {
 
 // Sorts rays [0, in.count) into out's lane rows and rare rows (both from 0).
 void sort_arrival_rows(Isa isa, const ArrivalColumns& in, ArrivalRows& out);
+
+// The material columns of `scene`'s kinds into in.material_of and in.rows_of (none for an
+// empty table): a hit's material is then Scene::material_of's.
+void set_material_columns(const Scene& scene, ArrivalColumns& in);
 
 // Lane row r's columns from its path and depth (out.path[r], out.depth[r]), one row at a time:
 // the lanes' reference. Returns whether the row has roulette.

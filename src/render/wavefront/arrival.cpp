@@ -122,12 +122,7 @@ void sort_arrivals(ThreadContext& ctx) {
   in.prim = w.hits.prim.data(), in.ray_path = w.rays.path.data(), in.count = n;
   in.depth = carry.depth.data();
   in.beta = {carry.beta[0].data(), carry.beta[1].data(), carry.beta[2].data()};
-  PrimKinds::for_each([&](auto kind) {
-    const auto& table = scene.table<decltype(kind)>();
-    if (table.size() == 0) return;
-    in.material_of[kind_index<decltype(kind)>()] = table.material.data();
-    in.rows_of[kind_index<decltype(kind)>()] = table.material.size();  // CSG: per leaf
-  });
+  set_material_columns(scene, in);
   in.route = reinterpret_cast<const uint32_t*>(ctx.lanes.materials.route.data());
   in.materials = ctx.lanes.materials.route.size();
   in.emitter_route = uint32_t(Route::kEmitter);
