@@ -35,7 +35,7 @@ bool row_path_columns_range(const ArrivalColumns& in, const ArrivalRows& out, st
   for (; r < n; ++r)  // the reference's steps (its survival written again below)
     row_path_columns_of(in, out, r);
   // Depths below 2^31 (ArrivalColumns): a signed compare is the unsigned one.
-  const I first(int32_t(in.roulette_from) - 1);
+  const I first = I(int32_t(in.roulette_from) - 1);
   const F with(in.survival), without(1.0f);
   uint32_t any = 0;
   std::size_t i = 0;
@@ -73,9 +73,10 @@ void sort_arrival_rows_range(const ArrivalColumns& in, ArrivalRows& out) {
   std::size_t kinds = 0;
   for (std::size_t t = 0; t < kPrimKindCount; ++t)
     if (in.material_of[t] != nullptr) tags[kinds++] = int32_t(t);
-  const I invalid(int32_t(PrimRef::kInvalidBits)), row_mask(int32_t(PrimRef::kMaxRows - 1));
-  const I emitter(int32_t(in.emitter_route)), lanes_route(int32_t(in.lanes_route));
-  const I max_depth(int32_t(in.max_depth));
+  const I invalid = I(int32_t(PrimRef::kInvalidBits));
+  const I row_mask = I(int32_t(PrimRef::kMaxRows - 1));
+  const I emitter = I(int32_t(in.emitter_route)), lanes_route = I(int32_t(in.lanes_route));
+  const I max_depth = I(int32_t(in.max_depth));
   // A batch's throughputs as float lanes: the last batch's through a copy (the columns end at
   // the count).
   auto beta_lanes = [&](int c, std::size_t k, int m) {
