@@ -36,7 +36,7 @@ void set_reciprocal_and_validity(RayPacket<A>& r, const simd::Floats<A>& tmax,
   } else {
     r.shear.set_unused();
   }
-  r.sides = SlabSides<A>(r.inv_dx, r.inv_dy, r.inv_dz, r.active);
+  r.sides.set(r.inv_dx, r.inv_dy, r.inv_dz, r.active);
 }
 
 // Loads rays [i, i + n) into a packet; lanes past n, and invalid rays, are inactive.

@@ -50,7 +50,8 @@ TEST(SingleRay, FrameMatchesThePacketSetUpBitForBit) {
     simd::Mask<A> all = simd::first_lanes<A>(simd::kWidth<A>);
     RayShear<A> packet;
     packet.set(F(d[0]), F(d[1]), F(d[2]), all);
-    SlabSides<A> sides(inv_x, inv_y, inv_z, all);
+    SlabSides<A> sides;
+    sides.set(inv_x, inv_y, inv_z, all);
     ASSERT_TRUE(packet.uniform);
     EXPECT_EQ(one.shear.kx, packet.kx) << d[0] << " " << d[1] << " " << d[2];
     EXPECT_EQ(one.shear.ky, packet.ky) << d[0] << " " << d[1] << " " << d[2];

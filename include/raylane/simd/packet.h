@@ -91,18 +91,21 @@ struct SlabSides {
   bool uniform = false;  // every active lane agrees on each axis: its hi is near iff near_hi[k]
   bool near_hi[3] = {false, false, false};
 
-  SlabSides() = default;
-  SlabSides(const F& inv_dx, const F& inv_dy, const F& inv_dz, const simd::Mask<A>& active) {
+  // Set in place, member by member: built as a temporary and assigned, GCC 12 copied it through
+  // the stack in 16-byte halves, a stall on every packet's setup.
+  [[gnu::always_inline]] inline void set(const F& inv_dx, const F& inv_dy, const F& inv_dz,
+                                         const simd::Mask<A>& active) {
     const F* inv[3] = {&inv_dx, &inv_dy, &inv_dz};
     uint32_t act = simd::bits<A>(active);
-    uniform = true;
+    bool all_agree = true;
     for (int k = 0; k < 3; ++k) {
       hi_first[k] = *inv[k] < F(0.0f);
       hi_first_bits[k] = simd::bits<A>(hi_first[k]);
       uint32_t m = hi_first_bits[k] & act;
-      uniform = uniform && (m == 0 || m == act);
+      all_agree = all_agree && (m == 0 || m == act);
       near_hi[k] = m != 0;
     }
+    uniform = all_agree;
   }
 };
 
