@@ -75,6 +75,8 @@ struct Num<uint32_t> {
   }
   // table[i], the scalar twin of a lane gather.
   static uint32_t gather(const uint32_t* table, uint32_t i) { return table[i]; }
+  // No register permute: tables are read by gather (render/samplers/sobol_steps.h).
+  static constexpr int kPermuteBits = 0;
   // x as float, for x below 2^31 (the lanes convert signed integers).
   using Float = float;
   static float to_float(uint32_t x) { return float(x); }

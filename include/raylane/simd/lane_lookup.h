@@ -49,6 +49,27 @@ template <class A>
   return gather<A>(col, idx);
 }
 
+// How many low bits of each index a one-register permute of 32-bit words reads: 4 over
+// AVX-512's 16 lanes, 3 over AVX2's 8 (VPERMD ignores the rest); 0 for SSE4.2, which has no
+// variable permute of words across its register.
+template <class A>
+inline constexpr int kPermuteIndexBits = kWidth<A> == 16  ? 4
+                                         : kWidth<A> == 8 ? 3
+                                                          : 0;
+
+// table[idx[i] mod kWidth<A>] per lane by one permute, the index's higher bits ignored: a table
+// of one register, 64-byte aligned (AVX2 and AVX-512 only: kPermuteIndexBits<A> > 0).
+template <class A>
+[[gnu::always_inline]] inline UInts<A> permute_words(const uint32_t* table, const UInts<A>& idx) {
+  static_assert(kPermuteIndexBits<A> > 0, "no word permute at this width");
+  const UInts<A> words = UInts<A>::load_aligned(table);
+  if constexpr (kWidth<A> == 16) {
+    return UInts<A>(_mm512_permutexvar_epi32(__m512i(idx), __m512i(words)));
+  } else {
+    return UInts<A>(_mm256_permutevar8x32_epi32(__m256i(words), __m256i(idx)));
+  }
+}
+
 // Rows of a long column (a stream's rays) read at one row per lane, for a batch whose rows lie
 // close together: the render's lane rows are its rays in order with a few skipped (misses,
 // emitters, rows shaded in double), so a batch that is not one run mostly spans less than two

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "raylane/core/numbers.h"
+#include "raylane/simd/lane_lookup.h"
 #include "raylane/simd/lane_math.h"
 
 namespace raylane {
@@ -72,6 +73,9 @@ struct Num<xsimd::batch<uint32_t, A>> {
   using U = simd::UInts<A>;
   static U reverse_bits(const U& x) { return simd::reverse_bits<A>(x); }
   static U gather(const uint32_t* table, const U& i) { return simd::gather<A>(table, i); }
+  // table[i mod 2^kPermuteBits] by one register permute (simd/lane_lookup.h); 0 bits: none.
+  static constexpr int kPermuteBits = simd::kPermuteIndexBits<A>;
+  static U permute(const uint32_t* table, const U& i) { return simd::permute_words<A>(table, i); }
   using Float = simd::Floats<A>;
   static Float to_float(const U& x) {
     return xsimd::to_float(xsimd::bitwise_cast<simd::Ints<A>>(x));

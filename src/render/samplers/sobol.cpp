@@ -69,6 +69,36 @@ constexpr ByteTables kReversedTables = [] {
   return t;
 }();
 
+// The same product by chunks of c = 3 or 4 bits, for lanes that look a word up by a register
+// permute (VPERMD reads an index's low 3 bits over AVX2's 8 lanes, its low 4 over AVX-512's
+// 16): entry [d][j][v] is the XOR of the reversed columns for the bits of v at bits c·j.. of a
+// reversed index. The last chunk's bits past 31 are never set. Aligned so that each chunk's
+// table is one aligned register.
+template <int C>
+struct ChunkTables {
+  static constexpr int kChunks = (32 + C - 1) / C, kEntries = 1 << C;
+  alignas(64) std::array<std::array<std::array<uint32_t, kEntries>, kChunks>, 2> t{};
+};
+
+template <int C>
+constexpr ChunkTables<C> chunk_tables() {
+  std::array<Matrix, 2> columns{};
+  for (int d = 0; d < 2; ++d)
+    for (int k = 0; k < 32; ++k)
+      columns[d][k] = reversed(kMatrices[d][31 - k]);
+  ChunkTables<C> out{};
+  for (int d = 0; d < 2; ++d)
+    for (int j = 0; j < ChunkTables<C>::kChunks; ++j)
+      for (uint32_t v = 1; v < uint32_t(ChunkTables<C>::kEntries); ++v) {
+        const int bit = C * j + std::countr_zero(v);
+        out.t[d][j][v] = out.t[d][j][v & (v - 1)] ^ (bit < 32 ? columns[d][bit] : 0u);
+      }
+  return out;
+}
+
+constexpr ChunkTables<3> kChunks3 = chunk_tables<3>();
+constexpr ChunkTables<4> kChunks4 = chunk_tables<4>();
+
 uint32_t reverse_bits(uint32_t x) {
   return Num<uint32_t>::reverse_bits(x);
 }
@@ -84,6 +114,10 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 namespace detail {
 const uint32_t* sobol_byte_tables() {
   return &kReversedTables[0][0][0];
+}
+
+const uint32_t* sobol_chunk_tables(int bits) {
+  return bits == 3 ? &kChunks3.t[0][0][0] : &kChunks4.t[0][0][0];
 }
 }  // namespace detail
 

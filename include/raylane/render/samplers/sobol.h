@@ -85,6 +85,9 @@ namespace detail {
 // The byte tables of dimensions 2 and 3, [dimension − 2][byte][value], in the bit-reversed
 // domain (sobol.cpp): what render/samplers/sobol_steps.h's reversed_table_point looks up.
 const uint32_t* sobol_byte_tables();
+// The same product by chunks of `bits` = 3 or 4 bits, [dimension − 2][chunk][value], each
+// chunk's 8 or 16 words 64-byte aligned: what the lanes read by register permutes.
+const uint32_t* sobol_chunk_tables(int bits);
 }  // namespace detail
 
 }  // namespace raylane

@@ -52,17 +52,31 @@ U superset_xor(U x) {
   return x ^ ((x >> 16) & U(0x0000ffffu));
 }
 
-// The generator-matrix product of dimension d = 2 or 3 over GF(2), by bytes, in the reversed
-// domain: the XOR of one entry per byte of the reversed index r from the dimension's byte
-// tables (detail::sobol_byte_tables).
+// The generator-matrix product of dimension d = 2 or 3 over GF(2), in the reversed domain: the
+// XOR of one table entry per chunk of the reversed index r. Lanes whose register permute reads
+// Num<U>::kPermuteBits > 0 bits of an index look each chunk of that many bits up in one
+// permute (detail::sobol_chunk_tables); the rest, scalar code among them, look each byte up in
+// a 256-entry table (detail::sobol_byte_tables), a gather in lanes. The product is linear, so
+// both give the same bits.
 template <class U>
 U reversed_table_point(const U& r, uint32_t d) {
   using O = Num<U>;
-  const uint32_t* t = detail::sobol_byte_tables() + 1024 * (d - 2);
-  const U byte(0xffu);
-  const U b0 = r & byte, b1 = ((r >> 8) & byte) + U(256u);
-  const U b2 = ((r >> 16) & byte) + U(512u), b3 = (r >> 24) + U(768u);
-  return O::gather(t, b0) ^ O::gather(t, b1) ^ O::gather(t, b2) ^ O::gather(t, b3);
+  constexpr int C = O::kPermuteBits;
+  if constexpr (C > 0) {
+    constexpr int kChunks = (32 + C - 1) / C, kEntries = 1 << C;
+    const uint32_t* t = detail::sobol_chunk_tables(C) + kChunks * kEntries * (d - 2);
+    U x = O::permute(t, r);  // the permute reads only the low C bits of each index
+#pragma GCC unroll 16
+    for (int j = 1; j < kChunks; ++j)
+      x = x ^ O::permute(t + kEntries * j, r >> (C * j));
+    return x;
+  } else {
+    const uint32_t* t = detail::sobol_byte_tables() + 1024 * (d - 2);
+    const U byte(0xffu);
+    const U b0 = r & byte, b1 = ((r >> 8) & byte) + U(256u);
+    const U b2 = ((r >> 16) & byte) + U(512u), b3 = (r >> 24) + U(768u);
+    return O::gather(t, b0) ^ O::gather(t, b1) ^ O::gather(t, b2) ^ O::gather(t, b3);
+  }
 }
 
 // The bit-reversed Sobol point of dimension d = 0..3 for the bit-reversed index r. Dimension 0
