@@ -145,7 +145,7 @@ std::optional<BenchScene> make_testscene() {
 }
 
 // A CSG lens — the intersection of two unit spheres 0.8 apart on z, a rim of radius 0.6 — seen
-// along z, and the plain sphere of radius 0.6 that fills the same pixels: the issue's measure
+// along z, and the plain sphere of radius 0.6 that fills the same pixels: the measure
 // of what a block's sweep costs over its leaves' own tests (docs/scene-language.md, "CSG
 // blocks"). Shadow rays aim at a point beside the camera.
 std::optional<BenchScene> make_lens_or_sphere(bool lens) {
