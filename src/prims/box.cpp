@@ -1,6 +1,8 @@
 // Boxes as emitters: area and area sampling.
 #include "raylane/prims/box.h"
 
+#include "raylane/prims/box_faces.h"
+
 namespace raylane {
 
 double Box::area(const Table& t, uint32_t i) {
@@ -23,6 +25,26 @@ AreaSample Box::sample_area(const Table& t, uint32_t i, double u_part, double u1
   p[a2] = lo[a2] + u2 * d[a2];
   n[axis] = high ? 1 : -1;
   return {p, n};
+}
+
+namespace {
+
+BoxFacePoint<double, glm::dvec3> face_point(const BoxTable& t, uint32_t i, const glm::dvec3& ref,
+                                            double u_part, double u1, double u2) {
+  return box_face_point<double>(glm::dvec3(t.lo(i)), glm::dvec3(t.hi(i)), ref, u_part, u1, u2);
+}
+
+}  // namespace
+
+double Box::area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref) {
+  return face_point(t, i, ref, 0.5, 0.5, 0.5).area;
+}
+
+AreaSample Box::sample_area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref,
+                                      double u_part, double u1, double u2) {
+  const BoxFacePoint<double, glm::dvec3> f = face_point(t, i, ref, u_part, u1, u2);
+  if (!(f.area > 0)) return {ref, {0, 0, 0}};
+  return {f.p, f.n};
 }
 
 }  // namespace raylane

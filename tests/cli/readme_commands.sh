@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's commands run as written (issue 37): every command line of the README's ```sh
+# The README's commands run as written: every command line of the README's ```sh
 # blocks runs, in order, in a folder laid out like a fresh clone after the quick start (the
 # build tree as build/, the repository's scenes/ and tools/), so a later line reads what an
 # earlier one wrote (room.hdr, room.film). Each must exit 0 (`raylane diff`: 0 or 1, its

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The tools a user runs next to raylane (issue 37): tools/converge and tools/bench_table list
+# The tools a user runs next to raylane: tools/converge and tools/bench_table list
 # every option with its default in --help and take the programs they run as options;
 # tools/converge, run from elsewhere with --raylane, reads each render's --stats-json and draws
 # its plot (gnuplot, which tools/dev installs); bench_trace documents --export and --bunny, finds

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `raylane view` with a screen larger than its largest window (issue 37), under Xvfb: the
+# `raylane view` with a screen larger than its largest window, under Xvfb: the
 # render keeps the scene's size (V prints it, S saves an image of it) and only the window is
 # scaled down to fit (1280x800); the saved HDR's header names the path tracer's settings as
 # `raylane render`'s does; the title's frames per second is a number above 0 while 1600x1000

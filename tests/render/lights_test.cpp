@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "raylane/render/lights/lights.h"
 #include "raylane/render/samplers/rng.h"
@@ -122,6 +123,54 @@ TEST(Lights, AMovingLightIsSampledWhereItIsAtThePathsTime) {
   for (double time : {0.0, 0.23, 0.5, 0.91}) {
     check_light("mbsphere -1.2 0.2 2 1.8 0.2 2 0.8", ref, n, true, time);
     check_light("mbsphere -1.4 -0.2 0.6 1.6 -0.2 0.6 0.7", ref, n, time < 0.3 || time > 0.7, time);
+  }
+}
+
+// A box light is sampled on the faces that face the point alone: from any point outside it
+// every sample is valid (sampling all six faces by area wastes those on the far side, about
+// half), lies on a face whose outward normal faces the point, and is spread over those faces
+// by their areas. From inside, no face faces the point and no sample is drawn.
+TEST(Lights, ABoxLightIsSampledOnTheFacesThatFaceThePoint) {
+  auto parsed =
+      parse_scene("camera 0 0 0 1\nlight 1 1 1\nbox -0.5 -0.4 1 1.2 0.8 0.6\n", "box.scn");
+  ASSERT_TRUE(parsed.ok());
+  const LightSampler lights(parsed.scene);
+  const glm::dvec3 lo(-0.5, -0.4, 1), hi(0.7, 0.4, 1.6);
+  Rng rng(5);
+  // Below the box (one face), beside and below (two), off a corner (three).
+  for (const glm::dvec3 ref : {glm::dvec3(0.1, 0, 0), glm::dvec3(1.5, 0, 0.2),
+                               glm::dvec3(-2, 1.5, 3), glm::dvec3(0.1, 0, 1.3)}) {
+    SCOPED_TRACE("from (" + std::to_string(ref.x) + ", " + std::to_string(ref.y) + ", " +
+                 std::to_string(ref.z) + ")");
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+      inside = inside && ref[k] > lo[k] && ref[k] < hi[k];
+    double faces[3] = {0, 0, 0};  // samples per axis of the face they lie on
+    const int count = 20000;
+    for (int i = 0; i < count; ++i) {
+      LightSample s =
+          lights.sample(ref, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), 0.5);
+      if (inside) {
+        EXPECT_FALSE(s.valid());
+        continue;
+      }
+      ASSERT_TRUE(s.valid());
+      EXPECT_GT(dot(s.n, ref - s.p), 0);
+      for (int k = 0; k < 3; ++k)
+        faces[k] += s.n[k] != 0;
+    }
+    if (inside) continue;
+    // Each face's share of the samples is its share of the faces' area seen, within 4 σ.
+    const glm::dvec3 d = hi - lo;
+    double area[3] = {0, 0, 0}, total = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (ref[k] > hi[k] || ref[k] < lo[k]) area[k] = d[(k + 1) % 3] * d[(k + 2) % 3];
+      total += area[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double p = area[k] / total, sigma = std::sqrt(p * (1 - p) / count);
+      EXPECT_NEAR(faces[k] / count, p, 4 * sigma + 1e-12) << "axis " << k;
+    }
   }
 }
 

@@ -74,6 +74,18 @@ struct Box {
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
   static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
+  // A box emits from its outside only, and from a point outside it at most three faces face
+  // the point (one per axis: the hi face where the point is beyond hi, the lo face where it is
+  // below lo). Light sampling draws from those alone, by area: the other faces' samples would
+  // be wasted (no emission toward the point), and the area those faces leave out is the only
+  // part of the density that changes (area_seen_from is the denominator of the density by
+  // area, for the sample and for MIS alike). 0 where no face faces the point: inside the box,
+  // or on the planes of its faces.
+  static double area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref);
+  // A uniform point on the faces that face `ref`, u_part picking the face in proportion to
+  // its area, and its outward normal; a zero normal where none does.
+  static AreaSample sample_area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref,
+                                          double u_part, double u1, double u2);
 };
 
 namespace detail {

@@ -44,13 +44,26 @@ std::optional<double> solid_angle_at(const typename Kind::Table& t, uint32_t row
     return std::nullopt;
 }
 
+// A point by area on the part of the light that faces ref (a box's faces toward it:
+// Box::sample_area_seen_from) where the kind knows it, else on all of it.
 template <class Kind>
-AreaSample area_sample_at(const typename Kind::Table& t, uint32_t row, double u_part, double u1,
-                          double u2, double time) {
-  if constexpr (requires { Kind::sample_area(t, row, u_part, u1, u2, time); })
+AreaSample area_sample_at(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref,
+                          double u_part, double u1, double u2, double time) {
+  if constexpr (requires { Kind::sample_area_seen_from(t, row, ref, u_part, u1, u2); })
+    return Kind::sample_area_seen_from(t, row, ref, u_part, u1, u2);
+  else if constexpr (requires { Kind::sample_area(t, row, u_part, u1, u2, time); })
     return Kind::sample_area(t, row, u_part, u1, u2, time);
   else
     return Kind::sample_area(t, row, u_part, u1, u2);
+}
+
+// The area area_sample_at draws from: the density's denominator, for the sample and for MIS.
+template <class Kind>
+double area_sampled(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref) {
+  if constexpr (requires { Kind::area_seen_from(t, row, ref); })
+    return Kind::area_seen_from(t, row, ref);
+  else
+    return Kind::area(t, row);
 }
 
 // A point on light l as seen from ref at `time`: by the solid angle it subtends where the kind
@@ -67,7 +80,7 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::
     s.pdf = choice / d->solid_angle;
     return s;
   }
-  AreaSample a = area_sample_at<Kind>(t, row, u_part, u1, u2, time);
+  AreaSample a = area_sample_at<Kind>(t, row, ref, u_part, u1, u2, time);
   glm::dvec3 to = a.p - ref;
   double d2 = length_squared(to);
   if (!(d2 > 0)) return s;
@@ -78,7 +91,7 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::
   if (!(cos_l > 0)) return s;  // the back of a solid emitter
   s.p = a.p;
   s.n = a.n;
-  s.pdf = choice * d2 / (cos_l * Kind::area(t, row));
+  s.pdf = choice * d2 / (cos_l * area_sampled<Kind>(t, row, ref));
   if (!std::isfinite(s.pdf)) s.pdf = 0;
   return s;
 }
@@ -93,7 +106,9 @@ double pdf_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& r
   double cos_l = std::abs(dot(wi, hit.surface.ng));
   if (!Kind::two_sided && !hit.front_face) return 0;
   if (!(cos_l > 0)) return 0;
-  return choice * d2 / (cos_l * Kind::area(t, row));
+  const double area = area_sampled<Kind>(t, row, ref);
+  if (!(area > 0)) return 0;  // a hit on a face that rounding shows from its plane
+  return choice * d2 / (cos_l * area);
 }
 
 }  // namespace

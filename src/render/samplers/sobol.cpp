@@ -39,12 +39,6 @@ constexpr Matrix sobol_matrix(int s, uint32_t a, std::array<uint32_t, 3> m_init)
 constexpr std::array<Matrix, 2> kMatrices = {sobol_matrix(2, 1, {1, 3, 0}),
                                              sobol_matrix(3, 1, {1, 3, 1})};
 
-// The matrix-vector product over GF(2) by bytes, in the bit-reversed domain the scrambles work
-// in: entry [d][b][v] is the XOR of the bit-reversed columns 31 − (8b + k) of dimension d + 2
-// for the bits k of byte b of a reversed index. So reverse(point(i)) = XOR of 4 lookups on
-// reverse(i), and a sample needs one reversal per scramble instead of two.
-using ByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 2>;
-
 constexpr uint32_t reversed(uint32_t x) {
   uint32_t r = 0;
   for (int k = 0; k < 32; ++k)
@@ -52,34 +46,22 @@ constexpr uint32_t reversed(uint32_t x) {
   return r;
 }
 
-constexpr ByteTables kReversedTables = [] {
-  // Built incrementally (entry v is entry v without its lowest bit, XOR that bit's column)
-  // from the reversed columns, to stay well inside compilers' constexpr step limits.
-  std::array<Matrix, 2> columns{};
-  for (int d = 0; d < 2; ++d)
-    for (int k = 0; k < 32; ++k)
-      columns[d][k] = reversed(kMatrices[d][31 - k]);
-  ByteTables t{};
-  for (int d = 0; d < 2; ++d)
-    for (int b = 0; b < 4; ++b)
-      for (uint32_t v = 1; v < 256; ++v) {
-        int low = std::countr_zero(v);
-        t[d][b][v] = t[d][b][v & (v - 1)] ^ columns[d][8 * b + low];
-      }
-  return t;
-}();
-
-// The same product by chunks of c = 3 or 4 bits, for lanes that look a word up by a register
-// permute (VPERMD reads an index's low 3 bits over AVX2's 8 lanes, its low 4 over AVX-512's
-// 16): entry [d][j][v] is the XOR of the reversed columns for the bits of v at bits c·j.. of a
-// reversed index. The last chunk's bits past 31 are never set. Aligned so that each chunk's
-// table is one aligned register.
+// The matrix-vector product over GF(2) by chunks of c bits, in the bit-reversed domain the
+// scrambles work in: entry [d][j][v] is the XOR of the bit-reversed columns 31 − (c·j + k) of
+// dimension d + 2 for the bits k of v, chunk j of a reversed index. So reverse(point(i)) = XOR
+// of one lookup per chunk on reverse(i), and a sample needs one reversal per scramble instead
+// of two. Scalar code and SSE4.2 read bytes (c = 8, four lookups); lanes that look a word up
+// by a register permute read 3 or 4 bits (VPERMD reads an index's low 3 bits over AVX2's 8
+// lanes, its low 4 over AVX-512's 16). The last chunk's bits past 31 are never set. Aligned
+// so that a 3- or 4-bit chunk's table is one aligned register.
 template <int C>
 struct ChunkTables {
   static constexpr int kChunks = (32 + C - 1) / C, kEntries = 1 << C;
   alignas(64) std::array<std::array<std::array<uint32_t, kEntries>, kChunks>, 2> t{};
 };
 
+// Built incrementally (entry v is entry v without its lowest bit, XOR that bit's column) from
+// the reversed columns, to stay well inside compilers' constexpr step limits.
 template <int C>
 constexpr ChunkTables<C> chunk_tables() {
   std::array<Matrix, 2> columns{};
@@ -98,6 +80,7 @@ constexpr ChunkTables<C> chunk_tables() {
 
 constexpr ChunkTables<3> kChunks3 = chunk_tables<3>();
 constexpr ChunkTables<4> kChunks4 = chunk_tables<4>();
+constexpr ChunkTables<8> kBytes = chunk_tables<8>();
 
 uint32_t reverse_bits(uint32_t x) {
   return Num<uint32_t>::reverse_bits(x);
@@ -113,7 +96,7 @@ uint64_t group_seed_of(uint64_t seed, uint32_t group) {
 
 namespace detail {
 const uint32_t* sobol_byte_tables() {
-  return &kReversedTables[0][0][0];
+  return &kBytes.t[0][0][0];
 }
 
 const uint32_t* sobol_chunk_tables(int bits) {
