@@ -139,8 +139,9 @@ void register_all() {
     std::fprintf(stderr,
                  "bench_render: testscene-bunny left out; run tools/make_bunny --scan-units "
                  "build/bench-data/bunny-scan.ply first\n");
-  for (const char* scene : {"testscene", "testscene-glass", "testscene-mirror", "testscene-bunny",
-                            "icosphere", "csg", "testscene-textured", "testscene-sky"}) {
+  for (const char* scene :
+       {"testscene", "testscene-glass", "testscene-mirror", "testscene-bunny", "icosphere", "csg",
+        "testscene-textured", "testscene-sky", "testscene-boxlight"}) {
     if (std::string_view(scene) == "testscene-bunny" && !bunny) continue;
     for (Integrator integrator : {Integrator::kMis, Integrator::kNee, Integrator::kBrdf})
       for (int threads : {1, all}) {

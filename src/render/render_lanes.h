@@ -30,6 +30,8 @@ struct RenderLanes {
                        const SobolNumbers& numbers);
   // sample_cones (render/lights/light_lanes.h).
   void (*sample_cones)(ConeBatch& batch, const ConeSphere* every_row);
+  // sample_box_faces (render/lights/light_lanes.h).
+  void (*sample_box_faces)(ConeBatch& batch, const double* u_part, const ConeBox& box);
   // finish_vertices (render/vertex_lanes.h).
   void (*finish_vertices)(const VertexRules& rules, const ShadeBatch& bsdf,
                           const LightQueries* lights, VertexBatch& batch);

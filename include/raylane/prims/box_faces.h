@@ -40,20 +40,23 @@ template <class N, class V3>
 BoxFacePoint<N, V3> box_face_point(const V3& lo, const V3& hi, const V3& ref, const N& u_part,
                                    const N& u1, const N& u2) {
   using K = Num<N>;
+  using M = typename K::Mask;
   const N zero(0.0), one(1.0);
   const V3 d{hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
-  const auto hi_x = ref.x > hi.x, hi_y = ref.y > hi.y, hi_z = ref.z > hi.z;
-  const auto seen_x = hi_x | (ref.x < lo.x), seen_y = hi_y | (ref.y < lo.y),
-             seen_z = hi_z | (ref.z < lo.z);
+  const M hi_x = ref.x > hi.x, hi_y = ref.y > hi.y, hi_z = ref.z > hi.z;
+  const M seen_x = M(hi_x | (ref.x < lo.x)), seen_y = M(hi_y | (ref.y < lo.y)),
+          seen_z = M(hi_z | (ref.z < lo.z));
   const N ax = K::select(seen_x, d.y * d.z, zero), ay = K::select(seen_y, d.z * d.x, zero),
           az = K::select(seen_z, d.x * d.y, zero);
   const N area = ax + ay + az;
   // The face: x where its share holds the number or neither other face has area; else y where
   // its share does or z has none; else z.
   const N pick = u_part * area;
-  const auto take_x = (ax > zero) & ((pick < ax) | ((ay == zero) & (az == zero)));
-  const auto take_y = !take_x & (ay > zero) & ((pick - ax < ay) | (az == zero));
-  const auto take_z = !take_x & !take_y;
+  const M none_after_x = M((ay == zero) & (az == zero));
+  const M take_x = M((ax > zero) & M((pick < ax) | none_after_x));
+  const M not_x = M(!take_x);
+  const M take_y = M(not_x & M((ay > zero) & M((pick - ax < ay) | (az == zero))));
+  const M take_z = M(not_x & M(!take_y));
   // The axis picked is on its face's plane; the next one in cyclic order takes u1, the one
   // after u2 (x: y, z; y: z, x; z: x, y).
   auto across = [&](const auto& take, const auto& is_hi, const N& l, const N& h, const N& u,
@@ -65,7 +68,7 @@ BoxFacePoint<N, V3> box_face_point(const V3& lo, const V3& hi, const V3& ref, co
              across(take_y, hi_y, lo.y, hi.y, K::select(take_x, u1, u2), d.y),
              across(take_z, hi_z, lo.z, hi.z, K::select(take_x, u2, u1), d.z)};
   auto normal = [&](const auto& take, const auto& is_hi) {
-    return K::select(take, K::select(is_hi, one, -one), zero);
+    return K::select(take, K::select(is_hi, one, N(-1.0)), zero);
   };
   out.n = V3{normal(take_x, hi_x), normal(take_y, hi_y), normal(take_z, hi_z)};
   out.area = area;
@@ -92,11 +95,12 @@ AreaLightSample<N, V3> area_light_sample(const V3& ref, const V3& p, const V3& n
   AreaLightSample<N, V3> out;
   out.wi = V3{to.x / dist, to.y / dist, to.z / dist};
   out.dist = dist;
-  const N cos_l = -(out.wi.x * n.x + out.wi.y * n.y + out.wi.z * n.z);
+  const N cos_l = K::negate(out.wi.x * n.x + out.wi.y * n.y + out.wi.z * n.z);
   const N pdf = choice * d2 / (cos_l * area);
   // A density beyond the type's range (a point edge-on, or the area below it) is no sample;
   // the comparison is false for NaN too.
-  const auto ok = (area > zero) & (d2 > zero) & (cos_l > zero) & (pdf < N(HUGE_VAL));
+  using M = typename K::Mask;
+  const M ok = M(M(M((area > zero) & (d2 > zero)) & (cos_l > zero)) & (pdf < N(HUGE_VAL)));
   out.pdf = K::select(ok, pdf, zero);
   return out;
 }

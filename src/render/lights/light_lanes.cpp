@@ -32,4 +32,8 @@ void sample_cones(Isa isa, ConeBatch& batch, const ConeSphere* every_row) {
   detail::render_lanes(isa).sample_cones(batch, every_row);
 }
 
+void sample_box_faces(Isa isa, ConeBatch& batch, const double* u_part, const ConeBox& box) {
+  detail::render_lanes(isa).sample_box_faces(batch, u_part, box);
+}
+
 }  // namespace raylane

@@ -3,8 +3,10 @@
 // (prims/sphere_cone.h) on float lanes: the scalar float instance's answers bit for bit.
 #pragma once
 
+#include "raylane/prims/box_faces.h"
 #include "raylane/prims/sphere_cone.h"
 #include "raylane/render/lights/light_lanes.h"
+#include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_numbers.h"
 #include "raylane/simd/lane_rows.h"
 
@@ -59,6 +61,29 @@ void sample_cones_range(ConeBatch& b, const ConeSphere* every_row) {
     const F pdf = simd::select(s.solid_angle > F(0.0f), sphere.choice / s.solid_angle, F(0.0f));
     simd::store<A>(b.pdf.data() + i, pdf);
     if (b.wi_float[0]) store_wi_float<A>(b, i, s.wi, pdf);
+  }
+}
+
+// sample_box_faces: box_face_point and area_light_sample on float lanes, every row about the
+// one box.
+template <class A>
+void sample_box_faces_range(ConeBatch& b, const double* u_part, const ConeBox& box) {
+  using F = ConeFloats<A>;
+  using V = simd::FloatVec3<A>;
+  constexpr std::size_t W = simd::kWidth<A>;
+  const V lo{F(box.lo[0]), F(box.lo[1]), F(box.lo[2])},
+      hi{F(box.hi[0]), F(box.hi[1]), F(box.hi[2])};
+  const F choice(box.choice);
+  for (std::size_t i = 0; i < b.size(); i += W) {
+    const V ref = simd::load3<A>(b.ref, i);
+    const BoxFacePoint<F, V> face =
+        box_face_point<F>(lo, hi, ref, simd::load_narrowed<A>(u_part + i),
+                          simd::load<A>(b.u1.data() + i), simd::load<A>(b.u2.data() + i));
+    const AreaLightSample<F, V> s = area_light_sample<F>(ref, face.p, face.n, face.area, choice);
+    simd::store3<A>(b.wi, i, s.wi);
+    simd::store<A>(b.dist.data() + i, s.dist);
+    simd::store<A>(b.pdf.data() + i, s.pdf);
+    if (b.wi_float[0]) store_wi_float<A>(b, i, s.wi, s.pdf);
   }
 }
 

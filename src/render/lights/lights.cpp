@@ -283,14 +283,7 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   const glm::vec3 center = spheres.center(row);
   const ConeSphere every_row{{center.x, center.y, center.z}, spheres.r[row], float(choice_[0])};
   sample_cones(isa, cb, &every_row);
-  // The fills' values in locals: stores into the columns may alias the sampler's members, so
-  // GCC reloaded the light at every row (perf: a third of this function's time).
-  // The light as its 32 bits (the scatter kernel reads the column so): GCC did not vectorise a
-  // fill of the class.
-  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>);
-  std::fill_n(reinterpret_cast<uint32_t*>(q.light.data()), n, lights_[0].bits());
-  for (int c = 0; c < 3; ++c)
-    std::fill_n(q.le[std::size_t(c)].begin(), n, float(le_[0][c]));
+  fill_one_light(q);
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
   if (textured) {
     for (std::size_t r = 0; r < n; ++r)
@@ -312,9 +305,36 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   }
 }
 
+// The one light is a box (and no environment), not textured: every row's point on the faces
+// it sees in float lanes (prims/box_faces.h), where sample() draws it one by one in double.
+// The same steps; the answers agree within float's error (tests/render/light_lanes_test.cpp).
+void LightSampler::sample_one_box(Isa isa, LightQueries& q) const {
+  const BoxTable& boxes = scene_.table<Box>();
+  const uint32_t row = lights_[0].row();
+  const glm::vec3 lo = boxes.lo(row), hi = boxes.hi(row);
+  const ConeBox box{{lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z}, float(choice_[0])};
+  sample_box_faces(isa, q.cones, q.u_part.data(), box);
+  fill_one_light(q);
+}
+
+// Every row's light and radiance: the one light's (sample_one_sphere, sample_one_box).
+void LightSampler::fill_one_light(LightQueries& q) const {
+  const std::size_t n = q.size();
+  // The fills' values in locals: stores into the columns may alias the sampler's members, so
+  // GCC reloaded the light at every row (perf: a third of this function's time).
+  // The light as its 32 bits (the scatter kernel reads the column so): GCC did not vectorise a
+  // fill of the class.
+  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>);
+  std::fill_n(reinterpret_cast<uint32_t*>(q.light.data()), n, lights_[0].bits());
+  for (int c = 0; c < 3; ++c)
+    std::fill_n(q.le[std::size_t(c)].begin(), n, float(le_[0][c]));
+}
+
 void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Sphere>)
     return sample_one_sphere(isa, q);
+  if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Box> && !textured_[0])
+    return sample_one_box(isa, q);
   if (lights_.empty() && env_choice_ > 0) {
     // The environment is the only light: every row samples it, without a pick or a cone's
     // inputs (which only the cone kernel reads, and no row has a cone).

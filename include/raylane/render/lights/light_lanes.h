@@ -1,9 +1,10 @@
-// Points on sphere lights by the cone each subtends, for a whole wavefront's vertices at once in
-// float SIMD lanes (the scalar routine and its warps were a large share of a render's profile:
-// docs/design.md, "Shading in lanes"). The steps are sphere_cone's (prims/sphere_cone.h), whose
-// double instance is Sphere::sample_subtended: tests/render/light_lanes_test.cpp holds the lanes
-// to its scalar float instance bit for bit, and that to the double one within float's error
-// bound. LightSampler::sample_many routes sphere lights here.
+// Points on sphere lights by the cone each subtends, and on a box light's faces (prims/
+// box_faces.h), for a whole wavefront's vertices at once in float SIMD lanes (the scalar routine
+// and its warps were a large share of a render's profile: docs/design.md, "Shading in lanes"). The
+// steps are sphere_cone's (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
+// tests/render/light_lanes_test.cpp holds the lanes to its scalar float instance bit for bit, and
+// that to the double one within float's error bound. LightSampler::sample_many routes sphere lights
+// here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -57,5 +58,18 @@ struct ConeSphere {
 // The cones of rows [0, batch.size()), each about its own sphere (the batch's columns) or all
 // about `every_row`.
 void sample_cones(Isa isa, ConeBatch& batch, const ConeSphere* every_row = nullptr);
+
+// The one box every row samples (a scene whose only light is a box): its corners and choice.
+struct ConeBox {
+  std::array<float, 3> lo, hi;
+  float choice;
+};
+
+// Points on the faces of `box` that face each row's point (prims/box_faces.h), rows [0,
+// batch.size()), from the batch's ref, u1 and u2 and the face's number u_part (a column of at
+// least the padded size, rounded to float): the batch's wi, dist and pdf (0: no sample), and
+// wi_float where set. The centres, radii, choices and solid angles are neither read nor
+// written.
+void sample_box_faces(Isa isa, ConeBatch& batch, const double* u_part, const ConeBox& box);
 
 }  // namespace raylane

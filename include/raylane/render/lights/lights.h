@@ -102,8 +102,9 @@ class LightSampler {
   // invalid (pdf 0) when the point faces away.
   LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1, double u2,
                      double time) const;
-  // sample() for every query: sphere lights seen from outside by their cones in double lanes
-  // (render/lights/light_lanes.h, the same formulas), the rest one by one.
+  // sample() for every query: sphere lights seen from outside by their cones in float lanes,
+  // a scene's one box light on its faces in float lanes (render/lights/light_lanes.h, the
+  // same steps), the rest one by one.
   void sample_many(Isa isa, LightQueries& q) const;
 
   // The density sample() would have had for direction wi from ref at `time` (the ray's),
@@ -163,6 +164,10 @@ class LightSampler {
   LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;
   // sample_many for a scene whose one light is a sphere, without an environment.
   void sample_one_sphere(Isa isa, LightQueries& q) const;
+  // sample_many for a scene whose one light is an untextured box, without an environment.
+  void sample_one_box(Isa isa, LightQueries& q) const;
+  // The one light and its radiance into every row of q.
+  void fill_one_light(LightQueries& q) const;
   // s.le times the light's texture at s.p, for a textured light (a moving one's at `time`).
   void apply_texture(std::size_t k, LightSample& s, double time) const;
   // The centre and radius of sphere light k at `time` (0.5 or anything for a still one), for
