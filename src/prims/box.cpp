@@ -37,7 +37,7 @@ BoxFacePoint<double, glm::dvec3> face_point(const BoxTable& t, uint32_t i, const
 }  // namespace
 
 double Box::area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref) {
-  return face_point(t, i, ref, 0.5, 0.5, 0.5).area;
+  return box_faces_seen<double>(glm::dvec3(t.lo(i)), glm::dvec3(t.hi(i)), ref).total();
 }
 
 AreaSample Box::sample_area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref,

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "raylane/core/strings.h"
+#include "raylane/prims/area_light_sample.h"
 #include "raylane/prims/box_faces.h"
 #include "raylane/render/lights/light_lanes.h"
 #include "raylane/render/lights/lights.h"
@@ -41,7 +42,7 @@ AreaLightSample<float, glm::vec3> float_steps(const BoxTable& boxes, uint32_t ro
                                               float u2, float choice) {
   const BoxFacePoint<float, glm::vec3> f =
       box_face_point<float>(boxes.lo(row), boxes.hi(row), ref, u_part, u1, u2);
-  return area_light_sample<float>(ref, f.p, f.n, f.area, choice);
+  return area_light_sample<false>(ref, f.p, f.n, f.area, choice);
 }
 
 TEST(BoxLightLanes, SampleManyIsTheScalarFloatStepsForOneBoxLight) {

@@ -113,6 +113,9 @@ TEST(Lights, EveryKindSamplesItsEmittingSurface) {
   glm::dvec3 cap = glm::dvec3(0.5, 0.2, 1) - normalize(glm::dvec3(-0.6, 0.3, 0.9)) * 0.05;
   check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", cap, normalize(glm::dvec3(-0.6, 0.3, 0.9)));
   check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(0.1, 0.1, 0.95), up);
+  // A box seen on two faces and on three: the density counts the faces seen.
+  check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(1.5, 0, 0.2), n);
+  check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(-2, 1.5, 3), n);
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", glm::dvec3(0.1, 0.1, 0.55), up);
 }
 
@@ -137,7 +140,7 @@ TEST(Lights, ABoxLightIsSampledOnTheFacesThatFaceThePoint) {
   const LightSampler lights(parsed.scene);
   const glm::dvec3 lo(-0.5, -0.4, 1), hi(0.7, 0.4, 1.6);
   Rng rng(5);
-  // Below the box (one face), beside and below (two), off a corner (three).
+  // Below the box (one face), beside and below (two), off a corner (three), inside (none).
   for (const glm::dvec3 ref : {glm::dvec3(0.1, 0, 0), glm::dvec3(1.5, 0, 0.2),
                                glm::dvec3(-2, 1.5, 3), glm::dvec3(0.1, 0, 1.3)}) {
     SCOPED_TRACE("from (" + std::to_string(ref.x) + ", " + std::to_string(ref.y) + ", " +

@@ -79,8 +79,8 @@ struct Box {
   // below lo). Light sampling draws from those alone, by area: the other faces' samples would
   // be wasted (no emission toward the point), and the area those faces leave out is the only
   // part of the density that changes (area_seen_from is the denominator of the density by
-  // area, for the sample and for MIS alike). 0 where no face faces the point: inside the box,
-  // or on the planes of its faces.
+  // area, for the sample and for MIS alike). 0 where no face faces the point: in the closed
+  // box. The steps are prims/box_faces.h's.
   static double area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref);
   // A uniform point on the faces that face `ref`, u_part picking the face in proportion to
   // its area, and its outward normal; a zero normal where none does.

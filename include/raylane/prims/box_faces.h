@@ -1,41 +1,62 @@
-// A point on a box light's faces that face a shading point, and the light sample it makes,
-// written once over the number type (core/numbers.h): N = double for the double shading
-// (Box::sample_area_seen_from and LightSampler's conversion by area), N = float lanes for the
-// render's light points (src/render/lights/light_lanes_impl.h), and N = float as the lanes'
-// bit-for-bit reference. No step fuses a multiply-add and the build has -ffp-contract=off, so
-// the float lanes and the scalar float text agree on every instruction set.
+// A point on a box light's faces that face a shading point, written once over the number type
+// (core/numbers.h): N = double for the double shading (Box::sample_area_seen_from,
+// Box::area_seen_from), N = float lanes for the render's light points
+// (src/render/lights/light_lanes_impl.h), and N = float as the lanes' bit-for-bit reference. No
+// step fuses a multiply-add and the build has -ffp-contract=off, so the float lanes and the
+// scalar float text agree on every instruction set. The sample it makes is
+// prims/area_light_sample.h's.
 //
 // A box emits from its outside only, and a point outside it sees at most three of its faces,
 // one per axis: the hi face where the point lies beyond hi, the lo face where it lies below
 // lo. Drawing from those faces alone, by area, wastes no sample on a face turned away (with
 // all six faces about half the samples were), and the density by area divides by their area.
 //
-// Float's error, relative to the float unit roundoff u = 2^-24 (each step rounds once;
-// tests/render/light_lanes_test.cpp holds the float answers to this against the double steps
-// at the same inputs): the point's coordinates on the face a few roundoffs of the box's
-// corners, the one across the face exact (the face's own plane); the direction and distance
-// a few roundoffs of the point's distance from the shading point beyond that; the cosine at the
-// light exact given the direction (one component of it); the density a few roundoffs relative.
+// In float each step rounds once: the point's coordinates on the face are the corners and a
+// number, a few roundoffs of the corners, and the coordinate across the face is the face's
+// own. Float's range is the limit: a face whose area underflows is never drawn, and one whose
+// area or distance overflows gives no sample (a density beyond range), where the double
+// shading would still draw it.
 #pragma once
-
-#include <cmath>
 
 #include "raylane/core/numbers.h"
 
 namespace raylane {
 
+// The areas of the faces of the box [lo, hi] that face `ref`, one per axis (0 for an axis
+// whose faces neither does: ref within the box's slab), and whether it is the hi face.
+template <class N, class V3>
+struct BoxFacesSeen {
+  N area[3];
+  typename Num<N>::Mask hi[3];
+  N total() const { return area[0] + area[1] + area[2]; }
+};
+
+template <class N, class V3>
+BoxFacesSeen<N, V3> box_faces_seen(const V3& lo, const V3& hi, const V3& ref) {
+  using K = Num<N>;
+  using M = typename K::Mask;
+  const N zero(0.0);
+  const V3 d{hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+  BoxFacesSeen<N, V3> f;
+  f.hi[0] = ref.x > hi.x, f.hi[1] = ref.y > hi.y, f.hi[2] = ref.z > hi.z;
+  f.area[0] = K::select(M(f.hi[0] | (ref.x < lo.x)), d.y * d.z, zero);
+  f.area[1] = K::select(M(f.hi[1] | (ref.y < lo.y)), d.z * d.x, zero);
+  f.area[2] = K::select(M(f.hi[2] | (ref.z < lo.z)), d.x * d.y, zero);
+  return f;
+}
+
 // A point on the faces of the box [lo, hi] that face `ref`, uniform by area over them, its
 // outward normal (one component ±1) and the faces' area. area 0 where no face faces ref
-// (inside the box, or on the planes of its faces): then p and n are meaningless.
+// (ref in the closed box): then p and n are meaningless.
 template <class N, class V3>
 struct BoxFacePoint {
   V3 p, n;
   N area;
 };
 
-// u_part picks the face in proportion to its area (the first face whose share holds it; faces
-// of zero area, a flat box's edges, never); u1 and u2 place the point on it, along the next
-// axes in cyclic order.
+// u_part picks the face in proportion to its area (the first face whose share holds it; a
+// face of zero area, one below float's range, never); u1 and u2 place the point on it, along
+// the next axes in cyclic order.
 template <class N, class V3>
 BoxFacePoint<N, V3> box_face_point(const V3& lo, const V3& hi, const V3& ref, const N& u_part,
                                    const N& u1, const N& u2) {
@@ -43,12 +64,10 @@ BoxFacePoint<N, V3> box_face_point(const V3& lo, const V3& hi, const V3& ref, co
   using M = typename K::Mask;
   const N zero(0.0), one(1.0);
   const V3 d{hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
-  const M hi_x = ref.x > hi.x, hi_y = ref.y > hi.y, hi_z = ref.z > hi.z;
-  const M seen_x = M(hi_x | (ref.x < lo.x)), seen_y = M(hi_y | (ref.y < lo.y)),
-          seen_z = M(hi_z | (ref.z < lo.z));
-  const N ax = K::select(seen_x, d.y * d.z, zero), ay = K::select(seen_y, d.z * d.x, zero),
-          az = K::select(seen_z, d.x * d.y, zero);
-  const N area = ax + ay + az;
+  const BoxFacesSeen<N, V3> f = box_faces_seen<N>(lo, hi, ref);
+  const N ax = f.area[0], ay = f.area[1], az = f.area[2];
+  const M hi_x = f.hi[0], hi_y = f.hi[1], hi_z = f.hi[2];
+  const N area = f.total();
   // The face: x where its share holds the number or neither other face has area; else y where
   // its share does or z has none; else z.
   const N pick = u_part * area;
@@ -72,36 +91,6 @@ BoxFacePoint<N, V3> box_face_point(const V3& lo, const V3& hi, const V3& ref, co
   };
   out.n = V3{normal(take_x, hi_x), normal(take_y, hi_y), normal(take_z, hi_z)};
   out.area = area;
-  return out;
-}
-
-// The light sample a point on an emitter drawn by area makes from ref: the unit direction, the
-// distance, and the density in solid angle, choice · d² / (cos θ_light · area); pdf 0 where
-// the point is no sample (area 0, the point at ref, or seen edge-on or from behind).
-template <class N, class V3>
-struct AreaLightSample {
-  V3 wi;
-  N dist, pdf;
-};
-
-template <class N, class V3>
-AreaLightSample<N, V3> area_light_sample(const V3& ref, const V3& p, const V3& n, const N& area,
-                                         const N& choice) {
-  using K = Num<N>;
-  const N zero(0.0);
-  const V3 to{p.x - ref.x, p.y - ref.y, p.z - ref.z};
-  const N d2 = to.x * to.x + to.y * to.y + to.z * to.z;
-  const N dist = K::sqrt(d2);
-  AreaLightSample<N, V3> out;
-  out.wi = V3{to.x / dist, to.y / dist, to.z / dist};
-  out.dist = dist;
-  const N cos_l = K::negate(out.wi.x * n.x + out.wi.y * n.y + out.wi.z * n.z);
-  const N pdf = choice * d2 / (cos_l * area);
-  // A density beyond the type's range (a point edge-on, or the area below it) is no sample;
-  // the comparison is false for NaN too.
-  using M = typename K::Mask;
-  const M ok = M(M(M((area > zero) & (d2 > zero)) & (cos_l > zero)) & (pdf < N(HUGE_VAL)));
-  out.pdf = K::select(ok, pdf, zero);
   return out;
 }
 

@@ -3,6 +3,7 @@
 // (prims/sphere_cone.h) on float lanes: the scalar float instance's answers bit for bit.
 #pragma once
 
+#include "raylane/prims/area_light_sample.h"
 #include "raylane/prims/box_faces.h"
 #include "raylane/prims/sphere_cone.h"
 #include "raylane/render/lights/light_lanes.h"
@@ -64,8 +65,8 @@ void sample_cones_range(ConeBatch& b, const ConeSphere* every_row) {
   }
 }
 
-// sample_box_faces: box_face_point and area_light_sample on float lanes, every row about the
-// one box.
+// sample_box_faces: box_face_point and area_light_sample (one-sided) on float lanes, every
+// row about the one box.
 template <class A>
 void sample_box_faces_range(ConeBatch& b, const double* u_part, const ConeBox& box) {
   using F = ConeFloats<A>;
@@ -79,7 +80,8 @@ void sample_box_faces_range(ConeBatch& b, const double* u_part, const ConeBox& b
     const BoxFacePoint<F, V> face =
         box_face_point<F>(lo, hi, ref, simd::load_narrowed<A>(u_part + i),
                           simd::load<A>(b.u1.data() + i), simd::load<A>(b.u2.data() + i));
-    const AreaLightSample<F, V> s = area_light_sample<F>(ref, face.p, face.n, face.area, choice);
+    const AreaLightSample<F, V> s =
+        area_light_sample<false>(ref, face.p, face.n, face.area, choice);
     simd::store3<A>(b.wi, i, s.wi);
     simd::store<A>(b.dist.data() + i, s.dist);
     simd::store<A>(b.pdf.data() + i, s.pdf);

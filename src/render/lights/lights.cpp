@@ -6,6 +6,7 @@
 #include <numeric>
 #include <type_traits>
 
+#include "raylane/prims/area_light_sample.h"
 #include "raylane/render/materials/texturing.h"
 
 namespace raylane {
@@ -58,8 +59,13 @@ AreaSample area_sample_at(const typename Kind::Table& t, uint32_t row, const glm
 }
 
 // The area area_sample_at draws from: the density's denominator, for the sample and for MIS.
+// A kind samples the part it shows and counts that part's area, or neither: one without the
+// other would bias both.
 template <class Kind>
 double area_sampled(const typename Kind::Table& t, uint32_t row, const glm::dvec3& ref) {
+  static_assert(
+      requires { Kind::area_seen_from(t, row, ref); } ==
+      requires { Kind::sample_area_seen_from(t, row, ref, 0.5, 0.5, 0.5); });
   if constexpr (requires { Kind::area_seen_from(t, row, ref); })
     return Kind::area_seen_from(t, row, ref);
   else
@@ -80,19 +86,15 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::
     s.pdf = choice / d->solid_angle;
     return s;
   }
-  AreaSample a = area_sample_at<Kind>(t, row, ref, u_part, u1, u2, time);
-  glm::dvec3 to = a.p - ref;
-  double d2 = length_squared(to);
-  if (!(d2 > 0)) return s;
-  s.dist = std::sqrt(d2);
-  s.wi = to / s.dist;
-  double cos_l = -dot(s.wi, a.n);
-  if (Kind::two_sided) cos_l = std::abs(cos_l);
-  if (!(cos_l > 0)) return s;  // the back of a solid emitter
+  const AreaSample a = area_sample_at<Kind>(t, row, ref, u_part, u1, u2, time);
+  const AreaLightSample<double, glm::dvec3> x =
+      area_light_sample<Kind::two_sided>(ref, a.p, a.n, area_sampled<Kind>(t, row, ref), choice);
+  if (!(x.pdf > 0)) return s;  // the back of a solid emitter, or the point at ref
+  s.wi = x.wi;
+  s.dist = x.dist;
   s.p = a.p;
   s.n = a.n;
-  s.pdf = choice * d2 / (cos_l * area_sampled<Kind>(t, row, ref));
-  if (!std::isfinite(s.pdf)) s.pdf = 0;
+  s.pdf = x.pdf;
   return s;
 }
 
@@ -107,7 +109,7 @@ double pdf_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& r
   if (!Kind::two_sided && !hit.front_face) return 0;
   if (!(cos_l > 0)) return 0;
   const double area = area_sampled<Kind>(t, row, ref);
-  if (!(area > 0)) return 0;  // a hit on a face that rounding shows from its plane
+  if (!(area > 0)) return 0;  // ref in the closed box: nothing it sees is drawn
   return choice * d2 / (cos_l * area);
 }
 
@@ -307,7 +309,9 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
 
 // The one light is a box (and no environment), not textured: every row's point on the faces
 // it sees in float lanes (prims/box_faces.h), where sample() draws it one by one in double.
-// The same steps; the answers agree within float's error (tests/render/light_lanes_test.cpp).
+// The same steps (prims/box_faces.h, prims/area_light_sample.h) in float: the lanes are their
+// scalar float instance bit for bit, and that instance estimates what the box shows
+// (tests/render/box_light_lanes_test.cpp).
 void LightSampler::sample_one_box(Isa isa, LightQueries& q) const {
   const BoxTable& boxes = scene_.table<Box>();
   const uint32_t row = lights_[0].row();

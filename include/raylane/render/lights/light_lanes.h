@@ -1,10 +1,13 @@
-// Points on sphere lights by the cone each subtends, and on a box light's faces (prims/
-// box_faces.h), for a whole wavefront's vertices at once in float SIMD lanes (the scalar routine
-// and its warps were a large share of a render's profile: docs/design.md, "Shading in lanes"). The
-// steps are sphere_cone's (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
-// tests/render/light_lanes_test.cpp holds the lanes to its scalar float instance bit for bit, and
-// that to the double one within float's error bound. LightSampler::sample_many routes sphere lights
-// here.
+// Points on sphere lights by the cone each subtends, and on a box light's faces, for a whole
+// wavefront's vertices at once in float SIMD lanes (the scalar routines were a large share of a
+// render's profile: docs/design.md, "Shading in lanes"). The cones' steps are sphere_cone's
+// (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
+// tests/render/light_lanes_test.cpp holds the lanes to its scalar float instance bit for bit,
+// and that to the double one within float's error bound. The boxes' steps are box_faces.h's and
+// area_light_sample.h's, the double shading's text: tests/render/box_light_lanes_test.cpp holds
+// the lanes to their scalar float instance bit for bit, and that to what the box shows within
+// its standard error. LightSampler::sample_many routes sphere lights, and a scene's one box
+// light, here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table

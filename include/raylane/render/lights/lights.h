@@ -1,9 +1,9 @@
 // Next-event estimation: picking an emitting primitive and a point on it, and the density of
 // having done so for a direction found by BSDF sampling (for MIS). Spheres seen from outside
-// are sampled by solid angle (the cone they subtend); boxes, cylinders, triangles and the
-// inside of spheres by area, converted to solid angle. A light is picked with probability
-// proportional to its power (mean of Le's channels × area), so a scene's dim lamps do not take
-// samples from its bright ones.
+// are sampled by solid angle (the cone they subtend); boxes (on the faces that face the point),
+// cylinders, triangles and the inside of spheres by area, converted to solid angle. A light is
+// picked with probability proportional to its power (mean of Le's channels × area), so a scene's
+// dim lamps do not take samples from its bright ones.
 //
 // The environment (`environment`, render/lights/environment.h) is one more light, chosen by its
 // power π r² ∫ s·lum(E) dω, r the radius of the scene's bounding sphere (pbrt-v4's estimate of the
