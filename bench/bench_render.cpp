@@ -141,7 +141,7 @@ void register_all() {
                  "build/bench-data/bunny-scan.ply first\n");
   for (const char* scene :
        {"testscene", "testscene-glass", "testscene-mirror", "testscene-bunny", "icosphere", "csg",
-        "testscene-textured", "testscene-sky", "testscene-boxlight"}) {
+        "testscene-textured", "testscene-sky", "testscene-boxlight", "testscene-bulb"}) {
     if (std::string_view(scene) == "testscene-bunny" && !bunny) continue;
     for (Integrator integrator : {Integrator::kMis, Integrator::kNee, Integrator::kBrdf})
       for (int threads : {1, all}) {

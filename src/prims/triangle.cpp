@@ -1,19 +1,25 @@
-// Triangles as emitters: area and area sampling.
-#include <cmath>
-
+// Triangles as emitters: area and area sampling, prims/triangle_light.h's steps at double.
 #include "raylane/prims/triangle.h"
+
+#include "raylane/prims/triangle_light.h"
 
 namespace raylane {
 
+namespace {
+TriangleLightPoint<double, glm::dvec3> light_point(const TriangleTable& t, uint32_t i, double u1,
+                                                   double u2) {
+  return triangle_light_point<double>(glm::dvec3(t.p0(i)), glm::dvec3(t.p1(i)), glm::dvec3(t.p2(i)),
+                                      u1, u2);
+}
+}  // namespace
+
 double Triangle::area(const Table& t, uint32_t i) {
-  return 0.5 * length(cross(glm::dvec3(t.p1(i)) - glm::dvec3(t.p0(i)),
-                            glm::dvec3(t.p2(i)) - glm::dvec3(t.p0(i))));
+  return light_point(t, i, 0.5, 0.5).area;
 }
 
 AreaSample Triangle::sample_area(const Table& t, uint32_t i, double, double u1, double u2) {
-  glm::dvec3 p0(t.p0(i)), p1(t.p1(i)), p2(t.p2(i));
-  double su = std::sqrt(u1), b0 = 1 - su, b1 = u2 * su;  // uniform barycentrics
-  return {p0 * b0 + p1 * b1 + p2 * (1 - b0 - b1), normalize(cross(p1 - p0, p2 - p0))};
+  const TriangleLightPoint<double, glm::dvec3> x = light_point(t, i, u1, u2);
+  return {x.p, x.n};
 }
 
 }  // namespace raylane

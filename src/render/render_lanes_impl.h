@@ -23,10 +23,10 @@ void sobol_groups_and_numbers(uint32_t reversed_index, uint32_t group, unsigned 
 
 template <class A>
 constexpr RenderLanes render_lanes_for() {
-  return {shade_lanes_range<A>,      sobol_groups_and_numbers<A>, sample_cones_range<A>,
-          sample_box_faces_range<A>, finish_vertices_range<A>,    scatter_range<A>,
-          gather_wo_range<A>,        pinhole_rays_range<A>,       sort_arrival_rows_range<A>,
-          blocks_of_paths_range<A>};
+  return {shade_lanes_range<A>,       sobol_groups_and_numbers<A>, sample_cones_range<A>,
+          sample_box_faces_range<A>,  sample_area_lights_range<A>, finish_vertices_range<A>,
+          scatter_range<A>,           gather_wo_range<A>,          pinhole_rays_range<A>,
+          sort_arrival_rows_range<A>, blocks_of_paths_range<A>};
 }
 
 }  // namespace raylane::detail

@@ -36,4 +36,9 @@ void sample_box_faces(Isa isa, ConeBatch& batch, const double* u_part, const Con
   detail::render_lanes(isa).sample_box_faces(batch, u_part, box);
 }
 
+void sample_area_lights(Isa isa, ConeBatch& batch, const double* u_part, const AreaLightRows& rows,
+                        const AreaLightTables& tables) {
+  detail::render_lanes(isa).sample_area_lights(batch, u_part, rows, tables);
+}
+
 }  // namespace raylane

@@ -6,6 +6,7 @@
 #include "raylane/prims/area_light_sample.h"
 #include "raylane/prims/box_faces.h"
 #include "raylane/prims/sphere_cone.h"
+#include "raylane/prims/triangle_light.h"
 #include "raylane/render/lights/light_lanes.h"
 #include "raylane/simd/lane_convert.h"
 #include "raylane/simd/lane_numbers.h"
@@ -86,6 +87,81 @@ void sample_box_faces_range(ConeBatch& b, const double* u_part, const ConeBox& b
     simd::store<A>(b.dist.data() + i, s.dist);
     simd::store<A>(b.pdf.data() + i, s.pdf);
     if (b.wi_float[0]) store_wi_float<A>(b, i, s.wi, s.pdf);
+  }
+}
+
+// The light's corners of every lane taking the kind's route, gathered from the table's columns
+// (`rows` holds the lanes' table rows, 0 in the others: a valid row whenever one lane takes the
+// route).
+template <class A, std::size_t kCount>
+std::array<ConeFloats<A>, kCount> gather_columns(const std::array<const float*, kCount>& columns,
+                                                 const simd::Ints<A>& rows) {
+  std::array<ConeFloats<A>, kCount> out;
+  for (std::size_t c = 0; c < kCount; ++c)
+    out[c] = simd::gather<A>(columns[c], rows);
+  return out;
+}
+
+// The answers so far of rows [i, i + W), and where a route's lanes overwrite them.
+template <class A>
+struct AreaLaneAnswers {
+  simd::FloatVec3<A> wi;
+  ConeFloats<A> dist, pdf;
+  void take(const simd::Mask<A>& m, const AreaLightSample<ConeFloats<A>, simd::FloatVec3<A>>& s) {
+    wi = {simd::select(m, s.wi.x, wi.x), simd::select(m, s.wi.y, wi.y),
+          simd::select(m, s.wi.z, wi.z)};
+    dist = simd::select(m, s.dist, dist);
+    pdf = simd::select(m, s.pdf, pdf);
+  }
+};
+
+// sample_area_lights: triangle_light_point and box_face_point, each with area_light_sample, on
+// float lanes, each row about its own light; a block of rows computes only the routes its rows
+// take, and keeps the other rows' answers.
+template <class A>
+void sample_area_lights_range(ConeBatch& b, const double* u_part, const AreaLightRows& rows,
+                              const AreaLightTables& tables) {
+  using F = ConeFloats<A>;
+  using I = simd::Ints<A>;
+  using V = simd::FloatVec3<A>;
+  constexpr std::size_t W = simd::kWidth<A>;
+  for (std::size_t i = 0; i < b.size(); i += W) {
+    const I route = simd::load<A>(rows.route + i);
+    const simd::Mask<A> live = simd::first_lanes<A>(int(b.size() - i));
+    const simd::Mask<A> tri = simd::equal<A>(route, I(kAreaRouteTriangle)) & live;
+    const simd::Mask<A> box = simd::equal<A>(route, I(kAreaRouteBox)) & live;
+    if (simd::none<A>(tri | box)) continue;
+    const I index = simd::load<A>(rows.index + i);
+    const V ref = simd::load3<A>(b.ref, i);
+    const F u1 = simd::load<A>(b.u1.data() + i), u2 = simd::load<A>(b.u2.data() + i);
+    const F choice = simd::load<A>(b.choice.data() + i);
+    AreaLaneAnswers<A> out{simd::load3<A>(b.wi, i), simd::load<A>(b.dist.data() + i),
+                           simd::load<A>(b.pdf.data() + i)};
+    if (simd::any<A>(tri)) {
+      const auto c = gather_columns<A>(tables.triangle, simd::select<A>(tri, index, I(0)));
+      const TriangleLightPoint<F, V> t = triangle_light_point<F>(
+          V{c[0], c[1], c[2]}, V{c[3], c[4], c[5]}, V{c[6], c[7], c[8]}, u1, u2);
+      out.take(tri, area_light_sample<true>(ref, t.p, t.n, t.area, choice));
+    }
+    if (simd::any<A>(box)) {
+      const auto c = gather_columns<A>(tables.box, simd::select<A>(box, index, I(0)));
+      const V lo{c[0], c[1], c[2]}, hi{c[3], c[4], c[5]};
+      const BoxFacePoint<F, V> face =
+          box_face_point<F>(lo, hi, ref, simd::load_narrowed<A>(u_part + i), u1, u2);
+      out.take(box, area_light_sample<false>(ref, face.p, face.n, face.area, choice));
+    }
+    simd::store3<A>(b.wi, i, out.wi);
+    simd::store<A>(b.dist.data() + i, out.dist);
+    simd::store<A>(b.pdf.data() + i, out.pdf);
+    if (b.wi_float[0]) {  // ConeBatch::wi_float: the routes' lanes only
+      const simd::Mask<A> taken = tri | box;
+      const simd::Mask<A> keep = out.pdf > F(0.0f);
+      for (int k = 0; k < 3; ++k) {
+        const F old = simd::load<A>(b.wi_float[std::size_t(k)] + i);
+        const F wi = simd::select(keep, k == 0 ? out.wi.x : k == 1 ? out.wi.y : out.wi.z, F(0.0f));
+        simd::store<A>(b.wi_float[std::size_t(k)] + i, simd::select(taken, wi, old));
+      }
+    }
   }
 }
 

@@ -137,6 +137,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     lights_.push_back(l);
     le_.push_back(le);
     textured_.push_back(m.texture >= 0);
+    area_route_.push_back(m.texture >= 0                ? kAreaRouteNone
+                          : l.tag() == tag_of<Triangle> ? kAreaRouteTriangle
+                          : l.tag() == tag_of<Box>      ? kAreaRouteBox
+                                                        : kAreaRouteNone);
     power.push_back(w);
     total += w;
   }
@@ -152,6 +156,13 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     cdf_.push_back(1.0);
   }
   if (!cdf_.empty()) cdf_.back() = 1.0;
+  guide_.resize(cdf_.size());
+  for (std::size_t j = 0, k = 0; j < guide_.size(); ++j) {
+    const double at = double(j) / double(guide_.size());
+    while (k + 1 < cdf_.size() && !(cdf_[k] > at))
+      ++k;
+    guide_[j] = uint32_t(k);
+  }
   std::sort(by_bits_.begin(), by_bits_.end());
 }
 
@@ -167,9 +178,20 @@ int LightSampler::numbers_read() const {
   return cdf_.size() > 1 ? 3 : 2;
 }
 
+// The first k with cdf_[k] > u_light (the last where none is), as std::upper_bound finds it,
+// from the guide table's entry for u_light's share: that entry's bound is at most u_light, so
+// the answer is at or after it; a step back covers a product u_light · size rounded up onto
+// the next entry.
 std::size_t LightSampler::pick(double u_light) const {
-  std::size_t k = std::upper_bound(cdf_.begin(), cdf_.end(), u_light) - cdf_.begin();
-  return std::min(k, cdf_.size() - 1);
+  const std::size_t last = cdf_.size() - 1;
+  const double at = u_light * double(guide_.size());  // NaN: entry 0, and the search ends last
+  const std::size_t j = at > 0 ? (at < double(last) ? std::size_t(at) : last) : 0;
+  std::size_t k = guide_[j];
+  while (k > 0 && cdf_[k - 1] > u_light)
+    --k;
+  while (k < last && !(cdf_[k] > u_light))
+    ++k;
+  return k;
 }
 
 LightSample LightSampler::sample_environment(double u1, double u2) const {
@@ -256,7 +278,9 @@ void LightQueries::resize(std::size_t n) {
     for (std::vector<float>& c : le)
       c.resize(padded);
     light.resize(padded);
-    cone_light.resize(padded);
+    lane_light.resize(padded);
+    area_route.resize(padded);
+    area_index.resize(padded);
   }
 }
 
@@ -348,45 +372,65 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   }
   ConeBatch& cb = q.cones;
   const std::size_t n = q.size();
-  // Each row's light; a sphere's rows get its center (a moving one's at the row's time),
-  // radius and choice for the cone kernel. The other rows get a unit sphere two units above
-  // their point (what the kernel makes of them is overwritten below).
-  bool any_cone = false;
+  // Each row's light. A sphere's rows get its center (a moving one's at the row's time),
+  // radius and choice for the cone kernel; a triangle's or a box's rows their route, row and
+  // choice for the area kernel. The other rows get a unit sphere two units above their point
+  // (what the cone kernel makes of them is overwritten below).
+  bool any_cone = false, any_area = false;
   q.environment_rows.clear();
   for (std::size_t r = 0; r < n; ++r) {
     std::size_t k = empty() ? lights_.size() : pick(q.u_light[r]);
     const bool environment = k == lights_.size() && env_choice_ > 0;
     if (environment) q.environment_rows.push_back(uint32_t(r));
-    bool cone = k < lights_.size() &&
-                (lights_[k].tag() == tag_of<Sphere> || lights_[k].tag() == tag_of<MovingSphere>);
-    q.cone_light[r] = cone          ? uint32_t(k)
-                      : environment ? LightQueries::kEnvironment
-                                    : LightQueries::kNoCone;
+    const bool cone = k < lights_.size() && (lights_[k].tag() == tag_of<Sphere> ||
+                                             lights_[k].tag() == tag_of<MovingSphere>);
+    const int32_t area = k < lights_.size() ? area_route_[k] : kAreaRouteNone;
+    q.lane_light[r] = cone || area != kAreaRouteNone ? uint32_t(k)
+                      : environment                  ? LightQueries::kEnvironment
+                                                     : LightQueries::kOneByOne;
+    q.area_route[r] = area;
+    q.area_index[r] = area != kAreaRouteNone ? int32_t(lights_[k].row()) : 0;
     any_cone = any_cone || cone;
+    any_area = any_area || area != kAreaRouteNone;
     auto [center, radius] =
         cone ? sphere_at(k, q.time_of(r))
              : std::pair<glm::dvec3, double>(q.ref(r) + glm::dvec3(0, 0, 2), 1.0);
     for (int c = 0; c < 3; ++c)
       cb.center[c][r] = float(center[c]);
     cb.radius[r] = float(radius);
-    cb.choice[r] = cone ? float(choice_[k]) : 1.0f;
+    cb.choice[r] = cone || area != kAreaRouteNone ? float(choice_[k]) : 1.0f;
   }
-  // Direction, distance and density of every cone row (none under an environment alone).
+  // Direction, distance and density of every cone row (none under an environment alone), then
+  // of every area row.
   if (any_cone) sample_cones(isa, cb);
+  if (any_area)
+    sample_area_lights(isa, cb, q.u_part.data(), {q.area_route.data(), q.area_index.data()},
+                       area_tables());
   for (std::size_t r = 0; r < n; ++r) {
-    const uint32_t k = q.cone_light[r];
+    const uint32_t k = q.lane_light[r];
     if (k == LightQueries::kEnvironment) continue;  // sampled together below
-    if (k == LightQueries::kNoCone) {
+    if (k == LightQueries::kOneByOne) {
       q.set(r, sample(q.ref(r), q.u_light[r], q.u_part[r], cb.u1[r], cb.u2[r], q.time_of(r)));
       continue;
     }
     q.light[r] = lights_[k];
     for (int c = 0; c < 3; ++c)
       q.le[c][r] = float(le_[k][c]);
-    if (cb.solid_angle[r] > 0 && !textured_[k]) continue;  // the kernel's answer stands
+    if (q.area_route[r] != kAreaRouteNone) continue;       // the area kernel's answer stands
+    if (cb.solid_angle[r] > 0 && !textured_[k]) continue;  // the cone kernel's answer stands
     q.set(r, finish_sphere_row(q, r, k));
   }
   sample_environment_rows(q);
+}
+
+AreaLightTables LightSampler::area_tables() const {
+  const TriangleTable& t = scene_.table<Triangle>();
+  const BoxTable& b = scene_.table<Box>();
+  AreaLightTables out;
+  out.triangle = {t.p0x.data(), t.p0y.data(), t.p0z.data(), t.p1x.data(), t.p1y.data(),
+                  t.p1z.data(), t.p2x.data(), t.p2y.data(), t.p2z.data()};
+  out.box = {b.lox.data(), b.loy.data(), b.loz.data(), b.hix.data(), b.hiy.data(), b.hiz.data()};
+  return out;
 }
 
 LightSample LightSampler::finish_sphere_row(const LightQueries& q, std::size_t r,

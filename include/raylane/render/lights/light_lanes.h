@@ -1,13 +1,14 @@
-// Points on sphere lights by the cone each subtends, and on a box light's faces, for a whole
-// wavefront's vertices at once in float SIMD lanes (the scalar routines were a large share of a
-// render's profile: docs/design.md, "Shading in lanes"). The cones' steps are sphere_cone's
+// Points on sphere lights by the cone each subtends, and on box and triangle lights by area, for a
+// whole wavefront's vertices at once in float SIMD lanes (the scalar routines were a large share of
+// a render's profile: docs/design.md, "Shading in lanes"). The cones' steps are sphere_cone's
 // (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
 // tests/render/light_lanes_test.cpp holds the lanes to its scalar float instance bit for bit,
 // and that to the double one within float's error bound. The boxes' steps are box_faces.h's and
 // area_light_sample.h's, the double shading's text: tests/render/box_light_lanes_test.cpp holds
 // the lanes to their scalar float instance bit for bit, and that to what the box shows within
-// its standard error. LightSampler::sample_many routes sphere lights, and a scene's one box
-// light, here.
+// its standard error; the triangles' steps are triangle_light.h's, held the same way by
+// tests/render/area_light_lanes_test.cpp. LightSampler::sample_many routes sphere lights, box
+// lights and untextured triangle lights here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -16,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "raylane/simd/isa.h"
@@ -74,5 +76,28 @@ struct ConeBox {
 // wi_float where set. The centres, radii, choices and solid angles are neither read nor
 // written.
 void sample_box_faces(Isa isa, ConeBatch& batch, const double* u_part, const ConeBox& box);
+
+// The rows sample_area_lights draws, and on which light: each row's route and its light's row
+// in that kind's table. Columns of at least the batch's padded size.
+inline constexpr int32_t kAreaRouteNone = 0, kAreaRouteTriangle = 1, kAreaRouteBox = 2;
+struct AreaLightRows {
+  const int32_t* route = nullptr;  // kAreaRoute*: None leaves the row as it is
+  const int32_t* index = nullptr;  // the light's row in its table; any valid row for None
+};
+
+// The float columns of the emitting kinds' tables (prims/triangle.h, prims/box.h): a kind's
+// columns may be null where no row takes its route.
+struct AreaLightTables {
+  std::array<const float*, 9> triangle{};  // p0x, p0y, p0z, p1x, … p2z
+  std::array<const float*, 6> box{};       // lox, loy, loz, hix, hiy, hiz
+};
+
+// Points by area on each row's own triangle (prims/triangle_light.h, two-sided) or box (on the
+// faces that face the row's point, prims/box_faces.h), for the rows [0, batch.size()) that
+// rows.route sends there: the batch's wi, dist and pdf (0: no sample), and wi_float where set,
+// from its ref, u1, u2 and choice, and the face's number u_part (rounded to float). Every other
+// row's outputs are left as they were.
+void sample_area_lights(Isa isa, ConeBatch& batch, const double* u_part, const AreaLightRows& rows,
+                        const AreaLightTables& tables);
 
 }  // namespace raylane

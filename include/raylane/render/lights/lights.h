@@ -73,10 +73,13 @@ struct LightQueries {
   bool valid(std::size_t r) const { return cones.pdf[r] > 0; }
   // Row r's outputs from one sample.
   void set(std::size_t r, const LightSample& s);
-  // Which light each row picked, when it is a sphere light sampled by its cone (sample_many's
-  // scratch; kEnvironment for the environment, kNoCone for any other light).
-  static constexpr uint32_t kNoCone = ~0u, kEnvironment = ~0u - 1;
-  std::vector<uint32_t> cone_light;
+  // Which light each row picked, where the lanes sample it: a sphere by its cone, a triangle or
+  // a box by area (sample_many's scratch; kEnvironment for the environment, kOneByOne for a
+  // light sampled one by one in double).
+  static constexpr uint32_t kOneByOne = ~0u, kEnvironment = ~0u - 1;
+  std::vector<uint32_t> lane_light;
+  // The rows the area kernel samples, and on which light (sample_area_lights' AreaLightRows).
+  std::vector<int32_t> area_route, area_index;
   // The rows that picked the environment, and their samples (sample_many's scratch).
   std::vector<uint32_t> environment_rows;
   EnvironmentBatch environment;
@@ -102,9 +105,11 @@ class LightSampler {
   // invalid (pdf 0) when the point faces away.
   LightSample sample(const glm::dvec3& ref, double u_light, double u_part, double u1, double u2,
                      double time) const;
-  // sample() for every query: sphere lights seen from outside by their cones in float lanes,
-  // a scene's one box light on its faces in float lanes (render/lights/light_lanes.h, the
-  // same steps), the rest one by one.
+  // sample() for every query, in float lanes where the lanes have the kind's steps
+  // (render/lights/light_lanes.h): sphere lights seen from outside by their cones, untextured
+  // boxes on the faces that face the point, untextured triangles by area. The rest (cylinders,
+  // textured boxes and triangles, the inside of spheres) one by one, and the environment's rows
+  // together.
   void sample_many(Isa isa, LightQueries& q) const;
 
   // The density sample() would have had for direction wi from ref at `time` (the ray's),
@@ -137,13 +142,13 @@ class LightSampler {
       s.pdf *= env_choice_;
   }
   const EnvironmentMap* environment() const { return env_ ? &*env_ : nullptr; }
+  // The probability that sample() picks `light`, or nullopt if it is not one of the lights.
+  std::optional<double> choice_of(PrimRef light) const;
 
  private:
   const Scene& scene_;
   // The index in lights_ of the light u_light picks (by power).
   std::size_t pick(double u_light) const;
-  // The choice probability of the light a ray hit, or nullopt if it is not one of ours.
-  std::optional<double> choice_of(PrimRef light) const;
 
   // The environment's direction for the numbers u1, u2 (choice: its choice probability).
   LightSample sample_environment(double u1, double u2) const;
@@ -155,10 +160,19 @@ class LightSampler {
   std::optional<EnvironmentMap> env_;
   double env_choice_ = 0;  // its choice probability; it is light index lights_.size()
   std::vector<PrimRef> lights_;
-  std::vector<double> cdf_;        // cumulative choice probabilities
+  std::vector<double> cdf_;  // cumulative choice probabilities
+  // The guide table of cdf_ (Chen and Asau 1974; Devroye, "Non-Uniform Random Variate
+  // Generation", 1986, ch. III): guide_[j] is the first k with cdf_[k] > j / guide_.size(), so
+  // that pick starts its search there and takes about one comparison whatever the number of
+  // lights (a binary search over a mesh light's triangles mispredicted at every step).
+  std::vector<uint32_t> guide_;
   std::vector<double> choice_;     // choice probability of lights_[k]
   std::vector<glm::dvec3> le_;     // emission of lights_[k]
   std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
+  // lights_[k]'s route in sample_area_lights (kAreaRouteNone: not sampled there).
+  std::vector<int32_t> area_route_;
+  // The scene's triangle and box columns, for sample_area_lights.
+  AreaLightTables area_tables() const;
   // The sample of sample_many's row r, a (moving) sphere light k's, where the kernel's answer
   // needs more: a point inside the sphere (sampled by area) or a texture.
   LightSample finish_sphere_row(const LightQueries& q, std::size_t r, std::size_t k) const;

@@ -1,0 +1,197 @@
+// Area lights among several lights in float lanes (LightSampler::sample_many's area kernel,
+// render/lights/light_lanes.h): every row that picks a triangle or a box is the scalar float
+// instance of prims/triangle_light.h's or prims/box_faces.h's steps bit for bit, at every
+// instruction set this CPU has; the other rows are what they were (a sphere's cone, a
+// cylinder's double sample); the triangle's float steps are an unbiased light sampler from
+// either side; and the light picked is std::upper_bound's over the choice probabilities, at
+// their boundaries too (the guide table).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "raylane/core/strings.h"
+#include "raylane/prims/area_light_sample.h"
+#include "raylane/prims/box_faces.h"
+#include "raylane/prims/triangle_light.h"
+#include "raylane/render/lights/light_lanes.h"
+#include "raylane/render/lights/lights.h"
+#include "raylane/render/samplers/rng.h"
+#include "raylane/render/samplers/sampling.h"
+#include "raylane/render/samplers/sobol.h"
+#include "raylane/scene/parser.h"
+#include "support/estimate.h"
+#include "support/paths.h"
+#include "support/same_bits.h"
+
+namespace raylane {
+namespace {
+
+using testing::same_bits;
+
+// A sphere, two boxes, a mesh of three triangles (one light each) and a cylinder, of unequal
+// powers; the triangles are tri.obj placed at (0, 0, 2).
+Scene several_lights_scene() {
+  const std::string dir = testing::temp_dir();
+  std::ofstream(dir + "/tri.obj") << "v 0 0 0\nv 1 0 0\nv 0.2 1 0\nv 1 1 0.5\nv -1 0.5 0.3\n"
+                                     "f 1 2 3\nf 2 4 3\nf 1 3 5\n";
+  auto parsed = parse_scene(
+      "camera 0 0 0 1\n"
+      "light 4 4 4\nsphere 3 0 1 0.5\n"
+      "light 1 2 3\nbox -0.5 -0.4 1 1.2 0.8 0.6\nbox 2 2 -1 0.3 0.3 0.3\n"
+      "light 6 5 4\nmesh tri.obj 0 0 2 1\n"
+      "light 2 2 2\ncylinder -2 0 0 0 0 1 0.3\n"
+      "brdf 0.5 0.5 0.5 0 0 0 1\nsphere 0 -3 0 0.5\n",
+      dir + "/s.scn");
+  EXPECT_TRUE(parsed.ok());
+  return std::move(parsed.scene);
+}
+
+// The scalar float steps for one row on triangle `row`, and on box `row`.
+AreaLightSample<float, glm::vec3> triangle_steps(const TriangleTable& t, uint32_t row,
+                                                 const glm::vec3& ref, float u1, float u2,
+                                                 float choice) {
+  const TriangleLightPoint<float, glm::vec3> x =
+      triangle_light_point<float>(t.p0(row), t.p1(row), t.p2(row), u1, u2);
+  return area_light_sample<true>(ref, x.p, x.n, x.area, choice);
+}
+AreaLightSample<float, glm::vec3> box_steps(const BoxTable& boxes, uint32_t row,
+                                            const glm::vec3& ref, float u_part, float u1, float u2,
+                                            float choice) {
+  const BoxFacePoint<float, glm::vec3> f =
+      box_face_point<float>(boxes.lo(row), boxes.hi(row), ref, u_part, u1, u2);
+  return area_light_sample<false>(ref, f.p, f.n, f.area, choice);
+}
+
+// Queries about the lights, from points around them and a few inside the first box.
+LightQueries random_queries(std::size_t n, Rng& rng) {
+  LightQueries q;
+  q.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 ref =
+        i % 10 == 0
+            ? glm::dvec3(-0.5 + 1.2 * rng.uniform(), -0.4 + 0.8 * rng.uniform(), 1.3)
+            : glm::dvec3(8 * rng.uniform() - 4, 8 * rng.uniform() - 4, 8 * rng.uniform() - 3);
+    for (int k = 0; k < 3; ++k)
+      q.cones.ref[k][i] = float(ref[k]);
+    q.cones.u1[i] = unit_float(rng.uniform()), q.cones.u2[i] = unit_float(rng.uniform());
+    q.u_light[i] = rng.uniform(), q.u_part[i] = rng.uniform();
+  }
+  return q;
+}
+
+TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleAndBox) {
+  const Scene scene = several_lights_scene();
+  const LightSampler lights(scene);
+  ASSERT_EQ(scene.lights.size(), 7u);
+  Rng rng(29);
+  const std::size_t n = 4001;  // a partial last batch at every width
+  LightQueries q = random_queries(n, rng);
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    lights.sample_many(isa, q);
+    std::size_t by_kind[4] = {};  // triangle, box, sphere, cylinder rows
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::vec3 ref(q.cones.ref[0][i], q.cones.ref[1][i], q.cones.ref[2][i]);
+      const PrimRef l = q.light[i];
+      // The row's light is the one sample() picks with its number.
+      const LightSample one = lights.sample(glm::dvec3(ref), q.u_light[i], q.u_part[i],
+                                            q.cones.u1[i], q.cones.u2[i], 0.5);
+      ASSERT_EQ(l, one.light) << "query " << i;
+      const float choice = float(*lights.choice_of(l));
+      AreaLightSample<float, glm::vec3> want{};
+      if (l.tag() == tag_of<Triangle>) {
+        ++by_kind[0];
+        want = triangle_steps(scene.table<Triangle>(), l.row(), ref, q.cones.u1[i], q.cones.u2[i],
+                              choice);
+      } else if (l.tag() == tag_of<Box>) {
+        ++by_kind[1];
+        want = box_steps(scene.table<Box>(), l.row(), ref, float(q.u_part[i]), q.cones.u1[i],
+                         q.cones.u2[i], choice);
+      } else {
+        // A sphere's cone is light_lanes_test's; a cylinder's row is sample()'s, rounded.
+        ++by_kind[l.tag() == tag_of<Sphere> ? 2 : 3];
+        if (l.tag() == tag_of<Cylinder>) {
+          ASSERT_TRUE(same_bits(q.cones.pdf[i], float(one.pdf))) << "query " << i;
+          EXPECT_TRUE(!one.valid() || same_bits(q.cones.wi[0][i], float(one.wi.x)));
+        }
+        continue;
+      }
+      ASSERT_TRUE(same_bits(q.cones.pdf[i], want.pdf)) << "query " << i;
+      if (!(want.pdf > 0)) continue;
+      EXPECT_TRUE(same_bits(q.cones.wi[0][i], want.wi.x) &&
+                  same_bits(q.cones.wi[1][i], want.wi.y) &&
+                  same_bits(q.cones.wi[2][i], want.wi.z) && same_bits(q.cones.dist[i], want.dist))
+          << "query " << i;
+      const Material& m = scene.materials[scene.material_of(l)];
+      EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(m.emission));
+    }
+    for (std::size_t count : by_kind)
+      EXPECT_GT(count, n / 50);
+  }
+}
+
+// ∫ cos θ · [the triangle seen along ω] dω over the sphere of directions from `ref`, by the
+// float steps' samples (cos / pdf) and by uniform directions cast at it (4π · cos · [hit]),
+// 200,000 draws each, from points on both sides: a triangle light emits from both.
+TEST(AreaLightLanes, TriangleFloatStepsEstimateWhatTheTriangleShows) {
+  TriangleTable t;
+  t.append({glm::vec3(-0.5f, -0.4f, 1), glm::vec3(0.9f, -0.2f, 1.3f), glm::vec3(0.1f, 0.8f, 0.9f)},
+           {glm::vec3(0), glm::vec3(0), glm::vec3(0)}, 0);
+  const glm::dvec3 normal = normalize(glm::dvec3(0.2, 0.1, 1));
+  Rng rng(37);
+  for (const glm::dvec3 ref : {glm::dvec3(0.1, 0, 0), glm::dvec3(1.5, 0, 0.2),
+                               glm::dvec3(-0.3, 0.4, 2.5), glm::dvec3(0.1, 0.1, 1.05)}) {
+    SCOPED_TRACE(cat("from (", ref.x, ", ", ref.y, ", ", ref.z, ")"));
+    const glm::vec3 from(ref);
+    const int count = 200000;
+    const testing::Estimate nee = testing::estimate(count, [&] {
+      const auto s =
+          triangle_steps(t, 0, from, unit_float(rng.uniform()), unit_float(rng.uniform()), 1.0f);
+      if (!(s.pdf > 0)) return 0.0;
+      return std::abs(dot(glm::dvec3(s.wi), normal)) / double(s.pdf);
+    });
+    const testing::Estimate cast = testing::estimate(count, [&] {
+      const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
+      return std::isfinite(intersect_ref(t, 0, ray)) ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
+    });
+    EXPECT_GT(cast.mean, 0.02);
+    EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));
+  }
+}
+
+// The light a number picks is the first whose cumulative choice exceeds it (the last if none
+// does), as std::upper_bound finds it: at each boundary, just below it, and at random.
+TEST(AreaLightLanes, PickIsTheUpperBoundOfTheCumulativeChoices) {
+  const Scene scene = several_lights_scene();
+  const LightSampler lights(scene);
+  std::vector<double> cdf;
+  double acc = 0;
+  for (PrimRef l : scene.lights)
+    cdf.push_back(acc += *lights.choice_of(l));
+  cdf.back() = 1.0;
+  auto expected = [&](double u) {
+    const std::size_t k = std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin();
+    return scene.lights[std::min(k, cdf.size() - 1)];
+  };
+  std::vector<double> us = {0.0, std::nextafter(1.0, 0.0)};
+  for (double c : cdf)
+    us.insert(us.end(), {c, std::nextafter(c, 0.0), std::nextafter(c, 2.0)});
+  for (std::size_t j = 0; j <= 64; ++j)  // the guide table's entries' bounds, and next to them
+    for (double u : {j / 7.0, std::nextafter(j / 7.0, 0.0), std::nextafter(j / 7.0, 2.0)})
+      if (u < 1) us.push_back(u);
+  Rng rng(41);
+  for (int i = 0; i < 10000; ++i)
+    us.push_back(rng.uniform());
+  const glm::dvec3 ref(0, -2, 0);
+  for (double u : us)
+    ASSERT_EQ(lights.sample(ref, u, 0.5, 0.5, 0.5, 0.5).light, expected(u)) << "u " << u;
+}
+
+}  // namespace
+}  // namespace raylane
