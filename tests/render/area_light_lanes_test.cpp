@@ -1,13 +1,14 @@
 // Area lights among several lights in float lanes (LightSampler::sample_many's area kernel,
-// render/lights/light_lanes.h): every row that picks a triangle or a box is the scalar float
-// instance of prims/triangle_light.h's or prims/box_faces.h's steps bit for bit, at every
-// instruction set this CPU has; the other rows are what they were (a sphere's cone, a
-// cylinder's double sample); the triangle's float steps are an unbiased light sampler from
-// either side; and the light picked is std::upper_bound's over the choice probabilities, at
-// their boundaries too (the guide table).
+// render/lights/light_lanes.h): every row that picks a triangle, a box or a cylinder is the scalar
+// float instance of prims/triangle_light.h's, prims/box_faces.h's or prims/cylinder_light.h's steps
+// bit for bit, at every instruction set this CPU has, a sphere's cone left as it was; the
+// triangle's and the cylinder's float steps are unbiased light samplers (the box's are
+// box_light_lanes_test's); and the light picked is std::upper_bound's over the choice
+// probabilities, at their boundaries too (the guide table).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "raylane/core/strings.h"
 #include "raylane/prims/area_light_sample.h"
 #include "raylane/prims/box_faces.h"
+#include "raylane/prims/cylinder_light.h"
 #include "raylane/prims/triangle_light.h"
 #include "raylane/render/lights/light_lanes.h"
 #include "raylane/render/lights/lights.h"
@@ -67,6 +69,16 @@ AreaLightSample<float, glm::vec3> box_steps(const BoxTable& boxes, uint32_t row,
   return area_light_sample<false>(ref, f.p, f.n, f.area, choice);
 }
 
+// The lanes' cylinder: the stored unit axis times the height, in float, as the kernel forms it.
+AreaLightSample<float, glm::vec3> cylinder_steps(const CylinderTable& c, uint32_t row,
+                                                 const glm::vec3& ref, float u_part, float u1,
+                                                 float u2, float choice) {
+  const glm::vec3 axis = c.unit_axis(row) * c.h[row];
+  const CylinderLightPoint<float, glm::vec3> x =
+      cylinder_light_point<float>(c.base(row), axis, c.r[row], ref, u_part, u1, u2);
+  return area_light_sample<false>(ref, x.p, x.n, x.area, choice);
+}
+
 // Queries about the lights, from points around them and a few inside the first box.
 LightQueries random_queries(std::size_t n, Rng& rng) {
   LightQueries q;
@@ -84,7 +96,7 @@ LightQueries random_queries(std::size_t n, Rng& rng) {
   return q;
 }
 
-TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleAndBox) {
+TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylinder) {
   const Scene scene = several_lights_scene();
   const LightSampler lights(scene);
   ASSERT_EQ(scene.lights.size(), 7u);
@@ -94,7 +106,7 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleAndBox) {
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
     lights.sample_many(isa, q);
-    std::size_t by_kind[4] = {};  // triangle, box, sphere, cylinder rows
+    std::size_t by_kind[4] = {};  // triangle, box, cylinder, sphere rows
     for (std::size_t i = 0; i < n; ++i) {
       const glm::vec3 ref(q.cones.ref[0][i], q.cones.ref[1][i], q.cones.ref[2][i]);
       const PrimRef l = q.light[i];
@@ -112,13 +124,12 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleAndBox) {
         ++by_kind[1];
         want = box_steps(scene.table<Box>(), l.row(), ref, float(q.u_part[i]), q.cones.u1[i],
                          q.cones.u2[i], choice);
-      } else {
-        // A sphere's cone is light_lanes_test's; a cylinder's row is sample()'s, rounded.
-        ++by_kind[l.tag() == tag_of<Sphere> ? 2 : 3];
-        if (l.tag() == tag_of<Cylinder>) {
-          ASSERT_TRUE(same_bits(q.cones.pdf[i], float(one.pdf))) << "query " << i;
-          EXPECT_TRUE(!one.valid() || same_bits(q.cones.wi[0][i], float(one.wi.x)));
-        }
+      } else if (l.tag() == tag_of<Cylinder>) {
+        ++by_kind[2];
+        want = cylinder_steps(scene.table<Cylinder>(), l.row(), ref, float(q.u_part[i]),
+                              q.cones.u1[i], q.cones.u2[i], choice);
+      } else {  // a sphere's cone: light_lanes_test's
+        ++by_kind[3];
         continue;
       }
       ASSERT_TRUE(same_bits(q.cones.pdf[i], want.pdf)) << "query " << i;
@@ -159,6 +170,40 @@ TEST(AreaLightLanes, TriangleFloatStepsEstimateWhatTheTriangleShows) {
       const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
       const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
       return std::isfinite(intersect_ref(t, 0, ray)) ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
+    });
+    EXPECT_GT(cast.mean, 0.02);
+    EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));
+  }
+}
+
+// As for the triangle, the cylinder's float steps (one-sided: its outside emits) from points
+// that see its side alone, from close by, its side and top cap, and its base cap alone.
+TEST(AreaLightLanes, CylinderFloatStepsEstimateWhatTheCylinderShows) {
+  CylinderTable c;
+  ASSERT_FALSE(c.append(std::array<double, 7>{0.5, 0.2, 1, -0.6, 0.3, 0.9, 0.3}, 0));
+  const glm::dvec3 normal = normalize(glm::dvec3(0.2, 0.1, 1));
+  const glm::dvec3 across = normalize(glm::dvec3(0.3, 0.6, 0));  // across the axis
+  Rng rng(43);
+  for (const glm::dvec3 ref :
+       {glm::dvec3(0.5, 0.95, 1.45), glm::dvec3(0.2, 0.35, 1.45) + 0.32 * across,
+        glm::dvec3(-0.067, 1.234, 2.301), glm::dvec3(0.52, 0.19, 0.97)}) {
+    SCOPED_TRACE(cat("from (", ref.x, ", ", ref.y, ", ", ref.z, ")"));
+    const glm::vec3 from(ref);
+    const int count = 200000;
+    const testing::Estimate nee = testing::estimate(count, [&] {
+      const float u[3] = {unit_float(rng.uniform()), unit_float(rng.uniform()),
+                          unit_float(rng.uniform())};
+      const auto s = cylinder_steps(c, 0, from, u[0], u[1], u[2], 1.0f);
+      if (!(s.pdf > 0)) return 0.0;
+      return std::abs(dot(glm::dvec3(s.wi), normal)) / double(s.pdf);
+    });
+    const testing::Estimate cast = testing::estimate(count, [&] {
+      const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
+      const double t = intersect_ref(c, 0, ray);
+      if (!std::isfinite(t)) return 0.0;
+      const Surface s = surface_ref(c, 0, ray, t);
+      return dot(w, s.ng) < 0 ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
     });
     EXPECT_GT(cast.mean, 0.02);
     EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));

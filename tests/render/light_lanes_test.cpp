@@ -275,7 +275,7 @@ void expect_cone_row_near(const Scene& scene, const LightQueries& q, std::size_t
 
 // sample_many's rows against sample() one by one, at every instruction set: the same light and
 // validity; a sphere light's cone (the float kernel) within its error bound (expect_cone_row_near),
-// an untextured triangle's or box's its radiance only (the area kernel's rows are
+// an untextured triangle's, box's or cylinder's its radiance only (the area kernel's rows are
 // area_light_lanes_test's), every other row sample()'s answer rounded to float, bit for bit,
 // with its radiance; and the float direction (ConeBatch::wi_float) the row's where the sample is
 // valid, 0 where not. Counts the kinds picked.
@@ -313,12 +313,13 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
         continue;
       }
       EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(want.le));
-      // An untextured triangle or box: by the area kernel, whose rows area_light_lanes_test
-      // holds to the float steps bit for bit.
-      const bool by_area_kernel =
-          (want.light.tag() == tag_of<Triangle> || want.light.tag() == tag_of<Box>)&&scene
-              .materials[scene.material_of(want.light)]
-              .texture < 0;
+      // An untextured triangle, box or cylinder: by the area kernel, whose rows
+      // area_light_lanes_test holds to the float steps bit for bit.
+      const auto tag = want.light.tag();
+      const bool area_kind =
+          tag == tag_of<Triangle> || tag == tag_of<Box> || tag == tag_of<Cylinder>;
+      const bool textured = scene.materials[scene.material_of(want.light)].texture >= 0;
+      const bool by_area_kernel = area_kind && !textured;
       if (by_area_kernel) continue;
       // The point is ref + wi·dist, so these pin it down too.
       EXPECT_TRUE(same_bits(q.cones.wi[0][i], float(want.wi.x)) &&

@@ -117,6 +117,13 @@ TEST(Lights, EveryKindSamplesItsEmittingSurface) {
   check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(1.5, 0, 0.2), n);
   check_light("box -0.5 -0.4 1 1.2 0.8 0.6", glm::dvec3(-2, 1.5, 3), n);
   check_light("mesh tri.obj -0.3 -0.4 0.6 1.2", glm::dvec3(0.1, 0.1, 0.55), up);
+  // A cylinder seen on its side alone (beside its middle, and 0.02 off its side) and on its
+  // side and top cap: the density counts the parts seen. (0.3, 0.6, 0) is across its axis.
+  const glm::dvec3 across = normalize(glm::dvec3(0.3, 0.6, 0));
+  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", glm::dvec3(0.5, 0.95, 1.45), n);
+  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", glm::dvec3(0.2, 0.35, 1.45) + 0.32 * across,
+              across);
+  check_light("cylinder 0.5 0.2 1 -0.6 0.3 0.9 0.3", glm::dvec3(-0.067, 1.234, 2.301), n);
 }
 
 // A sphere moving 3 units, seen from outside (its cone) and from inside (by area: ref is in

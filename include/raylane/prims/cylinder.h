@@ -100,6 +100,16 @@ struct Cylinder {
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's
   // face, a cylinder's side or cap) in proportion to its area.
   static AreaSample sample_area(const Table& t, uint32_t i, double u_part, double u1, double u2);
+  // A cylinder emits from its outside only, and a point sees at most one cap and, of the side,
+  // only points within the half about the direction from the axis toward it (prims/
+  // cylinder_light.h). Light sampling draws from that cap and that half alone, by area, and
+  // area_seen_from is the density's denominator, for the sample and for MIS alike. 0 where
+  // nothing faces the point (inside, or within the radius between the caps' planes).
+  static double area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref);
+  // A uniform point on the parts that face `ref`, u_part picking the part in proportion to its
+  // area, and its outward normal; a zero normal where none does.
+  static AreaSample sample_area_seen_from(const Table& t, uint32_t i, const glm::dvec3& ref,
+                                          double u_part, double u1, double u2);
 };
 
 namespace detail {

@@ -5,6 +5,7 @@
 
 #include "raylane/prims/area_light_sample.h"
 #include "raylane/prims/box_faces.h"
+#include "raylane/prims/cylinder_light.h"
 #include "raylane/prims/sphere_cone.h"
 #include "raylane/prims/triangle_light.h"
 #include "raylane/render/lights/light_lanes.h"
@@ -115,7 +116,8 @@ struct AreaLaneAnswers {
   }
 };
 
-// sample_area_lights: triangle_light_point and box_face_point, each with area_light_sample, on
+// sample_area_lights: triangle_light_point, box_face_point and cylinder_light_point, each with
+// area_light_sample, on
 // float lanes, each row about its own light; a block of rows computes only the routes its rows
 // take, and keeps the other rows' answers.
 template <class A>
@@ -130,7 +132,9 @@ void sample_area_lights_range(ConeBatch& b, const double* u_part, const AreaLigh
     const simd::Mask<A> live = simd::first_lanes<A>(int(b.size() - i));
     const simd::Mask<A> tri = simd::equal<A>(route, I(kAreaRouteTriangle)) & live;
     const simd::Mask<A> box = simd::equal<A>(route, I(kAreaRouteBox)) & live;
-    if (simd::none<A>(tri | box)) continue;
+    const simd::Mask<A> cyl = simd::equal<A>(route, I(kAreaRouteCylinder)) & live;
+    const simd::Mask<A> taken = tri | box | cyl;
+    if (simd::none<A>(taken)) continue;
     const I index = simd::load<A>(rows.index + i);
     const V ref = simd::load3<A>(b.ref, i);
     const F u1 = simd::load<A>(b.u1.data() + i), u2 = simd::load<A>(b.u2.data() + i);
@@ -150,11 +154,17 @@ void sample_area_lights_range(ConeBatch& b, const double* u_part, const AreaLigh
           box_face_point<F>(lo, hi, ref, simd::load_narrowed<A>(u_part + i), u1, u2);
       out.take(box, area_light_sample<false>(ref, face.p, face.n, face.area, choice));
     }
+    if (simd::any<A>(cyl)) {
+      const auto c = gather_columns<A>(tables.cylinder, simd::select<A>(cyl, index, I(0)));
+      const V axis{c[3] * c[6], c[4] * c[6], c[5] * c[6]};  // unit axis times height
+      const CylinderLightPoint<F, V> x = cylinder_light_point<F>(
+          V{c[0], c[1], c[2]}, axis, c[7], ref, simd::load_narrowed<A>(u_part + i), u1, u2);
+      out.take(cyl, area_light_sample<false>(ref, x.p, x.n, x.area, choice));
+    }
     simd::store3<A>(b.wi, i, out.wi);
     simd::store<A>(b.dist.data() + i, out.dist);
     simd::store<A>(b.pdf.data() + i, out.pdf);
     if (b.wi_float[0]) {  // ConeBatch::wi_float: the routes' lanes only
-      const simd::Mask<A> taken = tri | box;
       const simd::Mask<A> keep = out.pdf > F(0.0f);
       for (int k = 0; k < 3; ++k) {
         const F old = simd::load<A>(b.wi_float[std::size_t(k)] + i);

@@ -140,6 +140,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     area_route_.push_back(m.texture >= 0                ? kAreaRouteNone
                           : l.tag() == tag_of<Triangle> ? kAreaRouteTriangle
                           : l.tag() == tag_of<Box>      ? kAreaRouteBox
+                          : l.tag() == tag_of<Cylinder> ? kAreaRouteCylinder
                                                         : kAreaRouteNone);
     power.push_back(w);
     total += w;
@@ -430,6 +431,9 @@ AreaLightTables LightSampler::area_tables() const {
   out.triangle = {t.p0x.data(), t.p0y.data(), t.p0z.data(), t.p1x.data(), t.p1y.data(),
                   t.p1z.data(), t.p2x.data(), t.p2y.data(), t.p2z.data()};
   out.box = {b.lox.data(), b.loy.data(), b.loz.data(), b.hix.data(), b.hiy.data(), b.hiz.data()};
+  const CylinderTable& c = scene_.table<Cylinder>();
+  out.cylinder = {c.bx.data(), c.by.data(), c.bz.data(), c.ux.data(),
+                  c.uy.data(), c.uz.data(), c.h.data(),  c.r.data()};
   return out;
 }
 

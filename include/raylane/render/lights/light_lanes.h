@@ -6,9 +6,10 @@
 // and that to the double one within float's error bound. The boxes' steps are box_faces.h's and
 // area_light_sample.h's, the double shading's text: tests/render/box_light_lanes_test.cpp holds
 // the lanes to their scalar float instance bit for bit, and that to what the box shows within
-// its standard error; the triangles' steps are triangle_light.h's, held the same way by
-// tests/render/area_light_lanes_test.cpp. LightSampler::sample_many routes sphere lights, box
-// lights and untextured triangle lights here.
+// its standard error; the triangles' and cylinders' steps are triangle_light.h's and
+// cylinder_light.h's, held the same way by tests/render/area_light_lanes_test.cpp.
+// LightSampler::sample_many routes sphere lights and untextured box, triangle and cylinder
+// lights here.
 //
 // Baseline code includes this header; the kernel lives in the per-ISA translation units
 // src/render/render_lanes_<isa>.cpp, picked at run time through their table
@@ -79,7 +80,8 @@ void sample_box_faces(Isa isa, ConeBatch& batch, const double* u_part, const Con
 
 // The rows sample_area_lights draws, and on which light: each row's route and its light's row
 // in that kind's table. Columns of at least the batch's padded size.
-inline constexpr int32_t kAreaRouteNone = 0, kAreaRouteTriangle = 1, kAreaRouteBox = 2;
+inline constexpr int32_t kAreaRouteNone = 0, kAreaRouteTriangle = 1, kAreaRouteBox = 2,
+                         kAreaRouteCylinder = 3;
 struct AreaLightRows {
   const int32_t* route = nullptr;  // kAreaRoute*: None leaves the row as it is
   const int32_t* index = nullptr;  // the light's row in its table; any valid row for None
@@ -90,10 +92,12 @@ struct AreaLightRows {
 struct AreaLightTables {
   std::array<const float*, 9> triangle{};  // p0x, p0y, p0z, p1x, … p2z
   std::array<const float*, 6> box{};       // lox, loy, loz, hix, hiy, hiz
+  std::array<const float*, 8> cylinder{};  // bx, by, bz, ux, uy, uz, h, r
 };
 
-// Points by area on each row's own triangle (prims/triangle_light.h, two-sided) or box (on the
-// faces that face the row's point, prims/box_faces.h), for the rows [0, batch.size()) that
+// Points by area on each row's own triangle (prims/triangle_light.h, two-sided), box (on the
+// faces that face the row's point, prims/box_faces.h) or cylinder (on the cap and the half side
+// that face it, prims/cylinder_light.h), for the rows [0, batch.size()) that
 // rows.route sends there: the batch's wi, dist and pdf (0: no sample), and wi_float where set,
 // from its ref, u1, u2 and choice, and the face's number u_part (rounded to float). Every other
 // row's outputs are left as they were.

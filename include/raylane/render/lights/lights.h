@@ -1,8 +1,8 @@
 // Next-event estimation: picking an emitting primitive and a point on it, and the density of
 // having done so for a direction found by BSDF sampling (for MIS). Spheres seen from outside
-// are sampled by solid angle (the cone they subtend); boxes (on the faces that face the point),
-// cylinders, triangles and the inside of spheres by area, converted to solid angle. A light is
-// picked with probability proportional to its power (mean of Le's channels × area), so a scene's
+// are sampled by solid angle (the cone they subtend); boxes and cylinders (on the parts that
+// face the point), triangles and the inside of spheres by area, converted to solid angle. A light
+// is picked with probability proportional to its power (mean of Le's channels × area), so a scene's
 // dim lamps do not take samples from its bright ones.
 //
 // The environment (`environment`, render/lights/environment.h) is one more light, chosen by its
@@ -107,9 +107,9 @@ class LightSampler {
                      double time) const;
   // sample() for every query, in float lanes where the lanes have the kind's steps
   // (render/lights/light_lanes.h): sphere lights seen from outside by their cones, untextured
-  // boxes on the faces that face the point, untextured triangles by area. The rest (cylinders,
-  // textured boxes and triangles, the inside of spheres) one by one, and the environment's rows
-  // together.
+  // boxes and cylinders on the parts that face the point, untextured triangles by area. The
+  // rest (textured lights but spheres', the inside of spheres) one by one, and the
+  // environment's rows together.
   void sample_many(Isa isa, LightQueries& q) const;
 
   // The density sample() would have had for direction wi from ref at `time` (the ray's),
@@ -171,7 +171,7 @@ class LightSampler {
   std::vector<uint8_t> textured_;  // lights_[k]'s material has a texture
   // lights_[k]'s route in sample_area_lights (kAreaRouteNone: not sampled there).
   std::vector<int32_t> area_route_;
-  // The scene's triangle and box columns, for sample_area_lights.
+  // The scene's triangle, box and cylinder columns, for sample_area_lights.
   AreaLightTables area_tables() const;
   // The sample of sample_many's row r, a (moving) sphere light k's, where the kernel's answer
   // needs more: a point inside the sphere (sampled by area) or a texture.
