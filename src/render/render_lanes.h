@@ -1,10 +1,11 @@
 // The render's lane kernels, compiled once per instruction set (render_lanes_sse42.cpp,
 // render_lanes_avx2.cpp, render_lanes_avx512.cpp, each from the same *_impl.h sources) into one
-// table of entry points each: the BSDF, the Sobol groups, the light points (cones, faces and
-// triangles), what follows the BSDF, both at once with the queues' write-back (the scatter kernel),
-// the pinhole's camera rays, the arrivals' sort and the live blocks' bits. The public functions
-// (shade_lanes, sobol_groups, sample_cones, finish_vertices, scatter_vertices, pinhole_rays,
-// sort_arrival_rows, blocks_of_paths) look their kernel up here, the one place an instruction set
+// table of entry points each: the BSDF, the Sobol groups, the light points (spheres' cones, points
+// by area on boxes, cylinders and triangles), what follows the BSDF, both at once with the queues'
+// write-back (the scatter kernel), the pinhole's camera rays, the arrivals' sort and the live
+// blocks' bits. The public functions (shade_lanes, sobol_groups, sample_cones, sample_box_faces,
+// sample_area_lights, finish_vertices, scatter_vertices, pinhole_rays, sort_arrival_rows,
+// blocks_of_paths) look their kernel up here, the one place an instruction set
 // picks one (as bvh/build_lanes.h does for the builder). This header has no xsimd.
 #pragma once
 

@@ -27,6 +27,7 @@
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
 #include "support/estimate.h"
+#include "support/light_sentinels.h"
 #include "support/paths.h"
 #include "support/same_bits.h"
 
@@ -103,8 +104,14 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylind
   Rng rng(29);
   const std::size_t n = 4001;  // a partial last batch at every width
   LightQueries q = random_queries(n, rng);
+  std::array<std::vector<float>, 3> wi_float;
+  for (std::size_t k = 0; k < 3; ++k) {
+    wi_float[k].resize(q.cones.pdf.size());
+    q.cones.wi_float[k] = wi_float[k].data();
+  }
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    testing::fill_light_sentinels(q, &wi_float);
     lights.sample_many(isa, q);
     std::size_t by_kind[4] = {};  // triangle, box, cylinder, sphere rows
     for (std::size_t i = 0; i < n; ++i) {
@@ -133,6 +140,9 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylind
         continue;
       }
       ASSERT_TRUE(same_bits(q.cones.pdf[i], want.pdf)) << "query " << i;
+      for (std::size_t k = 0; k < 3; ++k)  // ConeBatch::wi_float: wi where valid, else 0
+        ASSERT_TRUE(same_bits(wi_float[k][i], want.pdf > 0 ? q.cones.wi[k][i] : 0.0f))
+            << "query " << i;
       if (!(want.pdf > 0)) continue;
       EXPECT_TRUE(same_bits(q.cones.wi[0][i], want.wi.x) &&
                   same_bits(q.cones.wi[1][i], want.wi.y) &&
@@ -210,11 +220,32 @@ TEST(AreaLightLanes, CylinderFloatStepsEstimateWhatTheCylinderShows) {
   }
 }
 
+// A mesh light of `count` triangles whose areas fall by a factor of 4^shrink from one to the
+// next. Unequal (shrink 1, powers from 1 to 4^-(count-1)): most of the guide table's entries
+// point at the first few lights, and the last ones share an entry. Equal (shrink 0): the
+// cumulative choices fall on the entries' bounds, where a number just below one may round up
+// onto the next entry when the table's index is computed (for 13 lights, three do).
+Scene fan_of_lights_scene(int count, int shrink) {
+  const std::string dir = testing::temp_dir();
+  std::string obj;
+  for (int t = 0; t < count; ++t) {
+    const double s = std::ldexp(1.0, -t * shrink), z = 0.5 * t;  // exact in float
+    obj += cat("v 0 0 ", z, "\nv ", s, " 0 ", z, "\nv 0 ", s, " ", z, "\n");
+    obj += cat("f ", 3 * t + 1, " ", 3 * t + 2, " ", 3 * t + 3, "\n");
+  }
+  std::ofstream(dir + "/fan.obj") << obj;
+  auto parsed = parse_scene("camera 0 0 0 1\nlight 1 1 1\nmesh fan.obj 0 0 2 1\n", dir + "/s.scn");
+  EXPECT_TRUE(parsed.ok());
+  return std::move(parsed.scene);
+}
+
 // The light a number picks is the first whose cumulative choice exceeds it (the last if none
-// does), as std::upper_bound finds it: at each boundary, just below it, and at random.
-TEST(AreaLightLanes, PickIsTheUpperBoundOfTheCumulativeChoices) {
-  const Scene scene = several_lights_scene();
+// does), as std::upper_bound finds it: at each boundary, just below and above it, at the guide
+// table's entries' bounds and next to them, and at random; for lights of near powers and of
+// very unequal ones.
+void expect_pick_is_upper_bound(const Scene& scene, std::size_t count) {
   const LightSampler lights(scene);
+  ASSERT_EQ(scene.lights.size(), count);
   std::vector<double> cdf;
   double acc = 0;
   for (PrimRef l : scene.lights)
@@ -227,15 +258,23 @@ TEST(AreaLightLanes, PickIsTheUpperBoundOfTheCumulativeChoices) {
   std::vector<double> us = {0.0, std::nextafter(1.0, 0.0)};
   for (double c : cdf)
     us.insert(us.end(), {c, std::nextafter(c, 0.0), std::nextafter(c, 2.0)});
-  for (std::size_t j = 0; j <= 64; ++j)  // the guide table's entries' bounds, and next to them
-    for (double u : {j / 7.0, std::nextafter(j / 7.0, 0.0), std::nextafter(j / 7.0, 2.0)})
-      if (u < 1) us.push_back(u);
+  for (std::size_t j = 0; j < count; ++j) {
+    const double bound = double(j) / double(count);
+    us.insert(us.end(), {bound, std::nextafter(bound, 0.0), std::nextafter(bound, 2.0)});
+  }
   Rng rng(41);
   for (int i = 0; i < 10000; ++i)
     us.push_back(rng.uniform());
   const glm::dvec3 ref(0, -2, 0);
   for (double u : us)
     ASSERT_EQ(lights.sample(ref, u, 0.5, 0.5, 0.5, 0.5).light, expected(u)) << "u " << u;
+}
+
+TEST(AreaLightLanes, PickIsTheUpperBoundOfTheCumulativeChoices) {
+  expect_pick_is_upper_bound(several_lights_scene(), 7);
+  expect_pick_is_upper_bound(fan_of_lights_scene(20, 1), 20);
+  expect_pick_is_upper_bound(fan_of_lights_scene(13, 0), 13);
+  expect_pick_is_upper_bound(fan_of_lights_scene(25, 0), 25);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// The pinhole's rays in double lanes (render/camera/camera_lanes.h) against Camera::ray_through rounded
-// to float, bit for bit at every instruction set this CPU has: random cameras (orientations,
-// fields of view, odd image sizes), random pixel points, counts that are not a multiple of any
-// lane width, and points on the image's edges and corners.
+// The pinhole's rays in double lanes (render/camera/camera_lanes.h) against Camera::ray_through
+// rounded to float, bit for bit at every instruction set this CPU has: random cameras
+// (orientations, fields of view, odd image sizes), random pixel points, counts that are not a
+// multiple of any lane width, and points on the image's edges and corners.
 #include "raylane/render/camera/camera_lanes.h"
 
 #include <gtest/gtest.h>

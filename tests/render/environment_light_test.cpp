@@ -1,5 +1,5 @@
-// The environment as a light of the path tracer (render/lights/lights.h, render/path.h): furnaces with
-// analytic answers, the orientation moving the light, and the `environment` command's rules.
+// The environment as a light of the path tracer (render/lights/lights.h, render/path.h): furnaces
+// with analytic answers, the orientation moving the light, and the `environment` command's rules.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -22,6 +22,7 @@
 #include "raylane/render/samplers/rng.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
+#include "support/light_sentinels.h"
 #include "support/paths.h"
 #include "support/same_bits.h"
 
@@ -293,6 +294,7 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
   } unpoint{q.cones};
   for (Isa isa : supported_isas()) {
     SCOPED_TRACE(cat("isa ", isa_name(isa)));
+    testing::fill_light_sentinels(q, &wi_float);
     lights.sample_many(isa, q);
     int cones = 0;
     for (std::size_t i = 0; i < q.size(); ++i) {
@@ -302,8 +304,19 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
       LightSample want = lights.sample(q.ref(i), q.u_light[i], q.u_part[i], q.cones.u1[i],
                                        q.cones.u2[i], q.time_of(i));
       ASSERT_EQ(q.light[i], want.light) << "query " << i;
-      ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
+      // An untextured triangle, box or cylinder: by the area kernel in float, whose rows
+      // area_light_lanes_test holds to the float steps bit for bit (here only its light and
+      // radiance: float and double may differ in validity within a rounding of an edge).
+      const auto tag = want.light.tag();
+      const bool area_kind =
+          tag == tag_of<Triangle> || tag == tag_of<Box> || tag == tag_of<Cylinder>;
+      const bool textured = scene.materials[scene.material_of(want.light)].texture >= 0;
       ++kinds_seen[std::size_t(q.light[i].tag())];
+      if (area_kind && !textured) {
+        EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(want.le));
+        continue;
+      }
+      ASSERT_EQ(q.valid(i), want.valid()) << "query " << i;
       if (!want.valid()) continue;
       const bool sphere =
           want.light.tag() == tag_of<Sphere> || want.light.tag() == tag_of<MovingSphere>;
@@ -313,14 +326,6 @@ void expect_sample_many_is_sample(const Scene& scene, const LightSampler& lights
         continue;
       }
       EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(want.le));
-      // An untextured triangle, box or cylinder: by the area kernel, whose rows
-      // area_light_lanes_test holds to the float steps bit for bit.
-      const auto tag = want.light.tag();
-      const bool area_kind =
-          tag == tag_of<Triangle> || tag == tag_of<Box> || tag == tag_of<Cylinder>;
-      const bool textured = scene.materials[scene.material_of(want.light)].texture >= 0;
-      const bool by_area_kernel = area_kind && !textured;
-      if (by_area_kernel) continue;
       // The point is ref + wi·dist, so these pin it down too.
       EXPECT_TRUE(same_bits(q.cones.wi[0][i], float(want.wi.x)) &&
                   same_bits(q.cones.wi[1][i], float(want.wi.y)) &&

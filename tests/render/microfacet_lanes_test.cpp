@@ -1,5 +1,5 @@
-// GGX and Beckman in the lane BSDF (src/render/materials/microfacet_lanes_impl.h) against the double
-// Bsdf: the same numbers give the same answers in expectation (paired differences of
+// GGX and Beckman in the lane BSDF (src/render/materials/microfacet_lanes_impl.h) against the
+// double Bsdf: the same numbers give the same answers in expectation (paired differences of
 // evaluations and of sample weights within their standard error), the lane samples follow the
 // double density (chi-square), and Phong rows keep their answers bit for bit when the scene
 // also has other distributions.
@@ -12,9 +12,9 @@
 #include "chi2.h"
 #include "raylane/core/strings.h"
 #include "raylane/render/materials/bsdf.h"
+#include "raylane/render/materials/shade_lanes.h"
 #include "raylane/render/samplers/rng.h"
 #include "raylane/render/samplers/sampling.h"
-#include "raylane/render/materials/shade_lanes.h"
 #include "support/estimate.h"
 
 namespace raylane {

@@ -1,5 +1,5 @@
-// GGX and Beckman (render/materials/microfacet.h) in the double reference Bsdf: D is normalised, the
-// sampler follows the pdf (chi-square over the sphere), the white furnace (Ks = 1, Kd = 0)
+// GGX and Beckman (render/materials/microfacet.h) in the double reference Bsdf: D is normalised,
+// the sampler follows the pdf (chi-square over the sphere), the white furnace (Ks = 1, Kd = 0)
 // reflects at most all and as much as quadrature of the same BRDF says, the BSDF is reciprocal,
 // and index-matched glass weighs its Dirac lobe right (corner inputs: bsdf_test.cpp).
 // docs/microfacet.md.

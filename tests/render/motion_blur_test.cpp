@@ -127,8 +127,8 @@ TEST(MotionBlur, AMovingSpheresImageIsTheAverageOfStaticRendersAtStratifiedTimes
 // 1 − (1 − 6.8e-6)^192 ≈ 0.13 %. The still scene's wall and floor are lit by the moving ball
 // very differently at each time, so a sample at another time (mid-shutter) is far outside.
 TEST(MotionBlur, AMovingLightIsLightSampledAtThePathsTime) {
-  const std::string scene =
-      ball_scene("sphere 1.3 0.5 0 0.5") + "light 30 30 30\nmbsphere -2 -1.5 -0.6 2 -1.5 -0.6 0.3\n";
+  const std::string scene = ball_scene("sphere 1.3 0.5 0 0.5") +
+                            "light 30 30 30\nmbsphere -2 -1.5 -0.6 2 -1.5 -0.6 0.3\n";
   PathSettings bsdf_only;
   bsdf_only.integrator = Integrator::kBrdf;
   bsdf_only.spp = 4096;

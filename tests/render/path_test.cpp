@@ -11,8 +11,8 @@
 
 #include "raylane/bvh/bvh.h"
 #include "raylane/core/strings.h"
-#include "raylane/render/path.h"
 #include "raylane/render/materials/shade_lanes.h"
+#include "raylane/render/path.h"
 #include "raylane/scene/parser.h"
 #include "support/paths.h"
 

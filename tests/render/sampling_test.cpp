@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "chi2.h"
-#include "raylane/render/materials/bsdf.h"
 #include "raylane/render/lights/lights.h"
+#include "raylane/render/materials/bsdf.h"
 #include "raylane/render/samplers/sampling.h"
 #include "raylane/scene/parser.h"
 

@@ -1,5 +1,5 @@
-// The texel lookup written once over the number type (render/materials/texel_lookup.h): the double one
-// over compact texels is the float image's bit for bit, the float one agrees with it to float
+// The texel lookup written once over the number type (render/materials/texel_lookup.h): the double
+// one over compact texels is the float image's bit for bit, the float one agrees with it to float
 // precision, and the float lanes return what the scalar float lookup returns, lane by lane.
 // Instantiated for SSE4.2 (every test binary's baseline), as tests/simd/lane_math_test.cpp is.
 #include "raylane/render/materials/texel_lookup.h"

@@ -9,12 +9,16 @@
 // What a point p outside the cylinder can see of it: at most one cap (the top where p lies
 // beyond it along the axis, the base where it lies below), and of the side only points whose
 // outward normal ρ has (p − q)·ρ > 0. For a side point q = b + u·t + r·ρ that is p⊥·ρ > r, p⊥
-// the part of p − b across the axis: it does not depend on the height t, and it holds within
-// the half of the side about p⊥ (p⊥·ρ > 0) — all of it where |p⊥| > r, none where not. The
-// seen arc itself is narrower (its half-angle is acos(r/|p⊥|)), but its bound needs an arc
-// cosine the lanes lack; the half needs a sine and a cosine of the number, and still leaves
-// out the half of the side and the cap that all-over sampling drew for nothing. Drawn by area
-// over that cap and that half side; the density by area divides by their area.
+// the part of p − b across the axis: it does not depend on the height t, it can hold only
+// within the half of the side about p⊥ (p⊥·ρ > 0), and nowhere where |p⊥| ≤ r. Drawn by area
+// over that cap and that half side (the side only where |p⊥| > r); the density by area divides
+// by their area. The arc truly seen is narrower (its half-angle is acos(r/|p⊥|)), but bounding
+// it needs an arc cosine the lanes lack; the half needs a sine and a cosine of the number, and
+// still leaves out the half of the side and the cap that all-over sampling drew for nothing.
+//
+// Float's range is the limit: a cylinder whose axis's squared length or whose side's area
+// overflows float (an axis beyond about 1.8e19) gives no sample in the lanes (a density of 0
+// or NaN), where the double shading would still draw it.
 #pragma once
 
 #include "raylane/core/frame_steps.h"

@@ -18,7 +18,8 @@
 //   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
 //                                     primitive subtends, better than by area (spheres)
 //   area_seen_from, sample_area_seen_from   emitter sampling by area over the part of the
-//                                     surface that faces the point, not all of it (boxes)
+//                                     surface that faces the point, not all of it (boxes,
+//                                     cylinders)
 //   point_light(t, i)                 the point the course's `lit` view lights from (spheres)
 //   has_shading_normal                a shading normal of its own in the float surfaces
 //                                     (triangles: interpolated from the vertex normals)

@@ -49,6 +49,20 @@ void store_wi_float(const ConeBatch& b, std::size_t i, const simd::FloatVec3<A>&
   simd::store<A>(b.wi_float[2] + i, simd::select(keep, wi.z, F(0.0f)));
 }
 
+// store_wi_float in the lanes of `taken` only, the others' wi_float kept (the area kernel's
+// rows among the cone kernel's and those sampled one by one).
+template <class A>
+void store_wi_float_in(const ConeBatch& b, std::size_t i, const simd::FloatVec3<A>& wi,
+                       const ConeFloats<A>& pdf, const simd::Mask<A>& taken) {
+  auto old = [&](std::size_t k) { return simd::load<A>(b.wi_float[k] + i); };
+  const simd::FloatVec3<A> merged{simd::select(taken, wi.x, old(0)),
+                                  simd::select(taken, wi.y, old(1)),
+                                  simd::select(taken, wi.z, old(2))};
+  // An untaken lane's pdf is set positive, so its old direction is stored as it was.
+  using F = ConeFloats<A>;
+  store_wi_float<A>(b, i, merged, simd::select(taken, pdf, F(1.0f)));
+}
+
 template <class A>
 void sample_cones_range(ConeBatch& b, const ConeSphere* every_row) {
   using F = ConeFloats<A>;
@@ -164,14 +178,7 @@ void sample_area_lights_range(ConeBatch& b, const double* u_part, const AreaLigh
     simd::store3<A>(b.wi, i, out.wi);
     simd::store<A>(b.dist.data() + i, out.dist);
     simd::store<A>(b.pdf.data() + i, out.pdf);
-    if (b.wi_float[0]) {  // ConeBatch::wi_float: the routes' lanes only
-      const simd::Mask<A> keep = out.pdf > F(0.0f);
-      for (int k = 0; k < 3; ++k) {
-        const F old = simd::load<A>(b.wi_float[std::size_t(k)] + i);
-        const F wi = simd::select(keep, k == 0 ? out.wi.x : k == 1 ? out.wi.y : out.wi.z, F(0.0f));
-        simd::store<A>(b.wi_float[std::size_t(k)] + i, simd::select(taken, wi, old));
-      }
-    }
+    if (b.wi_float[0]) store_wi_float_in<A>(b, i, out.wi, out.pdf, taken);
   }
 }
 

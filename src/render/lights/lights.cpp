@@ -98,6 +98,22 @@ LightSample sample_kind(const typename Kind::Table& t, uint32_t row, const glm::
   return s;
 }
 
+// The route of light l in sample_area_lights (render/lights/light_lanes.h): the kinds whose
+// steps the area kernel has; kAreaRouteNone for the others.
+int32_t area_route_of(PrimRef l) {
+  return dispatch(l.tag(), [](auto kind) {
+    using Kind = decltype(kind);
+    if constexpr (std::is_same_v<Kind, Triangle>)
+      return kAreaRouteTriangle;
+    else if constexpr (std::is_same_v<Kind, Box>)
+      return kAreaRouteBox;
+    else if constexpr (std::is_same_v<Kind, Cylinder>)
+      return kAreaRouteCylinder;
+    else
+      return kAreaRouteNone;
+  });
+}
+
 // The density sample_kind would have had for direction wi from ref at `time`, hitting `hit` on
 // light row `row`.
 template <class Kind>
@@ -109,7 +125,7 @@ double pdf_kind(const typename Kind::Table& t, uint32_t row, const glm::dvec3& r
   if (!Kind::two_sided && !hit.front_face) return 0;
   if (!(cos_l > 0)) return 0;
   const double area = area_sampled<Kind>(t, row, ref);
-  if (!(area > 0)) return 0;  // ref in the closed box: nothing it sees is drawn
+  if (!(area > 0)) return 0;  // ref in the closed solid: nothing it sees is drawn
   return choice * d2 / (cos_l * area);
 }
 
@@ -137,11 +153,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     lights_.push_back(l);
     le_.push_back(le);
     textured_.push_back(m.texture >= 0);
-    area_route_.push_back(m.texture >= 0                ? kAreaRouteNone
-                          : l.tag() == tag_of<Triangle> ? kAreaRouteTriangle
-                          : l.tag() == tag_of<Box>      ? kAreaRouteBox
-                          : l.tag() == tag_of<Cylinder> ? kAreaRouteCylinder
-                                                        : kAreaRouteNone);
+    area_route_.push_back(m.texture >= 0 ? kAreaRouteNone : area_route_of(l));
     power.push_back(w);
     total += w;
   }
@@ -374,9 +386,9 @@ void LightSampler::sample_many(Isa isa, LightQueries& q) const {
   ConeBatch& cb = q.cones;
   const std::size_t n = q.size();
   // Each row's light. A sphere's rows get its center (a moving one's at the row's time),
-  // radius and choice for the cone kernel; a triangle's or a box's rows their route, row and
-  // choice for the area kernel. The other rows get a unit sphere two units above their point
-  // (what the cone kernel makes of them is overwritten below).
+  // radius and choice for the cone kernel; a triangle's, a box's or a cylinder's rows their
+  // route, row and choice for the area kernel. The other rows get a unit sphere two units above
+  // their point (what the cone kernel makes of them is overwritten below).
   bool any_cone = false, any_area = false;
   q.environment_rows.clear();
   for (std::size_t r = 0; r < n; ++r) {

@@ -1,7 +1,7 @@
-// Points on sphere lights by the cone each subtends, and on box and triangle lights by area, for a
-// whole wavefront's vertices at once in float SIMD lanes (the scalar routines were a large share of
-// a render's profile: docs/design.md, "Shading in lanes"). The cones' steps are sphere_cone's
-// (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
+// Points on sphere lights by the cone each subtends, and on box, cylinder and triangle lights by
+// area, for a whole wavefront's vertices at once in float SIMD lanes (the scalar routines were a
+// large share of a render's profile: docs/design.md, "Shading in lanes"). The cones' steps are
+// sphere_cone's (prims/sphere_cone.h), whose double instance is Sphere::sample_subtended:
 // tests/render/light_lanes_test.cpp holds the lanes to its scalar float instance bit for bit,
 // and that to the double one within float's error bound. The boxes' steps are box_faces.h's and
 // area_light_sample.h's, the double shading's text: tests/render/box_light_lanes_test.cpp holds
@@ -87,7 +87,8 @@ struct AreaLightRows {
   const int32_t* index = nullptr;  // the light's row in its table; any valid row for None
 };
 
-// The float columns of the emitting kinds' tables (prims/triangle.h, prims/box.h): a kind's
+// The float columns of the emitting kinds' tables (prims/triangle.h, prims/box.h,
+// prims/cylinder.h): a kind's
 // columns may be null where no row takes its route.
 struct AreaLightTables {
   std::array<const float*, 9> triangle{};  // p0x, p0y, p0z, p1x, … p2z

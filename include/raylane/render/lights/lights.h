@@ -73,9 +73,9 @@ struct LightQueries {
   bool valid(std::size_t r) const { return cones.pdf[r] > 0; }
   // Row r's outputs from one sample.
   void set(std::size_t r, const LightSample& s);
-  // Which light each row picked, where the lanes sample it: a sphere by its cone, a triangle or
-  // a box by area (sample_many's scratch; kEnvironment for the environment, kOneByOne for a
-  // light sampled one by one in double).
+  // Which light each row picked, where the lanes sample it: a sphere by its cone, a triangle, a
+  // box or a cylinder by area (sample_many's scratch; kEnvironment for the environment, kOneByOne
+  // for a light sampled one by one in double).
   static constexpr uint32_t kOneByOne = ~0u, kEnvironment = ~0u - 1;
   std::vector<uint32_t> lane_light;
   // The rows the area kernel samples, and on which light (sample_area_lights' AreaLightRows).
@@ -163,8 +163,10 @@ class LightSampler {
   std::vector<double> cdf_;  // cumulative choice probabilities
   // The guide table of cdf_ (Chen and Asau 1974; Devroye, "Non-Uniform Random Variate
   // Generation", 1986, ch. III): guide_[j] is the first k with cdf_[k] > j / guide_.size(), so
-  // that pick starts its search there and takes about one comparison whatever the number of
-  // lights (a binary search over a mesh light's triangles mispredicted at every step).
+  // that pick starts its search there: with as many entries as lights, the forward search
+  // takes at most two comparisons on average (Devroye's bound 1 + n/m), whatever the number of
+  // lights; one pick can take more where the powers are very unequal. A binary search over a
+  // mesh light's triangles mispredicted at about every step.
   std::vector<uint32_t> guide_;
   std::vector<double> choice_;     // choice probability of lights_[k]
   std::vector<glm::dvec3> le_;     // emission of lights_[k]
