@@ -26,8 +26,7 @@
 #include "raylane/render/samplers/sampling.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
-#include "support/estimate.h"
-#include "support/light_sentinels.h"
+#include "support/light_checks.h"
 #include "support/paths.h"
 #include "support/same_bits.h"
 
@@ -156,9 +155,9 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylind
   }
 }
 
-// ∫ cos θ · [the triangle seen along ω] dω over the sphere of directions from `ref`, by the
-// float steps' samples (cos / pdf) and by uniform directions cast at it (4π · cos · [hit]),
-// 200,000 draws each, from points on both sides: a triangle light emits from both.
+// What the triangle shows from points on both sides (a triangle light emits from both), and
+// close to it, by its float steps' samples and by directions cast at it
+// (testing::expect_samples_estimate_what_the_light_shows).
 TEST(AreaLightLanes, TriangleFloatStepsEstimateWhatTheTriangleShows) {
   TriangleTable t;
   t.append({glm::vec3(-0.5f, -0.4f, 1), glm::vec3(0.9f, -0.2f, 1.3f), glm::vec3(0.1f, 0.8f, 0.9f)},
@@ -169,25 +168,15 @@ TEST(AreaLightLanes, TriangleFloatStepsEstimateWhatTheTriangleShows) {
                                glm::dvec3(-0.3, 0.4, 2.5), glm::dvec3(0.1, 0.1, 1.05)}) {
     SCOPED_TRACE(cat("from (", ref.x, ", ", ref.y, ", ", ref.z, ")"));
     const glm::vec3 from(ref);
-    const int count = 200000;
-    const testing::Estimate nee = testing::estimate(count, [&] {
-      const auto s =
-          triangle_steps(t, 0, from, unit_float(rng.uniform()), unit_float(rng.uniform()), 1.0f);
-      if (!(s.pdf > 0)) return 0.0;
-      return std::abs(dot(glm::dvec3(s.wi), normal)) / double(s.pdf);
-    });
-    const testing::Estimate cast = testing::estimate(count, [&] {
-      const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
-      return std::isfinite(intersect_ref(t, 0, ray)) ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
-    });
-    EXPECT_GT(cast.mean, 0.02);
-    EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));
+    testing::expect_samples_estimate_what_the_light_shows(
+        glm::dvec3(from), normal, rng,
+        [&](float, float u1, float u2) { return triangle_steps(t, 0, from, u1, u2, 1.0f); },
+        [&](const Rayd& ray) { return std::isfinite(intersect_ref(t, 0, ray)); }, 0.02);
   }
 }
 
-// As for the triangle, the cylinder's float steps (one-sided: its outside emits) from points
-// that see its side alone, from close by, its side and top cap, and its base cap alone.
+// The cylinder's, from points that see its side alone, from close by, its side and top cap,
+// and its base cap alone (one-sided: its outside emits).
 TEST(AreaLightLanes, CylinderFloatStepsEstimateWhatTheCylinderShows) {
   CylinderTable c;
   ASSERT_FALSE(c.append(std::array<double, 7>{0.5, 0.2, 1, -0.6, 0.3, 0.9, 0.3}, 0));
@@ -199,24 +188,16 @@ TEST(AreaLightLanes, CylinderFloatStepsEstimateWhatTheCylinderShows) {
         glm::dvec3(-0.067, 1.234, 2.301), glm::dvec3(0.52, 0.19, 0.97)}) {
     SCOPED_TRACE(cat("from (", ref.x, ", ", ref.y, ", ", ref.z, ")"));
     const glm::vec3 from(ref);
-    const int count = 200000;
-    const testing::Estimate nee = testing::estimate(count, [&] {
-      const float u[3] = {unit_float(rng.uniform()), unit_float(rng.uniform()),
-                          unit_float(rng.uniform())};
-      const auto s = cylinder_steps(c, 0, from, u[0], u[1], u[2], 1.0f);
-      if (!(s.pdf > 0)) return 0.0;
-      return std::abs(dot(glm::dvec3(s.wi), normal)) / double(s.pdf);
-    });
-    const testing::Estimate cast = testing::estimate(count, [&] {
-      const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
-      const double t = intersect_ref(c, 0, ray);
-      if (!std::isfinite(t)) return 0.0;
-      const Surface s = surface_ref(c, 0, ray, t);
-      return dot(w, s.ng) < 0 ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
-    });
-    EXPECT_GT(cast.mean, 0.02);
-    EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));
+    testing::expect_samples_estimate_what_the_light_shows(
+        glm::dvec3(from), normal, rng,
+        [&](float u_part, float u1, float u2) {
+          return cylinder_steps(c, 0, from, u_part, u1, u2, 1.0f);
+        },
+        [&](const Rayd& ray) {
+          const double t = intersect_ref(c, 0, ray);
+          return std::isfinite(t) && dot(ray.d, surface_ref(c, 0, ray, t).ng) < 0;
+        },
+        0.02);
   }
 }
 

@@ -18,7 +18,7 @@
 #include "raylane/render/samplers/sampling.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
-#include "support/estimate.h"
+#include "support/light_checks.h"
 #include "support/same_bits.h"
 
 namespace raylane {
@@ -96,39 +96,29 @@ TEST(BoxLightLanes, SampleManyIsTheScalarFloatStepsForOneBoxLight) {
   }
 }
 
-// ∫ cos θ · [the box's front face seen along ω] dω over the sphere of directions from `ref`
-// (cos θ against `normal`), by the float steps' samples (cos / pdf) and by uniform directions
-// cast at the box (4π · cos · [a front face is hit]), each 200,000 draws.
+// What the box shows from points that see one, two and three faces, and close to a face (where
+// cos / pdf varies most over it), by its float steps' samples and by directions cast at it
+// (testing::expect_samples_estimate_what_the_light_shows).
 TEST(BoxLightLanes, FloatStepsEstimateWhatTheBoxShows) {
   const Scene scene = box_light_scene();
   const BoxTable& boxes = scene.table<Box>();
   const uint32_t row = scene.lights[0].row();
   const glm::dvec3 normal = normalize(glm::dvec3(0.2, 0.1, 1));
   Rng rng(31);
-  // Below the box (one face), beside and below (two), off a corner (three), and close to a
-  // face, where cos / pdf varies most over it.
   for (const glm::dvec3 ref : {glm::dvec3(0.1, 0, 0), glm::dvec3(1.5, 0, 0.2),
                                glm::dvec3(-2, 1.5, 3), glm::dvec3(0.1, 0.1, 0.95)}) {
     SCOPED_TRACE(cat("from (", ref.x, ", ", ref.y, ", ", ref.z, ")"));
     const glm::vec3 from(ref);
-    const int count = 200000;
-    const testing::Estimate nee = testing::estimate(count, [&] {
-      const float u[3] = {unit_float(rng.uniform()), unit_float(rng.uniform()),
-                          unit_float(rng.uniform())};
-      const auto s = float_steps(boxes, row, from, u[0], u[1], u[2], 1.0f);
-      if (!(s.pdf > 0)) return 0.0;
-      return std::abs(dot(glm::dvec3(s.wi), normal)) / double(s.pdf);
-    });
-    const testing::Estimate cast = testing::estimate(count, [&] {
-      const glm::dvec3 w = sample_uniform_sphere(rng.uniform(), rng.uniform());
-      const Rayd ray{glm::dvec3(from), w, 0, std::numeric_limits<double>::infinity(), 0.5};
-      const double t = intersect_ref(boxes, row, ray);
-      if (!std::isfinite(t)) return 0.0;
-      const Surface s = surface_ref(boxes, row, ray, t);
-      return dot(w, s.ng) < 0 ? 4 * kPi * std::abs(dot(w, normal)) : 0.0;
-    });
-    EXPECT_GT(cast.mean, 0.05);
-    EXPECT_NEAR(nee.mean, cast.mean, 4 * std::hypot(nee.sigma, cast.sigma));
+    testing::expect_samples_estimate_what_the_light_shows(
+        glm::dvec3(from), normal, rng,
+        [&](float u_part, float u1, float u2) {
+          return float_steps(boxes, row, from, u_part, u1, u2, 1.0f);
+        },
+        [&](const Rayd& ray) {  // a front face hit: a box emits from its outside
+          const double t = intersect_ref(boxes, row, ray);
+          return std::isfinite(t) && dot(ray.d, surface_ref(boxes, row, ray, t).ng) < 0;
+        },
+        0.05);
   }
 }
 

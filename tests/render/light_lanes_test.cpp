@@ -22,7 +22,7 @@
 #include "raylane/render/samplers/rng.h"
 #include "raylane/render/samplers/sobol.h"
 #include "raylane/scene/parser.h"
-#include "support/light_sentinels.h"
+#include "support/light_checks.h"
 #include "support/paths.h"
 #include "support/same_bits.h"
 
