@@ -41,8 +41,9 @@ struct SphereCone {
 // The sphere about `center` of radius r, seen from ref, with the cone's numbers u1 (1 − cos θ
 // over its range) and u2 (the turn about the axis).
 template <class N, class V3>
-SphereCone<N, V3> sphere_cone(const V3& center, const N& r, const V3& ref, const N& u1,
-                              const N& u2) {
+[[gnu::always_inline]] inline SphereCone<N, V3> sphere_cone(const V3& center, const N& r,
+                                                            const V3& ref, const N& u1,
+                                                            const N& u2) {
   using K = Num<N>;
   const N zero(0.0), one(1.0);
   const V3 w{center.x - ref.x, center.y - ref.y, center.z - ref.z};
