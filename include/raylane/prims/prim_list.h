@@ -133,6 +133,19 @@ RowHit hit_ref(const typename Kind::Table& table, uint32_t row, const Rayd& ray)
   }
 }
 
+// Whether Kind's hits name the row the tree holds, as a sphere's do; a CSG or SDF block's hits
+// name one of its leaves (Kind::hit_ref).
+template <class Kind>
+constexpr bool hits_name_their_row() {
+  return !requires(const typename Kind::Table& table, uint32_t row, const Rayd& ray) {
+    Kind::hit_ref(table, row, ray);
+  };
+}
+
+inline bool kind_hits_name_their_row(PrimTag tag) {
+  return dispatch(tag, [](auto kind) { return hits_name_their_row<decltype(kind)>(); });
+}
+
 // "sphere#12", or "none".
 inline std::string to_string(PrimRef ref) {
   if (!ref.valid()) return "none";

@@ -28,7 +28,9 @@ inline void store_widened(double* lo, double* hi, const Floats<A>& v) {
 template <class A>
 inline void store_narrowed(float* p, const Doubles<A>& v) {
   if constexpr (kDoubleWidth<A> == 8) {
-    _mm256_storeu_ps(p, _mm512_cvtpd_ps(__m512d(v)));
+    // Zero-masking with every lane kept: the plain intrinsic's undefined pass-through operand
+    // trips GCC 12's -Wuninitialized wherever it inlines (simd/lanes.h, kAll16).
+    _mm256_storeu_ps(p, _mm512_maskz_cvtpd_ps(__mmask8(0xff), __m512d(v)));
   } else if constexpr (kDoubleWidth<A> == 4) {
     _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(v)));
   } else {
@@ -41,8 +43,8 @@ inline void store_narrowed(float* p, const Doubles<A>& v) {
 template <class A>
 inline Floats<A> load_narrowed(const double* p) {
   if constexpr (kWidth<A> == 16) {
-    const __m256 lo = _mm512_cvtpd_ps(_mm512_loadu_pd(p));
-    const __m256 hi = _mm512_cvtpd_ps(_mm512_loadu_pd(p + 8));
+    const __m256 lo = _mm512_maskz_cvtpd_ps(__mmask8(0xff), _mm512_loadu_pd(p));
+    const __m256 hi = _mm512_maskz_cvtpd_ps(__mmask8(0xff), _mm512_loadu_pd(p + 8));
     return Floats<A>(_mm512_castpd_ps(
         _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1)));
   } else if constexpr (kWidth<A> == 8) {
