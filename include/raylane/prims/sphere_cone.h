@@ -39,7 +39,8 @@ struct SphereCone {
 };
 
 // The sphere about `center` of radius r, seen from ref, with the cone's numbers u1 (1 − cos θ
-// over its range) and u2 (the turn about the axis).
+// over its range) and u2 (the turn about the axis). Inlined always, as frame_to_world: with
+// that one inlined alone, GCC called this and sincos_turn out of line from the cone kernel.
 template <class N, class V3>
 [[gnu::always_inline]] inline SphereCone<N, V3> sphere_cone(const V3& center, const N& r,
                                                             const V3& ref, const N& u1,
