@@ -339,8 +339,8 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
   for (std::size_t i = 0; i < n; i += W) {
     const int m = int(std::min<std::size_t>(W, n - i));
     // A whole batch reads its rows in place: copied to the stack first, they were stored in
-    // 16-byte halves and loaded as one register, a store-forwarding stall (perf: a tenth of
-    // this function's samples on the load).
+    // 16-byte halves and loaded as one register, which stalls (a load spanning two pending
+    // stores cannot take its value from them).
     alignas(64) uint32_t last_rows[W];
     const uint32_t* ray_rows = ray.data() + i;
     if (m < W) {

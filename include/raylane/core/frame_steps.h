@@ -62,8 +62,8 @@ TurnSinCos<N> sincos_turn(const N& u) {
 
 // The local direction v = (x, y, z) about the unit normal n, to world: Duff et al. 2017,
 // "Building an Orthonormal Basis, Revisited", in core/warps.h's Frame's order. Inlined always:
-// GCC called it from the cone kernel (callgrind: once per batch, 50 instructions a call), its
-// vectors passed and returned through memory.
+// GCC called it from the cone kernel, its vectors passed and returned through memory
+// (bench/README.md, "The surfaces' rows read in place, ...").
 template <class N, class V3>
 [[gnu::always_inline]] inline V3 frame_to_world(const V3& n, const V3& v) {
   using K = Num<N>;

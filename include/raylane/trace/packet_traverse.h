@@ -75,8 +75,8 @@ template <class A, bool kSameSides>
 // kLeaveAims (occlusion): a run of one primitive whose hits name it is not tested in the lanes
 // aimed at it. Its hit cannot block them (RayStream::aim), and a shadow ray ends at the point
 // it aims at, so it meets that primitive at its far end: in a scene lit by one sphere, every
-// unblocked shadow ray tested its light only to be let through (callgrind, the course scene:
-// 8 % of the occlusion queries' instructions). Not testing it also leaves the lane's segment
+// unblocked shadow ray tested its light only to be let through (the saving: bench/README.md,
+// "The surfaces' rows read in place, ..."). Not testing it also leaves the lane's segment
 // whole where the hit would have shortened it, which the aim's contract allows (something past
 // the aim's hit may block). A longer run, or a CSG or SDF block (whose hits name its leaves,
 // one of which may block another), tests every lane; traverse_packet_loop lets the aim's hit

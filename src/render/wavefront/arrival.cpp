@@ -78,9 +78,9 @@ class MaterialColumns {
 }  // namespace
 
 // Without a branch per ray: whether a shadow ray is blocked is a coin the predictor cannot
-// learn (callgrind's branch simulation, course scene: 102k of the loop's branches mispredicted,
-// 6k without; perf: 2.3 % of a render → 1.7 %). A blocked ray adds +0,
-// which leaves the sum's bits as they were (the radiance starts at +0 and adds no −0 sums);
+// learn (the branches saved: bench/README.md, "The surfaces' rows read in place, ..."). A
+// blocked ray adds +0, which leaves the sum's bits as they were (the radiance starts at +0
+// and adds no −0 sums);
 // the select, not a product by 0, keeps a blocked ray's contribution out even where it is not
 // finite.
 void add_unblocked_shadows(ThreadContext& ctx) {
