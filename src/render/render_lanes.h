@@ -59,4 +59,13 @@ extern const RenderLanes kRenderLanesSse42, kRenderLanesAvx2, kRenderLanesAvx512
 // The kernels for `isa`, which the CPU must support (isa_supported).
 const RenderLanes& render_lanes(Isa isa);
 
+// sobol_groups (render/samplers/sobol.h) and pinhole_rays (render/camera/camera_lanes.h) with
+// the kernels already chosen: the render's thread context holds its table, looked up once per
+// render (LaneShading::kernels), and calls these; the public functions look the table up for
+// their Isa and call them.
+void sobol_groups(const RenderLanes& lanes, uint32_t index, uint32_t group, SobolBatch& batch,
+                  unsigned components = kAllComponents, const SobolNumbers& numbers = {});
+void pinhole_rays(const RenderLanes& lanes, const Camera& cam, const PixelPoints& points,
+                  RayStream& out);
+
 }  // namespace raylane::detail

@@ -6,9 +6,9 @@
 
 namespace raylane {
 
-void pinhole_rays(Isa isa, const Camera& cam, const PixelPoints& points, RayStream& out) {
-  const std::size_t n = points.size,
-                    done = detail::render_lanes(isa).pinhole_rays(cam, points, out);
+void detail::pinhole_rays(const RenderLanes& lanes, const Camera& cam, const PixelPoints& points,
+                          RayStream& out) {
+  const std::size_t n = points.size, done = lanes.pinhole_rays(cam, points, out);
   // What every ray shares: the eye and the ray's whole length (ray_through's Rayd{eye, d}).
   const Rayf shared = ray_cast<float>(Rayd{cam.eye, {0, 0, 1}});
   std::fill_n(out.ox.begin(), n, shared.o.x);
@@ -19,6 +19,10 @@ void pinhole_rays(Isa isa, const Camera& cam, const PixelPoints& points, RayStre
   for (std::size_t i = done; i < n; ++i)  // the last points, fewer than a lane batch
     out.set(i, ray_cast<float>(
                    cam.ray_through(points.x[i] + points.jx[i], points.y[i] + points.jy[i])));
+}
+
+void pinhole_rays(Isa isa, const Camera& cam, const PixelPoints& points, RayStream& out) {
+  detail::pinhole_rays(detail::render_lanes(isa), cam, points, out);
 }
 
 }  // namespace raylane

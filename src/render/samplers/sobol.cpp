@@ -115,10 +115,15 @@ void SobolBatch::resize(std::size_t rows) {
 }
 
 // The lanes compute the group seeds (group_seed_of) and the rest in 32 bits, as sobol_group.
+void detail::sobol_groups(const RenderLanes& lanes, uint32_t index, uint32_t group,
+                          SobolBatch& batch, unsigned components, const SobolNumbers& numbers) {
+  lanes.sobol_groups(reverse_bits(index), group, (components & kAllComponents) | 3u, batch,
+                     numbers);
+}
+
 void sobol_groups(Isa isa, uint32_t index, uint32_t group, SobolBatch& batch, unsigned components,
                   const SobolNumbers& numbers) {
-  detail::render_lanes(isa).sobol_groups(reverse_bits(index), group,
-                                         (components & kAllComponents) | 3u, batch, numbers);
+  detail::sobol_groups(detail::render_lanes(isa), index, group, batch, components, numbers);
 }
 
 uint32_t sobol_point(uint32_t index, int d) {

@@ -44,11 +44,11 @@ void pinhole_sobol_rays(ThreadContext& ctx, const Camera& cam, RayStream& rays) 
   CameraPoints& points = w.camera;
   SobolNumbers to;
   to.as_double = {points.jx.data(), points.jy.data(), nullptr, nullptr};
-  sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, w.lane_vertices.sobol, first_components(2),
-               to);
-  pinhole_rays(ctx.lanes.isa, cam,
-               {points.x.data(), points.y.data(), points.jx.data(), points.jy.data(), rays.size()},
-               rays);
+  detail::sobol_groups(ctx.lanes.kernels, ctx.pass, Dims::camera, w.lane_vertices.sobol,
+                       first_components(2), to);
+  detail::pinhole_rays(
+      ctx.lanes.kernels, cam,
+      {points.x.data(), points.y.data(), points.jx.data(), points.jy.data(), rays.size()}, rays);
 }
 
 // A scene that moves: the time of each path in slots [first, first + n), one more number of its
@@ -107,7 +107,7 @@ uint32_t make_camera_rays(ThreadContext& ctx, const Camera& cam, uint32_t x0, ui
       draw_path_times(ctx, first, n);
       return n;
     }
-    sobol_groups(ctx.lanes.isa, ctx.pass, Dims::camera, s);
+    detail::sobol_groups(ctx.lanes.kernels, ctx.pass, Dims::camera, s);
   }
   const CameraPoints& points = w.camera;
   for (std::size_t i = 0; i < n; ++i) {

@@ -60,7 +60,7 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
     to.as_double = {nullptr, nullptr, read > 2 ? q.u_light.data() : nullptr,
                     read > 3 ? q.u_part.data() : nullptr};
     s.seed.swap(lv.light_seed);  // the rows' seeds for their light groups, and back
-    sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, first_components(read), to);
+    detail::sobol_groups(ctx.lanes.kernels, ctx.pass, 0, s, first_components(read), to);
     s.seed.swap(lv.light_seed);
   }
   // Roulette's number only where a row has roulette (the vertex lanes read it only then).
@@ -74,7 +74,8 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   to.as_float = {sb.u1.data(), sb.u2.data(), lobe ? sb.u_lobe.data() : nullptr, nullptr};
   if (roulette) to.as_float[3] = lv.vertices.u_roulette.data();
   s.seed.swap(lv.bsdf_seed);
-  sobol_groups(ctx.lanes.isa, ctx.pass, 0, s, 3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
+  detail::sobol_groups(ctx.lanes.kernels, ctx.pass, 0, s,
+                       3u | (lobe ? 4u : 0u) | (roulette ? 8u : 0u), to);
   s.seed.swap(lv.bsdf_seed);
 }
 
