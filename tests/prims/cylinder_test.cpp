@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 #include "prims/prim_test_util.h"
 
@@ -118,6 +119,59 @@ TEST(CylinderTable, AxisLongerThanTheLargestFloatIsRefused) {
   EXPECT_EQ(c.size(), 0u);
   std::array<double, 7> ok{0, 0, 0, 2e38, 0, 0, 1};
   EXPECT_FALSE(c.append(ok, 0).has_value());
+}
+
+// How far p lies off the part of cylinder i that the normal n names, in double: a cap's plane or
+// the side's round (the reference's cylinder: base b, axis u·h in double).
+double off_its_part(const CylinderTable& c, uint32_t i, const glm::dvec3& p, const glm::dvec3& n) {
+  const glm::dvec3 axis = c.axis(i), u = normalize(axis), q = p - glm::dvec3(c.base(i));
+  const double h = length(axis), z = dot(q, u), along = dot(n, u);
+  if (std::abs(along) > 0.5) return along < 0 ? std::abs(z) : std::abs(z - h);
+  return std::abs(length(q - z * u) - double(c.r[i]));
+}
+
+// cylinder_surface's float point lies within cylinder_point_bound's projection on its normal of
+// the part it is on, for random cylinders (a third of them along z) and rays through them: near
+// the origin, 1e3 and 1e5 away, a thousand times thinner (a hundred float ulps of their
+// coordinates wide), and at 1e5 about one ulp wide. The scalar float instance is the lanes' bit
+// for bit (tests/trace/surface_columns_test.cpp). Planted mistakes: without the axial residual
+// and the tilt (γ8 of the spread), 14 points lie beyond the bound, near the origin; without the
+// sagitta |e|²/2r, 1 of the cylinders one ulp wide.
+TEST(CylinderSurface, FloatPointLiesWithinItsBound) {
+  struct Case {
+    double scale, thin;
+  };
+  for (const Case& k : {Case{1, 1}, Case{1e3, 1}, Case{1e5, 1}, Case{1, 1e3}, Case{1e5, 30}}) {
+    SCOPED_TRACE("scale " + std::to_string(k.scale) + ", thinner by " + std::to_string(k.thin));
+    std::mt19937_64 g(1);
+    std::uniform_real_distribution<double> U(-1, 1);
+    int points = 0, beyond = 0, caps = 0;
+    for (int n = 0; n < 2000; ++n) {
+      const glm::dvec3 at(k.scale * U(g), k.scale * U(g), k.scale * U(g));
+      const double len = 0.2 + std::abs(U(g));
+      glm::dvec3 axis(len * U(g), len * U(g), len * U(g));
+      if (n % 3 == 0) axis.x = axis.y = 0;
+      const CylinderTable c = one_cylinder(at, axis, (0.02 + 0.3 * std::abs(U(g))) / k.thin);
+      if (c.size() == 0) continue;
+      for (int j = 0; j < 50; ++j) {
+        const glm::dvec3 from = at + 3.0 * glm::dvec3(U(g), U(g), U(g));
+        const glm::dvec3 to = glm::dvec3(c.base(0)) + c.axis(0) * (0.5 + 0.6 * U(g)) +
+                              double(c.r[0]) * glm::dvec3(U(g), U(g), U(g));
+        const glm::vec3 o(from), d(to - from);
+        const double t = intersect_ref(c, 0, Rayd{glm::dvec3(o), glm::dvec3(d)});
+        if (!std::isfinite(t)) continue;
+        const glm::vec3 u = c.unit_axis(0);
+        const CylinderSurface<float, glm::vec3> s =
+            cylinder_surface<float>(c.base(0), u, c.h[0], c.r[0], o, d, float(t));
+        const glm::dvec3 bound(cylinder_point_bound<float>(s, u, c.r[0])), nd(s.n);
+        ++points, caps += bool(s.cap);
+        beyond += !(off_its_part(c, 0, glm::dvec3(s.p), nd) <= dot(abs(nd), bound));
+      }
+    }
+    EXPECT_EQ(beyond, 0);
+    EXPECT_GT(points, 70000);
+    EXPECT_GT(caps, k.thin > 1 ? 50 : 5000);  // a thin cylinder's caps are small
+  }
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
 // The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces:
-// spheres, boxes and triangles in float lanes with their own bounds, sphere_point_bound,
-// box_point_bound and triangle_point_bound; the other kinds rounded from double,
-// float_hit_point_bound), and the rays a
+// spheres, boxes, triangles and cylinders in float lanes with their own bounds,
+// sphere_point_bound, box_point_bound, triangle_point_bound and cylinder_point_bound; the other
+// kinds rounded from double, float_hit_point_bound), and the rays a
 // vertex spawns leave by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes
 // of every kind that the float surfaces cover, at every instruction set, at four scales (unit,
 // far from the origin, tiny, huge):
 // - the float point lies within its bound's projection on the normal of the true surface
-//   (spheres, boxes and triangles, measured in double from the table's own float numbers);
+//   (spheres, boxes, triangles and cylinders, measured in double from the table's own float
+//   numbers);
 // - a ray reflected off a front face never meets its own primitive again (acne), and one
 //   continuing into the solid never meets its own primitive's front face (a leak: it started
 //   outside). Convex primitives and planar triangles allow neither, whatever the scene holds.
@@ -75,7 +76,8 @@ FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
 
 // How far the float point lies off the true surface of its primitive, in double (nan for a
 // kind without a distance here).
-double distance_off_surface(const Scene& scene, PrimRef prim, const glm::dvec3& p) {
+double distance_off_surface(const Scene& scene, PrimRef prim, const glm::dvec3& p,
+                            const glm::dvec3& n) {
   const uint32_t i = prim.row();
   if (prim.tag() == tag_of<Sphere>) {
     const SphereTable& s = scene.table<Sphere>();
@@ -93,6 +95,14 @@ double distance_off_surface(const Scene& scene, PrimRef prim, const glm::dvec3& 
     for (int k = 0; k < 3; ++k)
       d = std::min({d, std::abs(p[k] - lo[k]), std::abs(p[k] - hi[k])});
     return d;
+  }
+  if (prim.tag() == tag_of<Cylinder>) {  // the reference's cylinder: base b, axis u·h in double
+    // Off the part the normal names (a cap's plane or the side's round), as for a box's face.
+    const CylinderTable& c = scene.table<Cylinder>();
+    const glm::dvec3 axis = c.axis(i), u = normalize(axis), q = p - glm::dvec3(c.base(i));
+    const double h = length(axis), z = dot(q, u), along = dot(n, u);
+    if (std::abs(along) > 0.5) return along < 0 ? std::abs(z) : std::abs(z - h);
+    return std::abs(length(q - z * u) - double(c.r[i]));
   }
   return std::nan("");
 }
@@ -124,7 +134,7 @@ void check_scale(const Scale& scale, Isa isa, Counts& n) {
     const Vec p = first.point(r), ng = first.normal(r);
     const Vec err = first.bound(r);
     ++n.front_hits, ++n.kinds[std::size_t(prim.tag())];
-    const double off = distance_off_surface(scene, prim, glm::dvec3(p));
+    const double off = distance_off_surface(scene, prim, glm::dvec3(p), glm::dvec3(ng));
     if (!std::isnan(off)) {
       ++n.measured;
       const double bound = dot(abs(glm::dvec3(ng)), glm::dvec3(err));

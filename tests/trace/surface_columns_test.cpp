@@ -1,7 +1,7 @@
 // The Tracer's surfaces as columns (Tracer::surfaces), the render's: against complete()'s
 // surfaces one hit at a time, and, for the kinds the packet tracer computes in float lanes
-// (spheres, boxes, triangles), against the same steps' scalar float instance, bit for bit, with
-// their error bounds.
+// (spheres, boxes, triangles, cylinders), against the same steps' scalar float instance, bit for
+// bit, with their error bounds.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -22,10 +22,10 @@ using testing::records_of;
 using testing::same_bits;
 using testing::with_every_tracer;
 
-// What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes, spheres and
-// triangles in float lanes, with their bounds — the same steps' scalar float instance, bit for
-// bit; every other surface complete()'s, rounded to float, with float_hit_point_bound computed
-// in double and rounded.
+// What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes, spheres,
+// triangles and cylinders in float lanes, with their bounds — the same steps' scalar float
+// instance, bit for bit; every other surface complete()'s, rounded to float, with
+// float_hit_point_bound computed in double and rounded.
 struct Columns {
   glm::vec3 p, ng, ns, error;
   double cos_ns;
@@ -51,6 +51,14 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
     const SphereSurface<glm::vec3> s =
         sphere_surface<float>(sp.center(i), sp.r[i], ray.o, ray.d, t);
     return from_float(s.p, s.n, sphere_point_bound<float>(s.p, s.offset));
+  }
+  if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Cylinder>) {
+    const CylinderTable& c = scene.table<Cylinder>();
+    const uint32_t i = hit.prim.row();
+    const glm::vec3 u = c.unit_axis(i);
+    const CylinderSurface<float, glm::vec3> s =
+        cylinder_surface<float>(c.base(i), u, c.h[i], c.r[i], ray.o, ray.d, t);
+    return from_float(s.p, s.n, cylinder_point_bound<float>(s, u, c.r[i]));
   }
   if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Triangle>) {
     const TriangleTable& tri = scene.table<Triangle>();
@@ -109,7 +117,8 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   std::vector<uint32_t> float_kinds;
   for (std::size_t i = 0; i < hits.size(); ++i) {
     const PrimTag tag = hits[i].prim.tag();
-    if (hits[i].hit() && (tag == tag_of<Sphere> || tag == tag_of<Box> || tag == tag_of<Triangle>))
+    if (hits[i].hit() && (tag == tag_of<Sphere> || tag == tag_of<Box> || tag == tag_of<Triangle> ||
+                          tag == tag_of<Cylinder>))
       float_kinds.push_back(uint32_t(i));
   }
   for (std::size_t k = 0; !float_kinds.empty() && (k < 5 || request.size() % 16 != 5); ++k)

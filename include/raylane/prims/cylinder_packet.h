@@ -47,36 +47,37 @@ template <class A, class Rows>
   }
 }
 
-// surface_ref (cylinder.h) for one hit per lane: the part the point is nearest to, a cap
-// (±axis) or the side (radial).
+// cylinder_surface (cylinder.h) for one hit per double lane: surface_ref's answers bit for bit.
+// The axis u·h is exact in double (cylinder.h); its length and direction are taken as the
+// reference takes them.
 template <class A>
 SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
                               const HitRayLanes<A>& r) {
   using D = simd::Doubles<A>;
-  // The axis u·h (exact in double, cylinder.h), its length and direction as the reference takes
-  // them.
   const simd::DoubleVec3<A> uf = load_rows3<A>(c.ux, c.uy, c.uz, rows);
   const D hf = simd::load_rows<A>(c.h, rows);
   const simd::DoubleVec3<A> a{uf.x * hf, uf.y * hf, uf.z * hf};
-  const simd::DoubleVec3<A> base = load_rows3<A>(c.bx, c.by, c.bz, rows);
-  const D h = simd::sqrt<A>(dot_lanes<A>(a, a)), radius = simd::load_rows<A>(c.r, rows);
+  const D h = simd::sqrt<A>(dot_lanes<A>(a, a));
   const simd::DoubleVec3<A> u{a.x / h, a.y / h, a.z / h};
-  const simd::DoubleVec3<A> p = r.at();
-  const simd::DoubleVec3<A> q{p.x - base.x, p.y - base.y, p.z - base.z};
-  const D z = dot_lanes<A>(q, u);
-  const simd::DoubleVec3<A> radial{q.x - u.x * z, q.y - u.y * z, q.z - u.z * z};
-  const D rlen = simd::sqrt<A>(dot_lanes<A>(radial, radial));
-  const D below = xsimd::abs(z), above = xsimd::abs(z - h);
-  const D cap_dist = xsimd::select(above < below, above, below);  // std::min's choice
-  auto cap = (cap_dist < xsimd::abs(rlen - radius)) | !(rlen > D(0.0));
-  auto lower = z < h / D(2.0);
-  // simd::negate, not unary minus: an axis component of +0 must turn to −0 as the scalar's -u
-  // does (AVX-512's 0 − x left it +0, and n.z's sign picks the shading frame).
-  auto axial = [&](const D& uk) { return xsimd::select(lower, simd::negate(uk), uk); };
-  return {p,
-          {xsimd::select(cap, axial(u.x), radial.x / rlen),
-           xsimd::select(cap, axial(u.y), radial.y / rlen),
-           xsimd::select(cap, axial(u.z), radial.z / rlen)}};
+  const CylinderSurface<D, simd::DoubleVec3<A>> s = cylinder_surface<D>(
+      load_rows3<A>(c.bx, c.by, c.bz, rows), u, h, D(simd::load_rows<A>(c.r, rows)), r.o, r.d, r.t);
+  return {s.p, s.n};
+}
+
+// cylinder_surface for one hit per float lane, on the table's float unit axis and height, with
+// its bound (cylinder_point_bound). Out of line, unlike the other kinds': few of a render's
+// batches hold a cylinder, and inlined into the surfaces' pass it cost that pass's common
+// batches registers (bench/README.md, "Cylinders' surfaces in float lanes").
+template <class A>
+[[gnu::noinline]] FloatSurfaceLanes<A> surface_float_lanes(const CylinderTable& c,
+                                                           const simd::Ints<A>& rows,
+                                                           const FloatHitRayLanes<A>& r) {
+  using F = simd::Floats<A>;
+  const simd::FloatVec3<A> u = read_rows3<A>(c.ux, c.uy, c.uz, rows);
+  const F radius = read_rows<A>(c.r, rows);
+  const CylinderSurface<F, simd::FloatVec3<A>> s = cylinder_surface<F>(
+      read_rows3<A>(c.bx, c.by, c.bz, rows), u, read_rows<A>(c.h, rows), radius, r.o, r.d, r.t);
+  return surface_lanes_of<A>(s.p, s.n, s.n, cylinder_point_bound<F>(s, u, radius));
 }
 
 }  // namespace raylane

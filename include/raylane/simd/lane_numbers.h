@@ -63,7 +63,11 @@ struct Num<xsimd::batch<double, A>> {
   using Mask = xsimd::batch_bool<double, A>;
   static D select(const Mask& c, const D& a, const D& b) { return xsimd::select(c, a, b); }
   static D sqrt(const D& x) { return simd::sqrt<A>(x); }
+  // std::max's and std::min's choices, NaNs included: (a < b ? b : a) and (b < a ? b : a).
+  static D max(const D& a, const D& b) { return xsimd::select(a < b, b, a); }
+  static D min(const D& a, const D& b) { return xsimd::select(b < a, b, a); }
   static D abs(const D& x) { return xsimd::abs(x); }
+  static D negate(const D& x) { return simd::negate(x); }
   static Mask sign_bit(const D& x) { return simd::sign_bit<A>(x); }
 };
 

@@ -17,8 +17,8 @@ struct SurfaceColumns {
   float *nsx, *nsy, *nsz;  // the unit shading normal in float (a float BSDF's frame)
   // A bound on the float point's error whose projection on the normal bounds its distance from
   // the true surface (what offset_origin clears): the kind's own where its float lanes give one
-  // (sphere_point_bound, box_point_bound, triangle_point_bound), else float_hit_point_bound
-  // (core/ray_offset.h), componentwise, which counts the rounding.
+  // (sphere_point_bound, box_point_bound, triangle_point_bound, cylinder_point_bound), else
+  // float_hit_point_bound (core/ray_offset.h), componentwise, which counts the rounding.
   float *ex, *ey, *ez;
   double* cos_ns;  // dot(ns, d): the Bsdf's black() test
   uint8_t* front;  // 1 where the ray meets the front face (dot(d, ng) < 0), else 0

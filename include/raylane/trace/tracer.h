@@ -61,10 +61,10 @@ class Tracer {
   // The surfaces of hit ray[r] of `hits` (each a hit, not a miss, of a closest() on `rays`)
   // into row r of `out`, for r in [0, ray.size()), in float with an error bound
   // (SurfaceColumns): from the kind's float lanes where it has them (surface_float_lanes:
-  // spheres, boxes and triangles, the same steps as complete()'s in float, all in one pass in
-  // row order), else complete()'s surface (in double lanes where the kind has them) rounded.
-  // For the references that surface is the one at the float t (its rounding lies within the
-  // bound: float_hit_point_bound).
+  // spheres, boxes, triangles and cylinders, the same steps as complete()'s in float, all in one
+  // pass in row order), else complete()'s surface (in double lanes where the kind has them)
+  // rounded. For the references that surface is the one at the float t (its rounding lies within
+  // the bound: float_hit_point_bound).
   void surfaces(const RayStream& rays, const HitStream& hits, std::span<const uint32_t> ray,
                 const SurfaceColumns& out, TraceScratch& scratch) const;
   // Whether something lies in each ray's interval (tmin, tmax): blocked[i] 1 or 0, a ray's
