@@ -308,6 +308,52 @@ constexpr bool has_shading_normal() {
     return false;
 }
 
+// Whether a kind's float surfaces are computed out of the surfaces' pass's loop, in
+// rare_float_surfaces: a kind that few of a render's batches hold (cylinders, moving spheres),
+// whose code inlined into the loop cost its common batches registers (bench/README.md, "Cylinders'
+// and moving spheres' surfaces in float lanes"); false unless the kind says so.
+template <class Kind>
+constexpr bool float_surface_out_of_line() {
+  return requires { requires Kind::float_surface_out_of_line; };
+}
+
+// The kinds out of the loop (float_surface_out_of_line), for a batch that holds one: their
+// surfaces and their lanes, returned by value. One call for all of them, and nothing of the
+// loop's passed by reference: a batch's surfaces whose address a call takes live in memory for
+// every batch.
+template <class A>
+struct RareSurfaces {
+  FloatSurfaceLanes<A> s;
+  simd::Mask<A> on;
+};
+template <class A>
+[[gnu::noinline]] RareSurfaces<A> rare_float_surfaces(const Scene& scene, const simd::Ints<A>& tag,
+                                                      const simd::Ints<A>& row, uint32_t lanes,
+                                                      const FloatHitRayLanes<A>& r) {
+  using I = simd::Ints<A>;
+  RareSurfaces<A> out;  // set by the first kind present: the caller has one
+  out.on = simd::Mask<A>(false);
+  bool first = true;
+  PrimKinds::for_each([&](auto kind) {
+    using Kind = decltype(kind);
+    if constexpr (Kind::surface_in_float_lanes && float_surface_out_of_line<Kind>()) {
+      static_assert(!has_shading_normal<Kind>(), "a kind out of the loop has one normal");
+      const simd::Mask<A> on = simd::equal<A>(tag, I(int32_t(tag_of<Kind>)));
+      if ((simd::bits<A>(on) & lanes) == 0) return;
+      const FloatSurfaceLanes<A> k =
+          surface_float_lanes<A>(scene.table<Kind>(), simd::select<A>(on, row, I(0)), r);
+      if (first) {
+        out.s = k, first = false;
+      } else {
+        blend3<A>(on, k.p, out.s.p), blend3<A>(on, k.ng, out.s.ng);
+        blend3<A>(on, k.error, out.s.error);
+      }
+      out.on = out.on | on;
+    }
+  });
+  return out;
+}
+
 // The float surfaces of request rows [0, ray.size()) in the rows' order, W rows per batch of
 // float lanes: every kind with surface_in_float_lanes in the one pass, each kind present in a
 // batch computed for the whole batch and blended in by its lanes. The rows are the render's
@@ -355,17 +401,23 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     const I row = prim & I(int32_t(PrimRef::kMaxRows - 1));
     const uint32_t lanes = (1u << m) - 1;  // the batch's own rows
     auto lanes_of = [&](PrimTag kind) { return simd::equal<A>(tag, I(int32_t(kind))); };
-    uint32_t ours = 0;  // the lanes whose kind has float surfaces
+    uint32_t ours = 0, rare = 0;  // the lanes whose kind has float surfaces; out of the loop
     PrimKinds::for_each([&](auto kind) {
-      if constexpr (decltype(kind)::surface_in_float_lanes)
-        ours |= simd::bits<A>(lanes_of(tag_of<decltype(kind)>)) & lanes;
+      using Kind = decltype(kind);
+      if constexpr (Kind::surface_in_float_lanes) {
+        const uint32_t bits = simd::bits<A>(lanes_of(tag_of<Kind>)) & lanes;
+        ours |= bits;
+        if constexpr (float_surface_out_of_line<Kind>()) rare |= bits;
+      }
     });
     for (uint32_t others = lanes & ~ours; others != 0; others &= others - 1)
       rest[rest_count++] = uint32_t(i) + uint32_t(std::countr_zero(others));
     if (ours == 0) continue;  // a batch of the other kinds: nothing to read or store here
     const FloatHitRayLanes<A> r{{col(rays.ox.data()), col(rays.oy.data()), col(rays.oz.data())},
                                 {col(rays.dx.data()), col(rays.dy.data()), col(rays.dz.data())},
-                                col(hits.t.data())};
+                                col(hits.t.data()),
+                                rays.time.empty() ? nullptr : rays.time.data(),
+                                ray_rows};
     // Set by the first kind present. The shading normal is the geometric one but in the lanes
     // of a kind with its own (`smooth`): blending it for every kind cost the spheres' and
     // boxes' batches a third set of selects.
@@ -375,7 +427,7 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
     uint32_t done = 0;
     PrimKinds::for_each([&](auto kind) {
       using Kind = decltype(kind);
-      if constexpr (Kind::surface_in_float_lanes) {
+      if constexpr (Kind::surface_in_float_lanes && !float_surface_out_of_line<Kind>()) {
         const simd::Mask<A> on = lanes_of(tag_of<Kind>);
         const uint32_t bits = simd::bits<A>(on) & lanes;
         if (bits == 0) return;
@@ -391,6 +443,15 @@ std::size_t float_surfaces_in_row_order(const Scene& scene, const RayStream& ray
         done |= bits;
       }
     });
+    if (rare != 0) {
+      const RareSurfaces<A> k = rare_float_surfaces<A>(scene, tag, row, lanes, r);
+      if (done == 0) {
+        s.p = k.s.p, s.ng = k.s.ng, s.error = k.s.error;
+      } else {
+        blend3<A>(k.on, k.s.p, s.p), blend3<A>(k.on, k.s.ng, s.ng);
+        blend3<A>(k.on, k.s.error, s.error);
+      }
+    }
     s.ns = s.ng;
     if (simd::any<A>(smooth)) blend3<A>(smooth, own_ns, s.ns);
     const F cos_ns = r.d.x * s.ns.x + r.d.y * s.ns.y + r.d.z * s.ns.z;

@@ -1,13 +1,14 @@
 // The accuracy contract's offsets at float: the render's hit points are float (Tracer::surfaces:
-// spheres, boxes, triangles and cylinders in float lanes with their own bounds,
-// sphere_point_bound, box_point_bound, triangle_point_bound and cylinder_point_bound; the other
-// kinds rounded from double, float_hit_point_bound), and the rays a
+// spheres, boxes, triangles, cylinders and moving spheres in float lanes with their own bounds,
+// sphere_point_bound, box_point_bound, triangle_point_bound, cylinder_point_bound and
+// moving_sphere_point_bound; the other kinds rounded from double, float_hit_point_bound), and
+// the rays a
 // vertex spawns leave by offset_origin<float> (core/ray_offset.h; pbrt-v4 §6.8). On random scenes
 // of every kind that the float surfaces cover, at every instruction set, at four scales (unit,
 // far from the origin, tiny, huge):
 // - the float point lies within its bound's projection on the normal of the true surface
-//   (spheres, boxes, triangles and cylinders, measured in double from the table's own float
-//   numbers);
+//   (spheres, boxes, triangles, cylinders and moving spheres, measured in double from the
+//   table's own float numbers);
 // - a ray reflected off a front face never meets its own primitive again (acne), and one
 //   continuing into the solid never meets its own primitive's front face (a leak: it started
 //   outside). Convex primitives and planar triangles allow neither, whatever the scene holds.
@@ -77,8 +78,12 @@ FloatHits trace_float(const Tracer& tracer, const RayStream& rays) {
 // How far the float point lies off the true surface of its primitive, in double (nan for a
 // kind without a distance here).
 double distance_off_surface(const Scene& scene, PrimRef prim, const glm::dvec3& p,
-                            const glm::dvec3& n) {
+                            const glm::dvec3& n, double time) {
   const uint32_t i = prim.row();
+  if (prim.tag() == tag_of<MovingSphere>) {  // about its centre at the ray's time
+    const MovingSphereTable& s = scene.table<MovingSphere>();
+    return std::abs(length(p - s.center_at(i, time)) - double(s.r[i]));
+  }
   if (prim.tag() == tag_of<Sphere>) {
     const SphereTable& s = scene.table<Sphere>();
     return std::abs(length(p - glm::dvec3(s.cx[i], s.cy[i], s.cz[i])) - double(s.r[i]));
@@ -134,7 +139,8 @@ void check_scale(const Scale& scale, Isa isa, Counts& n) {
     const Vec p = first.point(r), ng = first.normal(r);
     const Vec err = first.bound(r);
     ++n.front_hits, ++n.kinds[std::size_t(prim.tag())];
-    const double off = distance_off_surface(scene, prim, glm::dvec3(p), glm::dvec3(ng));
+    const double off =
+        distance_off_surface(scene, prim, glm::dvec3(p), glm::dvec3(ng), double(ray.time));
     if (!std::isnan(off)) {
       ++n.measured;
       const double bound = dot(abs(glm::dvec3(ng)), glm::dvec3(err));

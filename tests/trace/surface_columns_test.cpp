@@ -1,7 +1,7 @@
 // The Tracer's surfaces as columns (Tracer::surfaces), the render's: against complete()'s
 // surfaces one hit at a time, and, for the kinds the packet tracer computes in float lanes
-// (spheres, boxes, triangles, cylinders), against the same steps' scalar float instance, bit for
-// bit, with their error bounds.
+// (spheres, boxes, triangles, cylinders, moving spheres), against the same steps' scalar float
+// instance, bit for bit, with their error bounds.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -23,8 +23,8 @@ using testing::same_bits;
 using testing::with_every_tracer;
 
 // What the columns hold for a hit (Tracer::surfaces): the packet tracer's boxes, spheres,
-// triangles and cylinders in float lanes, with their bounds — the same steps' scalar float
-// instance, bit for bit; every other surface complete()'s, rounded to float, with
+// triangles, cylinders and moving spheres in float lanes, with their bounds — the same steps'
+// scalar float instance, bit for bit; every other surface complete()'s, rounded to float, with
 // float_hit_point_bound computed in double and rounded.
 struct Columns {
   glm::vec3 p, ng, ns, error;
@@ -59,6 +59,13 @@ Columns expected_columns(const Tracer& tracer, const Rayf& ray, const Hit& hit) 
     const CylinderSurface<float, glm::vec3> s =
         cylinder_surface<float>(c.base(i), u, c.h[i], c.r[i], ray.o, ray.d, t);
     return from_float(s.p, s.n, cylinder_point_bound<float>(s, u, c.r[i]));
+  }
+  if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<MovingSphere>) {
+    const MovingSphereTable& ms = scene.table<MovingSphere>();
+    const uint32_t i = hit.prim.row();
+    const glm::vec3 m = ms.motion(i), c = moving_center<float>(ms.start(i), m, ray.time);
+    const SphereSurface<glm::vec3> s = sphere_surface<float>(c, ms.r[i], ray.o, ray.d, t);
+    return from_float(s.p, s.n, moving_sphere_point_bound<float>(s, c, m, ray.time, ms.r[i]));
   }
   if (tracer.backend() == TracerBackend::kPacket && hit.prim.tag() == tag_of<Triangle>) {
     const TriangleTable& tri = scene.table<Triangle>();
@@ -118,7 +125,7 @@ void expect_surface_columns_are_completes(const Tracer& tracer, const std::vecto
   for (std::size_t i = 0; i < hits.size(); ++i) {
     const PrimTag tag = hits[i].prim.tag();
     if (hits[i].hit() && (tag == tag_of<Sphere> || tag == tag_of<Box> || tag == tag_of<Triangle> ||
-                          tag == tag_of<Cylinder>))
+                          tag == tag_of<Cylinder> || tag == tag_of<MovingSphere>))
       float_kinds.push_back(uint32_t(i));
   }
   for (std::size_t k = 0; !float_kinds.empty() && (k < 5 || request.size() % 16 != 5); ++k)

@@ -65,13 +65,11 @@ SurfaceLanes<A> surface_lanes(const CylinderTable& c, const uint32_t* rows,
 }
 
 // cylinder_surface for one hit per float lane, on the table's float unit axis and height, with
-// its bound (cylinder_point_bound). Out of line, unlike the other kinds': few of a render's
-// batches hold a cylinder, and inlined into the surfaces' pass it cost that pass's common
-// batches registers (bench/README.md, "Cylinders' surfaces in float lanes").
+// its bound (cylinder_point_bound). The surfaces' pass calls it out of its loop
+// (Cylinder::float_surface_out_of_line).
 template <class A>
-[[gnu::noinline]] FloatSurfaceLanes<A> surface_float_lanes(const CylinderTable& c,
-                                                           const simd::Ints<A>& rows,
-                                                           const FloatHitRayLanes<A>& r) {
+[[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
+    const CylinderTable& c, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
   using F = simd::Floats<A>;
   const simd::FloatVec3<A> u = read_rows3<A>(c.ux, c.uy, c.uz, rows);
   const F radius = read_rows<A>(c.r, rows);

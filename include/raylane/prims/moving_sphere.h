@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "raylane/core/bounds3.h"
+#include "raylane/core/float_util.h"
+#include "raylane/core/numbers.h"
 #include "raylane/core/prim_ref.h"
 #include "raylane/core/ray.h"
 #include "raylane/prims/solid.h"
@@ -81,10 +83,12 @@ struct MovingSphere {
   static constexpr bool two_sided = false;
   // The sphere's kernel and the lerp of the centre: about the sphere's cost (sphere.h).
   static constexpr double sah_test_cost = 0.35;
-  // Its surfaces come from surface_ref, one hit at a time: they need the ray's time, which the
-  // double lanes of the static kinds do not carry.
+  // Its hit records' surfaces come from surface_ref, one hit at a time: they need the ray's
+  // time, which the double lanes of the static kinds do not carry. The render's columns take
+  // theirs from float lanes, which read it (moving_sphere_packet.h).
   static constexpr bool surface_in_lanes = false;
-  static constexpr bool surface_in_float_lanes = false;
+  static constexpr bool surface_in_float_lanes = true;
+  static constexpr bool float_surface_out_of_line = true;  // as Cylinder's
   // Emitters: the sphere's sampling (sphere.h) about the centre at the path's time, which
   // LightSampler passes (lights.cpp: a light that moves is sampled at the path's time). The
   // sample_area without a time, which the kinds' interface asks for, is the sphere at
@@ -117,11 +121,39 @@ inline double intersect_ref(const MovingSphereTable& s, uint32_t i, const Rayd& 
   return intersect_sphere_ref(s.center_at(i, ray.time), s.r[i], ray);
 }
 
-// The hit point projected back onto the sphere at the ray's time.
+// The hit point projected back onto the sphere at the ray's time (sphere_surface, sphere.h).
 inline Surface surface_ref(const MovingSphereTable& s, uint32_t i, const Rayd& ray, double t) {
-  glm::dvec3 c = s.center_at(i, ray.time);
-  glm::dvec3 n = normalize(ray.at(t) - c);
-  return {c + n * double(s.r[i]), n, n};
+  const SphereSurface<glm::dvec3> x =
+      sphere_surface<double>(s.center_at(i, ray.time), double(s.r[i]), ray.o, ray.d, t);
+  return {x.p, x.n, x.n};
+}
+
+// The centre at `time` as the float kernels compute it, c0 + time·m (moving_sphere_packet.h),
+// over the number type N and its 3-vector V3.
+template <class N, class V3>
+V3 moving_center(const V3& c0, const V3& m, const N& time) {
+  return V3{c0.x + time * m.x, c0.y + time * m.y, c0.z + time * m.z};
+}
+
+// A bound on the error of sphere_surface's point about the float centre c = c0 + time·m, for
+// the offset along its normal: the sphere's (sphere_point_bound) about that centre, plus the
+// centre's own error — one roundoff of the product time·m and one of the sum, each in its
+// component (the reference's centre is the same sum in double) — and, for the point's roundings
+// e as a whole, the sagitta |e|²/2r they can add across the normal (the chord's rise; it counts
+// where a sphere is only a few float ulps of its coordinates wide, as for cylinders).
+template <class N, class V3>
+V3 moving_sphere_point_bound(const SphereSurface<V3>& s, const V3& c, const V3& m, const N& time,
+                             const N& r) {
+  using K = Num<N>;
+  const N own(kFloatUnitRoundoff * (1 + 0x1p-20));
+  const V3 sphere = sphere_point_bound<N>(s.p, s.offset);
+  auto one = [&](const N& bound_k, const N& ck, const N& mk) {
+    return bound_k + (K::abs(time * mk) + K::abs(ck)) * own;
+  };
+  const V3 e{one(sphere.x, c.x, m.x), one(sphere.y, c.y, m.y), one(sphere.z, c.z, m.z)};
+  const N across = (e.x * e.x + e.y * e.y + e.z * e.z) / (N(2.0) * r) * N(1 + 0x1p-20);
+  return V3{K::abs(s.n.x) * across + e.x, K::abs(s.n.y) * across + e.y,
+            K::abs(s.n.z) * across + e.z};
 }
 
 // The sphere's (u, v) (sphere.h) of the point's direction from the centre, which is the outward

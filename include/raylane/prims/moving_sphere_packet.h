@@ -5,6 +5,7 @@
 #include "raylane/prims/prim_list.h"
 #include "raylane/prims/sphere_packet.h"
 #include "raylane/simd/packet.h"
+#include "raylane/simd/surface_lanes.h"
 
 namespace raylane {
 
@@ -23,6 +24,21 @@ template <class A, class Rows>
     sphere_row_lanes<A>(r.ox - cx, r.oy - cy, r.oz - cz, rows.col(s.r), dd, rows.mask(),
                         rows.bits(tag_of<MovingSphere>), r, h);
   }
+}
+
+// sphere_surface (sphere.h) for one hit per float lane about the centre at the ray's time, as
+// the kernel above computes it, with its bound (moving_sphere_point_bound). The surfaces' pass
+// calls it out of its loop (MovingSphere::float_surface_out_of_line).
+template <class A>
+[[gnu::always_inline]] inline FloatSurfaceLanes<A> surface_float_lanes(
+    const MovingSphereTable& s, const simd::Ints<A>& rows, const FloatHitRayLanes<A>& r) {
+  using F = simd::Floats<A>;
+  const F time = r.time();
+  const simd::FloatVec3<A> m = read_rows3<A>(s.mx, s.my, s.mz, rows);
+  const simd::FloatVec3<A> c = moving_center<F>(read_rows3<A>(s.cx, s.cy, s.cz, rows), m, time);
+  const F radius = read_rows<A>(s.r, rows);
+  const SphereSurface<simd::FloatVec3<A>> x = sphere_surface<F>(c, radius, r.o, r.d, r.t);
+  return surface_lanes_of<A>(x.p, x.n, x.n, moving_sphere_point_bound<F>(x, c, m, time, radius));
 }
 
 }  // namespace raylane

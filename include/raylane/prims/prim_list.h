@@ -14,6 +14,9 @@
 //                                     surfaces in double lanes (surface_lanes, the reference's
 //                                     bits) and in float lanes with error bounds
 //                                     (surface_float_lanes, the render's columns)
+//   float_surface_out_of_line (optional)  true for a kind that few of a render's batches hold:
+//                                     its float surfaces are computed out of the surfaces'
+//                                     pass's loop (src/trace/simd_tracer_impl.h)
 // and may provide (found with `requires` where used):
 //   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
 //                                     primitive subtends, better than by area (spheres)

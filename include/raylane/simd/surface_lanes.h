@@ -33,6 +33,15 @@ template <class A>
 struct FloatHitRayLanes {
   simd::FloatVec3<A> o, d;
   simd::Floats<A> t;
+  // The stream's time column (null where it has none: a scene that stands) and the lanes' rays
+  // in it, for the kinds that read the time (moving spheres) to gather: loaded for every batch,
+  // the times cost the pass's batches of the other kinds their registers.
+  const float* time_column;
+  const uint32_t* ray;
+  simd::Floats<A> time() const {
+    if (time_column == nullptr) return simd::Floats<A>(0.5f);
+    return simd::gather<A>(time_column, simd::load<A>(reinterpret_cast<const int32_t*>(ray)));
+  }
 };
 
 // The point, the unit geometric and shading normals (the same but for triangles) and a
