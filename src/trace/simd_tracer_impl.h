@@ -314,7 +314,9 @@ constexpr bool has_shading_normal() {
 // and moving spheres' surfaces in float lanes"); false unless the kind says so.
 template <class Kind>
 constexpr bool float_surface_out_of_line() {
-  return requires { requires Kind::float_surface_out_of_line; };
+  return requires {
+    requires Kind::float_surface_out_of_line;
+  };
 }
 
 // The kinds out of the loop (float_surface_out_of_line), for a batch that holds one: their
