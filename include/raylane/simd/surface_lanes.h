@@ -34,8 +34,8 @@ struct FloatHitRayLanes {
   simd::FloatVec3<A> o, d;
   simd::Floats<A> t;
   // The stream's time column (null where it has none: a scene that stands) and the lanes' rays
-  // in it, for the kinds that read the time (moving spheres) to gather: loaded for every batch,
-  // the times cost the pass's batches of the other kinds their registers.
+  // in it, for the kinds that read the time (moving spheres) to gather where they need it: a
+  // batch of the other kinds loads nothing more.
   const float* time_column;
   const uint32_t* ray;
   simd::Floats<A> time() const {
