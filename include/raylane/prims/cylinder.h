@@ -100,7 +100,7 @@ struct Cylinder {
   static constexpr bool surface_in_lanes = true;
   static constexpr bool surface_in_float_lanes = true;
   // Few of a render's batches hold a cylinder: the float surfaces' pass computes them out of its
-  // loop (src/trace/simd_tracer_impl.h, rare_float_surfaces).
+  // loop (src/trace/float_surfaces_impl.h, rare_float_surfaces).
   static constexpr bool float_surface_out_of_line = true;
   static double area(const Table& t, uint32_t i);
   // A uniform point on the surface and its outward normal; u_part picks the part (a box's

@@ -16,7 +16,7 @@
 //                                     (surface_float_lanes, the render's columns)
 //   float_surface_out_of_line (optional)  true for a kind that few of a render's batches hold:
 //                                     its float surfaces are computed out of the surfaces'
-//                                     pass's loop (src/trace/simd_tracer_impl.h)
+//                                     pass's loop (src/trace/float_surfaces_impl.h)
 // and may provide (found with `requires` where used):
 //   sample_subtended, subtended_solid_angle   emitter sampling by the solid angle the
 //                                     primitive subtends, better than by area (spheres)
