@@ -80,12 +80,21 @@ class RowReader {
  public:
   explicit RowReader(const uint32_t* rows) {
     constexpr int W = kWidth<A>;
+    idx_ = load<A>(reinterpret_cast<const int32_t*>(rows));
+    lo_ = rows[0];
+    // One run, the common batch, by one compare of the whole register: the scalar scan of the
+    // rows that also found the window cost every batch a compare, a min and a max per row.
+    // Rows are ray indices, below 2^31, so the sums do not wrap.
+    const Ints<A> run = Ints<A>(int32_t(lo_)) + lane_index<A>();
+    if (bits<A>(equal<A>(idx_, run)) == (1u << W) - 1) {
+      span_ = std::size_t(W), way_ = Way::kRun;
+      return;
+    }
     uint32_t lo = rows[0], hi = rows[0];
     for (int k = 1; k < W; ++k)
       lo = rows[k] < lo ? rows[k] : lo, hi = rows[k] > hi ? rows[k] : hi;
-    idx_ = load<A>(reinterpret_cast<const int32_t*>(rows));
     lo_ = lo, span_ = std::size_t(hi - lo) + 1;
-    way_ = one_run<W>(rows) ? Way::kRun : span_ <= std::size_t(2 * W) ? Way::kWindow : Way::kGather;
+    way_ = span_ <= std::size_t(2 * W) ? Way::kWindow : Way::kGather;
     if (way_ == Way::kWindow) idx_ = idx_ - Ints<A>(int32_t(lo));
   }
   // col[rows[k]] in lane k.
