@@ -65,7 +65,8 @@ struct LaneBsdf {
   M<A> live;  // dot(ns, wo) is finite and not 0 (the scalar Bsdf's black() otherwise)
   bool diffuse_only_, all_diffuse_;
 
-  LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i, const F<A>& u0) {
+  [[gnu::always_inline]] LaneBsdf(const LaneMaterials& m, const ShadeBatch& b, std::size_t i,
+                                  const F<A>& u0) {
     auto idx = simd::load<A>(b.material.data() + i);
     // The materials' columns are short: read by register permutes where they fit (lookup).
     auto gather = [&](const std::vector<float>& col) {
