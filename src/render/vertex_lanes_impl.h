@@ -59,6 +59,23 @@ struct ShadowLanes {
   M<A> ok;
 };
 
+// The rows' light radiance: the one light's as broadcast lanes (LightQueries::one_light), else
+// the column's.
+template <class A>
+[[gnu::always_inline]] inline FloatVec3<A> light_radiance(const LightQueries& lights,
+                                                          std::size_t i) {
+  if (const auto& one = lights.one_light)
+    return {F<A>(one->le[0]), F<A>(one->le[1]), F<A>(one->le[2])};
+  return load3<A>(lights.le, i);
+}
+
+// The rows' lights as their bits, likewise.
+template <class A>
+[[gnu::always_inline]] inline simd::Ints<A> light_bits(const LightQueries& lights, std::size_t i) {
+  if (const auto& one = lights.one_light) return simd::Ints<A>(int32_t(one->light.bits()));
+  return simd::Ints<A>::load_unaligned(reinterpret_cast<const int32_t*>(lights.light.data() + i));
+}
+
 // Inlined always, as next_lanes: called out of line (GCC's choice once the kernel grew), its
 // eleven registers of answers went back through memory.
 template <class A>
@@ -69,7 +86,7 @@ template <class A>
                                                           const VertexLanes<A>& v, std::size_t i) {
   ShadowLanes<A> s;
   s.wi = load3<A>(bsdf.light_wi, i);
-  const FloatVec3<A> le = load3<A>(lights.le, i);
+  const FloatVec3<A> le = light_radiance<A>(lights, i);
   const FloatVec3<A> f{a.light_f[0], a.light_f[1], a.light_f[2]};
   const F<A> pdf = simd::load<A>(lights.cones.pdf.data() + i);
   s.c = shadow_ray_contribution(rules.mis, v.beta, f, le, pdf, a.light_pdf);
@@ -179,9 +196,7 @@ void scatter_range(const LaneMaterials& materials, const VertexRules& rules, Sha
       pack3<A>(pack, q.shadow_o, shadows, s.from);
       pack3<A>(pack, q.shadow_d, shadows, s.wi);
       pack.store(q.shadow_tmax + shadows, s.tmax);
-      pack.store(q.shadow_light + shadows,
-                 simd::Ints<A>::load_unaligned(
-                     reinterpret_cast<const int32_t*>(lights->light.data() + i)));
+      pack.store(q.shadow_light + shadows, light_bits<A>(*lights, i));
       pack.store(q.shadow_path + shadows, path);
       pack.store_widened(q.shadow_c[0] + shadows, s.c.x);
       pack.store_widened(q.shadow_c[1] + shadows, s.c.y);

@@ -115,7 +115,7 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylind
     std::size_t by_kind[4] = {};  // triangle, box, cylinder, sphere rows
     for (std::size_t i = 0; i < n; ++i) {
       const glm::vec3 ref(q.cones.ref[0][i], q.cones.ref[1][i], q.cones.ref[2][i]);
-      const PrimRef l = q.light[i];
+      const PrimRef l = q.light_of(i);
       // The row's light is the one sample() picks with its number.
       const LightSample one = lights.sample(glm::dvec3(ref), q.u_light[i], q.u_part[i],
                                             q.cones.u1[i], q.cones.u2[i], 0.5);
@@ -148,7 +148,7 @@ TEST(AreaLightLanes, SampleManyIsTheScalarFloatStepsForEveryTriangleBoxAndCylind
                   same_bits(q.cones.wi[2][i], want.wi.z) && same_bits(q.cones.dist[i], want.dist))
           << "query " << i;
       const Material& m = scene.materials[scene.material_of(l)];
-      EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(m.emission));
+      EXPECT_EQ(testing::light_radiance(q, i), glm::vec3(m.emission));
     }
     for (std::size_t count : by_kind)
       EXPECT_GT(count, n / 50);

@@ -76,9 +76,9 @@ TEST(BoxLightLanes, SampleManyIsTheScalarFloatStepsForOneBoxLight) {
       const glm::vec3 ref(q.cones.ref[0][i], q.cones.ref[1][i], q.cones.ref[2][i]);
       const auto want = float_steps(scene.table<Box>(), row, ref, float(q.u_part[i]), q.cones.u1[i],
                                     q.cones.u2[i], choice);
-      ASSERT_EQ(q.light[i], scene.lights[0]) << "query " << i;
+      ASSERT_EQ(q.light_of(i), scene.lights[0]) << "query " << i;
       ASSERT_TRUE(same_bits(q.cones.pdf[i], want.pdf)) << "query " << i;
-      EXPECT_EQ(glm::vec3(q.le[0][i], q.le[1][i], q.le[2][i]), glm::vec3(3, 2, 1));
+      EXPECT_EQ(testing::light_radiance(q, i), glm::vec3(3, 2, 1));
       // Every point outside the box sees a face, so its sample is valid; none inside is.
       const glm::vec3 lo = scene.table<Box>().lo(row), hi = scene.table<Box>().hi(row);
       bool inside = true;

@@ -35,6 +35,12 @@ inline void fill_light_sentinels(LightQueries& q,
   std::fill(q.cones.pdf.begin(), q.cones.pdf.end(), nan);
 }
 
+// Row i's radiance as the shading reads it (LightQueries::le_of: the one light's, or the row's).
+inline glm::vec3 light_radiance(const LightQueries& q, std::size_t i) {
+  const std::array<float, 3> le = q.le_of(i);
+  return {le[0], le[1], le[2]};
+}
+
 // ∫ cos θ · [an emitting side of the light seen along ω] dω over the sphere of directions from
 // `ref`, cos θ against `normal`: by the light's samples, cos / pdf (`draw(u_part, u1, u2)` one
 // sample, with wi and pdf, from three float numbers), and by uniform directions cast at it,

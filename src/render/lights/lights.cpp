@@ -322,13 +322,14 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   const glm::vec3 center = spheres.center(row);
   const ConeSphere every_row{{center.x, center.y, center.z}, spheres.r[row], float(choice_[0])};
   sample_cones(isa, cb, &every_row);
-  fill_one_light(q);
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
   if (textured) {
+    q.one_light.reset();
     for (std::size_t r = 0; r < n; ++r)
       q.set(r, finish_sphere_row(q, r, 0));
     return;
   }
+  set_one_light(q);
   // The rows the kernel gave no cone (a point inside the sphere or too close to it for float)
   // are rare: blocks of 16 rows are tested at once, in a loop without a branch per row.
   const float* solid_angle = cb.solid_angle.data();
@@ -355,23 +356,19 @@ void LightSampler::sample_one_box(Isa isa, LightQueries& q) const {
   const glm::vec3 lo = boxes.lo(row), hi = boxes.hi(row);
   const ConeBox box{{lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z}, float(choice_[0])};
   sample_box_faces(isa, q.cones, q.u_part.data(), box);
-  fill_one_light(q);
+  set_one_light(q);
 }
 
-// Every row's light and radiance: the one light's (sample_one_sphere, sample_one_box).
-void LightSampler::fill_one_light(LightQueries& q) const {
-  const std::size_t n = q.size();
-  // The fills' values in locals: stores into the columns may alias the sampler's members, so
-  // GCC reloaded the light at every row (perf: a third of this function's time).
-  // The light as its 32 bits (the scatter kernel reads the column so): GCC did not vectorise a
-  // fill of the class.
-  static_assert(sizeof(PrimRef) == 4 && std::is_trivially_copyable_v<PrimRef>);
-  std::fill_n(reinterpret_cast<uint32_t*>(q.light.data()), n, lights_[0].bits());
-  for (int c = 0; c < 3; ++c)
-    std::fill_n(q.le[std::size_t(c)].begin(), n, float(le_[0][c]));
+// Every row's light and radiance: the one light's (sample_one_sphere, sample_one_box), the
+// same for every row, whose rows without a cone (q.set) write their own columns as well: the
+// same values, from sample().
+void LightSampler::set_one_light(LightQueries& q) const {
+  q.one_light =
+      LightQueries::OneLight{lights_[0], {float(le_[0][0]), float(le_[0][1]), float(le_[0][2])}};
 }
 
 void LightSampler::sample_many(Isa isa, LightQueries& q) const {
+  q.one_light.reset();  // set again by the one light's samplers
   if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Sphere>)
     return sample_one_sphere(isa, q);
   if (lights_.size() == 1 && cdf_.size() == 1 && lights_[0].tag() == tag_of<Box> && !textured_[0])

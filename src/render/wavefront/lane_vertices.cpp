@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 
 #include "raylane/render/materials/bsdf.h"
 #include "raylane/render/materials/texturing.h"
@@ -95,7 +96,16 @@ void light_columns(ThreadContext& ctx, bool lights) {
   PhaseClock clock(ctx.settings.time_phases);
   ConeBatch& cones = lv.light_queries.cones;
   cones.wi_float = {sb.light_wi[0].data(), sb.light_wi[1].data(), sb.light_wi[2].data()};
+  // The points the sampler reads (cones.ref) are the vertices' own columns, lent by a swap for
+  // the call: a copy cost a pass over three columns. Both are padded to whole batches; the
+  // padding rows' answers are unread.
+  auto lend_points = [&] {
+    for (int k = 0; k < 3; ++k)
+      lv.vertices.p[k].swap(cones.ref[k]);
+  };
+  lend_points();
   ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
+  lend_points();  // and back
   cones.wi_float = {};  // the columns may move before the next step's call
   clock.lap(ctx.stats.phases.lights);
 }
@@ -201,18 +211,14 @@ void drop_black_rows(ThreadContext& ctx) {
   lv.count = kept;
 }
 
-// The rows' material into the BSDF's column, and the point for the light sampler.
+// The rows' material into the BSDF's column, and their paths' times for the light sampler.
 void hit_columns(ThreadContext& ctx, bool lights) {
   Wavefront& w = ctx.wave;
   LaneVertexQueue& lv = w.lane_vertices;
-  const uint32_t* material = lv.material.data();
-  const std::size_t n = lv.count;
-  int32_t* shade_material = lv.shade.material.data();
-  for (std::size_t r = 0; r < n; ++r)
-    shade_material[r] = int32_t(material[r]);
+  // The same bits (material indices are below 2^31): one copy, where a loop converted each.
+  static_assert(sizeof(uint32_t) == sizeof(int32_t));
+  std::memcpy(lv.shade.material.data(), lv.material.data(), lv.count * sizeof(uint32_t));
   if (!lights) return;
-  for (int k = 0; k < 3; ++k)
-    std::copy_n(lv.vertices.p[k].begin(), n, lv.light_queries.cones.ref[k].begin());
   lv.light_queries.set_times(lv.path.data(), w.path_time);  // a moving light's time
 }
 

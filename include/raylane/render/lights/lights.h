@@ -64,6 +64,19 @@ struct LightQueries {
   double time_of(std::size_t r) const { return time.empty() ? 0.5 : time[r]; }
   std::vector<PrimRef> light;
   std::array<std::vector<float>, 3> le;  // rounded to float, as the shading reads it
+  // Where a scene's one light is an untextured sphere or box, every row's light and radiance
+  // are that light's: sample_many sets them here once and leaves `light` and `le` unfilled (a
+  // pass over four columns every step, to write the same values; the scatter kernel takes them
+  // as broadcast lanes). Empty otherwise. Read a row's through light_of and le_of.
+  struct OneLight {
+    PrimRef light;
+    std::array<float, 3> le;
+  };
+  std::optional<OneLight> one_light;
+  PrimRef light_of(std::size_t r) const { return one_light ? one_light->light : light[r]; }
+  std::array<float, 3> le_of(std::size_t r) const {
+    return one_light ? one_light->le : std::array<float, 3>{le[0][r], le[1][r], le[2][r]};
+  }
   // Rows [0, n), padded to a multiple of 16 lanes as ConeBatch. The columns only grow.
   void resize(std::size_t n);
   std::size_t size() const { return size_; }
@@ -182,8 +195,8 @@ class LightSampler {
   void sample_one_sphere(Isa isa, LightQueries& q) const;
   // sample_many for a scene whose one light is an untextured box, without an environment.
   void sample_one_box(Isa isa, LightQueries& q) const;
-  // The one light and its radiance into every row of q.
-  void fill_one_light(LightQueries& q) const;
+  // The one light and its radiance for every row of q (LightQueries::one_light).
+  void set_one_light(LightQueries& q) const;
   // s.le times the light's texture at s.p, for a textured light (a moving one's at `time`).
   void apply_texture(std::size_t k, LightSample& s, double time) const;
   // The centre and radius of sphere light k at `time` (0.5 or anything for a still one), for
