@@ -106,7 +106,8 @@ void light_columns(ThreadContext& ctx, bool lights) {
   lend_points();
   ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
   lend_points();  // and back
-  cones.wi_float = {};  // the columns may move before the next step's call
+  // The columns may move before the next step's call.
+  cones.wi_float = {};
   clock.lap(ctx.stats.phases.lights);
 }
 
