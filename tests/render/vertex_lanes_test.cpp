@@ -13,6 +13,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "raylane/core/ray_offset.h"
@@ -429,6 +430,75 @@ TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
           EXPECT_EQ(got.q.shadow_count, 0u);
         }
       }
+}
+
+// Whether two runs' queues hold the same bytes, canaries included.
+bool same_queues(const Queues& a, const Queues& b) {
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+  };
+  bool ok = a.q.next_count == b.q.next_count && a.q.shadow_count == b.q.shadow_count;
+  for (std::size_t k = 0; k < 3; ++k)
+    ok = ok && same(a.next_o[k], b.next_o[k]) && same(a.next_d[k], b.next_d[k]) &&
+         same(a.shadow_o[k], b.shadow_o[k]) && same(a.shadow_d[k], b.shadow_d[k]) &&
+         same(a.next_prev_p[k], b.next_prev_p[k]) && same(a.shadow_c[k], b.shadow_c[k]) &&
+         same(a.next_beta[k], b.next_beta[k]);
+  return ok && same(a.shadow_tmax, b.shadow_tmax) && same(a.next_path, b.next_path) &&
+         same(a.shadow_path, b.shadow_path) && same(a.shadow_light, b.shadow_light) &&
+         same(a.next_depth, b.next_depth) && same(a.next_prev_pdf, b.next_prev_pdf);
+}
+
+// A scene's one light as broadcast lanes (LightQueries::one_light) is its light and radiance
+// in every row's columns: the same queues, byte for byte, at every instruction set, with the
+// columns the broadcast leaves unread holding NaN and other lights.
+TEST(VertexLanes, ScatterTakesOneLightAsColumnsFilledWithIt) {
+  std::vector<Material> materials(2);
+  materials[0].kd = {0.5f, 0.4f, 0.3f};
+  materials[1].kd = {0.2f, 0.2f, 0.2f}, materials[1].ks = {0.5f, 0.5f, 0.5f},
+  materials[1].alpha = 40;
+  const LaneMaterials lanes(materials);
+  const LightQueries::OneLight one{PrimRef::from_bits(0x12345u), {2.5f, 1.5f, 0.75f}};
+  Rng rng(29);
+  for (Isa isa : supported_isas())
+    for (std::size_t n : {std::size_t(37), std::size_t(5003)}) {
+      SCOPED_TRACE(cat(isa_name(isa), " rows ", n));
+      const std::size_t padded = (n + 15) / 16 * 16;
+      std::vector<Vertex> vs;
+      for (std::size_t i = 0; i < padded; ++i)
+        vs.push_back(random_vertex(rng, int(i)));
+      const VertexRules rules{true, true, 0.8};
+      Batches columns;
+      fill(columns, vs, rules, true);
+      columns.vertex.resize(n), columns.bsdf.resize(n), columns.lights.resize(n);
+      std::vector<uint32_t> path(padded), depth(padded);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec nv = random_unit(rng);
+        for (std::size_t k = 0; k < 3; ++k)
+          columns.bsdf.n[k][i] = nv[k];
+        columns.bsdf.material[i] = int32_t(i % 2);
+        columns.bsdf.u_lobe[i] = float(rng.uniform()), columns.bsdf.u1[i] = float(rng.uniform());
+        columns.bsdf.u2[i] = float(rng.uniform());
+        path[i] = uint32_t(i), depth[i] = uint32_t(i % 7);
+      }
+      Batches broadcast = columns;
+      for (std::size_t i = 0; i < padded; ++i) {
+        columns.lights.light[i] = one.light;
+        broadcast.lights.light[i] = PrimRef::from_bits(uint32_t(i));
+        for (std::size_t k = 0; k < 3; ++k) {
+          columns.lights.le[k][i] = one.le[k];
+          broadcast.lights.le[k][i] = std::numeric_limits<float>::quiet_NaN();
+        }
+      }
+      broadcast.lights.one_light = one;
+      Queues from_columns(padded, 20, path.data(), depth.data());
+      Queues from_broadcast(padded, 20, path.data(), depth.data());
+      scatter_vertices(isa, lanes, rules, columns.bsdf, &columns.lights, columns.vertex,
+                       from_columns.q);
+      scatter_vertices(isa, lanes, rules, broadcast.bsdf, &broadcast.lights, broadcast.vertex,
+                       from_broadcast.q);
+      EXPECT_GT(from_columns.q.shadow_count, n / 4);
+      EXPECT_TRUE(same_queues(from_columns, from_broadcast));
+    }
 }
 
 // gather_wo puts row r's direction turned around, the stream's ray rows[r]'s, into the BSDF's

@@ -101,7 +101,7 @@ struct VertexQueues {
   uint32_t* next_depth = nullptr;
   std::array<float*, 3> shadow_o{}, shadow_d{};
   float* shadow_tmax = nullptr;
-  uint32_t* shadow_light = nullptr;  // the row's LightQueries::light, as its bits
+  uint32_t* shadow_light = nullptr;  // the row's light (LightQueries::light_of), as its bits
   uint32_t* shadow_path = nullptr;
   std::array<double*, 3> shadow_c{};
   // The kernel's answers: how many rows each queue took.

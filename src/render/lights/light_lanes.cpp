@@ -19,8 +19,10 @@ void ConeBatch::resize(std::size_t rows) {
     for (Column* c : {&radius, &u1, &u2, &choice, &dist, &solid_angle, &pdf})
       c->resize(padded);
   }
-  // Padding rows: a unit sphere two units from the origin, finite for the kernel (with a
-  // ConeSphere for every row they see that sphere instead, and may be NaN: nobody reads them).
+  // Padding rows: a unit sphere two units from the origin (with a ConeSphere for every row,
+  // they see that sphere instead). Their answers, finite or not, are unread: the render lends
+  // its vertices' point columns as `ref` (lane_vertices.cpp), whose padding holds whatever an
+  // earlier wavefront left there.
   for (std::size_t i = rows; i < padded; ++i) {
     for (int k = 0; k < 3; ++k)
       ref[k][i] = 0, center[k][i] = k == 2 ? 2 : 0;

@@ -323,8 +323,7 @@ void LightSampler::sample_one_sphere(Isa isa, LightQueries& q) const {
   const ConeSphere every_row{{center.x, center.y, center.z}, spheres.r[row], float(choice_[0])};
   sample_cones(isa, cb, &every_row);
   const bool textured = textured_[0];  // read once: q.set's stores may alias a uint8_t
-  if (textured) {
-    q.one_light.reset();
+  if (textured) {  // each row's radiance its own (sample_many left one_light empty)
     for (std::size_t r = 0; r < n; ++r)
       q.set(r, finish_sphere_row(q, r, 0));
     return;
@@ -360,8 +359,8 @@ void LightSampler::sample_one_box(Isa isa, LightQueries& q) const {
 }
 
 // Every row's light and radiance: the one light's (sample_one_sphere, sample_one_box), the
-// same for every row, whose rows without a cone (q.set) write their own columns as well: the
-// same values, from sample().
+// same for every row. The sphere's rows without a cone (q.set, finish_sphere_row) write their
+// own columns as well, with the same values.
 void LightSampler::set_one_light(LightQueries& q) const {
   q.one_light =
       LightQueries::OneLight{lights_[0], {float(le_[0][0]), float(le_[0][1]), float(le_[0][2])}};

@@ -8,9 +8,11 @@
 // the rays and the paths back. (Each step once gathered what it needed from the hits and paths
 // itself: seven passes over the rows, 18 % of a render.)
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "raylane/render/materials/bsdf.h"
 #include "raylane/render/materials/texturing.h"
@@ -80,6 +82,23 @@ void draw_numbers(ThreadContext& ctx, bool lights, bool roulette) {
   s.seed.swap(lv.bsdf_seed);
 }
 
+// Three columns swapped for the life of the object, and back.
+class LentPoints {
+ public:
+  using Columns = std::array<std::vector<float>, 3>;
+  LentPoints(Columns& a, Columns& b) : a_(a), b_(b) { swap(); }
+  ~LentPoints() { swap(); }
+  LentPoints(const LentPoints&) = delete;
+  LentPoints& operator=(const LentPoints&) = delete;
+
+ private:
+  void swap() {
+    for (std::size_t k = 0; k < 3; ++k)
+      a_[k].swap(b_[k]);
+  }
+  Columns &a_, &b_;
+};
+
 // The rows' light points (sphere lights in lanes), with the float direction the BSDF is
 // evaluated toward written by the light sampler as it samples (ConeBatch::wi_float; 0 for no
 // sample, and for every row without lights). The vertex lanes read the rest where sample_many
@@ -96,16 +115,14 @@ void light_columns(ThreadContext& ctx, bool lights) {
   PhaseClock clock(ctx.settings.time_phases);
   ConeBatch& cones = lv.light_queries.cones;
   cones.wi_float = {sb.light_wi[0].data(), sb.light_wi[1].data(), sb.light_wi[2].data()};
-  // The points the sampler reads (cones.ref) are the vertices' own columns, lent by a swap for
-  // the call: a copy cost a pass over three columns. Both are padded to whole batches; the
-  // padding rows' answers are unread.
-  auto lend_points = [&] {
-    for (int k = 0; k < 3; ++k)
-      lv.vertices.p[k].swap(cones.ref[k]);
-  };
-  lend_points();
-  ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
-  lend_points();  // and back
+  {
+    // The points the sampler reads (cones.ref) are the vertices' own columns, lent by a swap
+    // for the call (a copy cost a pass over three columns) and given back when the scope ends,
+    // also if the call throws. Both are padded to whole batches; the padding rows' answers are
+    // unread.
+    const LentPoints lent(lv.vertices.p, cones.ref);
+    ctx.lights.sample_many(ctx.lanes.isa, lv.light_queries);
+  }
   // The columns may move before the next step's call.
   cones.wi_float = {};
   clock.lap(ctx.stats.phases.lights);
