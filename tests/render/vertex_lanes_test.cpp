@@ -368,6 +368,20 @@ void expect_queues_are_the_flagged_rows(const Batches& apart, const std::vector<
   EXPECT_TRUE(got.canaries_alive()) << "a destination written at or past its room";
 }
 
+// n rows of random vertices in a batch, and its padding rows past n holding an earlier
+// wavefront's vertices, as the render's do (the columns never shrink): rows to be queued
+// nowhere, though they would go on.
+Batches random_rows(Rng& rng, std::size_t n, const VertexRules& rules) {
+  const std::size_t padded = (n + 15) / 16 * 16;
+  std::vector<Vertex> vs;
+  for (std::size_t i = 0; i < padded; ++i)
+    vs.push_back(random_vertex(rng, int(i)));
+  Batches b;
+  fill(b, vs, rules, true);
+  b.vertex.resize(n), b.bsdf.resize(n), b.lights.resize(n);
+  return b;
+}
+
 // scatter_vertices is shade_lanes then finish_vertices, then a filter of their rows by their
 // flags into the queues, bit for bit: the same BSDF answers, kept in registers instead of
 // columns, and the rays packed as they are made. At every instruction set, for row counts from
@@ -390,17 +404,9 @@ TEST(VertexLanes, ScatterQueuesTheRaysOfTheBsdfAndTheStepsAfterIt) {
     for (std::size_t n : sizes)
       for (bool lights : {true, false}) {
         SCOPED_TRACE(cat(isa_name(isa), " rows ", n, " lights ", lights));
-        // The padding rows past n hold an earlier wavefront's vertices, as the render's do (the
-        // columns never shrink): rows to be queued nowhere, though they would go on.
         const std::size_t padded = (n + 15) / 16 * 16;
-        std::vector<Vertex> vs;
-        for (std::size_t i = 0; i < padded; ++i)
-          vs.push_back(random_vertex(rng, int(i)));
         const VertexRules rules{true, true, 0.8};
-        Batches b;
-        fill(b, vs, rules, true);
-        vs.resize(n);
-        b.vertex.resize(n), b.bsdf.resize(n), b.lights.resize(n);
+        Batches b = random_rows(rng, n, rules);
         ShadeBatch& sb = b.bsdf;
         std::vector<uint32_t> path(padded), depth(padded);
         for (std::size_t i = 0; i < n; ++i) {
@@ -463,13 +469,8 @@ TEST(VertexLanes, ScatterTakesOneLightAsColumnsFilledWithIt) {
     for (std::size_t n : {std::size_t(37), std::size_t(5003)}) {
       SCOPED_TRACE(cat(isa_name(isa), " rows ", n));
       const std::size_t padded = (n + 15) / 16 * 16;
-      std::vector<Vertex> vs;
-      for (std::size_t i = 0; i < padded; ++i)
-        vs.push_back(random_vertex(rng, int(i)));
       const VertexRules rules{true, true, 0.8};
-      Batches columns;
-      fill(columns, vs, rules, true);
-      columns.vertex.resize(n), columns.bsdf.resize(n), columns.lights.resize(n);
+      Batches columns = random_rows(rng, n, rules);
       std::vector<uint32_t> path(padded), depth(padded);
       for (std::size_t i = 0; i < n; ++i) {
         const Vec nv = random_unit(rng);
