@@ -23,6 +23,17 @@ for tool in converge bench_table; do
       grep -q 'default:' || fail "$tool --help: $o has no default"
   done
 done
+# tools/avx512-emulated (it boots an emulator, too slow to run here): its --help lists every
+# option with a default, and an unknown option is refused before anything is installed or built.
+"$source_dir/tools/avx512-emulated" --help >emulated.help || fail "avx512-emulated --help exits $?"
+for o in --render --trace --simd --minutes; do
+  awk -v o="$o" '$1 == o {on = 1} on && /default:/ {found = 1} on && /^  --/ && $1 != o {on = 0}
+    END {exit !found}' emulated.help || fail "avx512-emulated --help: $o has no default"
+done
+status=0
+"$source_dir/tools/avx512-emulated" --no-such-option >emulated.out 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "unknown option --no-such-option" emulated.out ||
+  fail "avx512-emulated took an unknown option (exit $status): $(cat emulated.out)"
 grep -q -- '--raylane PATH' converge.help || fail "converge takes no --raylane"
 grep -q -- '--bench PATH' bench_table.help || fail "bench_table takes no --bench"
 if "$source_dir/tools/bench_table" --bench "$work/none" >bt.out 2>&1; then
