@@ -26,7 +26,7 @@ done
 # tools/avx512-emulated (it boots an emulator, too slow to run here): its --help lists every
 # option with a default, and an unknown option is refused before anything is installed or built.
 "$source_dir/tools/avx512-emulated" --help >emulated.help || fail "avx512-emulated --help exits $?"
-for o in --render --trace --simd --minutes; do
+for o in --render --trace --simd --bvh --minutes; do
   awk -v o="$o" '$1 == o {on = 1} on && /default:/ {found = 1} on && /^  --/ && $1 != o {on = 0}
     END {exit !found}' emulated.help || fail "avx512-emulated --help: $o has no default"
 done
